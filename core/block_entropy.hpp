@@ -1,0 +1,33 @@
+#pragma once
+// Gray histograms of blocks and their entropy (DESIGN.md section 1, paper Eq. 5-9).
+//
+// The histogram is the cached primitive: both entropy measures derive from it, so the adaptive
+// sweep (DESIGN.md section 3) never reads a pixel twice. Entropies are exact functions of the
+// integer counts: the sums are fixed-point integers (a table of c * log2 c in Q32), so the
+// order of accumulation cannot change a bit in any build.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "aief/options.hpp"
+
+namespace aief {
+
+using Histogram256 = std::uint32_t[256];
+
+// Adds the counts of the width x height pixels at data (row stride `stride`) to hist.
+void accumulate_histogram_scalar(const std::uint8_t* data, std::ptrdiff_t stride, int width,
+                                 int height, std::uint32_t* hist);
+
+// Shannon entropy in bits of a histogram of n = sum(hist) pixels:
+//   E = log2(n) - (1/n) * sum_k c_k log2 c_k; 0 when n == 0 or the block is flat; at most 8.
+double histogram_entropy_bits(const std::uint32_t* hist);
+
+// The paper's Eq. 5-6 over the pixels the histogram counts: p = f / sum f, E = -sum p log2 p
+// (pixels of value 0 add nothing). 0 when every pixel is 0.
+double intensity_entropy_bits(const std::uint32_t* hist);
+
+// The measure chosen by the options (EntropyMeasure::off is an error: callers skip entropy).
+double entropy_bits(const std::uint32_t* hist, EntropyMeasure measure);
+
+}  // namespace aief

@@ -1,0 +1,23 @@
+#pragma once
+// rBRIEF-256 over the blurred level with the learned ORB pattern (data/orb_pattern_31.txt,
+// compiled in), as ORB-SLAM2 and OpenCV compute it (DESIGN.md section 1):
+//   a = (float)cos(angle), b = (float)sin(angle), angle = angle_deg * (float)(pi / 180)
+//   offset of pattern point (px, py):  dx = lrint(px * a - py * b), dy = lrint(px * b + py * a)
+//   (float arithmetic, no contraction, round half to even, as cvRound)
+//   test i = I(p_i) < I(q_i) goes to bit i % 8 (LSB first) of byte i / 8.
+#include <cstdint>
+
+#include "aief/image.hpp"
+#include "core/pixel_point.hpp"
+
+namespace aief {
+
+// The 256 pairs (x1, y1, x2, y2) of the learned pattern, in file order.
+const std::int8_t (*orb_pattern_31())[4];
+
+// Writes 32 bytes per point to descriptors (n * 32). Points lie >= kEdgeBorder from every edge
+// of `blurred`, so every rotated sample is inside it.
+void rbrief_describe_scalar(ImageView blurred, const PixelPoint* points, const float* angle_deg,
+                            int n, std::uint8_t* descriptors);
+
+}  // namespace aief

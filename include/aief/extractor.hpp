@@ -1,0 +1,40 @@
+#pragma once
+// The extractor: built once from options, then run on frame after frame. Buffers (pyramid,
+// score maps, candidate lists) and the kernel table are kept between frames, so frames of one
+// size allocate nothing after the first.
+#include <memory>
+#include <string_view>
+
+#include "aief/features.hpp"
+#include "aief/image.hpp"
+#include "aief/options.hpp"
+
+namespace aief {
+
+class Extractor {
+ public:
+  // Validates the options (throws aief::Error) and picks the kernel table.
+  explicit Extractor(ExtractorOptions options = {});
+  ~Extractor();
+  Extractor(Extractor&&) noexcept;
+  Extractor& operator=(Extractor&&) noexcept;
+
+  // Keypoints and descriptors of one gray image. Throws aief::Error for an empty image or one
+  // smaller than 2 * kEdgeBorder + 1 in either side.
+  Features extract(ImageView image);
+  // Same, into `out`, reusing its vectors' storage.
+  void extract(ImageView image, Features& out);
+
+  const ExtractorOptions& options() const;
+  // Name of the kernel set that runs ("scalar", "avx2", ...).
+  std::string_view kernel_name() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// One-shot convenience: Extractor(options).extract(image).
+Features extract(ImageView image, const ExtractorOptions& options = {});
+
+}  // namespace aief

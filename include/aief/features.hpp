@@ -1,0 +1,40 @@
+#pragma once
+// What an extraction returns: keypoints in level-0 pixels and their 32-byte rBRIEF descriptors.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "aief/options.hpp"
+
+namespace aief {
+
+struct Keypoint {
+  float x = 0;         // level-0 pixels: level x times scale_factor^octave
+  float y = 0;
+  float size = 0;      // kPatchSize * scale_factor^octave
+  float angle_deg = 0; // intensity-centroid orientation, [0, 360)
+  float response = 0;  // FAST corner score (OpenCV's definition)
+  int octave = 0;      // pyramid level
+};
+
+using Descriptor = std::array<std::uint8_t, kDescriptorBytes>;
+
+// How the entropy mask went for this image.
+struct ExtractionInfo {
+  double entropy_threshold_requested = 0;  // F asked for
+  double entropy_threshold_used = 0;       // F applied (lower when the mask would starve)
+  bool threshold_lowered = false;          // true when used < requested
+  double image_entropy_bits = 0;           // entropy of level 0 (Eq. 7), same measure
+  int blocks_total = 0;                    // blocks over all levels
+  int blocks_kept = 0;                     // blocks with entropy > F used
+};
+
+struct Features {
+  int image_width = 0;
+  int image_height = 0;
+  std::vector<Keypoint> keypoints;      // octave ascending, then y, then x within a level
+  std::vector<Descriptor> descriptors;  // descriptors[i] describes keypoints[i]
+  ExtractionInfo info;
+};
+
+}  // namespace aief
