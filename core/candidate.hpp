@@ -1,0 +1,25 @@
+#pragma once
+#include <cstdint>
+
+namespace aief {
+
+// A FAST corner that survived suppression, in level pixels.
+struct Candidate {
+  std::int32_t x = 0;
+  std::int32_t y = 0;
+  std::int32_t score = 0;  // FAST score (OpenCV's definition), >= the block's threshold
+};
+
+// The one ranking of candidates (DESIGN.md section 1): higher score first, then y, then x.
+inline bool stronger(const Candidate& a, const Candidate& b) {
+  if (a.score != b.score) return a.score > b.score;
+  if (a.y != b.y) return a.y < b.y;
+  return a.x < b.x;
+}
+
+// Raster order, the order of keypoints within a level in the output.
+inline bool raster_before(const Candidate& a, const Candidate& b) {
+  return a.y != b.y ? a.y < b.y : a.x < b.x;
+}
+
+}  // namespace aief

@@ -1,0 +1,36 @@
+#pragma once
+// How many keypoints each block (or quadtree node) of a level keeps (DESIGN.md section 1).
+// Both functions select among the candidates of one level and append the indices (into
+// `candidates`) of the chosen ones to `selected`, in no particular order.
+#include <cstdint>
+#include <vector>
+
+#include "core/candidate.hpp"
+
+namespace aief {
+
+// Candidates of one kept block: candidates[begin, end).
+struct BlockRange {
+  std::int32_t begin = 0;
+  std::int32_t end = 0;
+  std::int32_t size() const { return end - begin; }
+};
+
+// AIEF's proportional distribution (Eq. 12-17). Block i keeps c_i = min(R_i, k) of its R_i
+// candidates, the strongest ones, for the water level k with sum_i min(R_i, k) <= n_wanted as
+// large as possible; the remainder goes to the strongest (k+1)-th candidates of the blocks that
+// have more than k. The level keeps exactly min(n_wanted, sum_i R_i) and no block exceeds k + 1.
+void distribute_proportional(const std::vector<Candidate>& candidates,
+                             const std::vector<BlockRange>& blocks, int n_wanted,
+                             std::vector<std::int32_t>& selected);
+
+// ORB-SLAM2's DistributeOctTree over candidates in the rectangle [min_x, max_x) x [min_y, max_y)
+// of the level: split nodes into four until there are >= n_wanted nodes or none can split, keep
+// the strongest candidate of each node. Every ordering has a full tie-break (nodes: more
+// candidates first, then top-left first; candidates: stronger()), so repeated calls agree.
+// ORB-SLAM2 can end with up to 3 nodes more than wanted; the weakest of those are dropped, so the
+// level keeps exactly min(n_wanted, number of candidates).
+void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, int max_x, int min_y,
+                         int max_y, int n_wanted, std::vector<std::int32_t>& selected);
+
+}  // namespace aief

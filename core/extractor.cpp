@@ -1,0 +1,79 @@
+#include "aief/extractor.hpp"
+
+#include <algorithm>
+
+#include "core/frame_analysis.hpp"
+#include "simd/kernels.hpp"
+
+namespace aief {
+
+namespace {
+
+// Step by which a starving frame lowers F: the sweep's S_p (DESIGN.md section 3).
+constexpr double kStarvationStep = 0.2;
+
+}  // namespace
+
+struct Extractor::State {
+  ExtractorOptions options;
+  const KernelTable* kernels = nullptr;
+  FrameAnalysis analysis;
+  std::vector<std::vector<std::int32_t>> chosen;
+};
+
+Extractor::Extractor(ExtractorOptions options) : state_(std::make_unique<State>()) {
+  options.validate();
+  state_->options = options;
+  state_->kernels = &kernel_table(options.kernels);
+}
+
+Extractor::~Extractor() = default;
+Extractor::Extractor(Extractor&&) noexcept = default;
+Extractor& Extractor::operator=(Extractor&&) noexcept = default;
+
+const ExtractorOptions& Extractor::options() const { return state_->options; }
+
+std::string_view Extractor::kernel_name() const { return state_->kernels->name; }
+
+Features Extractor::extract(ImageView image) {
+  Features features;
+  extract(image, features);
+  return features;
+}
+
+void Extractor::extract(ImageView image, Features& out) {
+  State& s = *state_;
+  FrameAnalysis& analysis = s.analysis;
+  analysis.start(image, s.options, *s.kernels);
+  const int levels = analysis.level_count();
+  for (int n = 0; n < levels; ++n) analysis.build_level(n);
+  for (int n = 0; n < levels; ++n) analysis.compute_entropies(n);
+
+  const bool entropy_on = s.options.entropy != EntropyMeasure::off;
+  double threshold = entropy_on ? s.options.entropy_threshold : 0.0;
+  for (int n = 0; n < levels; ++n) analysis.detect(n, threshold);
+  // Never starve (DESIGN.md section 3): while the kept blocks hold fewer candidates than the
+  // features asked for, lower F for this frame, down to 0 (every non-flat block).
+  while (entropy_on && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
+    threshold = std::max(0.0, threshold - kStarvationStep);
+    for (int n = 0; n < levels; ++n) analysis.detect(n, threshold);
+  }
+
+  s.chosen.resize(static_cast<std::size_t>(levels));
+  for (int n = 0; n < levels; ++n) analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]);
+  analysis.assemble(s.chosen, out);
+
+  ExtractionInfo& info = out.info;
+  info.entropy_threshold_requested = entropy_on ? s.options.entropy_threshold : 0.0;
+  info.entropy_threshold_used = threshold;
+  info.threshold_lowered = threshold < info.entropy_threshold_requested;
+  info.image_entropy_bits = analysis.image_entropy_bits();
+  info.blocks_total = analysis.blocks_total();
+  info.blocks_kept = analysis.blocks_kept(threshold);
+}
+
+Features extract(ImageView image, const ExtractorOptions& options) {
+  return Extractor(options).extract(image);
+}
+
+}  // namespace aief

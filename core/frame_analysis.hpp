@@ -1,0 +1,102 @@
+#pragma once
+// Everything about one image that does not depend on the entropy threshold F (DESIGN.md
+// sections 1 and 3): pyramid levels, block entropies, FAST candidates per block (detected on
+// demand, only for the blocks a threshold keeps, plus the one-pixel ring suppression reads),
+// and orientations and descriptors (computed on demand, memoised per candidate). A threshold is
+// then a block mask, a distribution and the descriptors of the chosen candidates: select().
+//
+// The stages are separate functions per level so that parallel/ can schedule them; each writes
+// only into its own level, so the result never depends on which thread ran what.
+#include <cstdint>
+#include <vector>
+
+#include "aief/features.hpp"
+#include "aief/image.hpp"
+#include "aief/options.hpp"
+#include "core/candidate.hpp"
+#include "core/distribution.hpp"
+#include "core/kernel_table.hpp"
+#include "core/level_geometry.hpp"
+#include "core/pyramid_resize.hpp"
+
+namespace aief {
+
+struct LevelState {
+  LevelGeometry geometry;
+  ResizePlan resize_plan;  // from the previous level (empty for level 0)
+  GrayImage image;         // level pixels (level 0 is a copy of the input, made contiguous)
+  GrayImage blurred;       // 7x7 Gaussian of image, made on first describe
+  bool blurred_ready = false;
+  GrayImage scores;        // FAST scores, valid only where some block's detection wrote them
+
+  std::vector<double> block_entropy;       // bits, per block, row-major (empty: entropy off)
+  std::vector<std::uint8_t> block_detected;
+  std::vector<BlockRange> block_candidates;  // per block: its candidates, raster order
+
+  std::vector<Candidate> candidates;           // all detected candidates of the level
+  std::vector<float> candidate_angle_deg;      // memo, valid where candidate_described
+  std::vector<Descriptor> candidate_descriptor;
+  std::vector<std::uint8_t> candidate_described;
+
+  // Per-level scratch, so levels can run on different threads.
+  std::vector<std::int32_t> scratch_xs;
+  std::vector<std::int32_t> scratch_selected;
+  std::vector<BlockRange> scratch_blocks;
+  std::vector<Candidate> scratch_candidates;
+  std::vector<PixelPoint> scratch_points;
+  std::vector<std::int32_t> scratch_m10, scratch_m01;
+  std::vector<float> scratch_angles;
+  std::vector<std::uint8_t> scratch_descriptors;
+
+  bool usable() const { return geometry.grid.count() > 0; }
+};
+
+class FrameAnalysis {
+ public:
+  // Checks the image against the options (throws aief::Error) and sizes the levels. Reuses all
+  // buffers when the size is the same as the previous frame's.
+  void start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels);
+
+  int level_count() const { return static_cast<int>(levels_.size()); }
+  LevelState& level(int n) { return levels_[static_cast<std::size_t>(n)]; }
+  const LevelState& level(int n) const { return levels_[static_cast<std::size_t>(n)]; }
+
+  // Stage 1 per level, in level order: the level's pixels (from the input or level n - 1).
+  void build_level_rows(int n, int y_begin, int y_end);
+  void build_level(int n) { build_level_rows(n, 0, level(n).geometry.height); }
+  // Stage 2: block entropies of level n (no-op with entropy off).
+  void compute_entropies(int n);
+  // Stage 3: FAST candidates of every block of level n kept at threshold F not yet detected.
+  void detect(int n, double threshold);
+  // Stage 4: the keypoints of level n at threshold F: distribution, orientation, descriptors.
+  // Appends the chosen candidate indices (raster order) to `chosen`.
+  void select(int n, double threshold, std::vector<std::int32_t>& chosen);
+
+  // Whether block b of level n is kept at threshold F (always, with entropy off).
+  bool block_kept(int n, int b, double threshold) const;
+  // Candidates in the blocks kept at F, over all levels (after detect at F).
+  std::int64_t candidate_count(double threshold) const;
+  int blocks_total() const;
+  int blocks_kept(double threshold) const;
+  // Entropy of level 0 (Eq. 7) in the options' measure; 0 with entropy off. After stage 2.
+  double image_entropy_bits() const;
+
+  // Writes the keypoints and descriptors of the chosen candidates of every level.
+  void assemble(const std::vector<std::vector<std::int32_t>>& chosen, Features& out) const;
+
+  const ExtractorOptions& options() const { return options_; }
+
+ private:
+  void compute_score_rows(LevelState& level, int y_begin, int y_end, int x_begin, int x_end);
+  void detect_block(LevelState& level, int block);
+  void describe(LevelState& level, const std::vector<std::int32_t>& indices);
+
+  ExtractorOptions options_;
+  const KernelTable* kernels_ = nullptr;
+  ImageView input_;
+  int width_ = 0, height_ = 0;
+  std::vector<LevelState> levels_;
+  double image_entropy_bits_ = 0;
+};
+
+}  // namespace aief

@@ -1,0 +1,40 @@
+#pragma once
+// Sizes, scales, feature budgets and block grids of the pyramid levels (DESIGN.md section 1).
+// Depends only on the image size and the options, so an extractor computes it once per size.
+#include <vector>
+
+#include "aief/options.hpp"
+
+namespace aief {
+
+// Blocks tile the area where a keypoint may lie, [kEdgeBorder, size - kEdgeBorder) on each axis.
+// Column c spans x in [col_edges[c], col_edges[c + 1]); a short last column (or row) narrower
+// than half a block is merged into its neighbour, so no block is tiny.
+struct BlockGrid {
+  std::vector<int> col_edges;  // cols + 1 entries
+  std::vector<int> row_edges;  // rows + 1 entries
+  int cols() const { return static_cast<int>(col_edges.size()) - 1; }
+  int rows() const { return static_cast<int>(row_edges.size()) - 1; }
+  int count() const { return cols() * rows(); }
+};
+
+BlockGrid make_block_grid(int width, int height, int block_size);
+
+struct LevelGeometry {
+  int width = 0;
+  int height = 0;
+  float scale = 1;     // level-0 pixels per level pixel: scale_factor^n in float (ORB-SLAM2)
+  int n_features = 0;  // N_n of Eq. 12-17, ORB-SLAM2's rounding with the rest on the last level
+  BlockGrid grid;      // empty when the level is smaller than 2 * kEdgeBorder + 1
+};
+
+// All n_levels levels. Levels too small to hold a keypoint keep their size and budget but have
+// no blocks, and are not built.
+std::vector<LevelGeometry> level_geometry(int width, int height, const ExtractorOptions& options);
+
+// A level can hold keypoints (and is built) when both sides are >= 2 * kEdgeBorder + 1.
+inline bool level_is_usable(int width, int height) {
+  return width >= 2 * kEdgeBorder + 1 && height >= 2 * kEdgeBorder + 1;
+}
+
+}  // namespace aief

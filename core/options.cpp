@@ -1,0 +1,137 @@
+#include "aief/options.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "aief/error.hpp"
+
+namespace aief {
+
+namespace {
+
+template <class T>
+std::string str(T value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw Error(message);
+}
+
+void require_int_range(const char* name, int value, int lo, int hi) {
+  require(value >= lo && value <= hi, std::string(name) + " must be in [" + str(lo) + ", " +
+                                          str(hi) + "], got " + str(value));
+}
+
+}  // namespace
+
+void ExtractorOptions::validate() const {
+  require_int_range("n_features", n_features, 1, 1'000'000);
+  require(std::isfinite(scale_factor) && scale_factor > 1.0 && scale_factor <= 4.0,
+          "scale_factor must be > 1 and <= 4, got " + str(scale_factor));
+  require_int_range("n_levels", n_levels, 1, 32);
+  require_int_range("fast_threshold", fast_threshold, 1, 254);
+  require_int_range("fast_min_threshold", fast_min_threshold, 1, fast_threshold);
+  require_int_range("block_size", block_size, 8, 1024);
+  require(distribution == Distribution::proportional || distribution == Distribution::quadtree,
+          "distribution has an unknown value " + str(static_cast<int>(distribution)));
+  require(entropy == EntropyMeasure::off || entropy == EntropyMeasure::histogram ||
+              entropy == EntropyMeasure::intensity,
+          "entropy has an unknown value " + str(static_cast<int>(entropy)));
+  require(std::isfinite(entropy_threshold) && entropy_threshold >= 0.0 && entropy_threshold <= 64.0,
+          "entropy_threshold must be in [0, 64] bits, got " + str(entropy_threshold));
+  require(static_cast<int>(kernels) >= 0 && static_cast<int>(kernels) <= static_cast<int>(KernelSet::avx512bw),
+          "kernels has an unknown value " + str(static_cast<int>(kernels)));
+  require_int_range("threads", threads, 0, 256);
+  require(max_image_pixels >= 1, "max_image_pixels must be >= 1, got " + str(max_image_pixels));
+}
+
+ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
+  const EntropyMeasure measure =
+      base.entropy == EntropyMeasure::off ? EntropyMeasure::histogram : base.entropy;
+  switch (mode) {
+    case Mode::aief:
+      base.distribution = Distribution::proportional;
+      base.entropy = measure;
+      break;
+    case Mode::orbslam2:
+      base.distribution = Distribution::quadtree;
+      base.entropy = EntropyMeasure::off;
+      break;
+    case Mode::quadtree_entropy:
+      base.distribution = Distribution::quadtree;
+      base.entropy = measure;
+      break;
+  }
+  return base;
+}
+
+std::string_view to_string(Distribution value) {
+  return value == Distribution::quadtree ? "quadtree" : "proportional";
+}
+
+std::string_view to_string(EntropyMeasure value) {
+  switch (value) {
+    case EntropyMeasure::off: return "off";
+    case EntropyMeasure::histogram: return "histogram";
+    case EntropyMeasure::intensity: return "intensity";
+  }
+  return "?";
+}
+
+std::string_view to_string(KernelSet value) {
+  switch (value) {
+    case KernelSet::auto_select: return "auto";
+    case KernelSet::scalar: return "scalar";
+    case KernelSet::sse4_2: return "sse4.2";
+    case KernelSet::avx2: return "avx2";
+    case KernelSet::avx512bw: return "avx512";
+  }
+  return "?";
+}
+
+std::string_view to_string(Mode value) {
+  switch (value) {
+    case Mode::aief: return "aief";
+    case Mode::orbslam2: return "orbslam2";
+    case Mode::quadtree_entropy: return "quadtree-entropy";
+  }
+  return "?";
+}
+
+Distribution parse_distribution(std::string_view name) {
+  if (name == "proportional") return Distribution::proportional;
+  if (name == "quadtree") return Distribution::quadtree;
+  throw Error("unknown distribution '" + std::string(name) + "' (expected proportional or quadtree)");
+}
+
+EntropyMeasure parse_entropy_measure(std::string_view name) {
+  if (name == "off") return EntropyMeasure::off;
+  if (name == "histogram") return EntropyMeasure::histogram;
+  if (name == "intensity") return EntropyMeasure::intensity;
+  throw Error("unknown entropy measure '" + std::string(name) +
+              "' (expected histogram, intensity or off)");
+}
+
+KernelSet parse_kernel_set(std::string_view name) {
+  if (name == "auto") return KernelSet::auto_select;
+  if (name == "scalar") return KernelSet::scalar;
+  if (name == "sse4.2" || name == "sse4_2") return KernelSet::sse4_2;
+  if (name == "avx2") return KernelSet::avx2;
+  if (name == "avx512" || name == "avx512bw") return KernelSet::avx512bw;
+  throw Error("unknown kernel set '" + std::string(name) +
+              "' (expected auto, scalar, sse4.2, avx2 or avx512)");
+}
+
+Mode parse_mode(std::string_view name) {
+  if (name == "aief") return Mode::aief;
+  if (name == "orbslam2") return Mode::orbslam2;
+  if (name == "quadtree-entropy" || name == "quadtree_entropy") return Mode::quadtree_entropy;
+  throw Error("unknown mode '" + std::string(name) +
+              "' (expected aief, orbslam2 or quadtree-entropy)");
+}
+
+}  // namespace aief
