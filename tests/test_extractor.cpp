@@ -1,0 +1,188 @@
+// The whole pipeline on real and synthetic images: counts per mode, repeatability, bad input,
+// and descriptors that survive an exact 90-degree rotation.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "aief/error.hpp"
+#include "aief/extractor.hpp"
+#include "core/hamming.hpp"
+#include "core/level_geometry.hpp"
+#include "tests/test_support.hpp"
+
+namespace aief {
+namespace {
+
+using test::load_sample_gray;
+using test::view_of;
+
+bool same_bytes(const Features& a, const Features& b) {
+  if (a.keypoints.size() != b.keypoints.size() || a.descriptors != b.descriptors) return false;
+  for (std::size_t i = 0; i < a.keypoints.size(); ++i)
+    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0) return false;
+  return true;
+}
+
+class ExtractorModes : public testing::TestWithParam<Mode> {};
+
+TEST_P(ExtractorModes, BoundedCountsAndRepeatableOnSamples) {
+  const ExtractorOptions options = options_for_mode(GetParam());
+  for (const char* sequence : {"graf", "boat"}) {
+    const cv::Mat gray = load_sample_gray(sequence, "img1.png");
+    Extractor extractor(options);
+    const Features first = extractor.extract(view_of(gray));
+    SCOPED_TRACE(sequence);
+    EXPECT_LE(static_cast<int>(first.keypoints.size()), options.n_features);
+    EXPECT_GE(static_cast<int>(first.keypoints.size()), options.n_features * 9 / 10);
+    ASSERT_EQ(first.keypoints.size(), first.descriptors.size());
+
+    // Per level at most N_n, octaves ascending, raster order within a level, inside the border.
+    const std::vector<LevelGeometry> geometry = level_geometry(gray.cols, gray.rows, options);
+    std::vector<int> per_level(geometry.size(), 0);
+    for (std::size_t i = 0; i < first.keypoints.size(); ++i) {
+      const Keypoint& kp = first.keypoints[i];
+      ASSERT_GE(kp.octave, 0);
+      ASSERT_LT(kp.octave, options.n_levels);
+      ++per_level[static_cast<std::size_t>(kp.octave)];
+      EXPECT_GE(kp.angle_deg, 0.0f);
+      EXPECT_LT(kp.angle_deg, 360.0f);
+      EXPECT_GE(kp.response, static_cast<float>(options.fast_min_threshold));
+      const float scale = geometry[static_cast<std::size_t>(kp.octave)].scale;
+      EXPECT_GE(kp.x / scale, kEdgeBorder - 0.01f);
+      EXPECT_GE(kp.y / scale, kEdgeBorder - 0.01f);
+      if (i > 0) {
+        const Keypoint& prev = first.keypoints[i - 1];
+        EXPECT_TRUE(prev.octave < kp.octave || (prev.octave == kp.octave && (prev.y < kp.y || (prev.y == kp.y && prev.x < kp.x))))
+            << "keypoint " << i << " out of order";
+      }
+    }
+    for (std::size_t n = 0; n < geometry.size(); ++n) EXPECT_LE(per_level[n], geometry[n].n_features) << "level " << n;
+
+    // Same bytes on a second run, with the same extractor and with a new one.
+    EXPECT_TRUE(same_bytes(first, extractor.extract(view_of(gray))));
+    EXPECT_TRUE(same_bytes(first, Extractor(options).extract(view_of(gray))));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, ExtractorModes, testing::Values(Mode::aief, Mode::orbslam2, Mode::quadtree_entropy),
+                         [](const testing::TestParamInfo<Mode>& info) {
+                           std::string name(to_string(info.param));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+TEST(Extractor, StridedViewGivesTheSameResultAsAContiguousImage) {
+  const cv::Mat gray = load_sample_gray("graf", "img1.png");
+  cv::Mat padded(gray.rows, gray.cols + 13, CV_8UC1, cv::Scalar(77));
+  gray.copyTo(padded(cv::Rect(0, 0, gray.cols, gray.rows)));
+  const ImageView strided{padded.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(padded.step)};
+  EXPECT_TRUE(same_bytes(extract(view_of(gray)), extract(strided)));
+}
+
+TEST(Extractor, FrameAfterFrameOfDifferentSizes) {
+  const cv::Mat graf = load_sample_gray("graf", "img1.png");
+  const cv::Mat boat = load_sample_gray("boat", "img1.png");
+  Extractor extractor;
+  const Features graf_first = extractor.extract(view_of(graf));
+  extractor.extract(view_of(boat));
+  EXPECT_TRUE(same_bytes(graf_first, extractor.extract(view_of(graf))));
+}
+
+TEST(Extractor, UniformAndSaturatedImagesGiveNoKeypoints) {
+  for (int value : {0, 128, 255}) {
+    cv::Mat flat(120, 97, CV_8UC1, cv::Scalar(value));
+    for (Mode mode : {Mode::aief, Mode::orbslam2}) {
+      const Features features = extract(view_of(flat), options_for_mode(mode));
+      EXPECT_TRUE(features.keypoints.empty()) << "value " << value;
+      EXPECT_TRUE(features.descriptors.empty());
+    }
+  }
+}
+
+TEST(Extractor, BadImagesGetClearErrors) {
+  Extractor extractor;
+  const auto message = [&](ImageView view) -> std::string {
+    try {
+      extractor.extract(view);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_NE(message(ImageView{}).find("empty"), std::string::npos);
+  const std::uint8_t one = 0;
+  EXPECT_NE(message(ImageView{&one, 1, 1, 1}).find("smaller than the 19-pixel border"), std::string::npos);
+  std::vector<std::uint8_t> small(38 * 200, 100);
+  EXPECT_NE(message(ImageView{small.data(), 38, 200, 38}).find("38x200"), std::string::npos);
+  EXPECT_NE(message(ImageView{small.data(), 200, 38, 200}).find("200x38"), std::string::npos);
+  EXPECT_NE(message(ImageView{small.data(), 50, 50, 40}).find("stride"), std::string::npos);
+  EXPECT_NE(message(ImageView{nullptr, 50, 50, 50}).find("no pixel data"), std::string::npos);
+  ExtractorOptions limited;
+  limited.max_image_pixels = 1000;
+  std::vector<std::uint8_t> big(100 * 100, 1);
+  EXPECT_THROW(Extractor(limited).extract(ImageView{big.data(), 100, 100, 100}), Error);
+}
+
+TEST(Extractor, SmallestImagesAndManyLevelsAnswer) {
+  for (int size : {39, 40, 41, 57}) {
+    const cv::Mat image = test::random_textured_image(size, size + 3, static_cast<std::uint32_t>(size));
+    ExtractorOptions options;
+    options.n_levels = 32;
+    const Features features = extract(view_of(image), options);
+    EXPECT_LE(static_cast<int>(features.keypoints.size()), options.n_features);
+    for (const Keypoint& kp : features.keypoints) EXPECT_EQ(kp.octave, 0) << "only level 0 holds keypoints at " << size;
+  }
+}
+
+TEST(Extractor, StarvingMaskLowersTheThresholdAndSaysSo) {
+  const cv::Mat gray = load_sample_gray("graf", "img1.png");
+  ExtractorOptions options;
+  options.entropy_threshold = 7.9;  // keeps almost no block
+  const Features features = extract(view_of(gray), options);
+  EXPECT_TRUE(features.info.threshold_lowered);
+  EXPECT_LT(features.info.entropy_threshold_used, 7.9);
+  EXPECT_GE(static_cast<int>(features.keypoints.size()), options.n_features * 9 / 10);
+  options.entropy_threshold = 0.0;
+  EXPECT_FALSE(extract(view_of(gray), options).info.threshold_lowered);
+}
+
+TEST(Extractor, EntropyMaskDropsFlatBlocks) {
+  // Left half textured, right half flat: with the mask, no keypoint on the right.
+  cv::Mat image = test::random_textured_image(400, 300, 5);
+  image(cv::Rect(200, 0, 200, 300)).setTo(90);
+  const Features features = extract(view_of(image), options_for_mode(Mode::aief));
+  ASSERT_FALSE(features.keypoints.empty());
+  for (const Keypoint& kp : features.keypoints) EXPECT_LT(kp.x, 200 + 2 * kPatchSize);
+  EXPECT_LT(features.info.blocks_kept, features.info.blocks_total);
+}
+
+TEST(Extractor, DescriptorsSurviveAnExactQuarterTurn) {
+  const cv::Mat gray = load_sample_gray("graf", "img1.png");
+  cv::Mat rotated;
+  cv::rotate(gray, rotated, cv::ROTATE_90_CLOCKWISE);  // (x, y) -> (h - 1 - y, x)
+  ExtractorOptions options = options_for_mode(Mode::aief);
+  options.n_levels = 1;
+  options.n_features = 1500;
+  const Features a = extract(view_of(gray), options);
+  const Features b = extract(view_of(rotated), options);
+  std::vector<int> distances;
+  for (std::size_t i = 0; i < a.keypoints.size(); ++i) {
+    const float rx = static_cast<float>(gray.rows - 1) - a.keypoints[i].y, ry = a.keypoints[i].x;
+    for (std::size_t j = 0; j < b.keypoints.size(); ++j) {
+      if (b.keypoints[j].x == rx && b.keypoints[j].y == ry) {
+        distances.push_back(static_cast<int>(hamming_256_scalar(a.descriptors[i].data(), b.descriptors[j].data())));
+        break;
+      }
+    }
+  }
+  ASSERT_GE(distances.size(), 100u) << "too few corresponding keypoints";
+  std::nth_element(distances.begin(), distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2), distances.end());
+  EXPECT_LE(distances[distances.size() / 2], 10) << "median Hamming distance over " << distances.size() << " pairs";
+}
+
+}  // namespace
+}  // namespace aief
