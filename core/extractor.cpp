@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/frame_analysis.hpp"
+#include "parallel/scheduler.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {
@@ -17,6 +18,7 @@ constexpr double kStarvationStep = 0.2;
 struct Extractor::State {
   ExtractorOptions options;
   const KernelTable* kernels = nullptr;
+  parallel::Scheduler scheduler;
   FrameAnalysis analysis;
   std::vector<std::vector<std::int32_t>> chosen;
 };
@@ -25,6 +27,7 @@ Extractor::Extractor(ExtractorOptions options) : state_(std::make_unique<State>(
   options.validate();
   state_->options = options;
   state_->kernels = &kernel_table(options.kernels);
+  state_->scheduler = parallel::Scheduler(options.threads);
 }
 
 Extractor::~Extractor() = default;
@@ -46,21 +49,25 @@ void Extractor::extract(ImageView image, Features& out) {
   FrameAnalysis& analysis = s.analysis;
   analysis.start(image, s.options, *s.kernels);
   const int levels = analysis.level_count();
+  // The pyramid is a chain (level n from level n - 1); everything after it is per level, and
+  // levels run in parallel, largest first.
   for (int n = 0; n < levels; ++n) analysis.build_level(n);
-  for (int n = 0; n < levels; ++n) analysis.compute_entropies(n);
 
   const bool entropy_on = s.options.entropy != EntropyMeasure::off;
   double threshold = entropy_on ? s.options.entropy_threshold : 0.0;
-  for (int n = 0; n < levels; ++n) analysis.detect(n, threshold);
+  s.scheduler.for_each(levels, [&](int n) {
+    analysis.compute_entropies(n);
+    analysis.detect(n, threshold);
+  });
   // Never starve (DESIGN.md section 3): while the kept blocks hold fewer candidates than the
   // features asked for, lower F for this frame, down to 0 (every non-flat block).
   while (entropy_on && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
     threshold = std::max(0.0, threshold - kStarvationStep);
-    for (int n = 0; n < levels; ++n) analysis.detect(n, threshold);
+    s.scheduler.for_each(levels, [&](int n) { analysis.detect(n, threshold); });
   }
 
   s.chosen.resize(static_cast<std::size_t>(levels));
-  for (int n = 0; n < levels; ++n) analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]);
+  s.scheduler.for_each(levels, [&](int n) { analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]); });
   analysis.assemble(s.chosen, out);
 
   ExtractionInfo& info = out.info;

@@ -1,0 +1,31 @@
+#pragma once
+// TBB scheduling of the pipeline's independent pieces (pyramid levels, thresholds of a sweep,
+// rows of a match). Work is handed out largest first from a shared counter, each piece writes
+// only its own slot, so the result never depends on which thread ran what (DESIGN.md section 5).
+#include <functional>
+#include <memory>
+
+namespace aief::parallel {
+
+class Scheduler {
+ public:
+  // threads == 0: run in the caller's task arena (TBB's default one, or the arena the caller
+  // entered with tbb::task_arena::execute). threads >= 1: a private arena of that many threads.
+  explicit Scheduler(int threads = 0);
+  ~Scheduler();
+  Scheduler(Scheduler&&) noexcept;
+  Scheduler& operator=(Scheduler&&) noexcept;
+
+  // Calls work(i) once for every i in [0, count). Pieces are taken in index order, so callers
+  // put the largest first (level 0 before level 1). Exceptions propagate to the caller.
+  void for_each(int count, const std::function<void(int)>& work) const;
+
+  // Threads that may run pieces at once.
+  int concurrency() const;
+
+ private:
+  struct Arena;  // a tbb::task_arena, kept out of this header
+  std::unique_ptr<Arena> arena_;
+};
+
+}  // namespace aief::parallel
