@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/auto_threshold.hpp"
 #include "core/frame_analysis.hpp"
 #include "parallel/scheduler.hpp"
 #include "simd/kernels.hpp"
@@ -21,6 +22,7 @@ struct Extractor::State {
   parallel::Scheduler scheduler;
   FrameAnalysis analysis;
   std::vector<std::vector<std::int32_t>> chosen;
+  std::vector<double> entropies;  // all blocks' entropies, for the automatic F
 };
 
 Extractor::Extractor(ExtractorOptions options) : state_(std::make_unique<State>()) {
@@ -54,11 +56,18 @@ void Extractor::extract(ImageView image, Features& out) {
   for (int n = 0; n < levels; ++n) analysis.build_level(n);
 
   const bool entropy_on = s.options.entropy != EntropyMeasure::off;
-  double threshold = entropy_on ? s.options.entropy_threshold : 0.0;
-  s.scheduler.for_each(levels, [&](int n) {
-    analysis.compute_entropies(n);
-    analysis.detect(n, threshold);
-  });
+  s.scheduler.for_each(levels, [&](int n) { analysis.compute_entropies(n); });
+  double requested = entropy_on ? s.options.entropy_threshold : 0.0;
+  if (entropy_on && s.options.auto_threshold) {
+    s.entropies.clear();
+    for (int n = 0; n < levels; ++n) {
+      const std::vector<double>& level = analysis.level(n).block_entropy;
+      s.entropies.insert(s.entropies.end(), level.begin(), level.end());
+    }
+    requested = auto_entropy_threshold(s.entropies);
+  }
+  double threshold = requested;
+  s.scheduler.for_each(levels, [&](int n) { analysis.detect(n, threshold); });
   // Never starve (DESIGN.md section 3): while the kept blocks hold fewer candidates than the
   // features asked for, lower F for this frame, down to 0 (every non-flat block).
   while (entropy_on && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
@@ -71,7 +80,7 @@ void Extractor::extract(ImageView image, Features& out) {
   analysis.assemble(s.chosen, out);
 
   ExtractionInfo& info = out.info;
-  info.entropy_threshold_requested = entropy_on ? s.options.entropy_threshold : 0.0;
+  info.entropy_threshold_requested = requested;
   info.entropy_threshold_used = threshold;
   info.threshold_lowered = threshold < info.entropy_threshold_requested;
   info.image_entropy_bits = analysis.image_entropy_bits();

@@ -47,6 +47,9 @@ struct ExtractorOptions {
   // F of Eq. 9: a block is kept when its entropy is > F. 4.0 bits keeps textured blocks and
   // drops sky, walls and saturated areas on the Oxford images; `adapt` chooses F per scene.
   double entropy_threshold = 4.0;
+  // Pair-free automatic F (core/auto_threshold.hpp) instead of entropy_threshold: Otsu's split
+  // of the frame's own block entropies. `aief extract --threshold auto`.
+  bool auto_threshold = false;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
