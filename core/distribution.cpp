@@ -19,7 +19,7 @@ std::int64_t kept_at_level(const std::vector<BlockRange>& blocks, std::int32_t k
 
 void distribute_proportional(const std::vector<Candidate>& candidates,
                              const std::vector<BlockRange>& blocks, int n_wanted,
-                             std::vector<std::int32_t>& selected) {
+                             std::vector<std::int32_t>& selected, DistributionScratch& scratch) {
   std::int64_t total = 0;
   std::int32_t largest = 0;
   for (const BlockRange& block : blocks) {
@@ -45,8 +45,9 @@ void distribute_proportional(const std::vector<Candidate>& candidates,
 
   // Within each block the strongest first; the (k+1)-th candidates of the fuller blocks compete
   // for the remainder.
-  std::vector<std::int32_t> order;
-  std::vector<std::int32_t> next_in_line;
+  std::vector<std::int32_t>& order = scratch.order;
+  std::vector<std::int32_t>& next_in_line = scratch.next_in_line;
+  next_in_line.clear();
   const auto by_strength = [&](std::int32_t a, std::int32_t b) {
     return stronger(candidates[static_cast<std::size_t>(a)], candidates[static_cast<std::size_t>(b)]);
   };
@@ -67,22 +68,19 @@ void distribute_proportional(const std::vector<Candidate>& candidates,
 
 namespace {
 
-// A quadtree node: rectangle [x0, x1) x [y0, y1) in coordinates relative to (min_x, min_y), and
-// its candidates keys[begin, end).
-struct Node {
-  int x0, y0, x1, y1;
-  std::int32_t begin, end;
-  bool alive;
-  std::int32_t size() const { return end - begin; }
-};
+using Node = QuadtreeNode;
 
 class Quadtree {
  public:
-  Quadtree(const std::vector<Candidate>& candidates, int min_x, int min_y)
-      : candidates_(candidates), min_x_(min_x), min_y_(min_y) {}
+  Quadtree(const std::vector<Candidate>& candidates, int min_x, int min_y, DistributionScratch& scratch)
+      : keys(scratch.keys), nodes(scratch.nodes), candidates_(candidates), min_x_(min_x), min_y_(min_y),
+        scratch_(scratch.partition) {
+    keys.clear();
+    nodes.clear();
+  }
 
-  std::vector<std::int32_t> keys;  // candidate indices, grouped by node
-  std::vector<Node> nodes;         // every node ever made; `alive` marks the current leaves
+  std::vector<std::int32_t>& keys;  // candidate indices, grouped by node
+  std::vector<Node>& nodes;         // every node ever made; `alive` marks the current leaves
   int alive_count = 0;
 
   void add(const Node& node) {
@@ -131,23 +129,26 @@ class Quadtree {
  private:
   const std::vector<Candidate>& candidates_;
   int min_x_, min_y_;
-  std::vector<std::int32_t> scratch_;
+  std::vector<std::int32_t>& scratch_;
 };
 
 }  // namespace
 
 void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, int max_x, int min_y,
-                         int max_y, int n_wanted, std::vector<std::int32_t>& selected) {
+                         int max_y, int n_wanted, std::vector<std::int32_t>& selected,
+                         DistributionScratch& scratch) {
   if (candidates.empty() || n_wanted <= 0) return;
   const int width = max_x - min_x, height = max_y - min_y;
   assert(width > 0 && height > 0);
 
-  Quadtree tree(candidates, min_x, min_y);
+  Quadtree tree(candidates, min_x, min_y, scratch);
   // Initial nodes side by side, about square (ORB-SLAM2); at least one, for portrait images.
   const int initial = std::max(1, static_cast<int>(std::lround(static_cast<float>(width) / static_cast<float>(height))));
   const float node_width = static_cast<float>(width) / static_cast<float>(initial);
-  std::vector<std::int32_t> counts(static_cast<std::size_t>(initial), 0);
-  std::vector<int> owner(candidates.size());
+  std::vector<std::int32_t>& counts = scratch.initial_counts;
+  std::vector<std::int32_t>& owner = scratch.owner;
+  counts.assign(static_cast<std::size_t>(initial), 0);
+  owner.resize(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const float x = static_cast<float>(candidates[i].x - min_x);
     owner[i] = std::min(initial - 1, static_cast<int>(x / node_width));
@@ -155,18 +156,19 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
   }
   tree.keys.resize(candidates.size());
   {
-    std::vector<std::int32_t> cursor(static_cast<std::size_t>(initial), 0);
+    // Counting sort of the keys by initial node; counts become each node's write cursor.
     std::int32_t start = 0;
     for (int i = 0; i < initial; ++i) {
-      cursor[static_cast<std::size_t>(i)] = start;
       const int x0 = static_cast<int>(node_width * static_cast<float>(i));
       const int x1 = static_cast<int>(node_width * static_cast<float>(i + 1));
       if (counts[static_cast<std::size_t>(i)] > 0)
         tree.add({x0, 0, x1, height, start, start + counts[static_cast<std::size_t>(i)], true});
-      start += counts[static_cast<std::size_t>(i)];
+      const std::int32_t count = counts[static_cast<std::size_t>(i)];
+      counts[static_cast<std::size_t>(i)] = start;
+      start += count;
     }
     for (std::size_t i = 0; i < candidates.size(); ++i)
-      tree.keys[static_cast<std::size_t>(cursor[static_cast<std::size_t>(owner[i])]++)] = static_cast<std::int32_t>(i);
+      tree.keys[static_cast<std::size_t>(counts[static_cast<std::size_t>(owner[i])]++)] = static_cast<std::int32_t>(i);
   }
 
   // Expansion order for the final, careful rounds: more candidates first, then top-left first.
@@ -178,7 +180,8 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
     return na.x0 < nb.x0;
   };
 
-  std::vector<std::int32_t> expandable, previous;
+  std::vector<std::int32_t>& expandable = scratch.expandable;
+  std::vector<std::int32_t>& previous = scratch.previous;
   std::int32_t children[4];
   bool finished = false;
   while (!finished) {

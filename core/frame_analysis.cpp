@@ -240,7 +240,8 @@ void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& c
     blocks.clear();
     for (int b = 0; b < grid.count(); ++b)
       if (block_kept(n, b, threshold)) blocks.push_back(level.block_candidates[static_cast<std::size_t>(b)]);
-    distribute_proportional(level.candidates, blocks, level.geometry.n_features, selected);
+    distribute_proportional(level.candidates, blocks, level.geometry.n_features, selected,
+                            level.scratch_distribution);
   } else {
     // The quadtree sees the kept blocks' candidates as one set, over ORB-SLAM2's rectangle.
     std::vector<Candidate>& pool = level.scratch_candidates;
@@ -257,7 +258,8 @@ void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& c
     }
     constexpr int kQuadtreeMargin = kEdgeBorder - 3;  // ORB-SLAM2's minBorderX
     distribute_quadtree(pool, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin, kQuadtreeMargin,
-                        level.geometry.height - kQuadtreeMargin, level.geometry.n_features, selected);
+                        level.geometry.height - kQuadtreeMargin, level.geometry.n_features, selected,
+                        level.scratch_distribution);
     for (std::int32_t& index : selected) index = pool_index[static_cast<std::size_t>(index)];
   }
   std::sort(selected.begin(), selected.end(), [&](std::int32_t a, std::int32_t b) {

@@ -47,6 +47,7 @@ struct LevelState {
   std::vector<std::int32_t> scratch_m10, scratch_m01;
   std::vector<float> scratch_angles;
   std::vector<std::uint8_t> scratch_descriptors;
+  DistributionScratch scratch_distribution;
 
   bool usable() const { return geometry.grid.count() > 0; }
 };

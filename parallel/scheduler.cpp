@@ -24,7 +24,7 @@ int Scheduler::concurrency() const {
   return arena_ ? arena_->arena.max_concurrency() : tbb::this_task_arena::max_concurrency();
 }
 
-void Scheduler::for_each(int count, const std::function<void(int)>& work) const {
+void Scheduler::for_each(int count, IndexWork work) const {
   if (count <= 0) return;
   const int workers = std::min(count, concurrency());
   if (workers <= 1) {

@@ -2,10 +2,24 @@
 // TBB scheduling of the pipeline's independent pieces (pyramid levels, thresholds of a sweep,
 // rows of a match). Work is handed out largest first from a shared counter, each piece writes
 // only its own slot, so the result never depends on which thread ran what (DESIGN.md section 5).
-#include <functional>
 #include <memory>
+#include <type_traits>
 
 namespace aief::parallel {
+
+// A non-owning reference to a callable taking the piece index (std::function may allocate; the
+// pipeline allocates nothing per frame).
+class IndexWork {
+ public:
+  template <class F, class = std::enable_if_t<!std::is_same_v<std::decay_t<F>, IndexWork>>>
+  IndexWork(F& work)  // NOLINT: implicit on purpose, callers pass lambdas
+      : object_(&work), call_([](void* object, int i) { (*static_cast<F*>(object))(i); }) {}
+  void operator()(int i) const { call_(object_, i); }
+
+ private:
+  void* object_;
+  void (*call_)(void*, int);
+};
 
 class Scheduler {
  public:
@@ -18,7 +32,11 @@ class Scheduler {
 
   // Calls work(i) once for every i in [0, count). Pieces are taken in index order, so callers
   // put the largest first (level 0 before level 1). Exceptions propagate to the caller.
-  void for_each(int count, const std::function<void(int)>& work) const;
+  void for_each(int count, IndexWork work) const;
+  template <class F>
+  void for_each(int count, F&& work) const {
+    for_each(count, IndexWork(work));
+  }
 
   // Threads that may run pieces at once.
   int concurrency() const;

@@ -50,10 +50,11 @@ TEST(ProportionalDistribution, KeepsExactlyTheWantedCountWithAWaterLevel) {
     const Level level = make_level(layouts[l], static_cast<std::uint32_t>(l));
     int total = 0;
     for (int count : layouts[l]) total += count;
+    DistributionScratch scratch;
     for (int wanted : {0, 1, 3, 7, 20, 35, 61, total - 1, total, total + 10}) {
       if (wanted < 0) continue;
       std::vector<std::int32_t> selected;
-      distribute_proportional(level.candidates, level.blocks, wanted, selected);
+      distribute_proportional(level.candidates, level.blocks, wanted, selected, scratch);
       SCOPED_TRACE(testing::Message() << "layout " << l << ", wanted " << wanted);
       ASSERT_EQ(static_cast<int>(selected.size()), std::min(wanted, total));
       EXPECT_EQ(std::set<std::int32_t>(selected.begin(), selected.end()).size(), selected.size()) << "duplicates";
@@ -105,7 +106,8 @@ TEST(ProportionalDistribution, ReproducesThePapersIterativeAllocation) {
     }
   }
   std::vector<std::int32_t> selected;
-  distribute_proportional(level.candidates, level.blocks, wanted, selected);
+  DistributionScratch scratch;
+  distribute_proportional(level.candidates, level.blocks, wanted, selected, scratch);
   const auto per_block = kept_per_block(level, selected);
   for (std::size_t b = 0; b < level.blocks.size(); ++b) {
     const auto it = per_block.find(static_cast<int>(b));
@@ -117,6 +119,7 @@ TEST(ProportionalDistribution, ReproducesThePapersIterativeAllocation) {
 
 TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
   std::mt19937 rng(7);
+  DistributionScratch scratch;
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<Candidate> candidates;
     std::set<std::pair<int, int>> used;
@@ -129,7 +132,7 @@ TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
     }
     for (int wanted : {1, 5, 50, 217, 1000}) {
       std::vector<std::int32_t> first, second;
-      distribute_quadtree(candidates, 16, width - 16, 16, height - 16, wanted, first);
+      distribute_quadtree(candidates, 16, width - 16, 16, height - 16, wanted, first, scratch);
       ASSERT_EQ(static_cast<int>(first.size()), std::min(wanted, count)) << "trial " << trial << " wanted " << wanted;
       EXPECT_EQ(std::set<std::int32_t>(first.begin(), first.end()).size(), first.size());
       // Same candidates in another order: the same points.
@@ -138,7 +141,7 @@ TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
       std::shuffle(order.begin(), order.end(), rng);
       std::vector<Candidate> shuffled;
       for (std::size_t i : order) shuffled.push_back(candidates[i]);
-      distribute_quadtree(shuffled, 16, width - 16, 16, height - 16, wanted, second);
+      distribute_quadtree(shuffled, 16, width - 16, 16, height - 16, wanted, second, scratch);
       std::set<std::pair<int, int>> a, b;
       for (std::int32_t i : first) a.insert({candidates[static_cast<std::size_t>(i)].x, candidates[static_cast<std::size_t>(i)].y});
       for (std::int32_t i : second) b.insert({shuffled[static_cast<std::size_t>(i)].x, shuffled[static_cast<std::size_t>(i)].y});
@@ -150,7 +153,8 @@ TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
 TEST(QuadtreeDistribution, OneWantedKeepsTheStrongest) {
   std::vector<Candidate> candidates = {{30, 30, 10}, {200, 40, 50}, {100, 100, 20}};
   std::vector<std::int32_t> selected;
-  distribute_quadtree(candidates, 16, 300, 16, 200, 1, selected);
+  DistributionScratch scratch;
+  distribute_quadtree(candidates, 16, 300, 16, 200, 1, selected, scratch);
   ASSERT_EQ(selected.size(), 1u);
   EXPECT_EQ(selected[0], 1);
 }
