@@ -185,7 +185,6 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
   std::int32_t children[4];
   bool finished = false;
   while (!finished) {
-    const int previous_count = tree.alive_count;
     expandable.clear();
     // One full round: every leaf with more than one candidate splits.
     const std::int32_t existing = static_cast<std::int32_t>(tree.nodes.size());
@@ -196,12 +195,14 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
       for (int c = 0; c < made; ++c)
         if (tree.nodes[static_cast<std::size_t>(children[c])].size() > 1) expandable.push_back(children[c]);
     }
-    if (tree.alive_count >= n_wanted || tree.alive_count == previous_count) {
+    // ORB-SLAM2 also stops when a round adds no node, which can leave two candidates sharing a
+    // node and the level short of min(n_wanted, candidates); positions are distinct, so
+    // splitting on always separates them.
+    if (tree.alive_count >= n_wanted || expandable.empty()) {
       finished = true;
     } else if (tree.alive_count + static_cast<int>(expandable.size()) * 3 > n_wanted) {
       // Close to the target: split the fullest nodes one at a time until there are enough.
       while (!finished) {
-        const int count_before = tree.alive_count;
         previous.swap(expandable);
         expandable.clear();
         std::sort(previous.begin(), previous.end(), expand_first);
@@ -211,7 +212,7 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
             if (tree.nodes[static_cast<std::size_t>(children[c])].size() > 1) expandable.push_back(children[c]);
           if (tree.alive_count >= n_wanted) break;
         }
-        if (tree.alive_count >= n_wanted || tree.alive_count == count_before) finished = true;
+        if (tree.alive_count >= n_wanted || expandable.empty()) finished = true;
       }
     }
   }

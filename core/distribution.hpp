@@ -50,8 +50,9 @@ void distribute_proportional(const std::vector<Candidate>& candidates,
 // of the level: split nodes into four until there are >= n_wanted nodes or none can split, keep
 // the strongest candidate of each node. Every ordering has a full tie-break (nodes: more
 // candidates first, then top-left first; candidates: stronger()), so repeated calls agree.
-// ORB-SLAM2 can end with up to 3 nodes more than wanted; the weakest of those are dropped, so the
-// level keeps exactly min(n_wanted, number of candidates).
+// Two departures from ORB-SLAM2, both so the level keeps exactly min(n_wanted, candidates):
+// ORB-SLAM2 can end with up to 3 nodes more than wanted (the weakest are dropped here), and it
+// stops when a round adds no node (here splitting goes on while a node holds two candidates).
 void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, int max_x, int min_y,
                          int max_y, int n_wanted, std::vector<std::int32_t>& selected,
                          DistributionScratch& scratch);

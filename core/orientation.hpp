@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "aief/image.hpp"
+#include "aief/options.hpp"
 #include "core/pixel_point.hpp"
 
 namespace aief {

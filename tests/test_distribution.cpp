@@ -68,7 +68,9 @@ TEST(ProportionalDistribution, KeepsExactlyTheWantedCountWithAWaterLevel) {
         const int kept = it == per_block.end() ? 0 : static_cast<int>(it->second.size());
         // Water level: every block keeps min(R_i, k) or k + 1, with k + 1 == most.
         EXPECT_GE(kept, std::min(available, most - 1)) << "block " << b << " starved below the water level";
-        if (available < most) EXPECT_EQ(kept, available) << "block " << b << " under the level must keep all";
+        if (available < most) {
+          EXPECT_EQ(kept, available) << "block " << b << " under the level must keep all";
+        }
         // The kept ones are the block's strongest.
         if (it != per_block.end()) {
           const Candidate* weakest_kept = nullptr;
@@ -77,8 +79,10 @@ TEST(ProportionalDistribution, KeepsExactlyTheWantedCountWithAWaterLevel) {
               weakest_kept = &level.candidates[static_cast<std::size_t>(i)];
           const std::set<std::int32_t> kept_set(it->second.begin(), it->second.end());
           for (std::int32_t i = level.blocks[b].begin; i < level.blocks[b].end; ++i)
-            if (!kept_set.count(i)) EXPECT_FALSE(stronger(level.candidates[static_cast<std::size_t>(i)], *weakest_kept))
-                << "block " << b << " dropped candidate " << i << " stronger than one it kept";
+            if (!kept_set.count(i)) {
+              EXPECT_FALSE(stronger(level.candidates[static_cast<std::size_t>(i)], *weakest_kept))
+                  << "block " << b << " dropped candidate " << i << " stronger than one it kept";
+            }
         }
       }
     }
