@@ -1,0 +1,28 @@
+#pragma once
+// Shared by the benchmarks: sample images, standard sizes, kernel-set names.
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "aief/image.hpp"
+#include "aief/options.hpp"
+
+namespace aief::bench {
+
+// A named gray image: a bundled sample, or a sample resized to a standard size.
+struct NamedImage {
+  std::string name;  // e.g. "graf_800x640"
+  cv::Mat gray;
+};
+
+// The benchmark images: 640x480, the bundled Oxford samples at their sizes, 1920x1080.
+const std::vector<NamedImage>& benchmark_images();
+
+const cv::Mat& sample_gray(const std::string& sequence);  // img1 of a bundled sequence
+
+inline ImageView view_of(const cv::Mat& gray) {
+  return {gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)};
+}
+
+}  // namespace aief::bench

@@ -1,0 +1,125 @@
+// FAST-9 scores and suppression against OpenCV's cv::FAST (nonmax on), the bit-exact oracle of
+// the detector (DESIGN.md section 1), and against the definition of the score.
+#include <algorithm>
+
+#include <gtest/gtest.h>
+#include <opencv2/features2d.hpp>
+
+#include "core/fast9.hpp"
+#include "core/fast9_detect.hpp"
+#include "simd/kernels.hpp"
+#include "tests/test_support.hpp"
+
+namespace aief {
+namespace {
+
+std::vector<FastCorner> ours(const cv::Mat& gray, int threshold) {
+  std::vector<std::uint8_t> scores;
+  std::vector<std::int32_t> xs;
+  std::vector<FastCorner> corners;
+  fast9_detect(test::view_of(gray), threshold, kernel_table(KernelSet::scalar), scores, xs, corners);
+  return corners;
+}
+
+std::vector<FastCorner> opencv(const cv::Mat& gray, int threshold) {
+  std::vector<cv::KeyPoint> keypoints;
+  cv::FAST(gray, keypoints, threshold, true);
+  std::vector<FastCorner> corners;
+  for (const cv::KeyPoint& kp : keypoints)
+    corners.push_back({static_cast<int>(kp.pt.x), static_cast<int>(kp.pt.y), static_cast<int>(kp.response)});
+  std::sort(corners.begin(), corners.end(), [](const FastCorner& a, const FastCorner& b) {
+    return a.y != b.y ? a.y < b.y : a.x < b.x;
+  });
+  return corners;
+}
+
+void expect_same(const std::vector<FastCorner>& a, const std::vector<FastCorner>& b, const std::string& what) {
+  const std::size_t n = std::min(a.size(), b.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (a[i].x != b[i].x || a[i].y != b[i].y || a[i].score != b[i].score) {
+      ADD_FAILURE() << what << ": corner " << i << " differs: ours (" << a[i].x << ", " << a[i].y << ") score "
+                    << a[i].score << ", OpenCV (" << b[i].x << ", " << b[i].y << ") score " << b[i].score;
+      return;
+    }
+  }
+  EXPECT_EQ(a.size(), b.size()) << what << ": corner counts differ";
+}
+
+TEST(Fast9, EqualsOpenCvOnRealImages) {
+  for (const char* sequence : {"graf", "boat", "leuven"}) {
+    const cv::Mat gray = test::load_sample_gray(sequence, "img1.png");
+    for (int threshold : {7, 20, 40}) {
+      const std::vector<FastCorner> expected = opencv(gray, threshold);
+      ASSERT_GT(expected.size(), 100u);
+      expect_same(ours(gray, threshold), expected, std::string(sequence) + " t=" + std::to_string(threshold));
+    }
+  }
+}
+
+TEST(Fast9, EqualsOpenCvOnRandomImagesOfOddSizes) {
+  std::uint32_t seed = 1;
+  for (int width : {1, 3, 6, 7, 8, 9, 31, 33, 64, 65, 127, 129, 255, 257}) {
+    for (int height : {1, 6, 7, 9, 37, 64}) {
+      for (int kind = 0; kind < 2; ++kind) {
+        const cv::Mat image = kind == 0 ? test::random_image(width, height, seed++) : test::random_textured_image(width, height, seed++);
+        for (int threshold : {7, 20, 40})
+          expect_same(ours(image, threshold), opencv(image, threshold),
+                      std::to_string(width) + "x" + std::to_string(height) + " kind " + std::to_string(kind) + " t=" + std::to_string(threshold));
+      }
+    }
+  }
+}
+
+// The strict segment test by definition: 9 contiguous ring pixels all > p + t or all < p - t.
+bool is_corner(const cv::Mat& image, int x, int y, int t) {
+  const int p = image.at<std::uint8_t>(y, x);
+  for (int sign : {1, -1}) {
+    for (int start = 0; start < 16; ++start) {
+      bool all = true;
+      for (int k = 0; k < 9 && all; ++k) {
+        const int i = (start + k) % 16;
+        const int r = image.at<std::uint8_t>(y + kFastRingDy[i], x + kFastRingDx[i]);
+        all = sign > 0 ? r > p + t : r < p - t;
+      }
+      if (all) return true;
+    }
+  }
+  return false;
+}
+
+TEST(Fast9, ScoreIsTheLargestPassingThreshold) {
+  const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
+  std::vector<std::uint8_t> scores(static_cast<std::size_t>(gray.cols));
+  int checked = 0;
+  for (int y = 3; y < gray.rows - 3; y += 7) {
+    fast9_scores_row_scalar(gray.ptr<std::uint8_t>(y), static_cast<std::ptrdiff_t>(gray.step), 3, gray.cols - 3, 1, scores.data());
+    for (int x = 3; x < gray.cols - 3; ++x) {
+      const int s = scores[static_cast<std::size_t>(x)];
+      if (s == 0) {
+        ASSERT_FALSE(is_corner(gray, x, y, 1)) << "(" << x << ", " << y << ") is a corner at t=1 but scored 0";
+        continue;
+      }
+      ASSERT_TRUE(is_corner(gray, x, y, s)) << "(" << x << ", " << y << ") not a corner at its score " << s;
+      ASSERT_FALSE(is_corner(gray, x, y, s + 1)) << "(" << x << ", " << y << ") still a corner at score + 1 = " << s + 1;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+TEST(Fast9, BelowTheMinimumThresholdScoresZero) {
+  const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
+  std::vector<std::uint8_t> low(static_cast<std::size_t>(gray.cols)), high(static_cast<std::size_t>(gray.cols));
+  for (int y = 3; y < gray.rows - 3; y += 11) {
+    const std::uint8_t* row = gray.ptr<std::uint8_t>(y);
+    fast9_scores_row_scalar(row, static_cast<std::ptrdiff_t>(gray.step), 3, gray.cols - 3, 1, low.data());
+    fast9_scores_row_scalar(row, static_cast<std::ptrdiff_t>(gray.step), 3, gray.cols - 3, 20, high.data());
+    for (int x = 3; x < gray.cols - 3; ++x) {
+      const int expected = low[static_cast<std::size_t>(x)] >= 20 ? low[static_cast<std::size_t>(x)] : 0;
+      ASSERT_EQ(high[static_cast<std::size_t>(x)], expected) << "at (" << x << ", " << y << ")";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace aief
