@@ -1,0 +1,50 @@
+// End to end: extract per mode, kernel set and thread count on the standard images, beside
+// cv::ORB (1000, 1.2, 8) detectAndCompute on the same gray image.
+#include <benchmark/benchmark.h>
+
+#include <opencv2/features2d.hpp>
+
+#include "aief/extractor.hpp"
+#include "bench/bench_support.hpp"
+#include "simd/kernels.hpp"
+
+namespace aief::bench {
+namespace {
+
+void register_extract_benchmarks() {
+  for (const NamedImage& image : benchmark_images()) {
+    const cv::Mat* gray = &image.gray;
+    for (Mode mode : {Mode::aief, Mode::orbslam2, Mode::quadtree_entropy}) {
+      for (KernelSet set : available_kernel_sets()) {
+        for (int threads : {1, 2}) {
+          if (mode != Mode::aief && (threads != 1 || set != best_kernel_set())) continue;
+          const std::string name = "extract/" + std::string(to_string(mode)) + "/" + std::string(to_string(set)) + "/t" +
+                                   std::to_string(threads) + "/" + image.name;
+          benchmark::RegisterBenchmark(name.c_str(), [gray, mode, set, threads](benchmark::State& state) {
+            ExtractorOptions options = options_for_mode(mode);
+            options.kernels = set;
+            options.threads = threads;
+            Extractor extractor(options);
+            Features features;
+            for (auto _ : state) extractor.extract(view_of(*gray), features);
+            state.counters["keypoints"] = static_cast<double>(features.keypoints.size());
+            state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
+          })->Unit(benchmark::kMillisecond);
+        }
+      }
+    }
+    benchmark::RegisterBenchmark(("extract/opencv_orb/" + image.name).c_str(), [gray](benchmark::State& state) {
+      cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 8);
+      std::vector<cv::KeyPoint> keypoints;
+      cv::Mat descriptors;
+      for (auto _ : state) orb->detectAndCompute(*gray, cv::noArray(), keypoints, descriptors);
+      state.counters["keypoints"] = static_cast<double>(keypoints.size());
+      state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
+    })->Unit(benchmark::kMillisecond);
+  }
+}
+
+const bool registered = (register_extract_benchmarks(), true);
+
+}  // namespace
+}  // namespace aief::bench
