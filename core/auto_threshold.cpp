@@ -1,6 +1,7 @@
 #include "core/auto_threshold.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace aief {
@@ -11,7 +12,7 @@ constexpr double kBinBits = 0.05;  // histogram resolution of the split
 constexpr int kBins = 64 * 20;     // entropies are < 64 bits in either measure
 
 // Otsu's threshold: the bin edge maximising the between-class variance.
-double otsu_split(const std::vector<int>& histogram, int total) {
+double otsu_split(const std::array<int, kBins>& histogram, int total) {
   double sum_all = 0;
   for (int i = 0; i < kBins; ++i) sum_all += static_cast<double>(i) * histogram[static_cast<std::size_t>(i)];
   double sum_low = 0, best_variance = -1;
@@ -34,9 +35,9 @@ double otsu_split(const std::vector<int>& histogram, int total) {
 
 }  // namespace
 
-double auto_entropy_threshold(const std::vector<double>& entropies) {
+double auto_entropy_threshold(std::vector<double>& entropies) {
   if (entropies.empty()) return 0.0;
-  std::vector<int> histogram(kBins, 0);
+  std::array<int, kBins> histogram{};
   for (double e : entropies) {
     const int bin = std::clamp(static_cast<int>(e / kBinBits), 0, kBins - 1);
     ++histogram[static_cast<std::size_t>(bin)];
@@ -46,7 +47,7 @@ double auto_entropy_threshold(const std::vector<double>& entropies) {
 
   // Keep at least kAutoMinKeptShare of the blocks: F no higher than the entropy below which
   // the other blocks lie (a block is kept when E > F).
-  std::vector<double> sorted(entropies);
+  std::vector<double>& sorted = entropies;
   const std::size_t dropped_at_most = static_cast<std::size_t>(std::floor((1.0 - kAutoMinKeptShare) * total));
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(dropped_at_most), sorted.end());
   const double cap = std::nextafter(sorted[dropped_at_most], 0.0);

@@ -12,6 +12,7 @@ namespace aief {
 
 inline constexpr double kAutoMinKeptShare = 0.75;
 
-double auto_entropy_threshold(const std::vector<double>& block_entropies_bits);
+// Reorders `block_entropies_bits` (a selection runs in place, so a frame allocates nothing).
+double auto_entropy_threshold(std::vector<double>& block_entropies_bits);
 
 }  // namespace aief
