@@ -1,0 +1,145 @@
+#include "core/adaptive_sweep.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "aief/error.hpp"
+#include "core/frame_analysis.hpp"
+#include "core/matcher.hpp"
+#include "parallel/scheduler.hpp"
+#include "simd/kernels.hpp"
+
+namespace aief {
+
+void SweepOptions::validate() const {
+  const auto fail = [](const std::string& field, double value, const std::string& rule) {
+    std::ostringstream message;
+    message << field << " must be " << rule << ", got " << value;
+    throw Error(message.str());
+  };
+  if (!std::isfinite(first_threshold) || first_threshold < 0) fail("first_threshold", first_threshold, "finite and >= 0");
+  if (!std::isfinite(step) || step < 0.01 || step > 8) fail("step", step, "in [0.01, 8]");
+  if (min_inliers < 4) fail("min_inliers", min_inliers, ">= 4");
+  match.validate();
+  ransac.validate();
+}
+
+namespace {
+
+// Extracts the features of one image at threshold F from its analysis (no starvation rule:
+// the sweep measures each F as it is).
+void features_at(FrameAnalysis& analysis, double threshold, std::vector<std::vector<std::int32_t>>& chosen,
+                 Features& out) {
+  const int levels = analysis.level_count();
+  chosen.resize(static_cast<std::size_t>(levels));
+  for (int n = 0; n < levels; ++n) analysis.select(n, threshold, chosen[static_cast<std::size_t>(n)]);
+  analysis.assemble(chosen, out);
+  out.info.entropy_threshold_requested = threshold;
+  out.info.entropy_threshold_used = threshold;
+  out.info.threshold_lowered = false;
+  out.info.image_entropy_bits = analysis.image_entropy_bits();
+  out.info.blocks_total = analysis.blocks_total();
+  out.info.blocks_kept = analysis.blocks_kept(threshold);
+}
+
+void analyse(FrameAnalysis& analysis, ImageView image, const ExtractorOptions& options,
+             const KernelTable& kernels, double lowest_threshold) {
+  analysis.start(image, options, kernels);
+  for (int n = 0; n < analysis.level_count(); ++n) analysis.build_level(n);
+  for (int n = 0; n < analysis.level_count(); ++n) {
+    analysis.compute_entropies(n);
+    analysis.detect(n, lowest_threshold);  // every block any threshold of the sweep keeps
+  }
+}
+
+struct Evaluated {
+  std::vector<Match> matches;
+  HomographyResult homography;
+};
+
+Evaluated evaluate(const Features& a, const Features& b, const SweepOptions& sweep, const KernelTable& kernels) {
+  Evaluated result;
+  result.matches = match_descriptors(a.descriptors, b.descriptors, sweep.match, kernels);
+  std::vector<Point2> src, dst;
+  src.reserve(result.matches.size());
+  dst.reserve(result.matches.size());
+  for (const Match& m : result.matches) {
+    const Keypoint& ka = a.keypoints[static_cast<std::size_t>(m.query)];
+    const Keypoint& kb = b.keypoints[static_cast<std::size_t>(m.train)];
+    src.push_back({ka.x, ka.y});
+    dst.push_back({kb.x, kb.y});
+  }
+  result.homography = find_homography_ransac(src, dst, sweep.ransac);
+  return result;
+}
+
+}  // namespace
+
+AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
+                               const SweepOptions& sweep, const KernelTable& kernels) {
+  options.validate();
+  sweep.validate();
+  if (options.entropy == EntropyMeasure::off)
+    throw Error("adapt needs an entropy measure (histogram or intensity), got entropy = off");
+
+  FrameAnalysis analysis_a, analysis_b;
+  analyse(analysis_a, a, options, kernels, sweep.first_threshold);
+  analyse(analysis_b, b, options, kernels, sweep.first_threshold);
+
+  AdaptResult result;
+  result.image_entropy_bits = analysis_a.image_entropy_bits();
+  // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
+  const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep.step)));
+
+  // Selection and description share the memo of each analysis: serial. Matching and RANSAC,
+  // the expensive part, run per threshold in parallel into their own slots.
+  std::vector<Features> features_a(static_cast<std::size_t>(cycles)), features_b(static_cast<std::size_t>(cycles));
+  std::vector<std::vector<std::int32_t>> chosen;
+  for (int c = 0; c < cycles; ++c) {
+    const double threshold = sweep.first_threshold + sweep.step * c;
+    features_at(analysis_a, threshold, chosen, features_a[static_cast<std::size_t>(c)]);
+    features_at(analysis_b, threshold, chosen, features_b[static_cast<std::size_t>(c)]);
+  }
+  std::vector<Evaluated> evaluated(static_cast<std::size_t>(cycles));
+  parallel::Scheduler(options.threads).for_each(cycles, [&](int c) {
+    const std::size_t i = static_cast<std::size_t>(c);
+    evaluated[i] = evaluate(features_a[i], features_b[i], sweep, kernels);
+  });
+
+  result.curve.resize(static_cast<std::size_t>(cycles));
+  for (int c = 0; c < cycles; ++c) {
+    const std::size_t i = static_cast<std::size_t>(c);
+    SweepPoint& point = result.curve[i];
+    point.threshold = sweep.first_threshold + sweep.step * c;
+    point.kept_blocks = features_a[i].info.blocks_kept;
+    point.kept_blocks_b = features_b[i].info.blocks_kept;
+    point.keypoints_a = static_cast<int>(features_a[i].keypoints.size());
+    point.keypoints_b = static_cast<int>(features_b[i].keypoints.size());
+    point.putative = static_cast<int>(evaluated[i].matches.size());
+    point.inliers = evaluated[i].homography.found ? evaluated[i].homography.inliers : 0;
+    point.cmr = point.putative > 0 ? static_cast<double>(point.inliers) / point.putative : 0.0;
+    point.eligible = point.inliers >= sweep.min_inliers;
+    // Highest CMR among eligible thresholds; ties: more inliers, then the lower F (seen first).
+    if (!point.eligible) continue;
+    if (result.chosen_index >= 0) {
+      const SweepPoint& best = result.curve[static_cast<std::size_t>(result.chosen_index)];
+      if (point.cmr < best.cmr || (point.cmr == best.cmr && point.inliers <= best.inliers)) continue;
+    }
+    result.chosen_index = c;
+  }
+
+  const int chosen_index = result.chosen_index >= 0 ? result.chosen_index : 0;
+  result.found = result.chosen_index >= 0;
+  result.threshold = result.curve[static_cast<std::size_t>(chosen_index)].threshold;
+  result.features_a = std::move(features_a[static_cast<std::size_t>(chosen_index)]);
+  result.features_b = std::move(features_b[static_cast<std::size_t>(chosen_index)]);
+  result.matches = std::move(evaluated[static_cast<std::size_t>(chosen_index)].matches);
+  result.homography = std::move(evaluated[static_cast<std::size_t>(chosen_index)].homography);
+  return result;
+}
+
+AdaptResult adapt(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep) {
+  return adapt_with_kernels(a, b, options, sweep, kernel_table(options.kernels));
+}
+
+}  // namespace aief

@@ -1,0 +1,12 @@
+#pragma once
+// match_descriptors with the Hamming kernel of a given table (the public function uses the
+// best the CPU runs). Rows of the distance matrix run in parallel when `scheduler` is given.
+#include "aief/match.hpp"
+#include "core/kernel_table.hpp"
+
+namespace aief {
+
+std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b,
+                                     const MatchOptions& options, const KernelTable& kernels);
+
+}  // namespace aief

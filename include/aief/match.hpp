@@ -1,0 +1,39 @@
+#pragma once
+// Brute-force Hamming matching of 256-bit descriptors (DESIGN.md section 2).
+#include <string_view>
+#include <vector>
+
+#include "aief/features.hpp"
+
+namespace aief {
+
+enum class MatcherKind {
+  mutual,  // nearest neighbours both ways (cross-check), the default
+  ratio,   // Lowe's ratio test: best < ratio * second best
+  paper,   // nearest neighbours with distance <= max(2 * min_distance, 30), the paper's filter
+};
+
+std::string_view to_string(MatcherKind kind);
+MatcherKind parse_matcher_kind(std::string_view name);  // throws aief::Error
+
+struct MatchOptions {
+  MatcherKind kind = MatcherKind::mutual;
+  double ratio = 0.8;     // Lowe's ratio for MatcherKind::ratio, in (0, 1]
+  int max_distance = 256; // matches farther than this many bits are dropped (256: none)
+
+  // Throws aief::Error naming the first invalid field and its value.
+  void validate() const;
+};
+
+struct Match {
+  int query = 0;     // index into the first descriptor set
+  int train = 0;     // index into the second
+  int distance = 0;  // Hamming distance, bits
+};
+
+// Matches of descriptors `a` (queries) into `b`, sorted by query index. For every query the
+// nearest train descriptor wins, ties to the lowest index.
+std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b,
+                                     const MatchOptions& options = {});
+
+}  // namespace aief

@@ -1,0 +1,171 @@
+// The adaptive sweep: its choice rule, its curve, and the proof that it reuses everything that
+// does not depend on F (kernel calls counted; each threshold equal to an independent extraction).
+#include <atomic>
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "aief/adapt.hpp"
+#include "aief/error.hpp"
+#include "aief/extractor.hpp"
+#include "core/adaptive_sweep.hpp"
+#include "core/kernel_table.hpp"
+#include "core/level_geometry.hpp"
+#include "tests/test_support.hpp"
+
+namespace aief {
+namespace {
+
+using test::load_sample_gray;
+using test::view_of;
+
+// Scalar kernels that count their work.
+struct Counts {
+  std::atomic<long long> resized_rows{0}, blurred_rows{0}, histogram_pixels{0}, scored_pixels{0}, oriented{0}, described{0};
+} counts;
+
+KernelTable counting_kernels() {
+  KernelTable table;
+  table.name = "counting";
+  table.resize_bilinear_rows = [](ImageView src, const ResizePlan& plan, MutableImageView dst, int y0, int y1) {
+    counts.resized_rows += y1 - y0;
+    resize_bilinear_rows_scalar(src, plan, dst, y0, y1);
+  };
+  table.gaussian7_rows = [](ImageView src, MutableImageView dst, int y0, int y1) {
+    counts.blurred_rows += y1 - y0;
+    gaussian7_rows_scalar(src, dst, y0, y1);
+  };
+  table.accumulate_histogram = [](const std::uint8_t* data, std::ptrdiff_t stride, int w, int h, std::uint32_t* hist) {
+    counts.histogram_pixels += static_cast<long long>(w) * h;
+    accumulate_histogram_scalar(data, stride, w, h, hist);
+  };
+  table.fast9_scores_row = [](const std::uint8_t* row, std::ptrdiff_t stride, int x0, int x1, int t, std::uint8_t* scores) {
+    counts.scored_pixels += x1 - x0;
+    fast9_scores_row_scalar(row, stride, x0, x1, t, scores);
+  };
+  table.ic_moments = [](ImageView level, const PixelPoint* points, int n, std::int32_t* m10, std::int32_t* m01) {
+    counts.oriented += n;
+    ic_moments_scalar(level, points, n, m10, m01);
+  };
+  table.rbrief_describe = [](ImageView blurred, const PixelPoint* points, const float* angles, int n, std::uint8_t* out) {
+    counts.described += n;
+    rbrief_describe_scalar(blurred, points, angles, n, out);
+  };
+  return table;
+}
+
+bool same_bytes(const Features& a, const Features& b) {
+  if (a.keypoints.size() != b.keypoints.size() || a.descriptors != b.descriptors) return false;
+  for (std::size_t i = 0; i < a.keypoints.size(); ++i)
+    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0) return false;
+  return true;
+}
+
+TEST(AdaptiveSweep, ChoosesTheBestEligibleThresholdOfItsCurve) {
+  const cv::Mat a = load_sample_gray("graf", "img1.png");
+  const cv::Mat b = load_sample_gray("graf", "img2.png");
+  const SweepOptions sweep;
+  const AdaptResult result = adapt(view_of(a), view_of(b), {}, sweep);
+  ASSERT_TRUE(result.found);
+  const int expected_cycles = static_cast<int>(std::ceil(result.image_entropy_bits / sweep.step));
+  ASSERT_EQ(static_cast<int>(result.curve.size()), expected_cycles);
+  const SweepPoint& chosen = result.curve[static_cast<std::size_t>(result.chosen_index)];
+  EXPECT_DOUBLE_EQ(result.threshold, chosen.threshold);
+  EXPECT_GE(chosen.inliers, sweep.min_inliers);
+  for (std::size_t i = 0; i < result.curve.size(); ++i) {
+    const SweepPoint& point = result.curve[i];
+    EXPECT_NEAR(point.threshold, sweep.step * static_cast<double>(i), 1e-9);
+    if (i > 0) {
+      EXPECT_LE(point.kept_blocks, result.curve[i - 1].kept_blocks) << "the mask only shrinks as F grows";
+    }
+    if (point.putative > 0) {
+      EXPECT_DOUBLE_EQ(point.cmr, static_cast<double>(point.inliers) / point.putative);
+    }
+    if (!point.eligible) continue;
+    EXPECT_TRUE(point.cmr < chosen.cmr || (point.cmr == chosen.cmr && point.inliers <= chosen.inliers))
+        << "threshold " << point.threshold << " beats the chosen " << chosen.threshold;
+  }
+  EXPECT_EQ(static_cast<int>(result.features_a.keypoints.size()), chosen.keypoints_a);
+  EXPECT_EQ(static_cast<int>(result.matches.size()), chosen.putative);
+  EXPECT_EQ(result.homography.inliers, chosen.inliers);
+}
+
+TEST(AdaptiveSweep, EachThresholdEqualsAnIndependentExtraction) {
+  const cv::Mat a = load_sample_gray("boat", "img1.png");
+  const cv::Mat b = load_sample_gray("boat", "img2.png");
+  SweepOptions sweep;
+  sweep.step = 0.8;  // fewer thresholds, same code path
+  const AdaptResult result = adapt(view_of(a), view_of(b), {}, sweep);
+  int compared = 0;
+  for (const SweepPoint& point : result.curve) {
+    ExtractorOptions options;
+    options.entropy_threshold = point.threshold;
+    const Features independent = extract(view_of(a), options);
+    if (independent.info.threshold_lowered) continue;  // the single-frame rule changed F
+    EXPECT_EQ(static_cast<int>(independent.keypoints.size()), point.keypoints_a) << "F = " << point.threshold;
+    EXPECT_EQ(independent.info.blocks_kept, point.kept_blocks) << "F = " << point.threshold;
+    ++compared;
+  }
+  EXPECT_GE(compared, 3);
+  ExtractorOptions at_chosen;
+  at_chosen.entropy_threshold = result.threshold;
+  const Features chosen_a = extract(view_of(a), at_chosen);
+  if (!chosen_a.info.threshold_lowered) {
+    EXPECT_TRUE(same_bytes(chosen_a, result.features_a));
+  }
+}
+
+TEST(AdaptiveSweep, ReadsEveryPixelOnceWhateverTheNumberOfThresholds) {
+  const cv::Mat a = load_sample_gray("graf", "img1.png");
+  const cv::Mat b = load_sample_gray("graf", "img2.png");
+  const KernelTable kernels = counting_kernels();
+  const auto run = [&](double step) {
+    counts.resized_rows = counts.blurred_rows = counts.histogram_pixels = counts.scored_pixels = 0;
+    counts.oriented = counts.described = 0;
+    SweepOptions sweep;
+    sweep.step = step;
+    return adapt_with_kernels(view_of(a), view_of(b), ExtractorOptions{}, sweep, kernels);
+  };
+  const AdaptResult coarse = run(2.0);
+  const long long coarse_scored = counts.scored_pixels, coarse_hist = counts.histogram_pixels;
+  const long long coarse_resized = counts.resized_rows;
+  const AdaptResult fine = run(0.2);
+  ASSERT_GT(fine.curve.size(), 5 * coarse.curve.size());
+  // Pixel kernels: the same work for 4 thresholds as for 40.
+  EXPECT_EQ(counts.scored_pixels, coarse_scored);
+  EXPECT_EQ(counts.histogram_pixels, coarse_hist);
+  EXPECT_EQ(counts.resized_rows, coarse_resized);
+  // Histograms: each pixel of level 0 once (blocks and border strips), each block pixel of the
+  // other levels once. Blur: each usable level at most once per image.
+  long long expected_histogram = 0, level_rows = 0;
+  for (const cv::Mat* image : {&a, &b}) {
+    const std::vector<LevelGeometry> levels = level_geometry(image->cols, image->rows, ExtractorOptions{});
+    for (std::size_t n = 0; n < levels.size(); ++n) {
+      if (levels[n].grid.count() == 0) continue;
+      level_rows += levels[n].height;
+      expected_histogram += n == 0 ? static_cast<long long>(image->total())
+                                   : static_cast<long long>(levels[n].width - 2 * kEdgeBorder) * (levels[n].height - 2 * kEdgeBorder);
+    }
+  }
+  EXPECT_EQ(counts.histogram_pixels, expected_histogram);
+  EXPECT_LE(counts.blurred_rows, level_rows);
+  EXPECT_EQ(counts.oriented, counts.described);
+  long long distinct_upper_bound = 0;
+  for (const SweepPoint& point : fine.curve) distinct_upper_bound = std::max<long long>(distinct_upper_bound, point.keypoints_a + point.keypoints_b);
+  EXPECT_LE(counts.described, 4 * distinct_upper_bound) << "descriptors recomputed per threshold";
+}
+
+TEST(AdaptiveSweep, RejectsEntropyOffAndBadSweepOptions) {
+  const cv::Mat a = load_sample_gray("boat", "img1.png");
+  EXPECT_THROW(adapt(view_of(a), view_of(a), options_for_mode(Mode::orbslam2)), Error);
+  SweepOptions bad;
+  bad.step = 0;
+  EXPECT_THROW(adapt(view_of(a), view_of(a), {}, bad), Error);
+  bad = {};
+  bad.min_inliers = 2;
+  EXPECT_THROW(adapt(view_of(a), view_of(a), {}, bad), Error);
+}
+
+}  // namespace
+}  // namespace aief
