@@ -1,0 +1,46 @@
+#include "io/image_io.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "aief/error.hpp"
+
+namespace aief::io {
+
+GrayImage read_gray_image(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error("cannot open image '" + path + "': no such file");
+  if (std::filesystem::is_directory(path, ec)) throw Error("cannot open image '" + path + "': it is a directory");
+  if (!std::ifstream(path, std::ios::binary)) throw Error("cannot open image '" + path + "': permission denied");
+
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw Error("cannot read image '" + path + "': " + e.what());
+  }
+  if (image.empty()) throw Error("cannot read image '" + path + "': not an image OpenCV can decode, or a damaged file");
+
+  if (image.depth() == CV_16U) {
+    image.convertTo(image, CV_8U, 1.0 / 256.0);
+  } else if (image.depth() != CV_8U) {
+    throw Error("cannot use image '" + path + "': pixel depth " + std::to_string(image.depth()) +
+                " is not 8- or 16-bit unsigned");
+  }
+  cv::Mat gray;
+  switch (image.channels()) {
+    case 1: gray = image; break;
+    case 3: cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY); break;
+    case 4: cv::cvtColor(image, gray, cv::COLOR_BGRA2GRAY); break;
+    default:
+      throw Error("cannot use image '" + path + "': " + std::to_string(image.channels()) + " channels (expected 1, 3 or 4)");
+  }
+  GrayImage out(gray.cols, gray.rows);
+  for (int y = 0; y < gray.rows; ++y) std::copy_n(gray.ptr<std::uint8_t>(y), gray.cols, out.data() + static_cast<std::ptrdiff_t>(y) * gray.cols);
+  return out;
+}
+
+}  // namespace aief::io

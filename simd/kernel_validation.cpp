@@ -1,0 +1,258 @@
+#include "simd/kernel_validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <sstream>
+
+#include "aief/extractor.hpp"
+#include "core/fast9_detect.hpp"
+#include "core/kernel_table.hpp"
+#include "simd/kernels.hpp"
+
+namespace aief {
+
+namespace {
+
+std::string where(const GrayImage& image, const std::string& detail) {
+  return std::to_string(image.width()) + "x" + std::to_string(image.height()) + " " + detail;
+}
+
+template <class T>
+std::string first_difference(const std::vector<T>& reference, const std::vector<T>& other, const char* set_name,
+                             const std::string& what) {
+  const std::size_t n = std::min(reference.size(), other.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (reference[i] != other[i]) {
+      std::ostringstream out;
+      out << what << " [" << i << "]: scalar " << +reference[i] << ", " << set_name << " " << +other[i];
+      return out.str();
+    }
+  }
+  if (reference.size() != other.size())
+    return what + ": scalar gives " + std::to_string(reference.size()) + " values, " + set_name + " " + std::to_string(other.size());
+  return "";
+}
+
+GrayImage random_gray(int width, int height, std::uint32_t seed, bool smooth) {
+  GrayImage image(width, height);
+  std::mt19937 rng(seed);
+  for (int i = 0; i < width * height; ++i) image.data()[i] = static_cast<std::uint8_t>(rng());
+  if (smooth && width > 2 && height > 2) {  // a cheap blur: corners of every strength, not just noise
+    GrayImage copy = image;
+    for (int y = 1; y < height - 1; ++y)
+      for (int x = 1; x < width - 1; ++x) {
+        int sum = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) sum += copy.data()[(y + dy) * width + x + dx];
+        const int stretched = (sum / 9 - 128) * 3 + 128;  // contrast back up after the blur
+        image.data()[y * width + x] = static_cast<std::uint8_t>(std::clamp(stretched, 0, 255));
+      }
+  }
+  return image;
+}
+
+std::string check_resize(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  if (src.width() < 2 || src.height() < 2) return "";
+  const int w = std::max(1, static_cast<int>(std::lround(src.width() / 1.2))), h = std::max(1, static_cast<int>(std::lround(src.height() / 1.2)));
+  const ResizePlan plan = make_resize_plan(src.width(), src.height(), w, h);
+  GrayImage a(w, h), b(w, h);
+  scalar.resize_bilinear_rows(src.view(), plan, a.mutable_view(), 0, h);
+  other.resize_bilinear_rows(src.view(), plan, b.mutable_view(), 0, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (a.data()[y * w + x] != b.data()[y * w + x])
+        return where(src, "-> " + std::to_string(w) + "x" + std::to_string(h) + " at (" + std::to_string(x) + ", " + std::to_string(y) +
+                              "): scalar " + std::to_string(a.data()[y * w + x]) + ", " + other.name + " " + std::to_string(b.data()[y * w + x]));
+  return "";
+}
+
+std::string check_gaussian(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  if (src.width() < 4 || src.height() < 4) return "";
+  GrayImage a(src.width(), src.height()), b(src.width(), src.height());
+  scalar.gaussian7_rows(src.view(), a.mutable_view(), 0, src.height());
+  other.gaussian7_rows(src.view(), b.mutable_view(), 0, src.height());
+  for (int y = 0; y < src.height(); ++y)
+    for (int x = 0; x < src.width(); ++x)
+      if (a.data()[y * src.width() + x] != b.data()[y * src.width() + x])
+        return where(src, "at (" + std::to_string(x) + ", " + std::to_string(y) + "): scalar " + std::to_string(a.data()[y * src.width() + x]) +
+                              ", " + other.name + " " + std::to_string(b.data()[y * src.width() + x]));
+  return "";
+}
+
+std::string check_histogram(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  // The whole image and an inner rectangle with the full stride.
+  for (int inset : {0, 1}) {
+    const int w = src.width() - 2 * inset, h = src.height() - 2 * inset;
+    if (w <= 0 || h <= 0) continue;
+    std::vector<std::uint32_t> a(256, 3), b(256, 3);  // accumulate: start from the same counts
+    const std::uint8_t* data = src.data() + inset * src.width() + inset;
+    scalar.accumulate_histogram(data, src.width(), w, h, a.data());
+    other.accumulate_histogram(data, src.width(), w, h, b.data());
+    const std::string diff = first_difference(a, b, other.name, "bin");
+    if (!diff.empty()) return where(src, "inset " + std::to_string(inset) + " " + diff);
+  }
+  return "";
+}
+
+std::string check_fast_scores(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  if (src.width() < 7 || src.height() < 7) return "";
+  std::vector<std::uint8_t> a(static_cast<std::size_t>(src.width())), b(a.size());
+  for (int t : {1, 7, 20}) {
+    for (int y = 3; y < src.height() - 3; ++y) {
+      std::fill(a.begin(), a.end(), 0);
+      std::fill(b.begin(), b.end(), 0);
+      const std::uint8_t* row = src.data() + y * src.width();
+      scalar.fast9_scores_row(row, src.width(), 3, src.width() - 3, t, a.data());
+      other.fast9_scores_row(row, src.width(), 3, src.width() - 3, t, b.data());
+      const std::string diff = first_difference(a, b, other.name, "x");
+      if (!diff.empty()) return where(src, "t=" + std::to_string(t) + " row " + std::to_string(y) + " " + diff);
+    }
+  }
+  return "";
+}
+
+std::string check_fast_maxima(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  if (src.width() < 3 || src.height() < 3) return "";
+  // Score-like rows: small values, many ties and zeros, so every comparison matters.
+  std::vector<std::int32_t> xa(static_cast<std::size_t>(src.width())), xb(xa.size());
+  for (int y = 1; y < src.height() - 1; ++y) {
+    std::vector<std::uint8_t> rows[3];
+    for (int k = 0; k < 3; ++k) {
+      rows[k].resize(static_cast<std::size_t>(src.width()));
+      for (int x = 0; x < src.width(); ++x) rows[k][static_cast<std::size_t>(x)] = src.data()[(y - 1 + k) * src.width() + x] >> 5;
+    }
+    const int na = scalar.fast9_local_maxima_row(rows[0].data(), rows[1].data(), rows[2].data(), 1, src.width() - 1, xa.data());
+    const int nb = other.fast9_local_maxima_row(rows[0].data(), rows[1].data(), rows[2].data(), 1, src.width() - 1, xb.data());
+    const std::string diff = first_difference(std::vector<std::int32_t>(xa.begin(), xa.begin() + na),
+                                              std::vector<std::int32_t>(xb.begin(), xb.begin() + nb), other.name, "maximum");
+    if (!diff.empty()) return where(src, "row " + std::to_string(y) + " " + diff);
+  }
+  return "";
+}
+
+std::vector<PixelPoint> inner_points(const GrayImage& src, int border, int step) {
+  std::vector<PixelPoint> points;
+  for (int y = border; y < src.height() - border; y += step)
+    for (int x = border; x < src.width() - border; x += step) points.push_back({x, y});
+  return points;
+}
+
+std::string check_moments(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  const std::vector<PixelPoint> points = inner_points(src, kPatchRadius, 3);
+  if (points.empty()) return "";
+  const int n = static_cast<int>(points.size());
+  std::vector<std::int32_t> a10(points.size()), a01(points.size()), b10(points.size()), b01(points.size());
+  scalar.ic_moments(src.view(), points.data(), n, a10.data(), a01.data());
+  other.ic_moments(src.view(), points.data(), n, b10.data(), b01.data());
+  std::string diff = first_difference(a10, b10, other.name, "m10 of point");
+  if (diff.empty()) diff = first_difference(a01, b01, other.name, "m01 of point");
+  return diff.empty() ? "" : where(src, diff);
+}
+
+std::string check_rbrief(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  const std::vector<PixelPoint> points = inner_points(src, kEdgeBorder, 5);
+  if (points.empty()) return "";
+  std::vector<float> angles(points.size());
+  for (std::size_t i = 0; i < angles.size(); ++i) angles[i] = static_cast<float>((i * 37) % 360) + 0.25f * static_cast<float>(i % 4);
+  std::vector<std::uint8_t> a(points.size() * 32), b(a.size());
+  scalar.rbrief_describe(src.view(), points.data(), angles.data(), static_cast<int>(points.size()), a.data());
+  other.rbrief_describe(src.view(), points.data(), angles.data(), static_cast<int>(points.size()), b.data());
+  const std::string diff = first_difference(a, b, other.name, "descriptor byte");
+  return diff.empty() ? "" : where(src, diff);
+}
+
+std::string check_hamming(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  const int n = std::min(src.width() * src.height() / 32, 300);
+  if (n < 1) return "";
+  const std::uint8_t* train = src.data();
+  std::vector<std::uint16_t> a(static_cast<std::size_t>(n)), b(a.size());
+  for (int count : {n, std::max(0, n - 1), std::min(n, 1)}) {
+    scalar.hamming_256_many(train, train, count, a.data());
+    other.hamming_256_many(train, train, count, b.data());
+    a.resize(static_cast<std::size_t>(count));
+    b.resize(static_cast<std::size_t>(count));
+    const std::string diff = first_difference(a, b, other.name, "distance");
+    if (!diff.empty()) return where(src, diff);
+    a.resize(static_cast<std::size_t>(n));
+    b.resize(static_cast<std::size_t>(n));
+  }
+  return "";
+}
+
+std::string check_extract(KernelSet set, const GrayImage& src) {
+  if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
+  for (Mode mode : {Mode::aief, Mode::orbslam2}) {
+    ExtractorOptions reference_options = options_for_mode(mode);
+    reference_options.kernels = KernelSet::scalar;
+    reference_options.threads = 1;
+    const Features reference = Extractor(reference_options).extract(src.view());
+    for (int threads : {1, 2}) {
+      ExtractorOptions options = reference_options;
+      options.kernels = set;
+      options.threads = threads;
+      const Features other = Extractor(options).extract(src.view());
+      const std::string label = std::string(to_string(mode)) + ", " + std::to_string(threads) + " thread(s): ";
+      if (other.keypoints.size() != reference.keypoints.size())
+        return where(src, label + std::to_string(reference.keypoints.size()) + " keypoints with scalar, " + std::to_string(other.keypoints.size()));
+      for (std::size_t i = 0; i < reference.keypoints.size(); ++i) {
+        const Keypoint &r = reference.keypoints[i], &o = other.keypoints[i];
+        if (std::memcmp(&r, &o, sizeof r) != 0 || reference.descriptors[i] != other.descriptors[i]) {
+          std::ostringstream out;
+          out << label << "keypoint " << i << ": scalar (" << r.x << ", " << r.y << ", " << r.angle_deg << "), other (" << o.x << ", "
+              << o.y << ", " << o.angle_deg << ")" << (reference.descriptors[i] != other.descriptors[i] ? ", descriptors differ" : "");
+          return where(src, out.str());
+        }
+      }
+      if (other.info.entropy_threshold_used != reference.info.entropy_threshold_used ||
+          other.info.image_entropy_bits != reference.info.image_entropy_bits)
+        return where(src, label + "entropy or threshold differs");
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+const std::vector<std::string>& validated_kernel_names() {
+  static const std::vector<std::string> names = {"resize_bilinear_rows", "gaussian7_rows", "accumulate_histogram",
+                                                 "fast9_scores_row",     "fast9_local_maxima_row", "ic_moments",
+                                                 "rbrief_describe",      "hamming_256_many", "extract"};
+  return names;
+}
+
+std::vector<GrayImage> validation_images() {
+  std::vector<GrayImage> images;
+  std::uint32_t seed = 1;
+  std::vector<int> widths;
+  for (int w = 1; w <= 70; ++w) widths.push_back(w);
+  for (int w : {127, 129, 255, 257}) widths.push_back(w);
+  for (int w : widths)
+    for (int h : {1, 3, 37}) images.push_back(random_gray(w, h, seed++, (w + h) % 2 == 0));
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{64, 64}, {97, 61}, {131, 140}, {257, 129}, {333, 211}})
+    images.push_back(random_gray(w, h, seed++, true));
+  return images;
+}
+
+std::string validate_kernel(const std::string& kernel, KernelSet set, const std::vector<GrayImage>& images) {
+  const KernelTable& scalar = kernel_table(KernelSet::scalar);
+  const KernelTable& other = kernel_table(set);
+  for (const GrayImage& image : images) {
+    std::string diff;
+    if (kernel == "resize_bilinear_rows") diff = check_resize(scalar, other, image);
+    else if (kernel == "gaussian7_rows") diff = check_gaussian(scalar, other, image);
+    else if (kernel == "accumulate_histogram") diff = check_histogram(scalar, other, image);
+    else if (kernel == "fast9_scores_row") diff = check_fast_scores(scalar, other, image);
+    else if (kernel == "fast9_local_maxima_row") diff = check_fast_maxima(scalar, other, image);
+    else if (kernel == "ic_moments") diff = check_moments(scalar, other, image);
+    else if (kernel == "rbrief_describe") diff = check_rbrief(scalar, other, image);
+    else if (kernel == "hamming_256_many") diff = check_hamming(scalar, other, image);
+    else if (kernel == "extract") diff = check_extract(set, image);
+    else return "unknown kernel '" + kernel + "'";
+    if (!diff.empty()) return diff;
+  }
+  return "";
+}
+
+}  // namespace aief

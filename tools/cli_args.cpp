@@ -1,0 +1,146 @@
+#include "tools/cli_args.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "aief/error.hpp"
+
+namespace aief::cli {
+
+Args::Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& spec) {
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const std::string& token = tokens[i];
+    if (token.size() < 2 || token[0] != '-' || (std::isdigit(static_cast<unsigned char>(token[1])) != 0)) {
+      positionals_.push_back(token);
+      continue;
+    }
+    std::string name = token, inline_value;
+    bool has_inline = false;
+    if (const std::size_t eq = token.find('='); eq != std::string::npos && token.rfind("--", 0) == 0) {
+      name = token.substr(0, eq);
+      inline_value = token.substr(eq + 1);
+      has_inline = true;
+    }
+    const FlagSpec* match = nullptr;
+    for (const FlagSpec& flag : spec)
+      if (flag.name == name || (!flag.alias.empty() && flag.alias == name)) match = &flag;
+    if (!match) throw UsageError("unknown option " + name);
+    if (!match->takes_value) {
+      if (has_inline) throw UsageError(match->name + " takes no value");
+      values_.emplace_back(match->name, "");
+      continue;
+    }
+    if (has_inline) {
+      values_.emplace_back(match->name, inline_value);
+    } else {
+      if (i + 1 >= tokens.size()) throw UsageError(match->name + " expects a value");
+      values_.emplace_back(match->name, tokens[++i]);
+    }
+  }
+}
+
+bool Args::has(const std::string& name) const {
+  for (const auto& [flag, value] : values_)
+    if (flag == name) return true;
+  return false;
+}
+
+std::optional<std::string> Args::get(const std::string& name) const {
+  std::optional<std::string> result;
+  for (const auto& [flag, value] : values_)
+    if (flag == name) result = value;  // the last one wins
+  return result;
+}
+
+int Args::get_int(const std::string& name, int fallback, int min, int max) const {
+  const std::optional<std::string> text = get(name);
+  if (!text) return fallback;
+  std::size_t used = 0;
+  long long value = 0;
+  try {
+    value = std::stoll(*text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text->size() || value < min || value > max)
+    throw UsageError(name + " expects an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" +
+                     *text + "'");
+  return static_cast<int>(value);
+}
+
+double Args::get_double(const std::string& name, double fallback, double min, double max) const {
+  const std::optional<std::string> text = get(name);
+  if (!text) return fallback;
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(*text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text->size() || !std::isfinite(value) || value < min || value > max) {
+    std::ostringstream message;
+    message << name << " expects a number in [" << min << ", " << max << "], got '" << *text << "'";
+    throw UsageError(message.str());
+  }
+  return value;
+}
+
+std::vector<FlagSpec> extractor_flags() {
+  return {{"--mode", "", true},          {"--features", "", true},      {"--levels", "", true},
+          {"--scale", "", true},         {"--block", "", true},         {"--threshold", "", true},
+          {"--entropy", "", true},       {"--fast-threshold", "", true}, {"--fast-min-threshold", "", true},
+          {"--kernels", "", true},       {"--threads", "", true}};
+}
+
+ExtractorOptions extractor_options(const Args& args) {
+  const ExtractorOptions defaults;
+  ExtractorOptions options;
+  // Ranges here only catch typos early; ExtractorOptions::validate() is the authority.
+  options.n_features = args.get_int("--features", defaults.n_features, 1, 1'000'000);
+  options.n_levels = args.get_int("--levels", defaults.n_levels, 1, 32);
+  options.scale_factor = args.get_double("--scale", defaults.scale_factor, 1.0 + 1e-9, 4.0);
+  options.block_size = args.get_int("--block", defaults.block_size, 8, 1024);
+  options.fast_threshold = args.get_int("--fast-threshold", defaults.fast_threshold, 1, 254);
+  options.fast_min_threshold = args.get_int("--fast-min-threshold", defaults.fast_min_threshold, 1, 254);
+  options.threads = args.get_int("--threads", defaults.threads, 0, 256);
+  try {
+    if (const auto entropy = args.get("--entropy")) options.entropy = parse_entropy_measure(*entropy);
+    if (const auto kernels = args.get("--kernels")) options.kernels = parse_kernel_set(*kernels);
+    const Mode mode = args.get("--mode") ? parse_mode(*args.get("--mode")) : Mode::aief;
+    options = options_for_mode(mode, options);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  if (const auto threshold = args.get("--threshold"); threshold && *threshold == "auto") {
+    options.auto_threshold = true;
+  } else {
+    options.entropy_threshold = args.get_double("--threshold", defaults.entropy_threshold, 0.0, 64.0);
+  }
+  try {
+    options.validate();
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  return options;
+}
+
+std::string extractor_flags_help() {
+  const ExtractorOptions d;
+  std::ostringstream out;
+  out << "  --mode M              aief | orbslam2 | quadtree-entropy (default aief)\n"
+      << "  --features N          keypoints wanted over all levels (default " << d.n_features << ")\n"
+      << "  --levels L            pyramid levels (default " << d.n_levels << ")\n"
+      << "  --scale S             scale factor between levels (default " << d.scale_factor << ")\n"
+      << "  --block B             entropy / distribution block side, pixels (default " << d.block_size << ")\n"
+      << "  --threshold F|auto    entropy threshold F in bits, or auto: Otsu split of the frame's own\n"
+      << "                        block entropies (default " << d.entropy_threshold << ")\n"
+      << "  --entropy E           histogram | intensity (default " << to_string(d.entropy) << ")\n"
+      << "  --fast-threshold T    FAST threshold (default " << d.fast_threshold << ")\n"
+      << "  --fast-min-threshold T  retry threshold for a block without corners (default " << d.fast_min_threshold << ")\n"
+      << "  --kernels K           auto | scalar | sse4.2 | avx2 | avx512 (default auto; same output)\n"
+      << "  --threads T           worker threads, 0 = all cores (default " << d.threads << "; same output)\n";
+  return out.str();
+}
+
+}  // namespace aief::cli

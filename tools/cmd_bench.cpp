@@ -1,0 +1,126 @@
+// aief bench IMAGE [--repeat N] [--threads T] [--kernels K]: one JSON line with the median
+// milliseconds of each stage and of the whole extract, and of cv::ORB on the same gray image.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+
+#include "aief/extractor.hpp"
+#include "core/fast9_detect.hpp"
+#include "core/frame_analysis.hpp"
+#include "io/image_io.hpp"
+#include "io/json_writer.hpp"
+#include "simd/kernels.hpp"
+#include "tools/cli_args.hpp"
+#include "tools/commands.hpp"
+
+namespace aief::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
+int run_bench(const Arguments& arguments) {
+  std::vector<FlagSpec> spec = extractor_flags();
+  spec.push_back({"--repeat", "", true});
+  spec.push_back({"--help", "-h", false});
+  const Args args(arguments, spec);
+  if (args.has("--help")) {
+    std::cout << "usage: aief bench IMAGE [--repeat N] [--threads T] [--kernels K] [options]\n\n"
+              << "Prints one JSON line: median milliseconds over N runs of each stage (pyramid, block\n"
+              << "entropies + FAST, distribution + description) and of the whole extract, and of\n"
+              << "cv::ORB(1000, 1.2, 8).detectAndCompute on the same gray image, with their ratio.\n\n"
+              << "  --repeat N            runs per measurement (default 21)\n"
+              << extractor_flags_help();
+    return 0;
+  }
+  if (args.positionals().size() != 1) throw UsageError("bench expects one IMAGE (aief bench --help)");
+  const int repeat = args.get_int("--repeat", 21, 1, 100000);
+  const ExtractorOptions options = extractor_options(args);
+  const std::string& path = args.positionals()[0];
+  const GrayImage image = io::read_gray_image(path);
+
+  // The whole extract, as a user calls it.
+  Extractor extractor(options);
+  Features features;
+  extractor.extract(image.view(), features);  // warm: buffers sized
+  std::vector<double> total;
+  for (int i = 0; i < repeat; ++i) {
+    const auto start = Clock::now();
+    extractor.extract(image.view(), features);
+    total.push_back(ms_since(start));
+  }
+
+  // Stages, single-threaded on the same kernels: where the time goes.
+  const KernelTable& kernels = kernel_table(options.kernels);
+  FrameAnalysis analysis;
+  std::vector<double> pyramid, detect, select;
+  std::vector<std::int32_t> chosen;
+  const double threshold = options.entropy != EntropyMeasure::off ? options.entropy_threshold : 0.0;
+  for (int i = 0; i < repeat + 1; ++i) {
+    analysis.start(image.view(), options, kernels);
+    auto start = Clock::now();
+    for (int n = 0; n < analysis.level_count(); ++n) analysis.build_level(n);
+    const double t_pyramid = ms_since(start);
+    start = Clock::now();
+    for (int n = 0; n < analysis.level_count(); ++n) {
+      analysis.compute_entropies(n);
+      analysis.detect(n, threshold);
+    }
+    const double t_detect = ms_since(start);
+    start = Clock::now();
+    for (int n = 0; n < analysis.level_count(); ++n) analysis.select(n, threshold, chosen);
+    const double t_select = ms_since(start);
+    if (i == 0) continue;  // the first run sizes the buffers
+    pyramid.push_back(t_pyramid);
+    detect.push_back(t_detect);
+    select.push_back(t_select);
+  }
+
+  // cv::ORB on the same gray image, same process.
+  const cv::Mat gray(image.height(), image.width(), CV_8UC1, const_cast<std::uint8_t*>(image.data()));
+  cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 8);
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  orb->detectAndCompute(gray, cv::noArray(), keypoints, descriptors);
+  std::vector<double> orb_ms;
+  for (int i = 0; i < repeat; ++i) {
+    const auto start = Clock::now();
+    orb->detectAndCompute(gray, cv::noArray(), keypoints, descriptors);
+    orb_ms.push_back(ms_since(start));
+  }
+
+  std::ostringstream text;
+  io::JsonWriter json(text);
+  json.set_newline_depth(0);
+  json.begin_object();
+  json.field("image", path).field("width", image.width()).field("height", image.height());
+  json.field("kernels", std::string(extractor.kernel_name())).field("threads", options.threads).field("repeat", repeat);
+  json.field("keypoints", static_cast<int>(features.keypoints.size()));
+  json.field("pyramid_ms", median(pyramid)).field("entropy_and_fast_ms", median(detect));
+  json.field("distribute_and_describe_ms", median(select));
+  json.field("aief_ms", median(total)).field("opencv_orb_ms", median(orb_ms));
+  json.field("opencv_orb_keypoints", static_cast<int>(keypoints.size()));
+  json.field("speedup_vs_opencv_orb", median(orb_ms) / median(total));
+  json.end_object();
+  std::cout << text.str();
+  return 0;
+}
+
+}  // namespace aief::cli

@@ -1,0 +1,135 @@
+// aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o matches.json] [--draw matches.png]
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "aief/adapt.hpp"
+#include "aief/error.hpp"
+#include "aief/extractor.hpp"
+#include "aief/homography.hpp"
+#include "aief/match.hpp"
+#include "io/drawing.hpp"
+#include "io/image_io.hpp"
+#include "io/json_writer.hpp"
+#include "tools/cli_args.hpp"
+#include "tools/commands.hpp"
+
+namespace aief::cli {
+
+namespace {
+
+void print_help() {
+  std::cout << "usage: aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o OUT.json] [--draw OUT.png]\n\n"
+            << "Extracts both images, matches them, estimates the homography A -> B with RANSAC (3 px).\n\n"
+            << "  --adaptive            choose the entropy threshold F by the sweep over this pair (aief adapt)\n"
+            << "  --matcher K           mutual (default) | ratio | paper\n"
+            << "  --ratio R             Lowe ratio for --matcher ratio (default " << MatchOptions{}.ratio << ")\n"
+            << "  -o, --output FILE     matches, inliers and homography as JSON\n"
+            << "  --draw FILE           both images side by side, inliers green, outliers red, PNG\n"
+            << extractor_flags_help();
+}
+
+std::vector<Point2> points_of(const Features& features, const std::vector<Match>& matches, bool query) {
+  std::vector<Point2> points;
+  points.reserve(matches.size());
+  for (const Match& m : matches) {
+    const Keypoint& kp = features.keypoints[static_cast<std::size_t>(query ? m.query : m.train)];
+    points.push_back({kp.x, kp.y});
+  }
+  return points;
+}
+
+}  // namespace
+
+int run_match(const Arguments& arguments) {
+  std::vector<FlagSpec> spec = extractor_flags();
+  spec.push_back({"--adaptive", "", false});
+  spec.push_back({"--matcher", "", true});
+  spec.push_back({"--ratio", "", true});
+  spec.push_back({"--output", "-o", true});
+  spec.push_back({"--draw", "", true});
+  spec.push_back({"--help", "-h", false});
+  const Args args(arguments, spec);
+  if (args.has("--help")) {
+    print_help();
+    return 0;
+  }
+  if (args.positionals().size() != 2) throw UsageError("match expects two images A B (aief match --help)");
+  const ExtractorOptions options = extractor_options(args);
+  MatchOptions match_options;
+  try {
+    if (const auto kind = args.get("--matcher")) match_options.kind = parse_matcher_kind(*kind);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  match_options.ratio = args.get_double("--ratio", match_options.ratio, 1e-6, 1.0);
+
+  const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
+  const GrayImage a = io::read_gray_image(path_a), b = io::read_gray_image(path_b);
+
+  Features features_a, features_b;
+  std::vector<Match> matches;
+  HomographyResult homography;
+  double threshold = options.entropy_threshold;
+  if (args.has("--adaptive")) {
+    SweepOptions sweep;
+    sweep.match = match_options;
+    ExtractorOptions sweep_options = options;
+    if (sweep_options.entropy == EntropyMeasure::off) throw UsageError("--adaptive needs an entropy mode (not orbslam2)");
+    AdaptResult result = adapt(a.view(), b.view(), sweep_options, sweep);
+    threshold = result.threshold;
+    features_a = std::move(result.features_a);
+    features_b = std::move(result.features_b);
+    matches = std::move(result.matches);
+    homography = std::move(result.homography);
+  } else {
+    Extractor extractor(options);
+    features_a = extractor.extract(a.view());
+    features_b = extractor.extract(b.view());
+    matches = match_descriptors(features_a.descriptors, features_b.descriptors, match_options);
+    homography = find_homography_ransac(points_of(features_a, matches, true), points_of(features_b, matches, false));
+    threshold = features_a.info.entropy_threshold_used;
+  }
+  const int inliers = homography.found ? homography.inliers : 0;
+  const double cmr = matches.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(matches.size());
+
+  std::printf("%zu + %zu keypoints, %zu putative matches (%s), %d inliers, CMR %.2f%%", features_a.keypoints.size(),
+              features_b.keypoints.size(), matches.size(), std::string(to_string(match_options.kind)).c_str(), inliers,
+              100.0 * cmr);
+  if (options.entropy != EntropyMeasure::off) std::printf(", F = %.2f", threshold);
+  if (!homography.found) std::printf(" (no homography: %s)", homography.failure.c_str());
+  std::printf("\n");
+
+  if (const auto output = args.get("--output")) {
+    std::ostringstream text;
+    io::JsonWriter json(text);
+    json.begin_object();
+    json.field("image_a", path_a).field("image_b", path_b).field("matcher", to_string(match_options.kind));
+    json.field("entropy_threshold", threshold).field("keypoints_a", static_cast<int>(features_a.keypoints.size()));
+    json.field("keypoints_b", static_cast<int>(features_b.keypoints.size()));
+    json.field("putative", static_cast<int>(matches.size())).field("inliers", inliers).field("cmr", cmr);
+    json.field("homography_found", homography.found);
+    json.key("homography").begin_array();
+    for (double v : homography.H) json.value(v);
+    json.end_array();
+    json.key("matches").begin_array();
+    for (std::size_t i = 0; i < matches.size(); ++i) {
+      const Keypoint& ka = features_a.keypoints[static_cast<std::size_t>(matches[i].query)];
+      const Keypoint& kb = features_b.keypoints[static_cast<std::size_t>(matches[i].train)];
+      json.begin_object().field("query", matches[i].query).field("train", matches[i].train);
+      json.field("distance", matches[i].distance).field("xa", ka.x).field("ya", ka.y).field("xb", kb.x).field("yb", kb.y);
+      json.field("inlier", homography.found && homography.inlier_mask[i] != 0).end_object();
+    }
+    json.end_array();
+    json.end_object();
+    io::write_file_atomically(*output, text.str());
+    std::printf("matches written to %s\n", output->c_str());
+  }
+  if (const auto draw = args.get("--draw")) {
+    io::draw_matches_png(*draw, a.view(), features_a, b.view(), features_b, matches, homography.inlier_mask);
+    std::printf("picture written to %s\n", draw->c_str());
+  }
+  return 0;
+}
+
+}  // namespace aief::cli

@@ -1,0 +1,171 @@
+#include "tools/eval/methods.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <opencv2/features2d.hpp>
+
+#include "aief/adapt.hpp"
+#include "aief/extractor.hpp"
+
+namespace aief::eval {
+
+std::string method_name(Method method) {
+  switch (method) {
+    case Method::orbslam2: return "ORB-SLAM2 (ours, quadtree)";
+    case Method::quadtree_entropy: return "Quadtree + entropy (F = 4)";
+    case Method::aief_adaptive: return "AIEF (adaptive F)";
+    case Method::aief_auto: return "AIEF (pair-free auto F)";
+    case Method::opencv_orb: return "OpenCV ORB";
+    case Method::opencv_sift: return "OpenCV SIFT";
+  }
+  return "?";
+}
+
+std::string method_key(Method method) {
+  switch (method) {
+    case Method::orbslam2: return "orbslam2";
+    case Method::quadtree_entropy: return "quadtree_entropy";
+    case Method::aief_adaptive: return "aief_adaptive";
+    case Method::aief_auto: return "aief_auto";
+    case Method::opencv_orb: return "opencv_orb";
+    case Method::opencv_sift: return "opencv_sift";
+  }
+  return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+double median_ms(int repeats, F&& work) {
+  std::vector<double> times;
+  for (int i = 0; i < repeats; ++i) {
+    const auto start = Clock::now();
+    work();
+    times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+ImageView view_of(const cv::Mat& gray) { return {gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}; }
+
+// Matched point pairs, then every metric from them, the same for every method.
+void measure(const std::vector<Point2>& pa, const std::vector<Point2>& pb, const Homography& truth, int width, int height,
+             PairResult& r) {
+  r.putative = static_cast<int>(pa.size());
+  const HomographyResult model = find_homography_ransac(pa, pb);
+  r.inliers = model.found ? model.inliers : 0;
+  r.cmr = r.putative > 0 ? static_cast<double>(r.inliers) / r.putative : 0.0;
+  r.correct = 0;
+  for (std::size_t i = 0; i < pa.size(); ++i) {
+    const Point2 p = apply_homography(truth, pa[i]);
+    if (std::hypot(p.x - pb[i].x, p.y - pb[i].y) <= 3.0) ++r.correct;
+  }
+  r.accuracy = r.putative > 0 ? static_cast<double>(r.correct) / r.putative : 0.0;
+  if (model.found) {
+    r.corner_error = mean_corner_error(model.H, truth, width, height);
+    r.homography_ok = r.corner_error < 5.0;
+  }
+}
+
+void measure_features(const Features& a, const Features& b, const std::vector<Match>& matches, const Homography& truth,
+                      int width, int height, PairResult& r) {
+  std::vector<Point2> pa, pb;
+  for (const Match& m : matches) {
+    const Keypoint& ka = a.keypoints[static_cast<std::size_t>(m.query)];
+    const Keypoint& kb = b.keypoints[static_cast<std::size_t>(m.train)];
+    pa.push_back({ka.x, ka.y});
+    pb.push_back({kb.x, kb.y});
+  }
+  r.keypoints_a = static_cast<int>(a.keypoints.size());
+  r.keypoints_b = static_cast<int>(b.keypoints.size());
+  measure(pa, pb, truth, width, height, r);
+}
+
+PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth, const EvalSettings& s) {
+  PairResult r;
+  ExtractorOptions options;
+  options.threads = 1;  // per-core times, as the paper's and OpenCV's
+  switch (method) {
+    case Method::orbslam2: options = options_for_mode(Mode::orbslam2, options); break;
+    case Method::quadtree_entropy: options = options_for_mode(Mode::quadtree_entropy, options); break;
+    case Method::aief_auto: options.auto_threshold = true; break;
+    default: break;
+  }
+  if (method == Method::aief_adaptive) {
+    SweepOptions sweep;
+    sweep.match = s.match;
+    AdaptResult adapted;
+    r.sweep_ms = median_ms(1, [&] { adapted = adapt(view_of(a), view_of(b), options, sweep); });
+    measure_features(adapted.features_a, adapted.features_b, adapted.matches, truth, a.cols, a.rows, r);
+    r.threshold = adapted.threshold;
+    options.entropy_threshold = adapted.threshold;  // the time of one frame at the learned F
+  }
+  Extractor extractor(options);
+  Features fa, fb;
+  r.extract_ms = median_ms(s.timing_repeats, [&] { extractor.extract(view_of(a), fa); });
+  if (method == Method::aief_adaptive) return r;
+  extractor.extract(view_of(b), fb);
+  const std::vector<Match> matches = match_descriptors(fa.descriptors, fb.descriptors, s.match);
+  measure_features(fa, fb, matches, truth, a.cols, a.rows, r);
+  if (options.entropy != EntropyMeasure::off) r.threshold = fa.info.entropy_threshold_used;
+  return r;
+}
+
+PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth, const EvalSettings& s) {
+  PairResult r;
+  cv::Ptr<cv::Feature2D> detector;
+  if (method == Method::opencv_orb) detector = cv::ORB::create(1000, 1.2f, 8);
+  else detector = cv::SIFT::create(1000);
+  std::vector<cv::KeyPoint> ka, kb;
+  cv::Mat da, db;
+  r.extract_ms = median_ms(s.timing_repeats, [&] { detector->detectAndCompute(a, cv::noArray(), ka, da); });
+  detector->detectAndCompute(b, cv::noArray(), kb, db);
+  r.keypoints_a = static_cast<int>(ka.size());
+  r.keypoints_b = static_cast<int>(kb.size());
+
+  std::vector<Point2> pa, pb;
+  if (method == Method::opencv_orb) {
+    // Binary descriptors: our matcher, so the rows differ only in their features.
+    const auto to_descriptors = [](const cv::Mat& m) {
+      std::vector<Descriptor> out(static_cast<std::size_t>(m.rows));
+      for (int row = 0; row < m.rows; ++row) std::copy_n(m.ptr<std::uint8_t>(row), 32, out[static_cast<std::size_t>(row)].begin());
+      return out;
+    };
+    for (const Match& m : match_descriptors(to_descriptors(da), to_descriptors(db), s.match)) {
+      pa.push_back({ka[static_cast<std::size_t>(m.query)].pt.x, ka[static_cast<std::size_t>(m.query)].pt.y});
+      pb.push_back({kb[static_cast<std::size_t>(m.train)].pt.x, kb[static_cast<std::size_t>(m.train)].pt.y});
+    }
+  } else if (!da.empty() && !db.empty()) {
+    // Float descriptors: L2, mutual nearest neighbours (cross-check); Lowe's ratio when asked.
+    std::vector<cv::DMatch> matches;
+    if (s.match.kind == MatcherKind::ratio) {
+      std::vector<std::vector<cv::DMatch>> knn;
+      cv::BFMatcher(cv::NORM_L2).knnMatch(da, db, knn, 2);
+      for (const auto& pair : knn)
+        if (pair.size() == 2 && pair[0].distance < s.match.ratio * pair[1].distance) matches.push_back(pair[0]);
+    } else {
+      cv::BFMatcher(cv::NORM_L2, true).match(da, db, matches);
+    }
+    for (const cv::DMatch& m : matches) {
+      pa.push_back({ka[static_cast<std::size_t>(m.queryIdx)].pt.x, ka[static_cast<std::size_t>(m.queryIdx)].pt.y});
+      pb.push_back({kb[static_cast<std::size_t>(m.trainIdx)].pt.x, kb[static_cast<std::size_t>(m.trainIdx)].pt.y});
+    }
+  }
+  measure(pa, pb, truth, a.cols, a.rows, r);
+  return r;
+}
+
+}  // namespace
+
+PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b, const Homography& truth,
+                      const EvalSettings& settings) {
+  if (method == Method::opencv_orb || method == Method::opencv_sift) return run_opencv(method, gray_a, gray_b, truth, settings);
+  return run_ours(method, gray_a, gray_b, truth, settings);
+}
+
+}  // namespace aief::eval

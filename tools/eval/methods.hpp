@@ -1,0 +1,45 @@
+#pragma once
+// The rows of the evaluation: our three modes, the pair-free automatic F, and OpenCV's ORB and
+// SIFT as outside baselines. Each is run on one pair and measured the same way: our RANSAC
+// (3 px) for inliers and CMR, the ground-truth homography for correct matches and accuracy.
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "aief/homography.hpp"
+#include "aief/match.hpp"
+
+namespace aief::eval {
+
+enum class Method { orbslam2, quadtree_entropy, aief_adaptive, aief_auto, opencv_orb, opencv_sift };
+
+inline const std::vector<Method> kAllMethods = {Method::orbslam2,  Method::quadtree_entropy, Method::aief_adaptive,
+                                                Method::aief_auto, Method::opencv_orb,       Method::opencv_sift};
+
+std::string method_name(Method method);  // the row label, e.g. "AIEF (adaptive F)"
+std::string method_key(Method method);   // the JSON key, e.g. "aief_adaptive"
+
+struct PairResult {
+  int keypoints_a = 0, keypoints_b = 0;
+  int putative = 0;        // matches before RANSAC (n of the paper)
+  int inliers = 0;         // RANSAC inliers of our final model (m of the paper)
+  double cmr = 0;          // m / n (Eq. 10)
+  int correct = 0;         // putative matches within 3 px under the true homography
+  double accuracy = 0;     // correct / putative
+  double corner_error = -1;  // mean corner error of the RANSAC homography vs the truth, px (-1: none)
+  bool homography_ok = false;  // corner_error < 5 px
+  double extract_ms = 0;   // extraction + description of image A, median, one thread
+  double sweep_ms = 0;     // the adaptive sweep over the pair (AIEF adaptive only)
+  double threshold = -1;   // F used for image A (entropy methods)
+};
+
+struct EvalSettings {
+  MatchOptions match;      // mutual by default
+  int timing_repeats = 3;  // runs per extraction time (median)
+};
+
+PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b, const Homography& truth,
+                      const EvalSettings& settings);
+
+}  // namespace aief::eval

@@ -1,0 +1,70 @@
+// aief: the command line. One subcommand per file (tools/cmd_*.cpp).
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string_view>
+
+#include "aief/error.hpp"
+#include "aief/extractor.hpp"
+#include "simd/kernels.hpp"
+#include "tools/cli_args.hpp"
+#include "tools/commands.hpp"
+
+namespace {
+
+struct Command {
+  std::string_view name;
+  std::string_view summary;
+  int (*run)(const aief::cli::Arguments&);
+};
+
+constexpr Command kCommands[] = {
+    {"extract", "keypoints and descriptors of one image (or a batch)", aief::cli::run_extract},
+    {"match", "match two images, RANSAC homography, optional adaptive F", aief::cli::run_match},
+    {"adapt", "sweep the entropy threshold F over a pair, print the curve", aief::cli::run_adapt},
+    {"eval", "the paper's tables and ground-truth metrics on the Oxford dataset", aief::cli::run_eval},
+    {"bench", "median milliseconds per stage on your image, beside cv::ORB", aief::cli::run_bench},
+    {"validate", "every SIMD kernel against the scalar reference on this CPU", aief::cli::run_validate},
+};
+
+void print_usage(std::ostream& out) {
+  out << "usage: aief <command> [options]   (aief <command> --help for its options)\n\ncommands:\n";
+  for (const Command& c : kCommands) out << "  " << c.name << std::string(10 - c.name.size(), ' ') << c.summary << "\n";
+  out << "\n  --print-kernels  the kernel sets this CPU runs, and the one chosen by default\n"
+      << "  --version        the version\n";
+}
+
+int print_kernels() {
+  std::cout << "available:";
+  for (aief::KernelSet set : aief::available_kernel_sets()) std::cout << ' ' << aief::to_string(set);
+  std::cout << "\ndefault: " << aief::to_string(aief::best_kernel_set()) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string_view first = argc > 1 ? argv[1] : "";
+  try {
+    if (first.empty() || first == "--help" || first == "-h" || first == "help") {
+      print_usage(first.empty() ? std::cerr : std::cout);
+      return first.empty() ? 2 : 0;
+    }
+    if (first == "--print-kernels") return print_kernels();
+    if (first == "--version") {
+      std::cout << "aief 0.1.0\n";
+      return 0;
+    }
+    for (const Command& command : kCommands) {
+      if (command.name != first) continue;
+      return command.run(aief::cli::Arguments(argv + 2, argv + argc));
+    }
+    throw aief::cli::UsageError("unknown command '" + std::string(first) + "' (aief --help lists them)");
+  } catch (const aief::cli::UsageError& e) {
+    std::cerr << "aief: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "aief: error: " << e.what() << "\n";
+    return 1;
+  }
+}
