@@ -4,19 +4,63 @@
 
 #include "aief/error.hpp"
 
+#if AIEF_HAVE_X86_SIMD
+namespace aief::simd_sse4_2 { KernelTable kernel_table(); }
+namespace aief::simd_avx2 { KernelTable kernel_table(); }
+namespace aief::simd_avx512bw { KernelTable kernel_table(); }
+#endif
+
 namespace aief {
 
 namespace {
-const KernelTable kScalarTable{};
+
+// What this CPU runs, asked once (the only place in the library that looks at the CPU).
+struct CpuKernels {
+  KernelTable scalar{};
+#if AIEF_HAVE_X86_SIMD
+  KernelTable sse4_2 = simd_sse4_2::kernel_table();
+  KernelTable avx2 = simd_avx2::kernel_table();
+  KernelTable avx512bw = simd_avx512bw::kernel_table();
+  bool has_sse4_2 = false, has_avx2 = false, has_avx512bw = false;
+  CpuKernels() {
+    __builtin_cpu_init();
+    has_sse4_2 = __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("popcnt");
+    has_avx2 = has_sse4_2 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
+    has_avx512bw = has_avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+                   __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
+  }
+#endif
+};
+
+const CpuKernels& cpu_kernels() {
+  static const CpuKernels kernels;
+  return kernels;
+}
+
 }  // namespace
 
-std::vector<KernelSet> available_kernel_sets() { return {KernelSet::scalar}; }
+std::vector<KernelSet> available_kernel_sets() {
+  std::vector<KernelSet> sets = {KernelSet::scalar};
+#if AIEF_HAVE_X86_SIMD
+  const CpuKernels& cpu = cpu_kernels();
+  if (cpu.has_sse4_2) sets.push_back(KernelSet::sse4_2);
+  if (cpu.has_avx2) sets.push_back(KernelSet::avx2);
+  if (cpu.has_avx512bw) sets.push_back(KernelSet::avx512bw);
+#endif
+  return sets;
+}
 
 KernelSet best_kernel_set() { return available_kernel_sets().back(); }
 
 const KernelTable& kernel_table(KernelSet set) {
   if (set == KernelSet::auto_select) set = best_kernel_set();
-  if (set == KernelSet::scalar) return kScalarTable;
+  const CpuKernels& cpu = cpu_kernels();
+  if (set == KernelSet::scalar) return cpu.scalar;
+#if AIEF_HAVE_X86_SIMD
+  if (set == KernelSet::sse4_2 && cpu.has_sse4_2) return cpu.sse4_2;
+  if (set == KernelSet::avx2 && cpu.has_avx2) return cpu.avx2;
+  if (set == KernelSet::avx512bw && cpu.has_avx512bw) return cpu.avx512bw;
+#endif
   throw Error("kernel set " + std::string(to_string(set)) + " is not available on this CPU or build");
 }
 

@@ -1,0 +1,23 @@
+#pragma once
+// The kernel table of one xsimd arch: included only by the per-arch translation units
+// (kernels_<arch>.cpp), each compiled with that arch's flags alone.
+#include "core/kernel_table.hpp"
+#include "simd/fast9_simd.hpp"
+#include "simd/hamming_simd.hpp"
+
+namespace aief::simd {
+
+// Kernels not listed here keep their scalar reference (already at memory speed or dominated by
+// gathers; see bench/RESULTS.md).
+template <class Arch>
+KernelTable make_kernel_table(KernelSet set, const char* name) {
+  KernelTable table;
+  table.set = set;
+  table.name = name;
+  table.fast9_scores_row = &fast9_scores_row<Arch>;
+  table.fast9_local_maxima_row = &fast9_local_maxima_row<Arch>;
+  table.hamming_256_many = &hamming_256_many<Arch>;
+  return table;
+}
+
+}  // namespace aief::simd

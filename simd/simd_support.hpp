@@ -1,0 +1,29 @@
+#pragma once
+// Helpers shared by the xsimd kernels. Everything here is a template on the xsimd arch, so an
+// instantiation compiled with AVX2 flags is its own symbol and can never be linked into the
+// baseline path (STYLE.md "One kernel, three places, one signature").
+#include <cstdint>
+#include <type_traits>
+
+#include <immintrin.h>
+#include <xsimd/xsimd.hpp>
+
+namespace aief::simd {
+
+template <class Arch>
+using U8 = xsimd::batch<std::uint8_t, Arch>;
+
+// One bit per byte lane (lane i -> bit i), from a byte comparison: the movemask xsimd 8.1
+// does not expose.
+template <class Arch>
+inline std::uint64_t lane_bits(const xsimd::batch_bool<std::uint8_t, Arch>& b) {
+  if constexpr (std::is_base_of_v<xsimd::avx512bw, Arch>) {
+    return static_cast<std::uint64_t>(static_cast<__mmask64>(b));
+  } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+    return static_cast<std::uint32_t>(_mm256_movemask_epi8(static_cast<__m256i>(b)));
+  } else {
+    return static_cast<std::uint32_t>(_mm_movemask_epi8(static_cast<__m128i>(b)));
+  }
+}
+
+}  // namespace aief::simd

@@ -1,0 +1,65 @@
+// Every kernel under every kernel set this CPU runs, bit for bit against the scalar reference,
+// on seeded random images of sizes straddling the vector widths and on the bundled real images;
+// and the whole pipeline at 1 and 2 threads under each set (simd/kernel_validation.hpp).
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "simd/kernel_validation.hpp"
+#include "simd/kernels.hpp"
+#include "tests/test_support.hpp"
+
+namespace aief {
+namespace {
+
+std::vector<GrayImage> real_images() {
+  std::vector<GrayImage> images;
+  for (const char* sequence : {"graf", "boat", "leuven"}) {
+    const cv::Mat gray = test::load_sample_gray(sequence, "img1.png");
+    GrayImage image(gray.cols, gray.rows);
+    for (int y = 0; y < gray.rows; ++y) std::copy_n(gray.ptr<std::uint8_t>(y), gray.cols, image.data() + y * gray.cols);
+    images.push_back(std::move(image));
+  }
+  return images;
+}
+
+class SimdKernels : public testing::TestWithParam<std::tuple<KernelSet, std::string>> {};
+
+TEST_P(SimdKernels, IdenticalToScalarOnRandomImages) {
+  const auto& [set, kernel] = GetParam();
+  static const std::vector<GrayImage> images = validation_images();
+  EXPECT_EQ(validate_kernel(kernel, set, images), "");
+}
+
+TEST_P(SimdKernels, IdenticalToScalarOnRealImages) {
+  const auto& [set, kernel] = GetParam();
+  static const std::vector<GrayImage> images = real_images();
+  EXPECT_EQ(validate_kernel(kernel, set, images), "");
+}
+
+std::vector<std::tuple<KernelSet, std::string>> cases() {
+  std::vector<std::tuple<KernelSet, std::string>> out;
+  for (KernelSet set : available_kernel_sets())
+    for (const std::string& kernel : validated_kernel_names()) out.emplace_back(set, kernel);
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Sets, SimdKernels, testing::ValuesIn(cases()),
+                         [](const testing::TestParamInfo<SimdKernels::ParamType>& info) {
+                           std::string set(to_string(std::get<0>(info.param)));
+                           for (char& c : set)
+                             if (c == '.') c = '_';
+                           return set + "_" + std::get<1>(info.param);
+                         });
+
+TEST(KernelDispatch, ScalarAlwaysAvailableAndUnknownSetsRefused) {
+  const std::vector<KernelSet> sets = available_kernel_sets();
+  ASSERT_FALSE(sets.empty());
+  EXPECT_EQ(sets.front(), KernelSet::scalar);
+  EXPECT_EQ(best_kernel_set(), sets.back());
+  EXPECT_STREQ(kernel_table(KernelSet::scalar).name, "scalar");
+  EXPECT_EQ(kernel_table(KernelSet::auto_select).set, best_kernel_set());
+}
+
+}  // namespace
+}  // namespace aief
