@@ -3,6 +3,7 @@
 // (kernels_<arch>.cpp), each compiled with that arch's flags alone.
 #include "core/kernel_table.hpp"
 #include "simd/fast9_simd.hpp"
+#include "simd/gaussian_blur_simd.hpp"
 #include "simd/hamming_simd.hpp"
 
 namespace aief::simd {
@@ -17,6 +18,7 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   table.fast9_scores_row = &fast9_scores_row<Arch>;
   table.fast9_local_maxima_row = &fast9_local_maxima_row<Arch>;
   table.hamming_256_many = &hamming_256_many<Arch>;
+  table.gaussian7_rows = &gaussian7_rows<Arch>;
   return table;
 }
 
