@@ -1,0 +1,120 @@
+// The aief command line as a user meets it: help, every error path's message and exit status,
+// and the files it writes.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include "tests/test_support.hpp"
+
+namespace {
+
+struct CliResult {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+std::string aief_binary() { return std::string(AIEF_CLI_PATH); }
+
+CliResult run(const std::string& arguments) {
+  CliResult result;
+  const std::string command = aief_binary() + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 512> buffer{};
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+TEST(Cli, HelpAndVersion) {
+  EXPECT_EQ(run("--help").status, 0);
+  EXPECT_EQ(run("extract --help").status, 0);
+  EXPECT_NE(run("extract --help").output.find("--threshold"), std::string::npos);
+  EXPECT_EQ(run("").status, 2);
+  EXPECT_EQ(run("--version").status, 0);
+  const CliResult kernels = run("--print-kernels");
+  EXPECT_EQ(kernels.status, 0);
+  EXPECT_NE(kernels.output.find("scalar"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
+  const std::string image = aief::test::sample_path("graf", "img1.png");
+  struct Case { std::string args, mention; };
+  const Case cases[] = {
+      {"frobnicate", "unknown command"},
+      {"extract " + image + " --features abc", "--features"},
+      {"extract " + image + " --features 0", "--features"},
+      {"extract " + image + " --scale 0.8", "--scale"},
+      {"extract " + image + " --levels 99", "--levels"},
+      {"extract " + image + " --threshold nan", "--threshold"},
+      {"extract " + image + " --mode orb", "unknown mode"},
+      {"extract " + image + " --kernels neon", "unknown kernel set"},
+      {"extract " + image + " --bogus", "unknown option --bogus"},
+      {"extract", "one IMAGE"},
+      {"extract " + image + " --features", "expects a value"},
+      {"match " + image, "two images"},
+      {"eval", "--dataset"},
+  };
+  for (const Case& c : cases) {
+    const CliResult r = run(c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find("aief: error:"), std::string::npos) << c.args;
+    EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.args << "\n" << r.output;
+  }
+}
+
+TEST(Cli, InputErrorsExitOne) {
+  const auto dir = std::filesystem::temp_directory_path() / "aief_cli_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream((dir / "notes.png").string()) << "not an image";
+  const CliResult missing = run("extract " + (dir / "missing.png").string());
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.output.find("missing.png"), std::string::npos);
+  const CliResult text = run("extract " + (dir / "notes.png").string());
+  EXPECT_EQ(text.status, 1);
+  EXPECT_NE(text.output.find("notes.png"), std::string::npos);
+  const CliResult bad_output = run("extract " + aief::test::sample_path("boat", "img1.png") + " -o " + (dir / "f.txt").string());
+  EXPECT_EQ(bad_output.status, 1);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, ExtractWritesJsonYamlAndPicture) {
+  const auto dir = std::filesystem::temp_directory_path() / "aief_cli_out";
+  std::filesystem::create_directories(dir);
+  const std::string image = aief::test::sample_path("graf", "img1.png");
+  const CliResult r = run("extract " + image + " -o " + (dir / "f.json").string() + " --draw " + (dir / "f.png").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("1000 keypoints"), std::string::npos) << r.output;
+  EXPECT_GT(std::filesystem::file_size(dir / "f.json"), 10000u);
+  EXPECT_GT(std::filesystem::file_size(dir / "f.png"), 10000u);
+  EXPECT_EQ(run("extract " + image + " --mode orbslam2 -o " + (dir / "f.yml").string()).status, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "f.yml"));
+  const CliResult adapt = run("adapt " + image + " " + aief::test::sample_path("graf", "img2.png") + " -o " + (dir / "a.json").string() +
+                        " --plot " + (dir / "a.png").string() + " --step 1");
+  EXPECT_EQ(adapt.status, 0) << adapt.output;
+  std::ifstream in(dir / "a.json");
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"threshold\""), std::string::npos);
+  EXPECT_NE(json.find("\"curve\""), std::string::npos);
+  EXPECT_NE(json.find("\"kept_blocks\""), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "a.png"));
+  const CliResult match = run("match " + image + " " + aief::test::sample_path("graf", "img2.png") + " --draw " + (dir / "m.png").string());
+  EXPECT_EQ(match.status, 0) << match.output;
+  EXPECT_NE(match.output.find("inliers"), std::string::npos);
+  const CliResult bench = run("bench " + image + " --repeat 2 --threads 1");
+  EXPECT_EQ(bench.status, 0) << bench.output;
+  EXPECT_NE(bench.output.find("\"aief_ms\""), std::string::npos);
+  EXPECT_NE(bench.output.find("\"opencv_orb_ms\""), std::string::npos);
+  const CliResult validate = run("validate");
+  EXPECT_EQ(validate.status, 0) << validate.output;
+  EXPECT_NE(validate.output.find("identical"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
