@@ -5,6 +5,8 @@
 #include "simd/fast9_simd.hpp"
 #include "simd/gaussian_blur_simd.hpp"
 #include "simd/hamming_simd.hpp"
+#include "simd/orientation_simd.hpp"
+#include "simd/rbrief_simd.hpp"
 
 namespace aief::simd {
 
@@ -19,6 +21,8 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   table.fast9_local_maxima_row = &fast9_local_maxima_row<Arch>;
   table.hamming_256_many = &hamming_256_many<Arch>;
   table.gaussian7_rows = &gaussian7_rows<Arch>;
+  table.ic_moments = &ic_moments<Arch>;
+  table.rbrief_describe = &rbrief_describe<Arch>;
   return table;
 }
 

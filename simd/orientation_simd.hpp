@@ -1,0 +1,72 @@
+#pragma once
+// Intensity-centroid moments, vectorised: the contract of core/orientation.hpp, the same
+// integers. Each disc row is one 32-byte load (pixels x-16 .. x+15) and two vpmaddubsw against
+// per-row weights: u inside the disc and 0 outside for m10, 1 inside for the row sum that m01
+// weighs by v. Pair sums stay in int16 (|u| <= 15, 2 * 255 * 15 < 32768).
+#include <cstdint>
+#include <type_traits>
+
+#include "core/orientation.hpp"
+#include "simd/simd_support.hpp"
+
+namespace aief::simd {
+
+template <class Arch>
+void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* m10, std::int32_t* m01) {
+  constexpr int kRows = 2 * kPatchRadius + 1;
+  alignas(32) std::int8_t u_weight[kRows][32], in_disc[kRows][32];
+  const int* umax = orientation_disc_umax();
+  for (int r = 0; r < kRows; ++r) {
+    const int v = r - kPatchRadius, reach = umax[v < 0 ? -v : v];
+    for (int i = 0; i < 32; ++i) {
+      const int u = i - 16;  // byte i of the load is pixel x + i - 16
+      const bool inside = u >= -reach && u <= reach;
+      u_weight[r][i] = static_cast<std::int8_t>(inside ? u : 0);
+      in_disc[r][i] = static_cast<std::int8_t>(inside ? 1 : 0);
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    const PixelPoint p = points[k];
+    if (p.x < 16) {  // the load starts one pixel left of the disc: stay inside the row
+      ic_moments_scalar(level, points + k, 1, m10 + k, m01 + k);
+      continue;
+    }
+    const std::uint8_t* top = level.row(p.y - kPatchRadius) + p.x - 16;
+    if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+      const __m256i ones = _mm256_set1_epi16(1);
+      __m256i sum_x = _mm256_setzero_si256(), sum_y = _mm256_setzero_si256();
+      for (int r = 0; r < kRows; ++r) {
+        const __m256i pixels = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(top + r * level.stride));
+        const __m256i wx = _mm256_maddubs_epi16(pixels, _mm256_load_si256(reinterpret_cast<const __m256i*>(u_weight[r])));
+        const __m256i row = _mm256_maddubs_epi16(pixels, _mm256_load_si256(reinterpret_cast<const __m256i*>(in_disc[r])));
+        sum_x = _mm256_add_epi32(sum_x, _mm256_madd_epi16(wx, ones));
+        sum_y = _mm256_add_epi32(sum_y, _mm256_madd_epi16(row, _mm256_set1_epi16(static_cast<short>(r - kPatchRadius))));
+      }
+      const __m128i x4 = _mm_add_epi32(_mm256_castsi256_si128(sum_x), _mm256_extracti128_si256(sum_x, 1));
+      const __m128i y4 = _mm_add_epi32(_mm256_castsi256_si128(sum_y), _mm256_extracti128_si256(sum_y, 1));
+      const __m128i x2 = _mm_hadd_epi32(x4, y4);
+      const __m128i x1 = _mm_hadd_epi32(x2, x2);
+      m10[k] = _mm_cvtsi128_si32(x1);
+      m01[k] = _mm_extract_epi32(x1, 1);
+    } else {
+      const __m128i ones = _mm_set1_epi16(1);
+      __m128i sum_x = _mm_setzero_si128(), sum_y = _mm_setzero_si128();
+      for (int r = 0; r < kRows; ++r) {
+        const __m128i v = _mm_set1_epi16(static_cast<short>(r - kPatchRadius));
+        for (int half = 0; half < 2; ++half) {
+          const __m128i pixels = _mm_loadu_si128(reinterpret_cast<const __m128i*>(top + r * level.stride + 16 * half));
+          const __m128i wx = _mm_maddubs_epi16(pixels, _mm_load_si128(reinterpret_cast<const __m128i*>(u_weight[r] + 16 * half)));
+          const __m128i row = _mm_maddubs_epi16(pixels, _mm_load_si128(reinterpret_cast<const __m128i*>(in_disc[r] + 16 * half)));
+          sum_x = _mm_add_epi32(sum_x, _mm_madd_epi16(wx, ones));
+          sum_y = _mm_add_epi32(sum_y, _mm_madd_epi16(row, v));
+        }
+      }
+      const __m128i x2 = _mm_hadd_epi32(sum_x, sum_y);
+      const __m128i x1 = _mm_hadd_epi32(x2, x2);
+      m10[k] = _mm_cvtsi128_si32(x1);
+      m01[k] = _mm_extract_epi32(x1, 1);
+    }
+  }
+}
+
+}  // namespace aief::simd
