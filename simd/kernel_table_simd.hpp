@@ -6,6 +6,7 @@
 #include "simd/gaussian_blur_simd.hpp"
 #include "simd/hamming_simd.hpp"
 #include "simd/orientation_simd.hpp"
+#include "simd/pyramid_resize_simd.hpp"
 #include "simd/rbrief_simd.hpp"
 
 namespace aief::simd {
@@ -23,6 +24,7 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   table.gaussian7_rows = &gaussian7_rows<Arch>;
   table.ic_moments = &ic_moments<Arch>;
   table.rbrief_describe = &rbrief_describe<Arch>;
+  table.resize_bilinear_rows = &resize_bilinear_rows<Arch>;
   return table;
 }
 
