@@ -150,12 +150,10 @@ void FrameAnalysis::detect(int n, double threshold) {
   const auto needs = [&](int b) {
     return !level.block_detected[static_cast<std::size_t>(b)] && block_kept(n, b, threshold);
   };
-  const auto detected = [&](int r, int c) {
-    return r >= 0 && c >= 0 && r < grid.rows() && c < grid.cols() &&
-           level.block_detected[static_cast<std::size_t>(r * grid.cols() + c)];
-  };
 
-  // Scores of the blocks' interiors, one span per run of adjacent blocks in a block row.
+  // Scores of each run of adjacent new blocks in a block row, with the one-pixel ring that
+  // suppression reads: one call per row of the run instead of a call per ring segment. Pixels
+  // a neighbour already scored are scored again to the same value.
   std::vector<int>& fresh = level.scratch_xs;  // reused: indices of the blocks detected now
   fresh.clear();
   for (int r = 0; r < grid.rows(); ++r) {
@@ -164,27 +162,12 @@ void FrameAnalysis::detect(int n, double threshold) {
       if (!needs(r * grid.cols() + c)) { ++c; continue; }
       int end = c;
       while (end < grid.cols() && needs(r * grid.cols() + end)) fresh.push_back(r * grid.cols() + end++);
-      compute_score_rows(level, grid.row_edges[static_cast<std::size_t>(r)], grid.row_edges[static_cast<std::size_t>(r) + 1],
-                         grid.col_edges[static_cast<std::size_t>(c)], grid.col_edges[static_cast<std::size_t>(end)]);
+      compute_score_rows(level, grid.row_edges[static_cast<std::size_t>(r)] - 1, grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
+                         grid.col_edges[static_cast<std::size_t>(c)] - 1, grid.col_edges[static_cast<std::size_t>(end)] + 1);
       c = end;
     }
   }
   for (int b : fresh) level.block_detected[static_cast<std::size_t>(b)] = 1;
-
-  // The one-pixel ring that suppression reads, where no detected block has written it.
-  for (int b : fresh) {
-    const int r = b / grid.cols(), c = b % grid.cols();
-    const int x0 = grid.col_edges[static_cast<std::size_t>(c)], x1 = grid.col_edges[static_cast<std::size_t>(c) + 1];
-    const int y0 = grid.row_edges[static_cast<std::size_t>(r)], y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
-    if (!detected(r - 1, c)) compute_score_rows(level, y0 - 1, y0, x0, x1);
-    if (!detected(r + 1, c)) compute_score_rows(level, y1, y1 + 1, x0, x1);
-    if (!detected(r, c - 1)) compute_score_rows(level, y0, y1, x0 - 1, x0);
-    if (!detected(r, c + 1)) compute_score_rows(level, y0, y1, x1, x1 + 1);
-    if (!detected(r - 1, c - 1)) compute_score_rows(level, y0 - 1, y0, x0 - 1, x0);
-    if (!detected(r - 1, c + 1)) compute_score_rows(level, y0 - 1, y0, x1, x1 + 1);
-    if (!detected(r + 1, c - 1)) compute_score_rows(level, y1, y1 + 1, x0 - 1, x0);
-    if (!detected(r + 1, c + 1)) compute_score_rows(level, y1, y1 + 1, x1, x1 + 1);
-  }
   // Copy: detect_block reuses scratch_xs.
   level.scratch_selected.assign(fresh.begin(), fresh.end());
   for (int b : level.scratch_selected) detect_block(level, b);

@@ -18,9 +18,9 @@ namespace {
 struct CpuKernels {
   KernelTable scalar{};
 #if AIEF_HAVE_X86_SIMD
-  KernelTable sse4_2 = simd_sse4_2::kernel_table();
-  KernelTable avx2 = simd_avx2::kernel_table();
-  KernelTable avx512bw = simd_avx512bw::kernel_table();
+  // A table is built only when the CPU runs its instruction set: building it executes code
+  // compiled with that set's flags.
+  KernelTable sse4_2, avx2, avx512bw;
   bool has_sse4_2 = false, has_avx2 = false, has_avx512bw = false;
   CpuKernels() {
     __builtin_cpu_init();
@@ -28,6 +28,9 @@ struct CpuKernels {
     has_avx2 = has_sse4_2 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
     has_avx512bw = has_avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
                    __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
+    if (has_sse4_2) sse4_2 = simd_sse4_2::kernel_table();
+    if (has_avx2) avx2 = simd_avx2::kernel_table();
+    if (has_avx512bw) avx512bw = simd_avx512bw::kernel_table();
   }
 #endif
 };
