@@ -120,6 +120,11 @@ TEST(Extractor, BadImagesGetClearErrors) {
   EXPECT_NE(message(ImageView{small.data(), 38, 200, 38}).find("38x200"), std::string::npos);
   EXPECT_NE(message(ImageView{small.data(), 200, 38, 200}).find("200x38"), std::string::npos);
   EXPECT_NE(message(ImageView{small.data(), 50, 50, 40}).find("stride"), std::string::npos);
+  std::vector<std::uint8_t> line(500, 100);
+  EXPECT_NE(message(ImageView{line.data(), 500, 1, 500}).find("500x1 is smaller"), std::string::npos);
+  EXPECT_NE(message(ImageView{line.data(), 1, 500, 1}).find("1x500 is smaller"), std::string::npos);
+  EXPECT_NE(message(ImageView{line.data(), 0, 0, 0}).find("0x0 is empty"), std::string::npos);
+  EXPECT_NE(message(ImageView{line.data(), -3, 10, 10}).find("empty"), std::string::npos);
   EXPECT_NE(message(ImageView{nullptr, 50, 50, 50}).find("no pixel data"), std::string::npos);
   ExtractorOptions limited;
   limited.max_image_pixels = 1000;
