@@ -7,6 +7,7 @@
 #include "io/drawing.hpp"
 #include "io/features_files.hpp"
 #include "io/image_io.hpp"
+#include "tools/batch.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
 
@@ -15,11 +16,44 @@ namespace aief::cli {
 namespace {
 
 void print_help() {
-  std::cout << "usage: aief extract IMAGE [-o OUT.json|OUT.yml] [--draw OUT.png] [options]\n\n"
+  std::cout << "usage: aief extract IMAGE [-o OUT.json|OUT.yml] [--draw OUT.png] [options]\n"
+            << "       aief extract --batch LIST|DIR -o OUTDIR [--format json|yml] [--shard i/n] [options]\n\n"
             << "Keypoints and 256-bit rBRIEF descriptors of one image. Without -o, prints a summary.\n\n"
             << "  -o, --output FILE     features as JSON (.json) or OpenCV FileStorage YAML (.yml)\n"
             << "  --draw FILE           the keypoints drawn over the image, PNG\n"
+            << "  --batch LIST|DIR      every image of a folder (recursively) or of a list file (one path\n"
+            << "                        per line); one output per image in OUTDIR. Resumable: images whose\n"
+            << "                        output exists are skipped; outputs appear atomically. A bad image is\n"
+            << "                        reported and skipped. Exit 1 if any failed.\n"
+            << "  --format F            json (default) or yml, for --batch\n"
+            << "  --shard i/n           this run takes images i, i+n, i+2n ... of the sorted list (0 <= i < n),\n"
+            << "                        e.g. i = $SLURM_ARRAY_TASK_ID: machines split a collection, no coordinator\n"
             << extractor_flags_help();
+}
+
+int run_extract_batch(const Args& args) {
+  if (!args.positionals().empty()) throw UsageError("--batch takes its images from LIST|DIR, not from positional arguments");
+  BatchSettings settings;
+  settings.input = *args.get("--batch");
+  const auto output = args.get("--output");
+  if (!output) throw UsageError("--batch needs -o OUTDIR");
+  settings.output_dir = *output;
+  settings.format = args.get("--format").value_or("json");
+  if (settings.format != "json" && settings.format != "yml") throw UsageError("--format expects json or yml, got '" + settings.format + "'");
+  if (const auto shard = args.get("--shard")) {
+    int index = -1, count = 0;
+    char tail = 0;
+    if (std::sscanf(shard->c_str(), "%d/%d%c", &index, &count, &tail) != 2 || count < 1 || index < 0 || index >= count)
+      throw UsageError("--shard expects i/n with 0 <= i < n, got '" + *shard + "'");
+    settings.shard_index = index;
+    settings.shard_count = count;
+  }
+  settings.options = extractor_options(args);
+  const BatchSummary summary = run_batch(settings);
+  std::printf("batch: %d images in this shard: %d extracted, %d already done, %d failed; %lld keypoints\n", summary.images,
+              summary.extracted, summary.skipped, summary.failed, summary.keypoints);
+  for (const std::string& failure : summary.failures) std::printf("  failed: %s\n", failure.c_str());
+  return summary.failed > 0 ? 1 : 0;
 }
 
 }  // namespace
@@ -28,12 +62,16 @@ int run_extract(const Arguments& arguments) {
   std::vector<FlagSpec> spec = extractor_flags();
   spec.push_back({"--output", "-o", true});
   spec.push_back({"--draw", "", true});
+  spec.push_back({"--batch", "", true});
+  spec.push_back({"--format", "", true});
+  spec.push_back({"--shard", "", true});
   spec.push_back({"--help", "-h", false});
   const Args args(arguments, spec);
   if (args.has("--help")) {
     print_help();
     return 0;
   }
+  if (args.has("--batch")) return run_extract_batch(args);
   if (args.positionals().size() != 1) throw UsageError("extract expects one IMAGE (aief extract --help)");
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
