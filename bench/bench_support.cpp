@@ -28,6 +28,7 @@ const std::vector<NamedImage>& benchmark_images() {
     };
     list.push_back({"640x480", resized(sample_gray("graf"), 640, 480)});
     list.push_back({"graf_800x640", sample_gray("graf")});
+    list.push_back({"leuven_900x600", sample_gray("leuven")});
     list.push_back({"boat_850x680", sample_gray("boat")});
     list.push_back({"1920x1080", resized(sample_gray("boat"), 1920, 1080)});
     return list;
