@@ -40,6 +40,12 @@ const ExtractorOptions& Extractor::options() const { return state_->options; }
 
 std::string_view Extractor::kernel_name() const { return state_->kernels->name; }
 
+ImageView Extractor::pyramid_level(int n) const {
+  const FrameAnalysis& analysis = state_->analysis;
+  if (n < 0 || n >= analysis.level_count() || !analysis.level(n).usable()) return {};
+  return analysis.level(n).image.view();
+}
+
 Features Extractor::extract(ImageView image) {
   Features features;
   extract(image, features);

@@ -26,6 +26,10 @@ class Extractor {
   void extract(ImageView image, Features& out);
 
   const ExtractorOptions& options() const;
+  // Level n of the last frame's pyramid (level 0 is a copy of the input), valid until the next
+  // extract; empty for a level too small to be built. For callers that reuse the pyramid, as
+  // ORB-SLAM2's stereo matching does.
+  ImageView pyramid_level(int n) const;
   // Name of the kernel set that runs ("scalar", "avx2", ...).
   std::string_view kernel_name() const;
 
