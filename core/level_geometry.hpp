@@ -13,8 +13,9 @@ namespace aief {
 struct BlockGrid {
   std::vector<int> col_edges;  // cols + 1 entries
   std::vector<int> row_edges;  // rows + 1 entries
-  int cols() const { return static_cast<int>(col_edges.size()) - 1; }
-  int rows() const { return static_cast<int>(row_edges.size()) - 1; }
+  // An empty grid (a level too small for keypoints) has no edges at all: 0 columns, 0 rows.
+  int cols() const { return col_edges.empty() ? 0 : static_cast<int>(col_edges.size()) - 1; }
+  int rows() const { return row_edges.empty() ? 0 : static_cast<int>(row_edges.size()) - 1; }
   int count() const { return cols() * rows(); }
 };
 

@@ -193,3 +193,19 @@ TEST(Extractor, DescriptorsSurviveAnExactQuarterTurn) {
 
 }  // namespace
 }  // namespace aief
+
+namespace aief {
+namespace {
+
+TEST(LevelGeometry, LevelsTooSmallHaveNoBlocks) {
+  const std::vector<LevelGeometry> levels = level_geometry(39, 42, ExtractorOptions{});
+  EXPECT_EQ(levels[0].grid.count(), 1);
+  for (std::size_t n = 1; n < levels.size(); ++n) {
+    EXPECT_EQ(levels[n].grid.count(), 0) << "level " << n << " is " << levels[n].width << "x" << levels[n].height;
+    EXPECT_EQ(levels[n].grid.cols(), 0);
+    EXPECT_EQ(levels[n].grid.rows(), 0);
+  }
+}
+
+}  // namespace
+}  // namespace aief
