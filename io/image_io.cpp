@@ -10,20 +10,10 @@
 
 namespace aief::io {
 
-GrayImage read_gray_image(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error("cannot open image '" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec)) throw Error("cannot open image '" + path + "': it is a directory");
-  if (!std::ifstream(path, std::ios::binary)) throw Error("cannot open image '" + path + "': permission denied");
+namespace {
 
-  cv::Mat image;
-  try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    throw Error("cannot read image '" + path + "': " + e.what());
-  }
-  if (image.empty()) throw Error("cannot read image '" + path + "': not an image OpenCV can decode, or a damaged file");
-
+// 8-bit gray from whatever OpenCV decoded (see the header for the conversions).
+GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
   if (image.depth() == CV_16U) {
     image.convertTo(image, CV_8U, 1.0 / 256.0);
   } else if (image.depth() != CV_8U) {
@@ -41,6 +31,36 @@ GrayImage read_gray_image(const std::string& path) {
   GrayImage out(gray.cols, gray.rows);
   for (int y = 0; y < gray.rows; ++y) std::copy_n(gray.ptr<std::uint8_t>(y), gray.cols, out.data() + static_cast<std::ptrdiff_t>(y) * gray.cols);
   return out;
+}
+
+}  // namespace
+
+GrayImage read_gray_image(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error("cannot open image '" + path + "': no such file");
+  if (std::filesystem::is_directory(path, ec)) throw Error("cannot open image '" + path + "': it is a directory");
+  if (!std::ifstream(path, std::ios::binary)) throw Error("cannot open image '" + path + "': permission denied");
+
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw Error("cannot read image '" + path + "': " + e.what());
+  }
+  if (image.empty()) throw Error("cannot read image '" + path + "': not an image OpenCV can decode, or a damaged file");
+
+  return gray_from_decoded(image, path);
+}
+
+GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name) {
+  cv::Mat image;
+  try {
+    image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw Error("cannot read image '" + name + "': " + e.what());
+  }
+  if (image.empty()) throw Error("cannot read image '" + name + "': not an image OpenCV can decode, or a damaged file");
+  return gray_from_decoded(image, name);
 }
 
 }  // namespace aief::io
