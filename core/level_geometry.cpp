@@ -58,6 +58,14 @@ std::vector<LevelGeometry> level_geometry(int width, int height, const Extractor
     per_scale *= factor;
   }
   geometry.back().n_features = std::max(options.n_features - assigned, 0);
+  // With many levels and few features the rounding can hand out more than N (17 features over
+  // 20 levels at 1.04 round to 1 each; ORB-SLAM2 then returns 19): take the excess back from the
+  // smallest levels, so the total never exceeds N.
+  for (int n = levels - 1; n >= 0 && assigned > options.n_features; --n) {
+    const int take = std::min(geometry[static_cast<std::size_t>(n)].n_features, assigned - options.n_features);
+    geometry[static_cast<std::size_t>(n)].n_features -= take;
+    assigned -= take;
+  }
 
   bool usable = true;
   for (LevelGeometry& level : geometry) {

@@ -209,3 +209,27 @@ TEST(LevelGeometry, LevelsTooSmallHaveNoBlocks) {
 
 }  // namespace
 }  // namespace aief
+
+namespace aief {
+namespace {
+
+TEST(LevelGeometry, BudgetsNeverExceedTheFeaturesAskedFor) {
+  // Found by fuzz_options: ORB-SLAM2's per-level rounding gives 19 for 17 features on 20 levels.
+  for (int features : {1, 5, 17, 100, 1000})
+    for (int levels : {1, 8, 20, 32})
+      for (double scale : {1.0375, 1.2, 2.0}) {
+        ExtractorOptions options;
+        options.n_features = features;
+        options.n_levels = levels;
+        options.scale_factor = scale;
+        int total = 0;
+        for (const LevelGeometry& level : level_geometry(2000, 2000, options)) {
+          EXPECT_GE(level.n_features, 0);
+          total += level.n_features;
+        }
+        EXPECT_EQ(total, features) << features << " features, " << levels << " levels, scale " << scale;
+      }
+}
+
+}  // namespace
+}  // namespace aief
