@@ -14,7 +14,7 @@ namespace aief::io {
 
 namespace {
 
-constexpr int kWidth = 900, kPanelHeight = 260, kLeft = 80, kRight = 180, kTop = 40, kGap = 50;
+constexpr int kWidth = 960, kPanelHeight = 260, kLeft = 70, kRight = 250, kTop = 64, kGap = 56;
 
 const cv::Scalar kPalette[] = {{200, 90, 30}, {40, 160, 40}, {30, 30, 220}, {180, 60, 180}, {0, 150, 200}, {120, 120, 0}, {90, 90, 90}};
 
@@ -35,7 +35,7 @@ void write_plot_png(const std::string& path, const Plot& plot) {
   const int panels = std::max<int>(1, static_cast<int>(plot.panels.size()));
   const int height = kTop + panels * (kPanelHeight + kGap) + 10;
   cv::Mat image(height, kWidth, CV_8UC3, cv::Scalar::all(255));
-  text(image, plot.title, {kLeft, 25}, 0.6);
+  text(image, plot.title, {kLeft, 26}, 0.65);
 
   double x_min = std::numeric_limits<double>::max(), x_max = std::numeric_limits<double>::lowest();
   for (const PlotPanel& panel : plot.panels)
@@ -68,8 +68,11 @@ void write_plot_png(const std::string& path, const Plot& plot) {
       cv::line(image, {kLeft, py(y)}, {kLeft + plot_w, py(y)}, cv::Scalar::all(230));
       text(image, number(y), {5, py(y) + 4}, 0.4);
     }
-    for (int t = 0; t <= 5; ++t) {
-      const double x = x_min + (x_max - x_min) * t / 5;
+    // Whole-number ticks when the x values are small integers (pair indices), else five steps.
+    const bool integer_axis = x_min == std::floor(x_min) && x_max == std::floor(x_max) && x_max - x_min <= 20;
+    const int ticks = integer_axis ? static_cast<int>(x_max - x_min) : 5;
+    for (int t = 0; t <= ticks; ++t) {
+      const double x = x_min + (x_max - x_min) * t / ticks;
       text(image, number(x), {px(x) - 10, bottom + 16}, 0.4);
     }
     text(image, panel.y_label, {kLeft, top - 6}, 0.45);

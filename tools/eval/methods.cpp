@@ -13,10 +13,10 @@ namespace aief::eval {
 
 std::string method_name(Method method) {
   switch (method) {
-    case Method::orbslam2: return "ORB-SLAM2 (ours, quadtree)";
+    case Method::orbslam2: return "ORB-SLAM2 mode (ours)";
     case Method::quadtree_entropy: return "Quadtree + entropy (F = 4)";
     case Method::aief_adaptive: return "AIEF (adaptive F)";
-    case Method::aief_auto: return "AIEF (pair-free auto F)";
+    case Method::aief_auto: return "AIEF (auto F, no pair)";
     case Method::opencv_orb: return "OpenCV ORB";
     case Method::opencv_sift: return "OpenCV SIFT";
   }

@@ -262,7 +262,7 @@ std::vector<std::string> write_plots(const EvalRun& run, const std::string& fold
     plot.x_label = "N (pair index: transformation grows)";
     io::PlotPanel correct{"correct matches (3 px under the true homography)", {}}, accuracy{"matching accuracy %", {}};
     for (std::size_t m = 0; m < run.methods.size(); ++m) {
-      io::PlotSeries c{method_name(run.methods[m]).substr(0, 22), {}, {}}, a{c.label, {}, {}};
+      io::PlotSeries c{method_name(run.methods[m]), {}, {}}, a{c.label, {}, {}};
       for (std::size_t p = 0; p < run.pairs.size(); ++p) {
         if (run.pairs[p].sequence != s) continue;
         c.x.push_back(run.pairs[p].target);
