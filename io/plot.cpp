@@ -94,7 +94,10 @@ void write_plot_png(const std::string& path, const Plot& plot) {
     if (plot.marker_x) {
       const int x = px(*plot.marker_x);
       for (int y = top; y < bottom; y += 8) cv::line(image, {x, y}, {x, std::min(y + 4, bottom)}, cv::Scalar(0, 0, 0), 1);
-      if (p == 0) text(image, plot.marker_label, {x + 4, top + 14}, 0.42);
+      if (p == 0) {  // beside the line, on the side with room
+        const int label_x = x > kLeft + plot_w - 130 ? x - 8 * static_cast<int>(plot.marker_label.size()) - 4 : x + 4;
+        text(image, plot.marker_label, {label_x, top + 14}, 0.42);
+      }
     }
   }
   bool ok = false;
