@@ -5,14 +5,14 @@
 #include "simd/fast9_simd.hpp"
 #include "simd/gaussian_blur_simd.hpp"
 #include "simd/hamming_simd.hpp"
+#include "simd/histogram_simd.hpp"
 #include "simd/orientation_simd.hpp"
 #include "simd/pyramid_resize_simd.hpp"
 #include "simd/rbrief_simd.hpp"
 
 namespace aief::simd {
 
-// Kernels not listed here keep their scalar reference (already at memory speed or dominated by
-// gathers; see bench/RESULTS.md).
+// Every kernel of the table, at the width of Arch.
 template <class Arch>
 KernelTable make_kernel_table(KernelSet set, const char* name) {
   KernelTable table;
@@ -25,6 +25,7 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   table.ic_moments = &ic_moments<Arch>;
   table.rbrief_describe = &rbrief_describe<Arch>;
   table.resize_bilinear_rows = &resize_bilinear_rows<Arch>;
+  table.accumulate_histogram = &accumulate_histogram<Arch>;
   return table;
 }
 

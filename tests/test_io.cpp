@@ -50,6 +50,10 @@ TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
   cv::imwrite(dir.file("a.png"), rgba);
   EXPECT_EQ(io::read_gray_image(dir.file("a.png")).width(), 12);
 
+  cv::Mat real(8, 9, CV_32FC1, cv::Scalar(0.5));  // float images are refused with the depth named
+  cv::imwrite(dir.file("f.tiff"), real);
+  EXPECT_NE(error_of(dir.file("f.tiff")).find("not 8- or 16-bit unsigned"), std::string::npos);
+
   cv::Mat deep(8, 9, CV_16UC1, cv::Scalar(51200));  // 200 * 256
   cv::imwrite(dir.file("d.png"), deep);
   const GrayImage eight = io::read_gray_image(dir.file("d.png"));
