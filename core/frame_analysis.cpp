@@ -73,9 +73,9 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
     level.block_detected.assign(static_cast<std::size_t>(blocks), 0);
     level.block_candidates.assign(static_cast<std::size_t>(blocks), BlockRange{});
     level.candidates.clear();
-    level.candidate_angle_deg.clear();
-    level.candidate_descriptor.clear();
-    level.candidate_described.clear();
+    level.candidate_memo_slot.clear();
+    level.memo_angle_deg.clear();
+    level.memo_descriptor.clear();
   }
 }
 
@@ -205,9 +205,7 @@ void FrameAnalysis::detect_block(LevelState& level, int block) {
   level.block_candidates[static_cast<std::size_t>(block)] = {static_cast<std::int32_t>(first),
                                                              static_cast<std::int32_t>(level.candidates.size())};
   const std::size_t count = level.candidates.size();
-  level.candidate_angle_deg.resize(count);
-  level.candidate_descriptor.resize(count);
-  level.candidate_described.resize(count, 0);
+  level.candidate_memo_slot.resize(count, -1);
 }
 
 void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& chosen) {
@@ -258,7 +256,7 @@ void FrameAnalysis::describe(LevelState& level, const std::vector<std::int32_t>&
   points.clear();
   todo.clear();
   for (std::int32_t i : indices) {
-    if (level.candidate_described[static_cast<std::size_t>(i)]) continue;
+    if (level.candidate_memo_slot[static_cast<std::size_t>(i)] >= 0) continue;
     const Candidate& c = level.candidates[static_cast<std::size_t>(i)];
     points.push_back({c.x, c.y});
     todo.push_back(i);
@@ -283,10 +281,11 @@ void FrameAnalysis::describe(LevelState& level, const std::vector<std::int32_t>&
                             level.scratch_descriptors.data());
   for (int i = 0; i < count; ++i) {
     const std::size_t index = static_cast<std::size_t>(todo[static_cast<std::size_t>(i)]);
-    level.candidate_angle_deg[index] = level.scratch_angles[static_cast<std::size_t>(i)];
-    std::memcpy(level.candidate_descriptor[index].data(),
-                level.scratch_descriptors.data() + static_cast<std::size_t>(i) * kDescriptorBytes, kDescriptorBytes);
-    level.candidate_described[index] = 1;
+    level.candidate_memo_slot[index] = static_cast<std::int32_t>(level.memo_angle_deg.size());
+    level.memo_angle_deg.push_back(level.scratch_angles[static_cast<std::size_t>(i)]);
+    Descriptor& descriptor = level.memo_descriptor.emplace_back();
+    std::memcpy(descriptor.data(), level.scratch_descriptors.data() + static_cast<std::size_t>(i) * kDescriptorBytes,
+                kDescriptorBytes);
   }
 }
 
@@ -325,16 +324,17 @@ void FrameAnalysis::assemble(const std::vector<std::vector<std::int32_t>>& chose
     const float scale = level.geometry.scale;
     for (std::int32_t i : chosen[static_cast<std::size_t>(n)]) {
       const Candidate& c = level.candidates[static_cast<std::size_t>(i)];
-      assert(level.candidate_described[static_cast<std::size_t>(i)]);
+      const std::int32_t slot = level.candidate_memo_slot[static_cast<std::size_t>(i)];
+      assert(slot >= 0);
       Keypoint kp;
       kp.x = static_cast<float>(c.x) * scale;
       kp.y = static_cast<float>(c.y) * scale;
       kp.size = static_cast<float>(kPatchSize) * scale;
-      kp.angle_deg = level.candidate_angle_deg[static_cast<std::size_t>(i)];
+      kp.angle_deg = level.memo_angle_deg[static_cast<std::size_t>(slot)];
       kp.response = static_cast<float>(c.score);
       kp.octave = n;
       out.keypoints.push_back(kp);
-      out.descriptors.push_back(level.candidate_descriptor[static_cast<std::size_t>(i)]);
+      out.descriptors.push_back(level.memo_descriptor[static_cast<std::size_t>(slot)]);
     }
   }
 }

@@ -34,9 +34,12 @@ struct LevelState {
   std::vector<BlockRange> block_candidates;  // per block: its candidates, raster order
 
   std::vector<Candidate> candidates;           // all detected candidates of the level
-  std::vector<float> candidate_angle_deg;      // memo, valid where candidate_described
-  std::vector<Descriptor> candidate_descriptor;
-  std::vector<std::uint8_t> candidate_described;
+  // Orientation and descriptor memo: slot of each candidate (-1: not described yet) into dense
+  // arrays that hold only the described ones, a few thousand among the 10^5 candidates of a
+  // large frame.
+  std::vector<std::int32_t> candidate_memo_slot;
+  std::vector<float> memo_angle_deg;
+  std::vector<Descriptor> memo_descriptor;
 
   // Per-level scratch, so levels can run on different threads.
   std::vector<std::int32_t> scratch_xs;
