@@ -59,9 +59,12 @@ def main():
 
     kernels = defaultdict(dict)   # (kernel, image) -> variant -> ms
     extract = defaultdict(dict)   # image -> label -> ms
+    sweep = defaultdict(dict)     # (threads, image) -> sweep | extract_both_and_match -> ms
     for name, ms in t.items():
         parts = name.split("/")
-        if parts[0] == "extract":
+        if parts[0] == "adapt":
+            sweep[(parts[2], parts[3])][parts[1]] = ms
+        elif parts[0] == "extract":
             extract[parts[-1]]["/".join(parts[1:-1])] = ms
         else:
             kernels[(parts[0], parts[-1])][parts[1]] = ms
@@ -78,6 +81,13 @@ def main():
             ms = extract[image][label]
             ratio = f"{orb / ms:.2f}x" if orb and label != "opencv_orb" else ""
             lines.append(f"| {image} | {label} | {ms:.2f} | {ratio} |")
+    lines += ["", "## The adaptive sweep (all C thresholds) vs one extract of both images and one match", "",
+              "| image | threads | sweep ms | extract both + match ms | ratio |", "|---|---|---|---|---|"]
+    for (threads, image) in sorted(sweep):
+        row = sweep[(threads, image)]
+        if "sweep" in row and "extract_both_and_match" in row:
+            lines.append(f"| {image} | {threads} | {row['sweep']:.1f} | {row['extract_both_and_match']:.1f} |"
+                         f" {row['sweep'] / row['extract_both_and_match']:.2f}x |")
     lines += ["", "## Kernels over a whole pyramid (8 levels) vs OpenCV's kernel for the same job", "",
               "fast9: scores + 3x3 suppression at t = 20 vs `cv::FAST(level, 20, true)`; gaussian7 vs"
               " `cv::GaussianBlur` 7x7 sigma 2; pyramid vs `cv::resize` INTER_LINEAR; histogram vs `cv::calcHist`.", "",

@@ -52,6 +52,14 @@ void analyse(FrameAnalysis& analysis, ImageView image, const ExtractorOptions& o
   }
 }
 
+bool same_features(const Features& x, const Features& y) {
+  if (x.keypoints.size() != y.keypoints.size() || x.descriptors != y.descriptors) return false;
+  for (std::size_t k = 0; k < x.keypoints.size(); ++k)
+    if (x.keypoints[k].x != y.keypoints[k].x || x.keypoints[k].y != y.keypoints[k].y || x.keypoints[k].octave != y.keypoints[k].octave)
+      return false;
+  return true;
+}
+
 struct Evaluated {
   std::vector<Match> matches;
   HomographyResult homography;
@@ -100,11 +108,23 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     features_at(analysis_a, threshold, chosen, features_a[static_cast<std::size_t>(c)]);
     features_at(analysis_b, threshold, chosen, features_b[static_cast<std::size_t>(c)]);
   }
-  std::vector<Evaluated> evaluated(static_cast<std::size_t>(cycles));
-  parallel::Scheduler(options.threads).for_each(cycles, [&](int c) {
+  // Low thresholds often keep every block: a threshold whose two feature sets equal the previous
+  // one's has the same matches and model, so only the first of such a run is evaluated.
+  std::vector<int> source(static_cast<std::size_t>(cycles));
+  std::vector<int> distinct;
+  for (int c = 0; c < cycles; ++c) {
     const std::size_t i = static_cast<std::size_t>(c);
+    const bool same = c > 0 && same_features(features_a[i], features_a[i - 1]) && same_features(features_b[i], features_b[i - 1]);
+    source[i] = same ? source[i - 1] : c;
+    if (!same) distinct.push_back(c);
+  }
+  std::vector<Evaluated> evaluated(static_cast<std::size_t>(cycles));
+  parallel::Scheduler(options.threads).for_each(static_cast<int>(distinct.size()), [&](int k) {
+    const std::size_t i = static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]);
     evaluated[i] = evaluate(features_a[i], features_b[i], sweep, kernels);
   });
+  for (int c = 0; c < cycles; ++c)
+    if (source[static_cast<std::size_t>(c)] != c) evaluated[static_cast<std::size_t>(c)] = evaluated[static_cast<std::size_t>(source[static_cast<std::size_t>(c)])];
 
   result.curve.resize(static_cast<std::size_t>(cycles));
   for (int c = 0; c < cycles; ++c) {

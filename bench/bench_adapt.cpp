@@ -1,0 +1,50 @@
+// The adaptive sweep on a pair (all C thresholds) beside what it replaces: one plain extract of
+// both images and one match (the bar: the sweep costs at most 3x that).
+#include <benchmark/benchmark.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "aief/adapt.hpp"
+#include "aief/extractor.hpp"
+#include "aief/match.hpp"
+#include "bench/bench_support.hpp"
+
+namespace aief::bench {
+namespace {
+
+cv::Mat second_image(const std::string& sequence) {
+  return cv::imread(std::string(AIEF_SAMPLE_DIR) + "/" + sequence + "/img2.png", cv::IMREAD_GRAYSCALE);
+}
+
+void register_adapt_benchmarks() {
+  for (const char* sequence : {"graf", "leuven"}) {
+    const cv::Mat* a = &sample_gray(sequence);
+    const auto b = std::make_shared<cv::Mat>(second_image(sequence));
+    for (int threads : {1, 2}) {
+      const std::string suffix = "/t" + std::to_string(threads) + "/" + sequence;
+      benchmark::RegisterBenchmark(("adapt/sweep" + suffix).c_str(), [a, b, threads](benchmark::State& state) {
+        ExtractorOptions options;
+        options.threads = threads;
+        AdaptResult result;
+        for (auto _ : state) result = adapt(view_of(*a), view_of(*b), options);
+        state.counters["thresholds"] = static_cast<double>(result.curve.size());
+      })->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("adapt/extract_both_and_match" + suffix).c_str(), [a, b, threads](benchmark::State& state) {
+        ExtractorOptions options;
+        options.threads = threads;
+        Extractor extractor(options);
+        Features fa, fb;
+        for (auto _ : state) {
+          extractor.extract(view_of(*a), fa);
+          extractor.extract(view_of(*b), fb);
+          benchmark::DoNotOptimize(match_descriptors(fa.descriptors, fb.descriptors));
+        }
+      })->Unit(benchmark::kMillisecond);
+    }
+  }
+}
+
+const bool registered = (register_adapt_benchmarks(), true);
+
+}  // namespace
+}  // namespace aief::bench
