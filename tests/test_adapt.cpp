@@ -88,6 +88,14 @@ TEST(AdaptiveSweep, ChoosesTheBestEligibleThresholdOfItsCurve) {
   }
   EXPECT_EQ(static_cast<int>(result.features_a.keypoints.size()), chosen.keypoints_a);
   EXPECT_EQ(static_cast<int>(result.matches.size()), chosen.putative);
+  // The sweep matches through one distance matrix: the same matches as matching directly.
+  const std::vector<Match> direct = match_descriptors(result.features_a.descriptors, result.features_b.descriptors, sweep.match);
+  ASSERT_EQ(direct.size(), result.matches.size());
+  for (std::size_t k = 0; k < direct.size(); ++k) {
+    EXPECT_EQ(direct[k].query, result.matches[k].query);
+    EXPECT_EQ(direct[k].train, result.matches[k].train);
+    EXPECT_EQ(direct[k].distance, result.matches[k].distance);
+  }
   EXPECT_EQ(result.homography.inliers, chosen.inliers);
 }
 
