@@ -57,9 +57,19 @@ void Extractor::extract(ImageView image, Features& out) {
   FrameAnalysis& analysis = s.analysis;
   analysis.start(image, s.options, *s.kernels);
   const int levels = analysis.level_count();
-  // The pyramid is a chain (level n from level n - 1); everything after it is per level, and
-  // levels run in parallel, largest first.
-  for (int n = 0; n < levels; ++n) analysis.build_level(n);
+  // The pyramid is a chain (level n from level n - 1): each level's rows are split across the
+  // threads. Everything after it is per level, and levels run in parallel, largest first.
+  const int bands = s.scheduler.concurrency();
+  for (int n = 0; n < levels; ++n) {
+    const int height = analysis.level(n).geometry.height;
+    if (bands <= 1 || height < 64) {
+      analysis.build_level(n);
+      continue;
+    }
+    s.scheduler.for_each(bands, [&](int band) {
+      analysis.build_level_rows(n, height * band / bands, height * (band + 1) / bands);
+    });
+  }
 
   const bool entropy_on = s.options.entropy != EntropyMeasure::off;
   s.scheduler.for_each(levels, [&](int n) { analysis.compute_entropies(n); });
