@@ -90,24 +90,31 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
   if (options.entropy == EntropyMeasure::off)
     throw Error("adapt needs an entropy measure (histogram or intensity), got entropy = off");
 
+  // The two images are independent until matching: each is analysed, and later selected at every
+  // threshold, on its own thread.
+  const parallel::Scheduler scheduler(options.threads);
   FrameAnalysis analysis_a, analysis_b;
-  analyse(analysis_a, a, options, kernels, sweep.first_threshold);
-  analyse(analysis_b, b, options, kernels, sweep.first_threshold);
+  scheduler.for_each(2, [&](int image) {
+    if (image == 0) analyse(analysis_a, a, options, kernels, sweep.first_threshold);
+    else analyse(analysis_b, b, options, kernels, sweep.first_threshold);
+  });
 
   AdaptResult result;
   result.image_entropy_bits = analysis_a.image_entropy_bits();
   // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
   const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep.step)));
 
-  // Selection and description share the memo of each analysis: serial. Matching and RANSAC,
-  // the expensive part, run per threshold in parallel into their own slots.
+  // Selection and description share the memo of an analysis: serial per image, the two images
+  // side by side. Matching and RANSAC, the expensive part, run per threshold in parallel into
+  // their own slots.
   std::vector<Features> features_a(static_cast<std::size_t>(cycles)), features_b(static_cast<std::size_t>(cycles));
-  std::vector<std::vector<std::int32_t>> chosen;
-  for (int c = 0; c < cycles; ++c) {
-    const double threshold = sweep.first_threshold + sweep.step * c;
-    features_at(analysis_a, threshold, chosen, features_a[static_cast<std::size_t>(c)]);
-    features_at(analysis_b, threshold, chosen, features_b[static_cast<std::size_t>(c)]);
-  }
+  scheduler.for_each(2, [&](int image) {
+    FrameAnalysis& analysis = image == 0 ? analysis_a : analysis_b;
+    std::vector<Features>& features = image == 0 ? features_a : features_b;
+    std::vector<std::vector<std::int32_t>> chosen;
+    for (int c = 0; c < cycles; ++c)
+      features_at(analysis, sweep.first_threshold + sweep.step * c, chosen, features[static_cast<std::size_t>(c)]);
+  });
   // Low thresholds often keep every block: a threshold whose two feature sets equal the previous
   // one's has the same matches and model, so only the first of such a run is evaluated.
   std::vector<int> source(static_cast<std::size_t>(cycles));
@@ -119,7 +126,7 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     if (!same) distinct.push_back(c);
   }
   std::vector<Evaluated> evaluated(static_cast<std::size_t>(cycles));
-  parallel::Scheduler(options.threads).for_each(static_cast<int>(distinct.size()), [&](int k) {
+  scheduler.for_each(static_cast<int>(distinct.size()), [&](int k) {
     const std::size_t i = static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]);
     evaluated[i] = evaluate(features_a[i], features_b[i], sweep, kernels);
   });
