@@ -154,7 +154,7 @@ void FrameAnalysis::detect(int n, double threshold) {
   // Scores of each run of adjacent new blocks in a block row, with the one-pixel ring that
   // suppression reads: one call per row of the run instead of a call per ring segment. Pixels
   // a neighbour already scored are scored again to the same value.
-  std::vector<int>& fresh = level.scratch_xs;  // reused: indices of the blocks detected now
+  std::vector<std::int32_t>& fresh = level.scratch_fresh_blocks;  // the blocks detected now
   fresh.clear();
   for (int r = 0; r < grid.rows(); ++r) {
     int c = 0;
@@ -167,10 +167,10 @@ void FrameAnalysis::detect(int n, double threshold) {
       c = end;
     }
   }
-  for (int b : fresh) level.block_detected[static_cast<std::size_t>(b)] = 1;
-  // Copy: detect_block reuses scratch_xs.
-  level.scratch_selected.assign(fresh.begin(), fresh.end());
-  for (int b : level.scratch_selected) detect_block(level, b);
+  for (std::int32_t b : fresh) {
+    level.block_detected[static_cast<std::size_t>(b)] = 1;
+    detect_block(level, b);
+  }
 }
 
 void FrameAnalysis::detect_block(LevelState& level, int block) {

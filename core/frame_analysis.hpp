@@ -43,6 +43,7 @@ struct LevelState {
 
   // Per-level scratch, so levels can run on different threads.
   std::vector<std::int32_t> scratch_xs;
+  std::vector<std::int32_t> scratch_fresh_blocks;
   std::vector<std::int32_t> scratch_selected;
   std::vector<BlockRange> scratch_blocks;
   std::vector<Candidate> scratch_candidates;
