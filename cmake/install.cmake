@@ -1,5 +1,5 @@
 # cmake --install: headers, libraries, the aief tool, a CMake package (find_package(aief) ->
-# aief::aief, aief::io) and a pkg-config file.
+# aief::aief, aief::io, and aief::opencv when built) and a pkg-config file for the engine.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -13,7 +13,13 @@ endif()
 if(TARGET aief_cli)
   install(TARGETS aief_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# Every public header, present and future; the adapter's only when the adapter is built.
+if(TARGET aief_opencv)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+else()
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+          PATTERN opencv.hpp EXCLUDE PATTERN orbslam2_extractor.hpp EXCLUDE)
+endif()
 install(FILES ${PROJECT_BINARY_DIR}/generated/aief/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief)
 # io headers say #include "io/...": they live under include/aief/io, with include/aief on the path.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/io/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief/io FILES_MATCHING PATTERN "*.hpp")
@@ -25,6 +31,18 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/aiefConfigVersion.cmake C
 install(FILES ${PROJECT_BINARY_DIR}/aiefConfig.cmake ${PROJECT_BINARY_DIR}/aiefConfigVersion.cmake
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
 
-file(RELATIVE_PATH AIEF_PC_UP /root/${CMAKE_INSTALL_LIBDIR}/pkgconfig /root)  # e.g. ../.. from lib/pkgconfig
+# pkg-config. A static libaief needs TBB and pthreads on the consumer's link line; putting them in
+# Libs (not Libs.private behind tbb.pc) makes plain `pkg-config --libs aief` link, and does not
+# depend on the distribution shipping tbb.pc.
+file(RELATIVE_PATH AIEF_PC_UP /${CMAKE_INSTALL_LIBDIR}/pkgconfig /)  # "../.." from lib/pkgconfig
+string(REGEX REPLACE "/$" "" AIEF_PC_UP "${AIEF_PC_UP}")
+get_target_property(aief_library_type aief TYPE)
+if(aief_library_type STREQUAL "STATIC_LIBRARY")
+  set(AIEF_PC_LIBS "-laief -ltbb -lpthread")
+  set(AIEF_PC_LIBS_PRIVATE "")
+else()
+  set(AIEF_PC_LIBS "-laief")
+  set(AIEF_PC_LIBS_PRIVATE "-ltbb -lpthread")
+endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/aief.pc.in ${PROJECT_BINARY_DIR}/aief.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/aief.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

@@ -1,10 +1,10 @@
 // Extracts features from a synthetic image through the installed package; prints the count.
+// Includes the umbrella header so every installed public header is compiled by a user.
 #include <cstdio>
 #include <random>
 #include <vector>
 
-#include <aief/extractor.hpp>
-#include <aief/version.hpp>
+#include <aief/aief.hpp>
 
 int main() {
   const int width = 320, height = 240;
@@ -15,6 +15,7 @@ int main() {
   aief::ExtractorOptions options;
   options.n_features = 300;
   const aief::Features features = aief::extract({pixels.data(), width, height, width}, options);
-  std::printf("aief %s: %zu keypoints\n", aief::kVersionString, features.keypoints.size());
+  std::printf("aief %s (%d.%d.%d): %zu keypoints\n", aief::kVersionString, AIEF_VERSION_MAJOR, AIEF_VERSION_MINOR,
+              AIEF_VERSION_PATCH, features.keypoints.size());
   return features.keypoints.empty() ? 1 : 0;
 }

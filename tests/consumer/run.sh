@@ -1,21 +1,40 @@
 #!/usr/bin/env bash
-# Installs the build tree into a temporary prefix, then builds two consumers against it: a CMake
-# project (find_package(aief), aief::aief) and a one-file program through pkg-config. Fails if
-# either cannot find, compile, link or run.
+# Installs the build tree into a temporary prefix, moves it (the package must be relocatable),
+# then builds against it: a CMake project (find_package(aief), aief::aief, and aief::opencv when
+# the build tree has the adapter) and a one-file program through `pkg-config --cflags --libs
+# aief`. Fails if any step cannot find, compile, link or run.
 set -euo pipefail
 build_dir=$1
 source_dir=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log"
-test -f "$work/prefix/include/aief/extractor.hpp"
-test -f "$work/prefix/include/aief/version.hpp"
-test -x "$work/prefix/bin/aief"
-cmake -S "$source_dir" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
-cmake --build "$work/consumer" > "$work/build.log"
-"$work/consumer/consumer"
-pc_dir=$(dirname "$(find "$work/prefix" -name aief.pc | head -n 1)")
-export PKG_CONFIG_PATH="$pc_dir"
-c++ -std=c++17 "$source_dir/main.cpp" -o "$work/pkgconfig_consumer" $(pkg-config --cflags --libs --static aief)
-"$work/pkgconfig_consumer"
-echo "install, find_package and pkg-config consumers: OK"
+fail() { echo "install test: $*" >&2; exit 1; }
+
+cmake --install "$build_dir" --prefix "$work/installed" > "$work/install.log" || fail "cmake --install failed"
+mv "$work/installed" "$work/prefix"
+prefix=$work/prefix
+for file in include/aief/aief.hpp include/aief/extractor.hpp include/aief/version.hpp bin/aief; do
+  test -e "$prefix/$file" || fail "missing $file in the install tree"
+done
+"$prefix/bin/aief" --version > /dev/null || fail "the installed aief tool does not run"
+config=$(find "$prefix" -name aiefConfig.cmake | head -n 1)
+test -n "$config" || fail "no aiefConfig.cmake installed"
+pc_file=$(find "$prefix" -name aief.pc | head -n 1)
+test -n "$pc_file" || fail "no aief.pc installed"
+
+expect_opencv=OFF
+if grep -q '^AIEF_BUILD_OPENCV_ADAPTER:BOOL=ON' "$build_dir/CMakeCache.txt"; then expect_opencv=ON; fi
+cmake -S "$source_dir" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
+      -DAIEF_EXPECT_OPENCV=$expect_opencv > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "consumer configure failed"; }
+cmake --build "$work/consumer" > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "consumer build failed"; }
+"$work/consumer/consumer" || fail "the find_package consumer failed"
+if [ "$expect_opencv" = ON ]; then
+  "$work/consumer/consumer_opencv" || fail "the aief::opencv consumer failed"
+fi
+
+export PKG_CONFIG_PATH=$(dirname "$pc_file")
+flags=$(pkg-config --cflags --libs aief) || fail "pkg-config does not know aief"
+# shellcheck disable=SC2086  # the flags are a word list
+c++ -std=c++17 "$source_dir/main.cpp" -o "$work/pkgconfig_consumer" $flags || fail "pkg-config consumer did not build with: $flags"
+"$work/pkgconfig_consumer" || fail "the pkg-config consumer failed"
+echo "install (relocated), find_package (adapter: $expect_opencv) and pkg-config consumers: OK"
