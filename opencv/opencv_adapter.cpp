@@ -1,16 +1,19 @@
 #include "aief/opencv.hpp"
 
+#include <string>
+
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
+#include "opencv/gray_image.hpp"
 
 namespace aief {
 
-namespace {
+namespace detail {
 
 const cv::Mat& gray_of(const cv::Mat& image, cv::Mat& buffer) {
   if (image.empty()) throw Error("image is empty");
-  if (image.depth() != CV_8U) throw Error("image depth " + std::to_string(image.depth()) + " is not 8-bit unsigned");
+  if (image.depth() != CV_8U) throw Error("image depth " + std::to_string(image.depth()) + " is not 8-bit unsigned (CV_8U)");
   switch (image.channels()) {
     case 1: return image;
     case 3: cv::cvtColor(image, buffer, cv::COLOR_BGR2GRAY); return buffer;
@@ -19,7 +22,7 @@ const cv::Mat& gray_of(const cv::Mat& image, cv::Mat& buffer) {
   }
 }
 
-}  // namespace
+}  // namespace detail
 
 std::vector<cv::KeyPoint> to_cv_keypoints(const Features& features) {
   std::vector<cv::KeyPoint> keypoints;
@@ -40,7 +43,7 @@ cv::Mat to_cv_descriptors(const Features& features) {
 CvExtractor::CvExtractor(ExtractorOptions options) : extractor_(options) {}
 
 void CvExtractor::detect_and_compute(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) {
-  const cv::Mat& gray = gray_of(image, gray_);
+  const cv::Mat& gray = detail::gray_of(image, gray_);
   extractor_.extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}, features_);
   keypoints = to_cv_keypoints(features_);
   descriptors = to_cv_descriptors(features_);

@@ -1,9 +1,13 @@
 #include "aief/orbslam2_extractor.hpp"
 
-#include <opencv2/imgproc.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
 
 #include "aief/error.hpp"
 #include "aief/opencv.hpp"
+#include "opencv/gray_image.hpp"
 
 namespace aief {
 
@@ -19,6 +23,22 @@ ExtractorOptions orbslam2_options(int nfeatures, float scaleFactor, int nlevels,
   return options;
 }
 
+double read_number(const cv::FileNode& node, const char* key) {
+  if (!node.isInt() && !node.isReal()) throw Error(std::string(key) + " must be a number");
+  return node.real();
+}
+
+// ORB-SLAM2 reads these with an int conversion that truncates; a fractional or huge value is a
+// typo we would rather name than silently change.
+void read_int(const cv::FileStorage& settings, const char* key, int& value) {
+  const cv::FileNode node = settings[key];
+  if (node.empty()) return;
+  const double number = read_number(node, key);
+  if (number != std::floor(number) || number < std::numeric_limits<int>::min() || number > std::numeric_limits<int>::max())
+    throw Error(std::string(key) + " must be an integer, got " + std::to_string(number));
+  value = static_cast<int>(number);
+}
+
 }  // namespace
 
 ORBextractor::ORBextractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
@@ -31,67 +51,66 @@ ORBextractor::ORBextractor(const ExtractorOptions& options)
 
 void ORBextractor::compute_scales() {
   // As ORB-SLAM2's constructor: float products, sigma^2 = scale^2.
-  mvScaleFactor.assign(static_cast<std::size_t>(nlevels), 1.0f);
-  mvLevelSigma2.assign(static_cast<std::size_t>(nlevels), 1.0f);
-  for (int i = 1; i < nlevels; ++i) {
-    mvScaleFactor[static_cast<std::size_t>(i)] = mvScaleFactor[static_cast<std::size_t>(i) - 1] * scaleFactor;
-    mvLevelSigma2[static_cast<std::size_t>(i)] = mvScaleFactor[static_cast<std::size_t>(i)] * mvScaleFactor[static_cast<std::size_t>(i)];
+  const auto levels = static_cast<std::size_t>(nlevels);
+  mvScaleFactor.assign(levels, 1.0f);
+  mvLevelSigma2.assign(levels, 1.0f);
+  for (std::size_t i = 1; i < levels; ++i) {
+    mvScaleFactor[i] = mvScaleFactor[i - 1] * scaleFactor;
+    mvLevelSigma2[i] = mvScaleFactor[i] * mvScaleFactor[i];
   }
-  mvInvScaleFactor.resize(static_cast<std::size_t>(nlevels));
-  mvInvLevelSigma2.resize(static_cast<std::size_t>(nlevels));
-  for (int i = 0; i < nlevels; ++i) {
-    mvInvScaleFactor[static_cast<std::size_t>(i)] = 1.0f / mvScaleFactor[static_cast<std::size_t>(i)];
-    mvInvLevelSigma2[static_cast<std::size_t>(i)] = 1.0f / mvLevelSigma2[static_cast<std::size_t>(i)];
+  mvInvScaleFactor.resize(levels);
+  mvInvLevelSigma2.resize(levels);
+  for (std::size_t i = 0; i < levels; ++i) {
+    mvInvScaleFactor[i] = 1.0f / mvScaleFactor[i];
+    mvInvLevelSigma2[i] = 1.0f / mvLevelSigma2[i];
   }
 }
 
-ORBextractor ORBextractor::from_settings(const cv::FileStorage& settings) {
+ExtractorOptions ORBextractor::options_from_settings(const cv::FileStorage& settings) {
+  if (!settings.isOpened()) throw Error("settings file is not open");
   ExtractorOptions options;
-  const auto read_int = [&](const char* key, int& value) {
-    const cv::FileNode node = settings[key];
-    if (!node.empty()) {
-      if (!node.isInt() && !node.isReal()) throw Error(std::string(key) + " must be a number");
-      value = static_cast<int>(node.real());
-    }
-  };
-  read_int("ORBextractor.nFeatures", options.n_features);
-  read_int("ORBextractor.nLevels", options.n_levels);
-  read_int("ORBextractor.iniThFAST", options.fast_threshold);
-  read_int("ORBextractor.minThFAST", options.fast_min_threshold);
-  read_int("ORBextractor.blockSize", options.block_size);
-  if (const cv::FileNode node = settings["ORBextractor.scaleFactor"]; !node.empty()) {
-    if (!node.isInt() && !node.isReal()) throw Error("ORBextractor.scaleFactor must be a number");
-    options.scale_factor = node.real();
+  read_int(settings, "ORBextractor.nFeatures", options.n_features);
+  read_int(settings, "ORBextractor.nLevels", options.n_levels);
+  read_int(settings, "ORBextractor.iniThFAST", options.fast_threshold);
+  read_int(settings, "ORBextractor.minThFAST", options.fast_min_threshold);
+  read_int(settings, "ORBextractor.blockSize", options.block_size);
+  if (const cv::FileNode node = settings["ORBextractor.scaleFactor"]; !node.empty())
+    options.scale_factor = static_cast<float>(read_number(node, "ORBextractor.scaleFactor"));  // float, as Tracking.cc
+  if (const cv::FileNode node = settings["ORBextractor.mode"]; !node.empty()) {
+    if (!node.isString()) throw Error("ORBextractor.mode must be aief, orbslam2 or quadtree-entropy");
+    options = options_for_mode(parse_mode(static_cast<std::string>(node)), options);
   }
-  if (const cv::FileNode node = settings["ORBextractor.mode"]; !node.empty()) options = options_for_mode(parse_mode(static_cast<std::string>(node)), options);
   if (const cv::FileNode node = settings["ORBextractor.entropyThreshold"]; !node.empty()) {
     if (node.isString() && static_cast<std::string>(node) == "auto") options.auto_threshold = true;
     else if (node.isInt() || node.isReal()) options.entropy_threshold = node.real();
     else throw Error("ORBextractor.entropyThreshold must be a number or \"auto\"");
   }
-  return ORBextractor(options);
+  return options;
+}
+
+ORBextractor ORBextractor::from_settings(const cv::FileStorage& settings) {
+  return ORBextractor(options_from_settings(settings));
 }
 
 void ORBextractor::operator()(cv::InputArray image, cv::InputArray /*mask: ignored, as ORB-SLAM2*/, std::vector<cv::KeyPoint>& keypoints,
                               cv::OutputArray descriptors) {
-  const cv::Mat input = image.getMat();
-  if (input.empty()) throw Error("image is empty");
-  const cv::Mat* gray = &input;
-  if (input.type() == CV_8UC3) {
-    cv::cvtColor(input, gray_, cv::COLOR_BGR2GRAY);
-    gray = &gray_;
-  } else if (input.type() == CV_8UC4) {
-    cv::cvtColor(input, gray_, cv::COLOR_BGRA2GRAY);
-    gray = &gray_;
-  } else if (input.type() != CV_8UC1) {
-    throw Error("image type " + std::to_string(input.type()) + " is not CV_8UC1, CV_8UC3 or CV_8UC4");
-  }
-  extractor_.extract({gray->data, gray->cols, gray->rows, static_cast<std::ptrdiff_t>(gray->step)}, features_);
+  const cv::Mat input = image.getMat();  // named: gray_of may return a reference to it
+  const cv::Mat& gray = detail::gray_of(input, gray_);
+  extractor_.extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}, features_);
   keypoints = to_cv_keypoints(features_);
-  to_cv_descriptors(features_).copyTo(descriptors);
+  if (features_.keypoints.empty()) {
+    descriptors.release();
+  } else {
+    descriptors.create(static_cast<int>(features_.descriptors.size()), kDescriptorBytes, CV_8U);
+    cv::Mat out = descriptors.getMat();
+    for (int r = 0; r < out.rows; ++r)
+      std::copy(features_.descriptors[static_cast<std::size_t>(r)].begin(), features_.descriptors[static_cast<std::size_t>(r)].end(),
+                out.ptr<std::uint8_t>(r));
+  }
   mvImagePyramid.resize(static_cast<std::size_t>(nlevels));
   for (int n = 0; n < nlevels; ++n) {
     const ImageView level = extractor_.pyramid_level(n);
+    // Headers over the extractor's buffers: no copy per frame, valid until the next call.
     mvImagePyramid[static_cast<std::size_t>(n)] =
         level.empty() ? cv::Mat() : cv::Mat(level.height, level.width, CV_8UC1, const_cast<std::uint8_t*>(level.data), static_cast<std::size_t>(level.stride));
   }

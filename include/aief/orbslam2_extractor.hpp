@@ -19,11 +19,18 @@ class ORBextractor {
   // From a settings file as ORB-SLAM2 reads it: ORBextractor.nFeatures, .scaleFactor, .nLevels,
   // .iniThFAST, .minThFAST, and ours: ORBextractor.mode (aief | orbslam2 | quadtree-entropy),
   // ORBextractor.entropyThreshold (a number, or "auto"), ORBextractor.blockSize. Missing keys
-  // keep their defaults; invalid values throw aief::Error.
+  // keep ExtractorOptions' defaults; a value of the wrong kind (text for a number, 1.5 for an
+  // integer, an unknown mode) throws aief::Error naming the key, out-of-range values throw from
+  // ExtractorOptions::validate. scaleFactor is rounded to float, as ORB-SLAM2's Tracking reads
+  // it, so from_settings and the five-number constructor give the same extractor.
   static ORBextractor from_settings(const cv::FileStorage& settings);
+  // The options alone, e.g. to double nFeatures for the monocular initialiser (docs/orbslam2.md).
+  static ExtractorOptions options_from_settings(const cv::FileStorage& settings);
 
   // As ORB-SLAM2: image CV_8UC1 (CV_8UC3/4 converted to gray); the mask is ignored, as in
-  // ORB-SLAM2; descriptors become an N x 32 CV_8U matrix. mvImagePyramid is refreshed.
+  // ORB-SLAM2; descriptors become an N x 32 CV_8U matrix, released when there is no keypoint
+  // (as ORB-SLAM2). mvImagePyramid is refreshed. Throws aief::Error for an empty image, another
+  // type, or one smaller than 2 * kEdgeBorder + 1 pixels in a side.
   void operator()(cv::InputArray image, cv::InputArray mask, std::vector<cv::KeyPoint>& keypoints,
                   cv::OutputArray descriptors);
 
