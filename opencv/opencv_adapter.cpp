@@ -1,11 +1,12 @@
 #include "aief/opencv.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
-#include "opencv/gray_image.hpp"
+#include "opencv/cv_conversions.hpp"
 
 namespace aief {
 
@@ -22,21 +23,37 @@ const cv::Mat& gray_of(const cv::Mat& image, cv::Mat& buffer) {
   }
 }
 
+void fill_cv_keypoints(const Features& features, std::vector<cv::KeyPoint>& keypoints) {
+  keypoints.clear();
+  keypoints.reserve(features.keypoints.size());
+  for (const Keypoint& kp : features.keypoints)
+    keypoints.emplace_back(cv::Point2f(kp.x, kp.y), kp.size, kp.angle_deg, kp.response, kp.octave, -1);
+}
+
+void fill_cv_descriptors(const Features& features, cv::OutputArray descriptors, bool release_when_empty) {
+  if (features.descriptors.empty() && release_when_empty) {
+    descriptors.release();
+    return;
+  }
+  descriptors.create(static_cast<int>(features.descriptors.size()), kDescriptorBytes, CV_8U);
+  cv::Mat out = descriptors.getMat();
+  for (int r = 0; r < out.rows; ++r) {
+    const Descriptor& d = features.descriptors[static_cast<std::size_t>(r)];
+    std::copy(d.begin(), d.end(), out.ptr<std::uint8_t>(r));
+  }
+}
+
 }  // namespace detail
 
 std::vector<cv::KeyPoint> to_cv_keypoints(const Features& features) {
   std::vector<cv::KeyPoint> keypoints;
-  keypoints.reserve(features.keypoints.size());
-  for (const Keypoint& kp : features.keypoints)
-    keypoints.emplace_back(cv::Point2f(kp.x, kp.y), kp.size, kp.angle_deg, kp.response, kp.octave, -1);
+  detail::fill_cv_keypoints(features, keypoints);
   return keypoints;
 }
 
 cv::Mat to_cv_descriptors(const Features& features) {
-  cv::Mat descriptors(static_cast<int>(features.descriptors.size()), kDescriptorBytes, CV_8U);
-  for (int r = 0; r < descriptors.rows; ++r)
-    std::copy(features.descriptors[static_cast<std::size_t>(r)].begin(), features.descriptors[static_cast<std::size_t>(r)].end(),
-              descriptors.ptr<std::uint8_t>(r));
+  cv::Mat descriptors;
+  detail::fill_cv_descriptors(features, descriptors, false);
   return descriptors;
 }
 
@@ -45,8 +62,8 @@ CvExtractor::CvExtractor(ExtractorOptions options) : extractor_(options) {}
 void CvExtractor::detect_and_compute(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) {
   const cv::Mat& gray = detail::gray_of(image, gray_);
   extractor_.extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}, features_);
-  keypoints = to_cv_keypoints(features_);
-  descriptors = to_cv_descriptors(features_);
+  detail::fill_cv_keypoints(features_, keypoints);
+  detail::fill_cv_descriptors(features_, descriptors, false);
 }
 
 void cv_extract(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors, const ExtractorOptions& options) {

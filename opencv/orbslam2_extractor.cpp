@@ -1,13 +1,11 @@
 #include "aief/orbslam2_extractor.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
 #include "aief/error.hpp"
-#include "aief/opencv.hpp"
-#include "opencv/gray_image.hpp"
+#include "opencv/cv_conversions.hpp"
 
 namespace aief {
 
@@ -97,16 +95,8 @@ void ORBextractor::operator()(cv::InputArray image, cv::InputArray /*mask: ignor
   const cv::Mat input = image.getMat();  // named: gray_of may return a reference to it
   const cv::Mat& gray = detail::gray_of(input, gray_);
   extractor_.extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}, features_);
-  keypoints = to_cv_keypoints(features_);
-  if (features_.keypoints.empty()) {
-    descriptors.release();
-  } else {
-    descriptors.create(static_cast<int>(features_.descriptors.size()), kDescriptorBytes, CV_8U);
-    cv::Mat out = descriptors.getMat();
-    for (int r = 0; r < out.rows; ++r)
-      std::copy(features_.descriptors[static_cast<std::size_t>(r)].begin(), features_.descriptors[static_cast<std::size_t>(r)].end(),
-                out.ptr<std::uint8_t>(r));
-  }
+  detail::fill_cv_keypoints(features_, keypoints);
+  detail::fill_cv_descriptors(features_, descriptors, true);  // released when empty, as ORB-SLAM2
   mvImagePyramid.resize(static_cast<std::size_t>(nlevels));
   for (int n = 0; n < nlevels; ++n) {
     const ImageView level = extractor_.pyramid_level(n);

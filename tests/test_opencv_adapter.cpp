@@ -80,6 +80,22 @@ TEST(OpenCvAdapter, ColourIsConvertedAsCvtColor) {
   expect_same(extract(test::view_of(gray), options), keypoints, descriptors);
 }
 
+TEST(OpenCvAdapter, ReusesTheCallersStorageFrameAfterFrame) {
+  // As cv::ORB: the outputs are written in place when the count is unchanged (so a shallow copy
+  // of last frame's descriptors must be clone()d, as with OpenCV).
+  const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
+  CvExtractor extractor;
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  extractor.detect_and_compute(gray, keypoints, descriptors);
+  const cv::KeyPoint* keypoint_storage = keypoints.data();
+  const std::uint8_t* descriptor_storage = descriptors.data;
+  extractor.detect_and_compute(gray, keypoints, descriptors);
+  EXPECT_EQ(keypoints.data(), keypoint_storage);
+  EXPECT_EQ(descriptors.data, descriptor_storage);
+  expect_same(extract(test::view_of(gray)), keypoints, descriptors);
+}
+
 TEST(OpenCvAdapter, RegionOfInterestUsesItsStride) {
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
   const cv::Mat roi = gray(cv::Rect(37, 21, 301, 257));  // not continuous: step != cols
