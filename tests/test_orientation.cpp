@@ -70,6 +70,32 @@ TEST(Orientation, QuarterTurnOfThePatchTurnsTheAngle) {
   EXPECT_GT(checked, 50);
 }
 
+TEST(Orientation, EveryQuarterTurnOfARealImage) {
+  const cv::Mat image = test::load_sample_gray("graf", "img1.png");
+  const int w = image.cols, h = image.rows;
+  struct Turn {
+    cv::RotateFlags flag;
+    double degrees;  // image y points down, so clockwise on screen adds to the angle
+  };
+  for (const Turn turn : {Turn{cv::ROTATE_90_CLOCKWISE, 90.0}, Turn{cv::ROTATE_180, 180.0}, Turn{cv::ROTATE_90_COUNTERCLOCKWISE, 270.0}}) {
+    cv::Mat rotated;
+    cv::rotate(image, rotated, turn.flag);
+    int checked = 0;
+    for (int y = 40; y < h - 40; y += 37)
+      for (int x = 40; x < w - 40; x += 41) {
+        int rx = 0, ry = 0;
+        if (turn.flag == cv::ROTATE_90_CLOCKWISE) { rx = h - 1 - y; ry = x; }
+        if (turn.flag == cv::ROTATE_180) { rx = w - 1 - x; ry = h - 1 - y; }
+        if (turn.flag == cv::ROTATE_90_COUNTERCLOCKWISE) { rx = y; ry = w - 1 - x; }
+        const float before = angle_at(image, x, y), after = angle_at(rotated, rx, ry);
+        EXPECT_NEAR(angle_difference(after, before + turn.degrees), 0.0, 1.0)
+            << "turn " << turn.degrees << " at (" << x << ", " << y << "): " << before << " -> " << after;
+        ++checked;
+      }
+    EXPECT_GT(checked, 200);
+  }
+}
+
 TEST(Orientation, AnglesStayInRange) {
   EXPECT_EQ(ic_angle_deg(0, 0), 0.0f);
   for (int m10 : {-5, 0, 7})
@@ -78,7 +104,11 @@ TEST(Orientation, AnglesStayInRange) {
       EXPECT_GE(a, 0.0f);
       EXPECT_LT(a, 360.0f);
     }
-  EXPECT_LT(ic_angle_deg(1000000, -1), 360.0f);  // -tiny rounds to 360.0f: must wrap to 0
+  EXPECT_LT(ic_angle_deg(1000000, -1), 360.0f);
+  // -5.7e-7 degrees: 360 - 5.7e-7 rounds to 360.0f as a float, which must wrap to 0.
+  EXPECT_EQ(ic_angle_deg(100000000, -1), 0.0f);
+  EXPECT_EQ(ic_angle_deg(-7, 0), 180.0f);
+  EXPECT_EQ(ic_angle_deg(0, -7), 270.0f);
 }
 
 }  // namespace

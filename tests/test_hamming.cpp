@@ -1,0 +1,68 @@
+// Hamming distance of 256-bit descriptors against a bit-by-bit count; the many-train form
+// equal to the single one, at any byte alignment.
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/hamming.hpp"
+
+namespace aief {
+namespace {
+
+std::uint32_t hamming_bit_by_bit(const std::uint8_t* a, const std::uint8_t* b) {
+  std::uint32_t distance = 0;
+  for (int bit = 0; bit < 256; ++bit) distance += ((a[bit / 8] >> (bit % 8)) & 1) != ((b[bit / 8] >> (bit % 8)) & 1);
+  return distance;
+}
+
+std::vector<std::uint8_t> random_bytes(std::size_t n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::vector<std::uint8_t> bytes(n);
+  for (auto& b : bytes) b = static_cast<std::uint8_t>(byte(rng));
+  return bytes;
+}
+
+TEST(Hamming, ExtremesAndSingleBits) {
+  std::vector<std::uint8_t> zeros(32, 0), ones(32, 0xff);
+  EXPECT_EQ(hamming_256_scalar(zeros.data(), zeros.data()), 0u);
+  EXPECT_EQ(hamming_256_scalar(zeros.data(), ones.data()), 256u);
+  for (int bit = 0; bit < 256; ++bit) {
+    std::vector<std::uint8_t> one = zeros;
+    one[static_cast<std::size_t>(bit / 8)] = static_cast<std::uint8_t>(1 << (bit % 8));
+    EXPECT_EQ(hamming_256_scalar(zeros.data(), one.data()), 1u) << "bit " << bit;
+    EXPECT_EQ(hamming_256_scalar(one.data(), ones.data()), 255u) << "bit " << bit;
+  }
+}
+
+TEST(Hamming, EqualsTheBitByBitCountOnRandomDescriptors) {
+  // One spare byte on each side so the descriptors can start at every alignment.
+  const std::vector<std::uint8_t> bytes = random_bytes(2000 * 32 + 8, 17);
+  for (int i = 0; i + 1 < 2000; ++i) {
+    const std::uint8_t* a = bytes.data() + i * 32 + i % 8;
+    const std::uint8_t* b = bytes.data() + (i + 1) * 32;
+    ASSERT_EQ(hamming_256_scalar(a, b), hamming_bit_by_bit(a, b)) << "pair " << i;
+  }
+}
+
+TEST(Hamming, ManyEqualsSingle) {
+  const std::vector<std::uint8_t> train = random_bytes(513 * 32 + 1, 23);
+  const std::vector<std::uint8_t> queries = random_bytes(4 * 32 + 3, 29);
+  for (int q = 0; q < 4; ++q)
+    for (int offset : {0, 1}) {
+      const std::uint8_t* query = queries.data() + q * 32 + (q % 4);
+      const std::uint8_t* base = train.data() + offset;
+      for (int n : {0, 1, 7, 513}) {
+        std::vector<std::uint16_t> distances(static_cast<std::size_t>(n) + 1, 0xffff);
+        hamming_256_many_scalar(query, base, n, distances.data());
+        for (int j = 0; j < n; ++j)
+          ASSERT_EQ(distances[static_cast<std::size_t>(j)], hamming_bit_by_bit(query, base + j * 32))
+              << "query " << q << ", train " << j << " of " << n;
+        EXPECT_EQ(distances[static_cast<std::size_t>(n)], 0xffff) << "wrote past " << n << " distances";
+      }
+    }
+}
+
+}  // namespace
+}  // namespace aief
