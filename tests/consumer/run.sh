@@ -37,5 +37,5 @@ export PKG_CONFIG_PATH=$(dirname "$pc_file")
 flags=$(pkg-config --cflags --libs aief) || fail "pkg-config does not know aief"
 # shellcheck disable=SC2086  # the flags are a word list
 c++ -std=c++17 "$source_dir/main.cpp" -o "$work/pkgconfig_consumer" $flags || fail "pkg-config consumer did not build with: $flags"
-"$work/pkgconfig_consumer" || fail "the pkg-config consumer failed"
+LD_LIBRARY_PATH="$(dirname "$(dirname "$pc_file")")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$work/pkgconfig_consumer" || fail "the pkg-config consumer failed"  # a shared build has no rpath here
 echo "install (relocated), find_package (adapter: $expect_opencv) and pkg-config consumers: OK"
