@@ -47,7 +47,7 @@ cv::Mat resize_documented(const cv::Mat& src, int dst_width, int dst_height) {
     const auto [sy, wy] = documented_tap(y, src.rows, dst_height);
     for (int x = 0; x < dst_width; ++x) {
       const auto [sx, wx] = documented_tap(x, src.cols, dst_width);
-      const auto h = [&](int row) {
+      const auto h = [&src, sx = sx, wx = wx](int row) {
         return src.at<std::uint8_t>(row, sx) * (256 - wx) + src.at<std::uint8_t>(row, sx + 1) * wx;
       };
       dst.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>((h(sy) * (256 - wy) + h(sy + 1) * wy + 32768) >> 16);
