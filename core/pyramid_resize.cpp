@@ -1,5 +1,6 @@
 #include "core/pyramid_resize.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -24,6 +25,39 @@ void axis_plan(int src, int dst, std::vector<std::int32_t>& index, std::vector<s
   }
 }
 
+// The grouped x taps of the vector kernel (see ResizePlan).
+void x_groups_plan(ResizePlan& plan) {
+  constexpr int kGroup = 8, kWindow = 16;
+  const int src = plan.src_width;
+  int groups = 0;
+  if (src >= kWindow)
+    for (; (groups + 1) * kGroup <= plan.dst_width; ++groups) {
+      const int first = plan.x_index[static_cast<std::size_t>(groups * kGroup)];
+      const int last = plan.x_index[static_cast<std::size_t>(groups * kGroup + kGroup - 1)];
+      if (last + 1 >= std::min(first, src - kWindow) + kWindow) break;  // the right tap of the last output must be inside
+    }
+  plan.x_groups = groups;
+  plan.x_group_start.resize(static_cast<std::size_t>(groups));
+  plan.x_group_shuffle.resize(static_cast<std::size_t>(groups) * 2 * 16);
+  plan.x_group_weight.resize(static_cast<std::size_t>(groups) * 2 * 8);
+  for (int g = 0; g < groups; ++g) {
+    const int start = std::min(plan.x_index[static_cast<std::size_t>(g * kGroup)], src - kWindow);
+    plan.x_group_start[static_cast<std::size_t>(g)] = start;
+    for (int i = 0; i < kGroup; ++i) {
+      const std::size_t x = static_cast<std::size_t>(g * kGroup + i);
+      const std::size_t half_row = static_cast<std::size_t>((i / 4) * groups + g), k = static_cast<std::size_t>(i % 4);
+      std::uint8_t* shuffle = &plan.x_group_shuffle[half_row * 16 + 4 * k];
+      shuffle[0] = static_cast<std::uint8_t>(plan.x_index[x] - start);
+      shuffle[1] = 0x80;
+      shuffle[2] = static_cast<std::uint8_t>(plan.x_index[x] + 1 - start);
+      shuffle[3] = 0x80;
+      std::int16_t* weight = &plan.x_group_weight[half_row * 8 + 2 * k];
+      weight[0] = static_cast<std::int16_t>(256 - plan.x_weight[x]);
+      weight[1] = static_cast<std::int16_t>(plan.x_weight[x]);
+    }
+  }
+}
+
 }  // namespace
 
 ResizePlan make_resize_plan(int src_width, int src_height, int dst_width, int dst_height) {
@@ -35,6 +69,7 @@ ResizePlan make_resize_plan(int src_width, int src_height, int dst_width, int ds
   plan.dst_height = dst_height;
   axis_plan(src_width, dst_width, plan.x_index, plan.x_weight);
   axis_plan(src_height, dst_height, plan.y_index, plan.y_weight);
+  x_groups_plan(plan);
   return plan;
 }
 

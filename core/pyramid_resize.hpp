@@ -21,6 +21,20 @@ struct ResizePlan {
   std::vector<std::uint16_t> x_weight; // dst_width entries: Q8 weight of the right tap
   std::vector<std::int32_t> y_index;   // dst_height entries: top tap sy, sy + 1 < src_height
   std::vector<std::uint16_t> y_weight; // dst_height entries: Q8 weight of the bottom tap
+
+  // The x taps again, in the form the vector kernel (simd/pyramid_resize_simd.hpp) consumes, for
+  // the outputs [0, 8 * x_groups): group g = outputs 8g .. 8g + 7, whose taps all lie in the 16
+  // source bytes from x_group_start[g]. Half h (0: outputs 8g .. 8g + 3, 1: 8g + 4 .. 8g + 7) of
+  // group g has 16 bytes at x_group_shuffle[(h * x_groups + g) * 16], a pshufb mask putting the
+  // left and right tap of each output into the low bytes of two u16 lanes (sx - start, 0x80,
+  // sx + 1 - start, 0x80), and 8 int16 at x_group_weight[(h * x_groups + g) * 8], the matching
+  // pmaddwd weights (256 - wx, wx). Halves of consecutive groups are adjacent, so a 256-bit load
+  // takes one half of two groups. x_groups stops at the first group that does not fit (a source
+  // row narrower than 16, or more than 2x downscaling); the outputs after it go scalar.
+  int x_groups = 0;
+  std::vector<std::int32_t> x_group_start;
+  std::vector<std::uint8_t> x_group_shuffle;
+  std::vector<std::int16_t> x_group_weight;
 };
 
 ResizePlan make_resize_plan(int src_width, int src_height, int dst_width, int dst_height);

@@ -1,11 +1,19 @@
 #pragma once
 // Q8 bilinear downsampling, vectorised: the contract of core/pyramid_resize.hpp, the same bytes.
 //
-// The formula is exact in integers, so the passes may swap: vertical first for every source
-// column the chunk needs, v = src[sy][x] (256 - wy) + src[sy + 1][x] wy <= 65280 in u16 lanes;
-// then per output pixel (v[sx] (256 - wx) + v[sx + 1] wx + 32768) >> 16. With AVX2 the pair
-// v[sx], v[sx + 1] comes from one 32-bit gather (scale 2) and the sum runs in 32-bit lanes.
-#include <algorithm>
+// Horizontal first, on the u8 rows, 8 outputs per 128-bit lane. The plan's x groups
+// (ResizePlan::x_group_*) say which 16 source bytes the 8 outputs read; one pshufb per half
+// puts the left and right tap of 4 outputs into u16 lanes, and pmaddwd with (256 - wx, wx)
+// gives, in 32-bit lanes, exactly the scalar
+//   h = L (256 - wx) + R wx,   0 <= h <= 65280.
+// Vertical: dst = (S + 32768) >> 16 with S = h0 (256 - wy) + h1 wy, which needs 24 bits and
+// h0, h1 are too big for pmaddwd's signed 16-bit inputs. Biased by 32768 they fit:
+//   p = (h0 - 32768)(256 - wy) + (h1 - 32768) wy = S - 2^23,  |p| <= 2^23,
+// one pmaddwd of the pairs (h0 - 32768, h1 - 32768) with (256 - wy, wy): h0 | h1 << 16 with the
+// top bit of each half flipped (xor 0x80008000). Then (S + 32768) >> 16 = (p + 2^23 + 2^15) >> 16,
+// 0..255, and every step is an exact integer operation: the same bytes as the scalar code.
+// AVX2 runs two groups per 256-bit register (pshufb stays within 128-bit lanes, so each lane
+// keeps its own 16-byte window). Outputs after the last group are scalar.
 #include <cstdint>
 #include <type_traits>
 
@@ -14,66 +22,77 @@
 
 namespace aief::simd {
 
+namespace resize_detail {
+
+// Arch only keeps each instruction set's copy of these helpers its own symbol.
+template <class Arch>
+inline __m128i load16(const void* p) { return _mm_loadu_si128(static_cast<const __m128i*>(p)); }
+
+// 4 outputs per 128-bit lane, in 32-bit lanes: (h0 (256 - wy) + h1 wy + 32768) >> 16 with
+// h0, h1 the horizontal sums of the top and bottom row (see the header comment).
+template <class Arch>
+inline __m128i bilinear4(__m128i top, __m128i bottom, __m128i shuffle, __m128i wx, __m128i wy) {
+  const __m128i h0 = _mm_madd_epi16(_mm_shuffle_epi8(top, shuffle), wx);
+  const __m128i h1 = _mm_madd_epi16(_mm_shuffle_epi8(bottom, shuffle), wx);
+  const __m128i pair = _mm_xor_si128(_mm_or_si128(h0, _mm_slli_epi32(h1, 16)), _mm_set1_epi32(static_cast<int>(0x80008000u)));
+  return _mm_srli_epi32(_mm_add_epi32(_mm_madd_epi16(pair, wy), _mm_set1_epi32((1 << 23) + (1 << 15))), 16);
+}
+
+template <class Arch>
+inline __m256i bilinear4(__m256i top, __m256i bottom, __m256i shuffle, __m256i wx, __m256i wy) {
+  const __m256i h0 = _mm256_madd_epi16(_mm256_shuffle_epi8(top, shuffle), wx);
+  const __m256i h1 = _mm256_madd_epi16(_mm256_shuffle_epi8(bottom, shuffle), wx);
+  const __m256i pair = _mm256_xor_si256(_mm256_or_si256(h0, _mm256_slli_epi32(h1, 16)), _mm256_set1_epi32(static_cast<int>(0x80008000u)));
+  return _mm256_srli_epi32(_mm256_add_epi32(_mm256_madd_epi16(pair, wy), _mm256_set1_epi32((1 << 23) + (1 << 15))), 16);
+}
+
+}  // namespace resize_detail
+
 template <class Arch>
 void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin, int y_end) {
-  constexpr int kChunk = 256;                  // output pixels per chunk
-  constexpr int kSpan = 4 * kChunk + 64;       // source columns a chunk may need (scale <= 4)
-  alignas(64) std::uint16_t v[kSpan + 16];
+  using namespace resize_detail;
   constexpr bool kAvx2 = std::is_base_of_v<xsimd::avx2, Arch>;
-  const int dst_width = plan.dst_width;
+  const int dst_width = plan.dst_width, groups = plan.x_groups;
+  const std::int32_t* start = plan.x_group_start.data();
+  const std::uint8_t* shuffle[2] = {plan.x_group_shuffle.data(), plan.x_group_shuffle.data() + 16 * groups};
+  const std::int16_t* weight[2] = {plan.x_group_weight.data(), plan.x_group_weight.data() + 8 * groups};
 
   for (int y = y_begin; y < y_end; ++y) {
     const int sy = plan.y_index[static_cast<std::size_t>(y)];
-    const std::uint16_t wy = plan.y_weight[static_cast<std::size_t>(y)];
+    const std::uint32_t wy = plan.y_weight[static_cast<std::size_t>(y)];
     const std::uint8_t* top = src.row(sy);
     const std::uint8_t* bottom = src.row(sy + 1);
     std::uint8_t* out = dst.row(y);
-    for (int x0 = 0; x0 < dst_width; x0 += kChunk) {
-      const int x1 = std::min(dst_width, x0 + kChunk);
-      const int s0 = plan.x_index[static_cast<std::size_t>(x0)];
-      const int s1 = plan.x_index[static_cast<std::size_t>(x1 - 1)] + 2;  // one past the last tap
-      // Vertical pass over source columns [s0, s1).
-      int s = s0;
-      if constexpr (kAvx2) {
-        const __m256i w_top = _mm256_set1_epi16(static_cast<short>(256 - wy)), w_bottom = _mm256_set1_epi16(static_cast<short>(wy));
-        for (; s + 16 <= s1; s += 16) {
-          const __m256i a = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(top + s)));
-          const __m256i b = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(bottom + s)));
-          _mm256_storeu_si256(reinterpret_cast<__m256i*>(v + (s - s0)),
-                              _mm256_add_epi16(_mm256_mullo_epi16(a, w_top), _mm256_mullo_epi16(b, w_bottom)));
-        }
-      } else {
-        const __m128i w_top = _mm_set1_epi16(static_cast<short>(256 - wy)), w_bottom = _mm_set1_epi16(static_cast<short>(wy));
-        for (; s + 8 <= s1; s += 8) {
-          const __m128i a = _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(top + s)));
-          const __m128i b = _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bottom + s)));
-          _mm_storeu_si128(reinterpret_cast<__m128i*>(v + (s - s0)), _mm_add_epi16(_mm_mullo_epi16(a, w_top), _mm_mullo_epi16(b, w_bottom)));
-        }
+    const __m128i wy_pair = _mm_set1_epi32(static_cast<int>(wy << 16 | (256 - wy)));  // int16 (256 - wy, wy)
+    int g = 0;
+    if constexpr (kAvx2) {
+      const __m256i wy_pair2 = _mm256_broadcastsi128_si256(wy_pair);
+      for (; g + 2 <= groups; g += 2) {  // groups g and g + 1, one per 128-bit lane
+        const __m256i t = _mm256_inserti128_si256(_mm256_castsi128_si256(load16<Arch>(top + start[g])), load16<Arch>(top + start[g + 1]), 1);
+        const __m256i b = _mm256_inserti128_si256(_mm256_castsi128_si256(load16<Arch>(bottom + start[g])), load16<Arch>(bottom + start[g + 1]), 1);
+        __m256i r[2];
+        for (int h = 0; h < 2; ++h)
+          r[h] = bilinear4<Arch>(t, b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(shuffle[h] + 16 * g)),
+                                 _mm256_loadu_si256(reinterpret_cast<const __m256i*>(weight[h] + 8 * g)), wy_pair2);
+        const __m256i r16 = _mm256_packs_epi32(r[0], r[1]);  // per lane: outputs 0..3, 4..7 of its group
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 8 * g),
+                         _mm_packus_epi16(_mm256_castsi256_si128(r16), _mm256_extracti128_si256(r16, 1)));
       }
-      for (; s < s1; ++s) v[s - s0] = static_cast<std::uint16_t>(top[s] * (256 - wy) + bottom[s] * wy);
-      v[s1 - s0] = 0;  // the gather below reads 32 bits at the last tap pair
-
-      // Horizontal pass.
-      int x = x0;
-      if constexpr (kAvx2) {
-        const __m256i base = _mm256_set1_epi32(s0);
-        const __m256i low16 = _mm256_set1_epi32(0xffff), full = _mm256_set1_epi32(256), round = _mm256_set1_epi32(32768);
-        for (; x + 8 <= x1; x += 8) {
-          const __m256i sx = _mm256_sub_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(plan.x_index.data() + x)), base);
-          const __m256i wx = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(plan.x_weight.data() + x)));
-          const __m256i pair = _mm256_i32gather_epi32(reinterpret_cast<const int*>(v), sx, 2);
-          const __m256i left = _mm256_and_si256(pair, low16), right = _mm256_srli_epi32(pair, 16);
-          const __m256i sum = _mm256_add_epi32(_mm256_mullo_epi32(left, _mm256_sub_epi32(full, wx)), _mm256_mullo_epi32(right, wx));
-          const __m256i result = _mm256_srli_epi32(_mm256_add_epi32(sum, round), 16);  // 0..255 per 32-bit lane
-          const __m128i packed16 = _mm_packus_epi32(_mm256_castsi256_si128(result), _mm256_extracti128_si256(result, 1));
-          _mm_storel_epi64(reinterpret_cast<__m128i*>(out + x), _mm_packus_epi16(packed16, packed16));
-        }
-      }
-      for (; x < x1; ++x) {
-        const int i = plan.x_index[static_cast<std::size_t>(x)] - s0;
-        const std::uint32_t wx = plan.x_weight[static_cast<std::size_t>(x)];
-        out[x] = static_cast<std::uint8_t>((v[i] * (256 - wx) + v[i + 1] * wx + 32768) >> 16);
-      }
+    }
+    for (; g < groups; ++g) {
+      const __m128i t = load16<Arch>(top + start[g]), b = load16<Arch>(bottom + start[g]);
+      __m128i r[2];
+      for (int h = 0; h < 2; ++h)
+        r[h] = bilinear4<Arch>(t, b, load16<Arch>(shuffle[h] + 16 * g), load16<Arch>(weight[h] + 8 * g), wy_pair);
+      const __m128i r16 = _mm_packs_epi32(r[0], r[1]);
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 8 * g), _mm_packus_epi16(r16, r16));
+    }
+    for (int x = 8 * groups; x < dst_width; ++x) {
+      const int sx = plan.x_index[static_cast<std::size_t>(x)];
+      const std::uint32_t wx = plan.x_weight[static_cast<std::size_t>(x)];
+      const std::uint32_t h0 = top[sx] * (256 - wx) + top[sx + 1] * wx;
+      const std::uint32_t h1 = bottom[sx] * (256 - wx) + bottom[sx + 1] * wx;
+      out[x] = static_cast<std::uint8_t>((h0 * (256 - wy) + h1 * wy + 32768) >> 16);
     }
   }
 }
