@@ -50,7 +50,7 @@ void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int
   for (int y = y_begin; y < y_end; ++y) {
     const std::uint16_t* rows[7];
     for (int t = 0; t < 7; ++t) rows[t] = horizontal_row(y + t - 3);
-    std::uint8_t* out = dst.row(y);
+    std::uint8_t* out = dst.row(y - y_begin);
     for (int x = 0; x < width; ++x) {
       std::uint32_t sum = 32768;
       for (int t = 0; t < 7; ++t) sum += k[static_cast<std::size_t>(t)] * static_cast<std::uint32_t>(rows[t][x]);

@@ -32,7 +32,7 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end)
   for (int y = y_begin; y < y_end; ++y) {
     const std::uint8_t* rows[7];
     for (int k = 0; k < 7; ++k) rows[k] = src.row(mirror(y + k - 3, height));
-    std::uint8_t* out = dst.row(y);
+    std::uint8_t* out = dst.row(y - y_begin);
     for (int x0 = 0; x0 < width; x0 += kChunk) {
       const int x1 = x0 < width - kChunk ? x0 + kChunk : width;
       const int origin = x0 - 4;              // pixel of pair 0's even half
