@@ -44,7 +44,7 @@ void features_at(FrameAnalysis& analysis, double threshold, std::vector<std::vec
 
 void analyse(FrameAnalysis& analysis, ImageView image, const ExtractorOptions& options,
              const KernelTable& kernels, double lowest_threshold) {
-  analysis.start(image, options, kernels);
+  analysis.start(image, options, kernels, Selections::many);
   for (int n = 0; n < analysis.level_count(); ++n) analysis.build_level(n);
   for (int n = 0; n < analysis.level_count(); ++n) {
     analysis.compute_entropies(n);

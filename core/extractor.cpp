@@ -43,7 +43,7 @@ std::string_view Extractor::kernel_name() const { return state_->kernels->name; 
 ImageView Extractor::pyramid_level(int n) const {
   const FrameAnalysis& analysis = state_->analysis;
   if (n < 0 || n >= analysis.level_count() || !analysis.level(n).usable()) return {};
-  return analysis.level(n).image.view();
+  return analysis.level(n).pixels;
 }
 
 Features Extractor::extract(ImageView image) {

@@ -33,9 +33,14 @@ void check_image(ImageView image, const ExtractorOptions& options) {
                 std::to_string(2 * kEdgeBorder + 1) + " pixels on each side)");
 }
 
+// Rows of keypoints one band of blurred rows serves at a time; the band adds kEdgeBorder rows
+// above and below (every rBRIEF sample lies within kEdgeBorder of its keypoint).
+constexpr int kBlurBandKeypointRows = 96;
+
 }  // namespace
 
-void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels) {
+void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels,
+                          Selections selections) {
   check_image(image, options);
   const bool same_geometry = image.width == width_ && image.height == height_ &&
                              options.n_levels == options_.n_levels &&
@@ -43,6 +48,7 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
                              options.block_size == options_.block_size &&
                              options.n_features == options_.n_features && !levels_.empty();
   options_ = options;
+  selections_ = selections;
   kernels_ = &kernels;
   input_ = image;
   width_ = image.width;
@@ -57,18 +63,28 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
       level.geometry = std::move(geometry[n]);
       if (!level.usable()) continue;
       const int w = level.geometry.width, h = level.geometry.height;
-      level.image.resize(w, h);
-      level.blurred.resize(w, h);
-      level.scores.resize(w, h);
       if (n > 0) {
+        level.image.resize(w, h);
         const LevelGeometry& above = levels_[n - 1].geometry;
         level.resize_plan = make_resize_plan(above.width, above.height, w, h);
       }
+      int tallest_block_row = 0;
+      for (int r = 0; r < level.geometry.grid.rows(); ++r)
+        tallest_block_row = std::max(tallest_block_row, level.geometry.grid.row_edges[static_cast<std::size_t>(r) + 1] -
+                                                            level.geometry.grid.row_edges[static_cast<std::size_t>(r)]);
+      level.score_band.resize(w, tallest_block_row + 2);
     }
   }
-  for (LevelState& level : levels_) {
+  for (std::size_t n = 0; n < levels_.size(); ++n) {
+    LevelState& level = levels_[n];
+    level.pixels = n == 0 ? image : level.image.view();
+    if (level.usable()) {
+      const int w = level.geometry.width, h = level.geometry.height;
+      if (selections_ == Selections::many) level.blurred.resize(w, h);
+      else level.blurred.resize(w, std::min(h, kBlurBandKeypointRows + 2 * kEdgeBorder));
+    }
+    level.blurred_top = level.blurred_end = 0;
     const int blocks = level.geometry.grid.count();
-    level.blurred_ready = false;
     level.block_entropy.clear();
     level.block_detected.assign(static_cast<std::size_t>(blocks), 0);
     level.block_candidates.assign(static_cast<std::size_t>(blocks), BlockRange{});
@@ -81,22 +97,16 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
 
 void FrameAnalysis::build_level_rows(int n, int y_begin, int y_end) {
   LevelState& level = this->level(n);
-  if (!level.usable()) return;
-  if (n == 0) {
-    for (int y = y_begin; y < y_end; ++y)
-      std::memcpy(level.image.data() + static_cast<std::ptrdiff_t>(y) * width_, input_.row(y),
-                  static_cast<std::size_t>(width_));
-    return;
-  }
-  kernels_->resize_bilinear_rows(this->level(n - 1).image.view(), level.resize_plan,
-                                 level.image.mutable_view(), y_begin, y_end);
+  if (!level.usable() || n == 0) return;  // level 0 is the input itself
+  kernels_->resize_bilinear_rows(this->level(n - 1).pixels, level.resize_plan, level.image.mutable_view(),
+                                 y_begin, y_end);
 }
 
 void FrameAnalysis::compute_entropies(int n) {
   LevelState& level = this->level(n);
   if (options_.entropy == EntropyMeasure::off || !level.usable()) return;
   const BlockGrid& grid = level.geometry.grid;
-  const ImageView pixels = level.image.view();
+  const ImageView pixels = level.pixels;
   level.block_entropy.resize(static_cast<std::size_t>(grid.count()));
   std::uint32_t whole[256] = {};
   std::uint32_t hist[256];
@@ -128,7 +138,8 @@ bool FrameAnalysis::block_kept(int n, int b, double threshold) const {
   return level.block_entropy[static_cast<std::size_t>(b)] > threshold;  // Eq. 9
 }
 
-void FrameAnalysis::compute_score_rows(LevelState& level, int y_begin, int y_end, int x_begin, int x_end) {
+void FrameAnalysis::compute_score_rows(LevelState& level, int score_top, int y_begin, int y_end, int x_begin,
+                                       int x_end) {
   // Scores exist on [3, size - 3) only; suppression near the keypoint area never reads further.
   const int w = level.geometry.width, h = level.geometry.height;
   y_begin = std::max(y_begin, 3);
@@ -136,11 +147,10 @@ void FrameAnalysis::compute_score_rows(LevelState& level, int y_begin, int y_end
   x_begin = std::max(x_begin, 3);
   x_end = std::min(x_end, w - 3);
   if (x_begin >= x_end) return;
-  const ImageView pixels = level.image.view();
+  const ImageView pixels = level.pixels;
   for (int y = y_begin; y < y_end; ++y)
-    kernels_->fast9_scores_row(pixels.row(y), pixels.stride, x_begin, x_end,
-                               options_.fast_min_threshold,
-                               level.scores.data() + static_cast<std::ptrdiff_t>(y) * w);
+    kernels_->fast9_scores_row(pixels.row(y), pixels.stride, x_begin, x_end, options_.fast_min_threshold,
+                               level.score_band.mutable_view().row(y - score_top));
 }
 
 void FrameAnalysis::detect(int n, double threshold) {
@@ -152,34 +162,32 @@ void FrameAnalysis::detect(int n, double threshold) {
   };
 
   // Scores of each run of adjacent new blocks in a block row, with the one-pixel ring that
-  // suppression reads: one call per row of the run instead of a call per ring segment. Pixels
-  // a neighbour already scored are scored again to the same value.
-  std::vector<std::int32_t>& fresh = level.scratch_fresh_blocks;  // the blocks detected now
-  fresh.clear();
+  // suppression reads, go to the level's score band (a block row tall, so it stays in cache):
+  // one call per row of the run instead of a call per ring segment, then the run's blocks.
+  // Blocks are detected in raster order, so candidates are too.
   for (int r = 0; r < grid.rows(); ++r) {
+    const int score_top = grid.row_edges[static_cast<std::size_t>(r)] - 1;
     int c = 0;
     while (c < grid.cols()) {
       if (!needs(r * grid.cols() + c)) { ++c; continue; }
       int end = c;
-      while (end < grid.cols() && needs(r * grid.cols() + end)) fresh.push_back(r * grid.cols() + end++);
-      compute_score_rows(level, grid.row_edges[static_cast<std::size_t>(r)] - 1, grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
+      while (end < grid.cols() && needs(r * grid.cols() + end)) ++end;
+      compute_score_rows(level, score_top, score_top, grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
                          grid.col_edges[static_cast<std::size_t>(c)] - 1, grid.col_edges[static_cast<std::size_t>(end)] + 1);
-      c = end;
+      for (; c < end; ++c) {
+        level.block_detected[static_cast<std::size_t>(r * grid.cols() + c)] = 1;
+        detect_block(level, r * grid.cols() + c, score_top);
+      }
     }
-  }
-  for (std::int32_t b : fresh) {
-    level.block_detected[static_cast<std::size_t>(b)] = 1;
-    detect_block(level, b);
   }
 }
 
-void FrameAnalysis::detect_block(LevelState& level, int block) {
+void FrameAnalysis::detect_block(LevelState& level, int block, int score_top) {
   const BlockGrid& grid = level.geometry.grid;
   const int r = block / grid.cols(), c = block % grid.cols();
   const int x0 = grid.col_edges[static_cast<std::size_t>(c)], x1 = grid.col_edges[static_cast<std::size_t>(c) + 1];
   const int y0 = grid.row_edges[static_cast<std::size_t>(r)], y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
-  const int w = level.geometry.width;
-  const std::uint8_t* scores = level.scores.data();
+  const MutableImageView scores = level.score_band.mutable_view();
 
   // Local maxima of the score map (threshold-free, see core/fast9.hpp), then the ORB-SLAM2
   // retry rule: fast_threshold, or fast_min_threshold when that leaves the block empty.
@@ -187,8 +195,9 @@ void FrameAnalysis::detect_block(LevelState& level, int block) {
   bool any_strong = false;
   level.scratch_xs.resize(static_cast<std::size_t>(x1 - x0));
   for (int y = y0; y < y1; ++y) {
-    const std::uint8_t* row = scores + static_cast<std::ptrdiff_t>(y) * w;
-    const int found = kernels_->fast9_local_maxima_row(row - w, row, row + w, x0, x1, level.scratch_xs.data());
+    const std::uint8_t* row = scores.row(y - score_top);
+    const int found = kernels_->fast9_local_maxima_row(row - scores.stride, row, row + scores.stride, x0, x1,
+                                                       level.scratch_xs.data());
     for (int i = 0; i < found; ++i) {
       const int x = level.scratch_xs[static_cast<std::size_t>(i)];
       const int score = row[x];
@@ -269,16 +278,20 @@ void FrameAnalysis::describe(LevelState& level, const std::vector<std::int32_t>&
   level.scratch_descriptors.resize(todo.size() * kDescriptorBytes);
 
   // Orientation on the raw level, descriptors on the blurred one (as ORB-SLAM2).
-  kernels_->ic_moments(level.image.view(), points.data(), count, level.scratch_m10.data(), level.scratch_m01.data());
+  kernels_->ic_moments(level.pixels, points.data(), count, level.scratch_m10.data(), level.scratch_m01.data());
   for (int i = 0; i < count; ++i)
     level.scratch_angles[static_cast<std::size_t>(i)] =
         ic_angle_deg(level.scratch_m10[static_cast<std::size_t>(i)], level.scratch_m01[static_cast<std::size_t>(i)]);
-  if (!level.blurred_ready) {
-    kernels_->gaussian7_rows(level.image.view(), level.blurred.mutable_view(), 0, level.geometry.height);
-    level.blurred_ready = true;
+  if (selections_ == Selections::many) {
+    if (level.blurred_end == 0) {
+      kernels_->gaussian7_rows(level.pixels, level.blurred.mutable_view(), 0, level.geometry.height);
+      level.blurred_end = level.geometry.height;
+    }
+    kernels_->rbrief_describe(level.blurred.view(), points.data(), level.scratch_angles.data(), count,
+                              level.scratch_descriptors.data());
+  } else {
+    describe_through_band(level, count);
   }
-  kernels_->rbrief_describe(level.blurred.view(), points.data(), level.scratch_angles.data(), count,
-                            level.scratch_descriptors.data());
   for (int i = 0; i < count; ++i) {
     const std::size_t index = static_cast<std::size_t>(todo[static_cast<std::size_t>(i)]);
     level.candidate_memo_slot[index] = static_cast<std::int32_t>(level.memo_angle_deg.size());
@@ -287,6 +300,51 @@ void FrameAnalysis::describe(LevelState& level, const std::vector<std::int32_t>&
     std::memcpy(descriptor.data(), level.scratch_descriptors.data() + static_cast<std::size_t>(i) * kDescriptorBytes,
                 kDescriptorBytes);
   }
+}
+
+void FrameAnalysis::describe_through_band(LevelState& level, int count) {
+  // The points come in raster order, so the blurred rows they read, [y - kEdgeBorder, y +
+  // kEdgeBorder], form a window sliding down the level. The band holds blurred rows [top, end);
+  // when a point needs a row below it, the rows still needed move to the band's top and only
+  // the new ones are blurred: every blurred row is computed once, in a buffer that stays in cache.
+  const std::vector<PixelPoint>& points = level.scratch_points;
+  std::vector<PixelPoint>& shifted = level.scratch_band_points;
+  shifted.resize(static_cast<std::size_t>(count));
+  const int width = level.geometry.width, height = level.geometry.height;
+  const int capacity = level.blurred.height();
+  const MutableImageView band = level.blurred.mutable_view();
+  int& top = level.blurred_top;
+  int& end = level.blurred_end;
+  top = end = 0;
+  int first = 0;  // first point not yet described
+  const auto describe_up_to = [&](int last) {
+    if (last == first) return;
+    for (int i = first; i < last; ++i) {
+      const PixelPoint& p = points[static_cast<std::size_t>(i)];
+      shifted[static_cast<std::size_t>(i)] = {p.x, p.y - top};
+    }
+    kernels_->rbrief_describe({band.data, width, end - top, band.stride}, shifted.data() + first,
+                              level.scratch_angles.data() + first, last - first,
+                              level.scratch_descriptors.data() + static_cast<std::size_t>(first) * kDescriptorBytes);
+    first = last;
+  };
+  for (int i = 0; i < count; ++i) {
+    const int y = points[static_cast<std::size_t>(i)].y;
+    if (y + kEdgeBorder < end) continue;
+    describe_up_to(i);
+    const int new_top = y - kEdgeBorder;
+    const int new_end = std::min(height, new_top + capacity);
+    int kept_end = new_top;  // rows [new_top, kept_end) are already blurred in the band
+    if (end > new_top) {
+      std::memmove(band.data, band.row(new_top - top), static_cast<std::size_t>(end - new_top) * static_cast<std::size_t>(band.stride));
+      kept_end = end;
+    }
+    kernels_->gaussian7_rows(level.pixels, {band.row(kept_end - new_top), width, new_end - kept_end, band.stride}, kept_end,
+                             new_end);
+    top = new_top;
+    end = new_end;
+  }
+  describe_up_to(count);
 }
 
 std::int64_t FrameAnalysis::candidate_count(double threshold) const {

@@ -21,13 +21,23 @@
 
 namespace aief {
 
+// How many times select() runs on one frame, which decides how the blurred level is held.
+enum class Selections {
+  one,   // extract: the rows descriptors read are blurred into a small band sliding down the level
+  many,  // the sweep: each level blurred whole once and kept, for every threshold's descriptors
+};
+
 struct LevelState {
   LevelGeometry geometry;
   ResizePlan resize_plan;  // from the previous level (empty for level 0)
-  GrayImage image;         // level pixels (level 0 is a copy of the input, made contiguous)
-  GrayImage blurred;       // 7x7 Gaussian of image, made on first describe
-  bool blurred_ready = false;
-  GrayImage scores;        // FAST scores, valid only where some block's detection wrote them
+  ImageView pixels;        // the level: the caller's image for level 0, else `image`
+  GrayImage image;         // pixels of levels >= 1 (unused for level 0)
+  // Blurred rows for rBRIEF: the whole level (Selections::many, made on first describe) or a
+  // band of rows [blurred_top, blurred_end) that slides down as points are described.
+  GrayImage blurred;
+  int blurred_top = 0, blurred_end = 0;
+  // FAST scores of one block row and its one-pixel ring: band row i is level row score_top + i.
+  GrayImage score_band;
 
   std::vector<double> block_entropy;       // bits, per block, row-major (empty: entropy off)
   std::vector<std::uint8_t> block_detected;
@@ -48,6 +58,7 @@ struct LevelState {
   std::vector<BlockRange> scratch_blocks;
   std::vector<Candidate> scratch_candidates;
   std::vector<PixelPoint> scratch_points;
+  std::vector<PixelPoint> scratch_band_points;
   std::vector<std::int32_t> scratch_m10, scratch_m01;
   std::vector<float> scratch_angles;
   std::vector<std::uint8_t> scratch_descriptors;
@@ -59,8 +70,10 @@ struct LevelState {
 class FrameAnalysis {
  public:
   // Checks the image against the options (throws aief::Error) and sizes the levels. Reuses all
-  // buffers when the size is the same as the previous frame's.
-  void start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels);
+  // buffers when the size is the same as the previous frame's. The image is read in place (it
+  // is level 0) and must outlive the analysis of this frame.
+  void start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels,
+             Selections selections = Selections::one);
 
   int level_count() const { return static_cast<int>(levels_.size()); }
   LevelState& level(int n) { return levels_[static_cast<std::size_t>(n)]; }
@@ -92,11 +105,13 @@ class FrameAnalysis {
   const ExtractorOptions& options() const { return options_; }
 
  private:
-  void compute_score_rows(LevelState& level, int y_begin, int y_end, int x_begin, int x_end);
-  void detect_block(LevelState& level, int block);
+  void compute_score_rows(LevelState& level, int score_top, int y_begin, int y_end, int x_begin, int x_end);
+  void detect_block(LevelState& level, int block, int score_top);
   void describe(LevelState& level, const std::vector<std::int32_t>& indices);
+  void describe_through_band(LevelState& level, int count);
 
   ExtractorOptions options_;
+  Selections selections_ = Selections::one;
   const KernelTable* kernels_ = nullptr;
   ImageView input_;
   int width_ = 0, height_ = 0;

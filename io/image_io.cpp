@@ -20,16 +20,17 @@ GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
     throw Error("cannot use image '" + path + "': pixel depth " + std::to_string(image.depth()) +
                 " is not 8- or 16-bit unsigned");
   }
-  cv::Mat gray;
+  // The conversion writes straight into the result: no second full-size gray copy at the peak.
+  GrayImage out(image.cols, image.rows);
+  cv::Mat gray(out.height(), out.width(), CV_8UC1, out.data());
   switch (image.channels()) {
-    case 1: gray = image; break;
+    case 1: image.copyTo(gray); break;
     case 3: cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY); break;
     case 4: cv::cvtColor(image, gray, cv::COLOR_BGRA2GRAY); break;
     default:
       throw Error("cannot use image '" + path + "': " + std::to_string(image.channels()) + " channels (expected 1, 3 or 4)");
   }
-  GrayImage out(gray.cols, gray.rows);
-  for (int y = 0; y < gray.rows; ++y) std::copy_n(gray.ptr<std::uint8_t>(y), gray.cols, out.data() + static_cast<std::ptrdiff_t>(y) * gray.cols);
+  CV_Assert(gray.data == out.data());  // OpenCV kept the buffer it was given
   return out;
 }
 

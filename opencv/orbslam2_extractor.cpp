@@ -98,9 +98,11 @@ void ORBextractor::operator()(cv::InputArray image, cv::InputArray /*mask: ignor
   detail::fill_cv_keypoints(features_, keypoints);
   detail::fill_cv_descriptors(features_, descriptors, true);  // released when empty, as ORB-SLAM2
   mvImagePyramid.resize(static_cast<std::size_t>(nlevels));
-  for (int n = 0; n < nlevels; ++n) {
+  // Level 0 is the gray input itself (sharing its reference count, so it outlives the caller's
+  // Mat); the others are headers over the extractor's buffers, valid until the next call.
+  mvImagePyramid[0] = gray;
+  for (int n = 1; n < nlevels; ++n) {
     const ImageView level = extractor_.pyramid_level(n);
-    // Headers over the extractor's buffers: no copy per frame, valid until the next call.
     mvImagePyramid[static_cast<std::size_t>(n)] =
         level.empty() ? cv::Mat() : cv::Mat(level.height, level.width, CV_8UC1, const_cast<std::uint8_t*>(level.data), static_cast<std::size_t>(level.stride));
   }

@@ -26,9 +26,10 @@ class Extractor {
   void extract(ImageView image, Features& out);
 
   const ExtractorOptions& options() const;
-  // Level n of the last frame's pyramid (level 0 is a copy of the input), valid until the next
-  // extract; empty for a level too small to be built. For callers that reuse the pyramid, as
-  // ORB-SLAM2's stereo matching does.
+  // Level n of the last frame's pyramid, valid until the next extract; empty for a level too
+  // small to be built. Level 0 is the input image itself (not copied), so it is valid only as
+  // long as the caller's pixels are. For callers that reuse the pyramid, as ORB-SLAM2's stereo
+  // matching does.
   ImageView pyramid_level(int n) const;
   // Name of the kernel set that runs ("scalar", "avx2", ...).
   std::string_view kernel_name() const;
