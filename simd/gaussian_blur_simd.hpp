@@ -37,32 +37,49 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end)
       const int x1 = x0 < width - kChunk ? x0 + kChunk : width;
       const int origin = x0 - 4;              // pixel of pair 0's even half
       const int pairs = (x1 - x0) / 2 + 5;    // pairs whose v the outputs read (odd widths: one more)
-      // Vertical pass. Vector batches where their 2N source pixels lie in the row, else per pixel.
+      // Vertical pass, pairs [0, pairs) plus the rest of their last batch. Batches whose 2N source
+      // pixels lie in the row run as vectors. At the row's ends a vertical sum is the same for a
+      // column and its mirror image, so the vector batch moves inside the row and only the few
+      // pixels it leaves out are summed one by one (mirrored; beyond width + 2 they only feed
+      // outputs that are never stored, and are 0).
+      const auto vector_batch = [&](int i) {  // pairs i .. i + N - 1, pixels origin + 2i ..
+        const int p = origin + 2 * i;
+        // Symmetric taps: rows k and 6 - k share a weight, add them first (<= 510, no overflow).
+        const auto load = [&](int k) { return U16::load_unaligned(reinterpret_cast<const std::uint16_t*>(rows[k] + p)); };
+        const U16 centre = load(3);
+        U16 even = (centre & low_byte) * U16(w[3]), odd = (centre >> 8) * U16(w[3]);
+        for (int k = 0; k < 3; ++k) {
+          const U16 top = load(k), bottom = load(6 - k);
+          const U16 weight(w[static_cast<std::size_t>(k)]);
+          even += ((top & low_byte) + (bottom & low_byte)) * weight;
+          odd += ((top >> 8) + (bottom >> 8)) * weight;
+        }
+        even.store_unaligned(ve + i);
+        odd.store_unaligned(vo + i);
+      };
+      const auto scalar_pixels = [&](int q_begin, int q_end) {  // pixels [q_begin, q_end)
+        for (int q = q_begin; q < q_end; ++q) {
+          const int j = (q - origin) / 2;
+          if (j >= kPairs) break;
+          std::uint32_t v = 0;
+          if (q < width + 3)
+            for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][mirror(q, width)];
+          ((q - origin) % 2 ? vo : ve)[j] = static_cast<std::uint16_t>(v);
+        }
+      };
+      const bool vector_edges = width >= 2 * N + 8;
       for (int i = 0; i < pairs; i += N) {
         const int p = origin + 2 * i;
         if (p >= 0 && p + 2 * N <= width) {
-          // Symmetric taps: rows k and 6 - k share a weight, add them first (<= 510, no overflow).
-          const auto load = [&](int k) { return U16::load_unaligned(reinterpret_cast<const std::uint16_t*>(rows[k] + p)); };
-          const U16 centre = load(3);
-          U16 even = (centre & low_byte) * U16(w[3]), odd = (centre >> 8) * U16(w[3]);
-          for (int k = 0; k < 3; ++k) {
-            const U16 top = load(k), bottom = load(6 - k);
-            const U16 weight(w[static_cast<std::size_t>(k)]);
-            even += ((top & low_byte) + (bottom & low_byte)) * weight;
-            odd += ((top >> 8) + (bottom >> 8)) * weight;
-          }
-          even.store_unaligned(ve + i);
-          odd.store_unaligned(vo + i);
+          vector_batch(i);
+        } else if (vector_edges && p < 0) {  // the left end: origin = -4, pixels -4 .. -1 mirror 4 .. 1
+          vector_batch(i - p / 2);
+          scalar_pixels(p, 0);
+        } else if (const int room = width - 2 * N - origin; vector_edges && p > 0 && room >= 0) {
+          vector_batch(room / 2);  // the right end: the last batch that fits, then what it leaves out
+          scalar_pixels(origin + 2 * (room / 2) + 2 * N, p + 2 * N);
         } else {
-          for (int j = i; j < i + N && j < kPairs; ++j)
-            for (int parity = 0; parity < 2; ++parity) {
-              const int x = mirror(origin + 2 * j + parity, width);
-              std::uint32_t v = 0;
-              // Pixels beyond the reflection range only feed outputs that are never stored.
-              if (x >= 0 && x < width)
-                for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][x];
-              (parity ? vo : ve)[j] = static_cast<std::uint16_t>(v);
-            }
+          scalar_pixels(p, p + 2 * N);
         }
       }
       // Horizontal pass: output pixel x0 + 2j reads v(x0 + 2j - 3 .. + 3) = vo[j], ve[j+1], vo[j+1],

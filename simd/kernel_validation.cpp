@@ -230,7 +230,8 @@ std::vector<GrayImage> validation_images() {
   std::uint32_t seed = 1;
   std::vector<int> widths;
   for (int w = 1; w <= 70; ++w) widths.push_back(w);
-  for (int w : {127, 129, 255, 257}) widths.push_back(w);
+  // Around the vector widths, and rows that end just past the blur's 512-pixel chunks.
+  for (int w : {71, 72, 73, 127, 129, 255, 257, 513, 517, 541, 575, 577}) widths.push_back(w);
   for (int w : widths)
     for (int h : {1, 3, 37}) images.push_back(random_gray(w, h, seed++, (w + h) % 2 == 0));
   for (const auto& [w, h] : std::vector<std::pair<int, int>>{{64, 64}, {97, 61}, {131, 140}, {257, 129}, {333, 211}})
