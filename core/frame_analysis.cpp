@@ -37,6 +37,9 @@ void check_image(ImageView image, const ExtractorOptions& options) {
 // above and below (every rBRIEF sample lies within kEdgeBorder of its keypoint).
 constexpr int kBlurBandKeypointRows = 96;
 
+// Narrowest run of FAST scores computed at once: two AVX-512 batches.
+constexpr int kMinScoredRun = 128;
+
 }  // namespace
 
 void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels,
@@ -147,6 +150,12 @@ void FrameAnalysis::compute_score_rows(LevelState& level, int score_top, int y_b
   x_begin = std::max(x_begin, 3);
   x_end = std::min(x_end, w - 3);
   if (x_begin >= x_end) return;
+  // A short run is widened within the level (the band is level-wide), so vector kernels see
+  // whole batches: a few extra scores cost less than a short row's scalar tail.
+  if (x_end - x_begin < kMinScoredRun) {
+    x_end = std::min(w - 3, x_begin + kMinScoredRun);
+    x_begin = std::max(3, x_end - kMinScoredRun);
+  }
   const ImageView pixels = level.pixels;
   for (int y = y_begin; y < y_end; ++y)
     kernels_->fast9_scores_row(pixels.row(y), pixels.stride, x_begin, x_end, options_.fast_min_threshold,
