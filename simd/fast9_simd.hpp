@@ -45,16 +45,20 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
     const std::uint8_t* p = center + x;
     const U8<Arch> v = U8<Arch>::load_unaligned(p);
     const U8<Arch> hi = xsimd::sadd(v, t), lo = xsimd::ssub(v, t);
-    // Pre-test on ring pixels 0, 4, 8, 12: a 9-arc covers at least two of them, so a corner
-    // needs two of them beyond p +- t in the same direction.
-    U8<Arch> bright_count = zero, dark_count = zero;
-    for (int k = 0; k < 16; k += 4) {
-      const U8<Arch> r = U8<Arch>::load_unaligned(p + offsets[k]);
-      bright_count += xsimd::select(r > hi, one, zero);
-      dark_count += xsimd::select(r < lo, one, zero);
+    // Pre-test on ring pixels 0, 4, 8, 12: an arc of 9 covers two neighbouring ones of them
+    // (k and k + 4), so a corner needs such a pair beyond p +- t in one direction. Saturating
+    // differences are non-zero exactly where r > p + t (r < p - t): no unsigned compare needed.
+    U8<Arch> beyond_bright[4], beyond_dark[4];
+    for (int c = 0; c < 4; ++c) {
+      const U8<Arch> r = U8<Arch>::load_unaligned(p + offsets[4 * c]);
+      beyond_bright[c] = xsimd::ssub(r, hi);
+      beyond_dark[c] = xsimd::ssub(lo, r);
     }
-    const auto maybe = (bright_count > one) || (dark_count > one);
-    if (!xsimd::any(maybe)) {
+    U8<Arch> pairs = zero;
+    for (int c = 0; c < 4; ++c)
+      pairs = pairs | xsimd::min(beyond_bright[c], beyond_bright[(c + 1) & 3]) |
+              xsimd::min(beyond_dark[c], beyond_dark[(c + 1) & 3]);
+    if (!any_nonzero<Arch>(pairs)) {
       zero.store_unaligned(scores + x);
       return;
     }
@@ -65,8 +69,8 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
       dark[k] = xsimd::ssub(v, r);
     }
     const U8<Arch> best = xsimd::max(arc9_best<Arch>(bright), arc9_best<Arch>(dark));
-    // score = best - 1, kept when >= t, i.e. best > t.
-    xsimd::select(best > t, best - one, zero).store_unaligned(scores + x);
+    // score = best - 1, kept when >= t, i.e. where best - t (saturating) is not 0.
+    xsimd::select(xsimd::ssub(best, t) == zero, zero, best - one).store_unaligned(scores + x);
   };
   int x = x_begin;
   for (; x + N <= x_end; x += N) batch_at(x);

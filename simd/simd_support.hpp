@@ -26,4 +26,19 @@ inline std::uint64_t lane_bits(const xsimd::batch_bool<std::uint8_t, Arch>& b) {
   }
 }
 
+// Whether any byte lane is non-zero: one vptest (SSE4.1, AVX2) or vptestmb (AVX-512BW).
+template <class Arch>
+inline bool any_nonzero(const U8<Arch>& v) {
+  if constexpr (std::is_base_of_v<xsimd::avx512bw, Arch>) {
+    const __m512i x = v;
+    return _mm512_test_epi8_mask(x, x) != 0;
+  } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+    const __m256i x = v;
+    return !_mm256_testz_si256(x, x);
+  } else {
+    const __m128i x = v;
+    return !_mm_testz_si128(x, x);
+  }
+}
+
 }  // namespace aief::simd
