@@ -84,12 +84,14 @@ int fast9_local_maxima_row(const std::uint8_t* above, const std::uint8_t* row, c
   int count = 0;
   int x = x_begin;
   for (; x + N <= x_end; x += N) {
+    // s is a strict maximum where s - max(neighbours) (saturating) is not 0.
     const U8<Arch> s = U8<Arch>::load_unaligned(row + x);
-    auto keep = s > U8<Arch>::load_unaligned(row + x - 1);
-    if (!xsimd::any(keep)) continue;  // most of a score row is 0
-    keep = keep && s > U8<Arch>::load_unaligned(row + x + 1);
+    U8<Arch> neighbours = U8<Arch>::load_unaligned(row + x - 1);
+    if (!any_nonzero<Arch>(xsimd::ssub(s, neighbours))) continue;  // most of a score row is 0
+    neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(row + x + 1));
     for (const std::uint8_t* line : {above, below})
-      for (int dx = -1; dx <= 1; ++dx) keep = keep && s > U8<Arch>::load_unaligned(line + x + dx);
+      for (int dx = -1; dx <= 1; ++dx) neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(line + x + dx));
+    const auto keep = xsimd::ssub(s, neighbours) != U8<Arch>(std::uint8_t(0));
     for (std::uint64_t bits = lane_bits<Arch>(keep); bits != 0; bits &= bits - 1)
       xs[count++] = x + __builtin_ctzll(bits);  // a builtin: no shared inline std:: code in arch TUs
   }
