@@ -1,11 +1,13 @@
 #include "core/adaptive_sweep.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "aief/error.hpp"
 #include "core/frame_analysis.hpp"
 #include "core/matcher.hpp"
+#include "core/sweep_matcher.hpp"
 #include "parallel/scheduler.hpp"
 #include "simd/kernels.hpp"
 
@@ -26,13 +28,32 @@ void SweepOptions::validate() const {
 
 namespace {
 
+// Identity of candidate i of level n: candidate indices numbered on through the levels. The
+// candidates are all detected by analyse(), so the numbering holds for every threshold.
+std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
+  std::vector<std::int32_t> offsets(static_cast<std::size_t>(analysis.level_count()));
+  std::size_t next = 0;
+  for (int n = 0; n < analysis.level_count(); ++n) {
+    offsets[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(next);
+    next += analysis.level(n).candidates.size();
+  }
+  if (next > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) throw Error("adapt: too many candidates");
+  return offsets;
+}
+
 // Extracts the features of one image at threshold F from its analysis (no starvation rule:
-// the sweep measures each F as it is).
-void features_at(FrameAnalysis& analysis, double threshold, std::vector<std::vector<std::int32_t>>& chosen,
-                 Features& out) {
+// the sweep measures each F as it is), with the identity of each feature.
+void features_at(FrameAnalysis& analysis, double threshold, const std::vector<std::int32_t>& id_offsets,
+                 std::vector<std::vector<std::int32_t>>& chosen, ThresholdFeatures& result) {
   const int levels = analysis.level_count();
   chosen.resize(static_cast<std::size_t>(levels));
-  for (int n = 0; n < levels; ++n) analysis.select(n, threshold, chosen[static_cast<std::size_t>(n)]);
+  result.ids.clear();
+  for (int n = 0; n < levels; ++n) {
+    std::vector<std::int32_t>& level_chosen = chosen[static_cast<std::size_t>(n)];
+    analysis.select(n, threshold, level_chosen);
+    for (std::int32_t i : level_chosen) result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
+  }
+  Features& out = result.features;
   analysis.assemble(chosen, out);
   out.info.entropy_threshold_requested = threshold;
   out.info.entropy_threshold_used = threshold;
@@ -65,31 +86,32 @@ struct Evaluated {
   HomographyResult homography;
 };
 
-Evaluated evaluate(const Features& a, const Features& b, const SweepOptions& sweep, const KernelTable& kernels) {
-  Evaluated result;
-  result.matches = match_descriptors(a.descriptors, b.descriptors, sweep.match, kernels);
+HomographyResult homography_of(const Features& a, const Features& b, const std::vector<Match>& matches,
+                               const RansacOptions& ransac) {
   std::vector<Point2> src, dst;
-  src.reserve(result.matches.size());
-  dst.reserve(result.matches.size());
-  for (const Match& m : result.matches) {
+  src.reserve(matches.size());
+  dst.reserve(matches.size());
+  for (const Match& m : matches) {
     const Keypoint& ka = a.keypoints[static_cast<std::size_t>(m.query)];
     const Keypoint& kb = b.keypoints[static_cast<std::size_t>(m.train)];
     src.push_back({ka.x, ka.y});
     dst.push_back({kb.x, kb.y});
   }
-  result.homography = find_homography_ransac(src, dst, sweep.ransac);
-  return result;
+  return find_homography_ransac(src, dst, ransac);
 }
 
-}  // namespace
-
-AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
-                               const SweepOptions& sweep, const KernelTable& kernels) {
+void check_sweep_inputs(const ExtractorOptions& options, const SweepOptions& sweep) {
   options.validate();
   sweep.validate();
   if (options.entropy == EntropyMeasure::off)
     throw Error("adapt needs an entropy measure (histogram or intensity), got entropy = off");
+}
 
+}  // namespace
+
+SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
+                             const KernelTable& kernels) {
+  check_sweep_inputs(options, sweep);
   // The two images are independent until matching: each is analysed, and later selected at every
   // threshold, on its own thread.
   const parallel::Scheduler scheduler(options.threads);
@@ -99,36 +121,61 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     else analyse(analysis_b, b, options, kernels, sweep.first_threshold);
   });
 
-  AdaptResult result;
+  SweepFeatures result;
   result.image_entropy_bits = analysis_a.image_entropy_bits();
   // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
   const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep.step)));
 
   // Selection and description share the memo of an analysis: serial per image, the two images
-  // side by side. Matching and RANSAC, the expensive part, run per threshold in parallel into
-  // their own slots.
-  std::vector<Features> features_a(static_cast<std::size_t>(cycles)), features_b(static_cast<std::size_t>(cycles));
+  // side by side.
+  result.a.resize(static_cast<std::size_t>(cycles));
+  result.b.resize(static_cast<std::size_t>(cycles));
   scheduler.for_each(2, [&](int image) {
     FrameAnalysis& analysis = image == 0 ? analysis_a : analysis_b;
-    std::vector<Features>& features = image == 0 ? features_a : features_b;
+    std::vector<ThresholdFeatures>& features = image == 0 ? result.a : result.b;
+    const std::vector<std::int32_t> id_offsets = level_id_offsets(analysis);
     std::vector<std::vector<std::int32_t>> chosen;
     for (int c = 0; c < cycles; ++c)
-      features_at(analysis, sweep.first_threshold + sweep.step * c, chosen, features[static_cast<std::size_t>(c)]);
+      features_at(analysis, sweep.first_threshold + sweep.step * c, id_offsets, chosen, features[static_cast<std::size_t>(c)]);
   });
+  return result;
+}
+
+AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
+                               const SweepOptions& sweep, const KernelTable& kernels) {
+  check_sweep_inputs(options, sweep);
+  SweepFeatures features = sweep_features(a, b, options, sweep, kernels);
+  std::vector<ThresholdFeatures>& features_a = features.a;
+  std::vector<ThresholdFeatures>& features_b = features.b;
+  const int cycles = static_cast<int>(features_a.size());
+
+  AdaptResult result;
+  result.image_entropy_bits = features.image_entropy_bits;
   // Low thresholds often keep every block: a threshold whose two feature sets equal the previous
   // one's has the same matches and model, so only the first of such a run is evaluated.
   std::vector<int> source(static_cast<std::size_t>(cycles));
   std::vector<int> distinct;
   for (int c = 0; c < cycles; ++c) {
     const std::size_t i = static_cast<std::size_t>(c);
-    const bool same = c > 0 && same_features(features_a[i], features_a[i - 1]) && same_features(features_b[i], features_b[i - 1]);
+    const bool same = c > 0 && same_features(features_a[i].features, features_a[i - 1].features) &&
+                      same_features(features_b[i].features, features_b[i - 1].features);
     source[i] = same ? source[i - 1] : c;
     if (!same) distinct.push_back(c);
   }
+  // Matching walks the distinct thresholds in order, each reusing the distances of the ones
+  // before (SweepMatcher: match_descriptors' result, not a brute force per threshold). RANSAC,
+  // independent per threshold, then runs in parallel into its own slots.
   std::vector<Evaluated> evaluated(static_cast<std::size_t>(cycles));
+  SweepMatcher matcher(sweep.match, kernels);
+  for (int c : distinct) {
+    const std::size_t i = static_cast<std::size_t>(c);
+    evaluated[i].matches = matcher.match(features_a[i].features.descriptors, features_a[i].ids,
+                                         features_b[i].features.descriptors, features_b[i].ids);
+  }
+  const parallel::Scheduler scheduler(options.threads);
   scheduler.for_each(static_cast<int>(distinct.size()), [&](int k) {
     const std::size_t i = static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]);
-    evaluated[i] = evaluate(features_a[i], features_b[i], sweep, kernels);
+    evaluated[i].homography = homography_of(features_a[i].features, features_b[i].features, evaluated[i].matches, sweep.ransac);
   });
   for (int c = 0; c < cycles; ++c)
     if (source[static_cast<std::size_t>(c)] != c) evaluated[static_cast<std::size_t>(c)] = evaluated[static_cast<std::size_t>(source[static_cast<std::size_t>(c)])];
@@ -138,10 +185,10 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     const std::size_t i = static_cast<std::size_t>(c);
     SweepPoint& point = result.curve[i];
     point.threshold = sweep.first_threshold + sweep.step * c;
-    point.kept_blocks = features_a[i].info.blocks_kept;
-    point.kept_blocks_b = features_b[i].info.blocks_kept;
-    point.keypoints_a = static_cast<int>(features_a[i].keypoints.size());
-    point.keypoints_b = static_cast<int>(features_b[i].keypoints.size());
+    point.kept_blocks = features_a[i].features.info.blocks_kept;
+    point.kept_blocks_b = features_b[i].features.info.blocks_kept;
+    point.keypoints_a = static_cast<int>(features_a[i].features.keypoints.size());
+    point.keypoints_b = static_cast<int>(features_b[i].features.keypoints.size());
     point.putative = static_cast<int>(evaluated[i].matches.size());
     point.inliers = evaluated[i].homography.found ? evaluated[i].homography.inliers : 0;
     point.cmr = point.putative > 0 ? static_cast<double>(point.inliers) / point.putative : 0.0;
@@ -158,8 +205,8 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
   const int chosen_index = result.chosen_index >= 0 ? result.chosen_index : 0;
   result.found = result.chosen_index >= 0;
   result.threshold = result.curve[static_cast<std::size_t>(chosen_index)].threshold;
-  result.features_a = std::move(features_a[static_cast<std::size_t>(chosen_index)]);
-  result.features_b = std::move(features_b[static_cast<std::size_t>(chosen_index)]);
+  result.features_a = std::move(features_a[static_cast<std::size_t>(chosen_index)].features);
+  result.features_b = std::move(features_b[static_cast<std::size_t>(chosen_index)].features);
   result.matches = std::move(evaluated[static_cast<std::size_t>(chosen_index)].matches);
   result.homography = std::move(evaluated[static_cast<std::size_t>(chosen_index)].homography);
   return result;

@@ -1,0 +1,91 @@
+#pragma once
+// Matching at every threshold of the adaptive sweep without a brute-force matrix per threshold.
+//
+// The sweep's thresholds select overlapping sets of the same features: from one threshold to the
+// next, a few of the 10^3 features of each image leave and a few come (graf: 4 M distances over
+// its 21 distinct thresholds instead of 19 M). The distance between two features never changes,
+// so each feature keeps a short list of its nearest neighbours in the other image's current set,
+// and a new threshold only computes the distances that involve a feature new to it. Every answer
+// is the one match_descriptors gives (same matches, same order, same tie-breaking): the lists are
+// exact prefixes of the brute-force order, and a list that ran out is recomputed in full.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "aief/match.hpp"
+#include "core/kernel_table.hpp"
+
+namespace aief {
+
+// A feature of the other image, by its index in the other image's current set.
+struct Neighbour {
+  int distance = 0;
+  std::int32_t index = 0;
+};
+
+// The order match_descriptors scans in: lower distance first, ties to the lower index.
+inline bool closer(Neighbour x, Neighbour y) {
+  return x.distance != y.distance ? x.distance < y.distance : x.index < y.index;
+}
+
+// The nearest neighbours of one feature, closest first. The entries are exactly the elements of
+// the other set that come no later than the last entry in `closer` order (a prefix of that
+// order); `complete` says the prefix is the whole set.
+struct NeighbourList {
+  static constexpr int kLength = 8;
+  std::array<Neighbour, kLength> entries{};
+  int count = 0;
+  bool complete = true;  // an empty list of an empty set is complete
+
+  // Learns one more element of the other set.
+  void offer(Neighbour neighbour);
+  // The other set changed: drops the elements that left it and renumbers the rest
+  // (new_index_of_old[i] is the new index of old element i, -1 when it left).
+  void renumber(const std::vector<std::int32_t>& new_index_of_old);
+  // Whether the list knows the first `wanted` elements of the other set (or all there are).
+  bool knows(int wanted) const { return count >= wanted || complete; }
+};
+
+class SweepMatcher {
+ public:
+  SweepMatcher(const MatchOptions& options, const KernelTable& kernels);
+
+  // match_descriptors(a, b, options), to the byte. ids_a[i] is the identity of a[i] (distinct,
+  // >= 0): a feature keeps its id and its descriptor at every call, so that distances computed at
+  // an earlier call stay valid. Features present at the previous call too are expected in the
+  // same relative order (the sweep's are: level, then raster order); if not, the lists are
+  // rebuilt from scratch, so the answer is exact either way.
+  std::vector<Match> match(const std::vector<Descriptor>& a, const std::vector<std::int32_t>& ids_a,
+                           const std::vector<Descriptor>& b, const std::vector<std::int32_t>& ids_b);
+
+  // Descriptor distances computed by the calls so far (for tests and benchmarks).
+  long long distances_computed() const { return distances_computed_; }
+
+ private:
+  // One image's current set: its ids, and its features' lists of neighbours in the other set.
+  struct Side {
+    std::vector<std::int32_t> ids;
+    std::vector<std::int32_t> index_of_id;       // index in the current set, -1 when absent
+    std::vector<NeighbourList> lists;
+    std::vector<std::int32_t> new_index_of_old;  // this call: where each previous element went
+    std::vector<std::uint8_t> is_new;            // this call: per element, new to the set
+    std::vector<std::int32_t> new_elements;      // this call: their indices, ascending
+  };
+
+  static bool renumber(Side& side, const std::vector<std::int32_t>& ids);
+  static void forget_previous(Side& side);
+  void update_lists(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b);
+  void recompute(NeighbourList& list, const Descriptor& query, const std::vector<Descriptor>& others);
+  const NeighbourList& list_knowing(Side& side, int index, int wanted, const std::vector<Descriptor>& own,
+                                    const std::vector<Descriptor>& others);
+
+  MatchOptions options_;
+  const KernelTable* kernels_;
+  bool mutual_;  // the cross check needs the lists of B too
+  Side a_, b_;
+  std::vector<std::uint16_t> row_;
+  std::vector<Descriptor> new_b_descriptors_;
+  long long distances_computed_ = 0;
+};
+
+}  // namespace aief
