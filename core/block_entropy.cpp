@@ -69,9 +69,12 @@ void accumulate_histogram_scalar(const std::uint8_t* data, std::ptrdiff_t stride
 double histogram_entropy_bits(const std::uint32_t* hist) {
   const std::uint64_t* table = c_log2_c_table();
   std::uint64_t n = 0, sum = 0;
-  for (int k = 0; k < 256; ++k) {
-    n += hist[k];
-    sum += c_log2_c(hist[k], table);
+  for (int k = 0; k < 256; ++k) n += hist[k];
+  if (n < kTableSize) {
+    // Every count is in the table (a block's histogram): a loop without branches.
+    for (int k = 0; k < 256; ++k) sum += table[hist[k]];
+  } else {
+    for (int k = 0; k < 256; ++k) sum += c_log2_c(hist[k], table);
   }
   return entropy_from_sums(n, sum);
 }
