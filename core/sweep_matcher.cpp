@@ -8,16 +8,11 @@
 
 namespace aief {
 
-// Invariant: entries = the elements of the other set up to the last entry in `closer` order, and
-// with `complete` every element of the set. An element after the last entry of a full or
-// incomplete list is not kept: it would sit after elements the list does not know.
-void NeighbourList::offer(Neighbour neighbour) {
+// Inserts in `closer` order; the last entry of a full list falls off, and a list that fills up
+// stops claiming completeness (see offer for why that keeps the prefix invariant).
+void NeighbourList::insert(Neighbour neighbour) {
   const bool full = count == kLength;
-  if ((full || !complete) && (count == 0 || !closer(neighbour, entries[static_cast<std::size_t>(count - 1)]))) {
-    complete = false;  // a full complete list now misses this element; an incomplete one stays so
-    return;
-  }
-  if (full) complete = false;  // the last entry falls off
+  if (full && !closer(neighbour, entries[static_cast<std::size_t>(kLength - 1)])) return;
   int at = full ? kLength - 1 : count;
   while (at > 0 && closer(neighbour, entries[static_cast<std::size_t>(at - 1)])) {
     entries[static_cast<std::size_t>(at)] = entries[static_cast<std::size_t>(at - 1)];
@@ -25,6 +20,7 @@ void NeighbourList::offer(Neighbour neighbour) {
   }
   entries[static_cast<std::size_t>(at)] = neighbour;
   if (!full) ++count;
+  if (count == kLength) complete = false;
 }
 
 // Dropping elements keeps a prefix a prefix (of the smaller set, ending at the last survivor),
@@ -103,15 +99,51 @@ void carry_lists(std::vector<NeighbourList>& lists, const std::vector<std::int32
 
 }  // namespace
 
+// Offers the pairs (query, trains[k]) at distances[k] to the query's list and, for the cross
+// check, to the train's list. A pair above both lists' bounds would be refused by both, so it is
+// skipped: the row is filtered a chunk at a time with the bounds of the moment (they only shrink).
+void SweepMatcher::offer_row(std::int32_t query, const std::uint16_t* distances, const std::vector<std::int32_t>& trains) {
+  constexpr int kChunk = 64;
+  NeighbourList& list = a_.lists[static_cast<std::size_t>(query)];
+  const int n = static_cast<int>(trains.size());
+  worth_offering_.resize(kChunk);
+  for (int begin = 0; begin < n; begin += kChunk) {
+    const int end = std::min(n, begin + kChunk);
+    const int query_bound = list.bound();
+    int worth = 0;
+    for (int k = begin; k < end; ++k) {
+      const int distance = distances[k];
+      const bool for_b = mutual_ && distance <= b_bounds_[static_cast<std::size_t>(trains[static_cast<std::size_t>(k)])];
+      worth_offering_[static_cast<std::size_t>(worth)] = k;
+      worth += (distance <= query_bound) | for_b;
+    }
+    for (int w = 0; w < worth; ++w) {
+      const int k = worth_offering_[static_cast<std::size_t>(w)];
+      const std::int32_t train = trains[static_cast<std::size_t>(k)];
+      list.offer({distances[k], train});
+      if (!mutual_) continue;
+      NeighbourList& train_list = b_.lists[static_cast<std::size_t>(train)];
+      train_list.offer({distances[k], query});
+      b_bounds_[static_cast<std::size_t>(train)] = train_list.bound();
+    }
+  }
+}
+
 // Offers each list exactly the pairs it has not seen: an old feature of A the new features of B,
 // a new feature of A every feature of B (and the same pairs, read the other way, to B's lists).
 // Old-old pairs were offered at an earlier call, when both features were there.
 void SweepMatcher::update_lists(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b) {
   carry_lists(a_.lists, a_.new_index_of_old, a.size(), b_.new_index_of_old);
-  if (mutual_) carry_lists(b_.lists, b_.new_index_of_old, b.size(), a_.new_index_of_old);
+  if (mutual_) {
+    carry_lists(b_.lists, b_.new_index_of_old, b.size(), a_.new_index_of_old);
+    b_bounds_.resize(b.size());
+    for (std::size_t j = 0; j < b.size(); ++j) b_bounds_[j] = b_.lists[j].bound();
+  }
 
   new_b_descriptors_.clear();
   for (std::int32_t j : b_.new_elements) new_b_descriptors_.push_back(b[static_cast<std::size_t>(j)]);
+  all_b_.resize(b.size());
+  std::iota(all_b_.begin(), all_b_.end(), 0);
   row_.resize(std::max(b.size(), new_b_descriptors_.size()));
   for (std::size_t i = 0; i < a.size(); ++i) {
     const bool all_of_b = a_.is_new[i] != 0;
@@ -120,13 +152,7 @@ void SweepMatcher::update_lists(const std::vector<Descriptor>& a, const std::vec
     const int n = static_cast<int>(train.size());
     kernels_->hamming_256_many(a[i].data(), train.front().data(), n, row_.data());
     distances_computed_ += n;
-    NeighbourList& list = a_.lists[i];
-    for (int k = 0; k < n; ++k) {
-      const std::int32_t j = all_of_b ? k : b_.new_elements[static_cast<std::size_t>(k)];
-      const int distance = row_[static_cast<std::size_t>(k)];
-      list.offer({distance, j});
-      if (mutual_) b_.lists[static_cast<std::size_t>(j)].offer({distance, static_cast<std::int32_t>(i)});
-    }
+    offer_row(static_cast<std::int32_t>(i), row_.data(), all_of_b ? all_b_ : b_.new_elements);
   }
 }
 

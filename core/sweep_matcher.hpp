@@ -30,20 +30,30 @@ inline bool closer(Neighbour x, Neighbour y) {
 
 // The nearest neighbours of one feature, closest first. The entries are exactly the elements of
 // the other set that come no later than the last entry in `closer` order (a prefix of that
-// order); `complete` says the prefix is the whole set.
+// order); `complete` says the prefix is the whole set. A full list never claims to be complete
+// (it might have cut an element off), which costs at most a recomputation, never exactness.
 struct NeighbourList {
   static constexpr int kLength = 8;
   std::array<Neighbour, kLength> entries{};
   int count = 0;
   bool complete = true;  // an empty list of an empty set is complete
 
-  // Learns one more element of the other set.
-  void offer(Neighbour neighbour);
+  // Learns one more element of the other set: kept when it ranks within the known prefix, or
+  // anywhere while the list is complete.
+  void offer(Neighbour neighbour) {
+    if (!complete && (count == 0 || !closer(neighbour, entries[static_cast<std::size_t>(count - 1)]))) return;
+    insert(neighbour);
+  }
+  // Distances above this are never kept (a cheap filter before offer).
+  int bound() const { return complete ? 256 : count == 0 ? -1 : entries[static_cast<std::size_t>(count - 1)].distance; }
   // The other set changed: drops the elements that left it and renumbers the rest
   // (new_index_of_old[i] is the new index of old element i, -1 when it left).
   void renumber(const std::vector<std::int32_t>& new_index_of_old);
   // Whether the list knows the first `wanted` elements of the other set (or all there are).
   bool knows(int wanted) const { return count >= wanted || complete; }
+
+ private:
+  void insert(Neighbour neighbour);
 };
 
 class SweepMatcher {
@@ -75,6 +85,7 @@ class SweepMatcher {
   static bool renumber(Side& side, const std::vector<std::int32_t>& ids);
   static void forget_previous(Side& side);
   void update_lists(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b);
+  void offer_row(std::int32_t query, const std::uint16_t* distances, const std::vector<std::int32_t>& trains);
   void recompute(NeighbourList& list, const Descriptor& query, const std::vector<Descriptor>& others);
   const NeighbourList& list_knowing(Side& side, int index, int wanted, const std::vector<Descriptor>& own,
                                     const std::vector<Descriptor>& others);
@@ -85,6 +96,9 @@ class SweepMatcher {
   Side a_, b_;
   std::vector<std::uint16_t> row_;
   std::vector<Descriptor> new_b_descriptors_;
+  std::vector<std::int32_t> all_b_;           // 0, 1, ..., |B| - 1
+  std::vector<int> b_bounds_;                 // bound() of each list of B, kept in step
+  std::vector<std::int32_t> worth_offering_;
   long long distances_computed_ = 0;
 };
 
