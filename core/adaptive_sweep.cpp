@@ -63,6 +63,17 @@ void features_at(FrameAnalysis& analysis, double threshold, const std::vector<st
   out.info.blocks_kept = analysis.blocks_kept(threshold);
 }
 
+// Whether thresholds F and G keep the same blocks on every level: then they select the same
+// features (the distribution and the descriptors depend on the kept blocks alone).
+bool same_blocks_kept(const FrameAnalysis& analysis, double f, double g) {
+  for (int n = 0; n < analysis.level_count(); ++n) {
+    const int blocks = analysis.level(n).geometry.grid.count();
+    for (int b = 0; b < blocks; ++b)
+      if (analysis.block_kept(n, b, f) != analysis.block_kept(n, b, g)) return false;
+  }
+  return true;
+}
+
 void analyse(FrameAnalysis& analysis, ImageView image, const ExtractorOptions& options,
              const KernelTable& kernels, double lowest_threshold) {
   analysis.start(image, options, kernels, Selections::many);
@@ -135,8 +146,18 @@ SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& o
     std::vector<ThresholdFeatures>& features = image == 0 ? result.a : result.b;
     const std::vector<std::int32_t> id_offsets = level_id_offsets(analysis);
     std::vector<std::vector<std::int32_t>> chosen;
-    for (int c = 0; c < cycles; ++c)
-      features_at(analysis, sweep.first_threshold + sweep.step * c, id_offsets, chosen, features[static_cast<std::size_t>(c)]);
+    for (int c = 0; c < cycles; ++c) {
+      const double threshold = sweep.first_threshold + sweep.step * c;
+      const double previous = sweep.first_threshold + sweep.step * (c - 1);
+      ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
+      if (c > 0 && same_blocks_kept(analysis, previous, threshold)) {
+        here = features[static_cast<std::size_t>(c - 1)];  // select() reads the threshold only through the mask
+        here.features.info.entropy_threshold_requested = threshold;
+        here.features.info.entropy_threshold_used = threshold;
+      } else {
+        features_at(analysis, threshold, id_offsets, chosen, here);
+      }
+    }
   });
   return result;
 }
