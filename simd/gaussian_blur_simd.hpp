@@ -1,115 +1,160 @@
 #pragma once
 // 7x7 Gaussian, vectorised: the contract of core/gaussian_blur.hpp, the same bytes.
 //
-// The filter is separable and exact in integers, so the passes may run in either order:
-// vertical first, v = sum_k w_k src[y + k - 3][x] <= 65280 fits u16; then horizontal. The
-// horizontal sum S = sum_j w_j v_j needs 24 bits, but with v = 256 a + b,
-//   (S + 32768) >> 16 == (A + (B >> 8) + 128) >> 8,  A = sum w_j a_j, B = sum w_j b_j,
-// and A, B and the bracket stay below 65536: everything runs in u16 lanes. Bytes are loaded as
-// u16 lanes and split into even and odd pixels (b & 255, b >> 8), so no widening instruction is
-// needed; the even and odd results are merged back the same way.
+// The filter is separable and exact in integers, so the passes may run in either order.
+// Vertical first, per column: v = sum_k w_k src[y + k - 3][x] <= 65280, in u16 lanes, stored
+// biased as the int16 v - 32768 (an xor of the top bit). Horizontal: pmaddwd multiplies pairs of
+// int16 and adds each pair into an int32 lane, so with the pairs (v[x-3], v[x-2]), (v[x-1],
+// v[x]), (v[x+1], v[x+2]), (v[x+3], -) against (w0, w1), (w2, w3), (w4, w5), (w6, 0):
+//   P = sum_t w_t (v_t - 32768) = S - 2^23   (the taps sum to 256),   |P| <= 2^23,
+//   dst = (S + 32768) >> 16 = (P + 2^23 + 2^15) >> 16,
+// every step an exact integer operation. A 32-bit lane loaded at v + x - 3 holds exactly the
+// pair (v[x-3], v[x-2]), so a register loaded there serves the even outputs x, x + 2, ... and
+// one loaded at v + x - 2 the odd ones; the two results interleave back into bytes.
+//
+// The mirror border: a column's vertical sum is the same wherever the column is used, so the
+// few columns left and right of the row are copies of the mirrored ones (BORDER_REFLECT_101).
 #include <cstdint>
+#include <type_traits>
 
 #include "core/gaussian_blur.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
 
+namespace blur_detail {
+
+// The register the kernel runs on: 128-bit (SSE4.1) or 256-bit (AVX2, also in the AVX-512
+// table). Templates on Arch, so every instruction set's copy is its own symbol.
+template <class Arch, bool kWide = std::is_base_of_v<xsimd::avx2, Arch>>
+struct Vec;
+
+template <class Arch>
+struct Vec<Arch, false> {
+  using V = __m128i;
+  static constexpr int kColumns = 8;  // u16 lanes; also the outputs of one horizontal step
+  static V columns(const std::uint8_t* p) { return _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))); }
+  static V load(const std::int16_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
+  static void store(std::int16_t* p, V v) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v); }
+  static V set16(int v) { return _mm_set1_epi16(static_cast<short>(v)); }
+  static V set32(int v) { return _mm_set1_epi32(v); }
+  static V add16(V a, V b) { return _mm_add_epi16(a, b); }
+  static V mul16(V a, V b) { return _mm_mullo_epi16(a, b); }
+  static V bias(V v) { return _mm_xor_si128(v, _mm_set1_epi16(static_cast<short>(0x8000))); }
+  static V madd(V a, V b) { return _mm_madd_epi16(a, b); }
+  static V add32(V a, V b) { return _mm_add_epi32(a, b); }
+  static V shift_down16(V v) { return _mm_srli_epi32(v, 16); }
+  // even = outputs x, x + 2, ...; odd = x + 1, x + 3, ... (0..255 in int32 lanes): 8 bytes.
+  static void store_outputs(std::uint8_t* out, V even, V odd) {
+    const V pairs = _mm_or_si128(even, _mm_slli_epi32(odd, 8));  // e | o << 8 per int32
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out), _mm_packus_epi32(pairs, pairs));
+  }
+};
+
+template <class Arch>
+struct Vec<Arch, true> {
+  using V = __m256i;
+  static constexpr int kColumns = 16;
+  static V columns(const std::uint8_t* p) { return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))); }
+  static V load(const std::int16_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+  static void store(std::int16_t* p, V v) { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
+  static V set16(int v) { return _mm256_set1_epi16(static_cast<short>(v)); }
+  static V set32(int v) { return _mm256_set1_epi32(v); }
+  static V add16(V a, V b) { return _mm256_add_epi16(a, b); }
+  static V mul16(V a, V b) { return _mm256_mullo_epi16(a, b); }
+  static V bias(V v) { return _mm256_xor_si256(v, _mm256_set1_epi16(static_cast<short>(0x8000))); }
+  static V madd(V a, V b) { return _mm256_madd_epi16(a, b); }
+  static V add32(V a, V b) { return _mm256_add_epi32(a, b); }
+  static V shift_down16(V v) { return _mm256_srli_epi32(v, 16); }
+  static void store_outputs(std::uint8_t* out, V even, V odd) {
+    const V pairs = _mm256_or_si256(even, _mm256_slli_epi32(odd, 8));
+    const V packed = _mm256_permute4x64_epi64(_mm256_packus_epi32(pairs, pairs), 0x08);  // lanes 0, 2
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm256_castsi256_si128(packed));
+  }
+};
+
+}  // namespace blur_detail
+
 template <class Arch>
 void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end) {
-  using U16 = xsimd::batch<std::uint16_t, Arch>;
-  constexpr int N = static_cast<int>(U16::size);  // pairs of pixels per batch
-  constexpr int kChunk = 512;                     // output pixels per chunk (even)
-  constexpr int kPairs = kChunk / 2 + 4 + 2 * N;  // v pairs a chunk needs, with room for a full last batch
+  using Ops = blur_detail::Vec<Arch>;
+  using V = typename Ops::V;
+  constexpr int L = Ops::kColumns;
+  constexpr int kChunk = 512;  // output pixels per chunk: its columns stay in L1
   const int width = src.width, height = src.height;
   const auto& w = kGaussian7Q8;
   const auto mirror = [](int i, int size) { return i < 0 ? -i : (i >= size ? 2 * size - 2 - i : i); };
+  // Biased vertical sums of a chunk's columns x0 - 4 .. x1 + 3.
+  alignas(64) std::int16_t column[kChunk + 8];
 
-  alignas(64) std::uint16_t ve[kPairs], vo[kPairs];      // v of even / odd pixels of the chunk
-  alignas(64) std::uint8_t tail[2 * N];                  // a last partial batch of output
-  const U16 low_byte(std::uint16_t(255)), half(std::uint16_t(128));
+  const V w0 = Ops::set16(w[0]), w1 = Ops::set16(w[1]), w2 = Ops::set16(w[2]), w3 = Ops::set16(w[3]);
+  const V pair01 = Ops::set32(w[0] | w[1] << 16), pair23 = Ops::set32(w[2] | w[3] << 16);
+  const V pair45 = Ops::set32(w[4] | w[5] << 16), pair6 = Ops::set32(w[6]);
+  const V rounding = Ops::set32((1 << 23) + (1 << 15));
 
   for (int y = y_begin; y < y_end; ++y) {
     const std::uint8_t* rows[7];
     for (int k = 0; k < 7; ++k) rows[k] = src.row(mirror(y + k - 3, height));
     std::uint8_t* out = dst.row(y - y_begin);
+    const auto vertical_scalar = [&](int x) {
+      std::uint32_t v = 0;
+      for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][x];
+      return static_cast<std::int16_t>(v ^ 0x8000u);
+    };
     for (int x0 = 0; x0 < width; x0 += kChunk) {
       const int x1 = x0 < width - kChunk ? x0 + kChunk : width;
-      const int origin = x0 - 4;              // pixel of pair 0's even half
-      const int pairs = (x1 - x0) / 2 + 5;    // pairs whose v the outputs read (odd widths: one more)
-      // Vertical pass, pairs [0, pairs) plus the rest of their last batch. Batches whose 2N source
-      // pixels lie in the row run as vectors. At the row's ends a vertical sum is the same for a
-      // column and its mirror image, so the vector batch moves inside the row and only the few
-      // pixels it leaves out are summed one by one (mirrored; beyond width + 2 they only feed
-      // outputs that are never stored, and are 0).
-      const auto vector_batch = [&](int i) {  // pairs i .. i + N - 1, pixels origin + 2i ..
-        const int p = origin + 2 * i;
-        // Symmetric taps: rows k and 6 - k share a weight, add them first (<= 510, no overflow).
-        const auto load = [&](int k) { return U16::load_unaligned(reinterpret_cast<const std::uint16_t*>(rows[k] + p)); };
-        const U16 centre = load(3);
-        U16 even = (centre & low_byte) * U16(w[3]), odd = (centre >> 8) * U16(w[3]);
-        for (int k = 0; k < 3; ++k) {
-          const U16 top = load(k), bottom = load(6 - k);
-          const U16 weight(w[static_cast<std::size_t>(k)]);
-          even += ((top & low_byte) + (bottom & low_byte)) * weight;
-          odd += ((top >> 8) + (bottom >> 8)) * weight;
-        }
-        even.store_unaligned(ve + i);
-        odd.store_unaligned(vo + i);
+      const int origin = x0 - 4;  // column[i] is the vertical sum of column origin + i
+
+      // Vertical pass over the columns inside the row, [c0, c1); symmetric taps: rows k and
+      // 6 - k share a weight, added first (<= 510).
+      const int c0 = x0 > 3 ? x0 - 3 : 0, c1 = x1 + 3 < width ? x1 + 3 : width;
+      const auto vertical = [&](int c) {
+        const V sum = Ops::add16(
+            Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[0] + c), Ops::columns(rows[6] + c)), w0),
+                       Ops::mul16(Ops::add16(Ops::columns(rows[1] + c), Ops::columns(rows[5] + c)), w1)),
+            Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[2] + c), Ops::columns(rows[4] + c)), w2),
+                       Ops::mul16(Ops::columns(rows[3] + c), w3)));
+        Ops::store(column + (c - origin), Ops::bias(sum));
       };
-      const auto scalar_pixels = [&](int q_begin, int q_end) {  // pixels [q_begin, q_end)
-        for (int q = q_begin; q < q_end; ++q) {
-          const int j = (q - origin) / 2;
-          if (j >= kPairs) break;
-          std::uint32_t v = 0;
-          if (q < width + 3)
-            for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][mirror(q, width)];
-          ((q - origin) % 2 ? vo : ve)[j] = static_cast<std::uint16_t>(v);
-        }
-      };
-      const bool vector_edges = width >= 2 * N + 8;
-      for (int i = 0; i < pairs; i += N) {
-        const int p = origin + 2 * i;
-        if (p >= 0 && p + 2 * N <= width) {
-          vector_batch(i);
-        } else if (vector_edges && p < 0) {  // the left end: origin = -4, pixels -4 .. -1 mirror 4 .. 1
-          vector_batch(i - p / 2);
-          scalar_pixels(p, 0);
-        } else if (const int room = width - 2 * N - origin; vector_edges && p > 0 && room >= 0) {
-          vector_batch(room / 2);  // the right end: the last batch that fits, then what it leaves out
-          scalar_pixels(origin + 2 * (room / 2) + 2 * N, p + 2 * N);
-        } else {
-          scalar_pixels(p, p + 2 * N);
-        }
+      int c = c0;
+      for (; c + L <= c1; c += L) vertical(c);
+      if (c < c1) {
+        if (c1 - c0 >= L) vertical(c1 - L);  // one overlapping last batch
+        else for (; c < c1; ++c) column[c - origin] = vertical_scalar(c);
       }
-      // Horizontal pass: output pixel x0 + 2j reads v(x0 + 2j - 3 .. + 3) = vo[j], ve[j+1], vo[j+1],
-      // ve[j+2], vo[j+2], ve[j+3], vo[j+3]; the odd one x0 + 2j + 1 reads ve[j+1] .. ve[j+4].
-      for (int j = 0; 2 * j < x1 - x0; j += N) {
-        // Tap t of the even output is pixel x0 + 2j + t - 3 (even t from vo, odd t from ve); of
-        // the odd output, one pixel further. Taps t and 6 - t share a weight: add their bytes first.
-        const auto even_tap = [&](int t) { return U16::load_unaligned(t % 2 == 0 ? vo + j + t / 2 : ve + j + (t + 1) / 2); };
-        const auto odd_tap = [&](int t) { return U16::load_unaligned(t % 2 == 0 ? ve + j + t / 2 + 1 : vo + j + (t + 1) / 2); };
-        const U16 centre_weight(w[3]);
-        const U16 even_centre = even_tap(3), odd_centre = odd_tap(3);
-        U16 a_even = (even_centre >> 8) * centre_weight, b_even = (even_centre & low_byte) * centre_weight;
-        U16 a_odd = (odd_centre >> 8) * centre_weight, b_odd = (odd_centre & low_byte) * centre_weight;
-        for (int t = 0; t < 3; ++t) {
-          const U16 weight(w[static_cast<std::size_t>(t)]);
-          const U16 e0 = even_tap(t), e1 = even_tap(6 - t), o0 = odd_tap(t), o1 = odd_tap(6 - t);
-          a_even += ((e0 >> 8) + (e1 >> 8)) * weight;
-          b_even += ((e0 & low_byte) + (e1 & low_byte)) * weight;
-          a_odd += ((o0 >> 8) + (o1 >> 8)) * weight;
-          b_odd += ((o0 & low_byte) + (o1 & low_byte)) * weight;
-        }
-        const U16 even_out = (a_even + (b_even >> 8) + half) >> 8;
-        const U16 odd_out = (a_odd + (b_odd >> 8) + half) >> 8;
-        const U16 merged = even_out | (odd_out << 8);
-        const int x = x0 + 2 * j;
-        if (x + 2 * N <= x1) {
-          merged.store_unaligned(reinterpret_cast<std::uint16_t*>(out + x));
+      // The other columns the horizontal loads read, x0 - 4 .. x1 + 3 (x0 - 4 and x1 + 3 only
+      // under a zero weight, but defined all the same): mirror images outside the row.
+      const auto other_column = [&](int q) -> std::int16_t {
+        if (q >= 0 && q < width) return vertical_scalar(q);
+        if (q >= -3 && q < width + 3) return column[mirror(q, width) - origin];
+        return 0;
+      };
+      for (int q = origin; q < c0; ++q) column[q - origin] = other_column(q);
+      for (int q = c1; q < x1 + 4; ++q) column[q - origin] = other_column(q);
+
+      // Horizontal pass, L outputs a step: L / 2 even ones and L / 2 odd ones.
+      const auto horizontal = [&](const std::int16_t* v) {  // v = column of the output's tap 0
+        return Ops::shift_down16(Ops::add32(
+            Ops::add32(Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
+                       Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6))),
+            rounding));
+      };
+      const auto step = [&](int x) {
+        const std::int16_t* v = column + (x - 3 - origin);
+        Ops::store_outputs(out + x, horizontal(v), horizontal(v + 1));
+      };
+      int x = x0;
+      for (; x + L <= x1; x += L) step(x);
+      if (x < x1) {
+        if (x1 - x0 >= L) {
+          step(x1 - L);  // one overlapping last step: the same bytes rewritten
         } else {
-          merged.store_unaligned(reinterpret_cast<std::uint16_t*>(tail));
-          for (int i = 0; i < x1 - x; ++i) out[x + i] = tail[i];
+          for (; x < x1; ++x) {
+            const std::int16_t* v = column + (x - 3 - origin);
+            std::int32_t p = 0;
+            for (int t = 0; t < 7; ++t) p += w[static_cast<std::size_t>(t)] * v[t];
+            out[x] = static_cast<std::uint8_t>((p + (1 << 23) + (1 << 15)) >> 16);
+          }
         }
       }
     }
