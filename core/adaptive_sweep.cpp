@@ -184,19 +184,23 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     if (!same) distinct.push_back(c);
   }
   // Matching walks the distinct thresholds in order, each reusing the distances of the ones
-  // before (SweepMatcher: match_descriptors' result, not a brute force per threshold). RANSAC,
-  // independent per threshold, then runs in parallel into its own slots.
+  // before (SweepMatcher: match_descriptors' result, not a brute force per threshold), then fits
+  // the threshold's model. With several threads the walk is cut into one run of consecutive
+  // thresholds per thread, each with its own matcher (whose first threshold is matched in full):
+  // the same answers, each slot written by one run.
   std::vector<Evaluated> evaluated(static_cast<std::size_t>(cycles));
-  SweepMatcher matcher(sweep.match, kernels);
-  for (int c : distinct) {
-    const std::size_t i = static_cast<std::size_t>(c);
-    evaluated[i].matches = matcher.match(features_a[i].features.descriptors, features_a[i].ids,
-                                         features_b[i].features.descriptors, features_b[i].ids);
-  }
   const parallel::Scheduler scheduler(options.threads);
-  scheduler.for_each(static_cast<int>(distinct.size()), [&](int k) {
-    const std::size_t i = static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]);
-    evaluated[i].homography = homography_of(features_a[i].features, features_b[i].features, evaluated[i].matches, sweep.ransac);
+  const int distinct_count = static_cast<int>(distinct.size());
+  const int runs = std::min(scheduler.concurrency(), distinct_count);
+  scheduler.for_each(runs, [&](int run) {
+    SweepMatcher matcher(sweep.match, kernels);
+    for (int k = distinct_count * run / runs; k < distinct_count * (run + 1) / runs; ++k) {
+      const std::size_t i = static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]);
+      evaluated[i].matches = matcher.match(features_a[i].features.descriptors, features_a[i].ids,
+                                           features_b[i].features.descriptors, features_b[i].ids);
+      evaluated[i].homography = homography_of(features_a[i].features, features_b[i].features, evaluated[i].matches,
+                                              sweep.ransac);
+    }
   });
   for (int c = 0; c < cycles; ++c)
     if (source[static_cast<std::size_t>(c)] != c) evaluated[static_cast<std::size_t>(c)] = evaluated[static_cast<std::size_t>(source[static_cast<std::size_t>(c)])];
