@@ -70,7 +70,8 @@ def instruction_lines(build):
     for line in annotated.splitlines():
         match = re.match(r"\s*([\d,]+)\s+\([^)]*\)\s+\S*?:(.*aief::.*?)\s+\[", line)
         if match and "aief::io::" not in match.group(2) and "aief::cli::" not in match.group(2):
-            name = re.sub(r"\(.*", "", match.group(2)).replace("void ", "").replace("int ", "")
+            name = match.group(2).replace("(anonymous namespace)", "{anonymous}")
+            name = re.sub(r"\(.*", "", name).replace("void ", "").replace("int ", "")
             rows.append((int(match.group(1).replace(",", "")), name))
     total = sum(count for count, _ in rows)
     lines += ["| function | instructions | share of the engine |", "|---|---|---|"]
