@@ -14,6 +14,7 @@
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
 inline U8<Arch> arc9_best(const U8<Arch> s[16]) {
@@ -99,4 +100,5 @@ int fast9_local_maxima_row(const std::uint8_t* above, const std::uint8_t* row, c
   return count;
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

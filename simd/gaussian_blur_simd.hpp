@@ -21,6 +21,7 @@
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 namespace blur_detail {
 
@@ -161,4 +162,5 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end)
   }
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

@@ -9,6 +9,7 @@
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
 void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int n_train, std::uint16_t* distances) {
@@ -36,4 +37,5 @@ void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int 
   }
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

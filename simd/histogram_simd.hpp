@@ -10,6 +10,7 @@
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
 void accumulate_histogram(const std::uint8_t* data, std::ptrdiff_t stride, int width, int height, std::uint32_t* hist) {
@@ -34,4 +35,5 @@ void accumulate_histogram(const std::uint8_t* data, std::ptrdiff_t stride, int w
   }
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

@@ -11,6 +11,7 @@
 #include "simd/rbrief_simd.hpp"
 
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 // Every kernel of the table, at the width of Arch.
 template <class Arch>
@@ -29,4 +30,5 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   return table;
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

@@ -10,6 +10,7 @@
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
 void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* m10, std::int32_t* m01) {
@@ -69,4 +70,5 @@ void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* 
   }
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

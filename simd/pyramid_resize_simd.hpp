@@ -21,6 +21,7 @@
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 namespace resize_detail {
 
@@ -97,4 +98,5 @@ void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageVie
   }
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

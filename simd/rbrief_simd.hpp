@@ -10,6 +10,7 @@
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
 void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* angle_deg, int n, std::uint8_t* descriptors) {
@@ -49,4 +50,5 @@ void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* a
   }
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

@@ -8,7 +8,17 @@
 #include <immintrin.h>
 #include <xsimd/xsimd.hpp>
 
+// Each kernel unit (simd/kernels_<set>.cpp) is compiled with its own instruction-set flags, and
+// simd/CMakeLists.txt names it in AIEF_SIMD_TARGET: every kernel lives in an inline namespace of
+// that name. Without it, the 256-bit kernels the AVX-512 unit instantiates (compiled with
+// AVX-512 flags) and those of the AVX2 unit would be one symbol, and the linker could hand the
+// AVX2 table code that runs only on AVX-512 CPUs.
+#ifndef AIEF_SIMD_TARGET
+#error "simd kernels are compiled only in the per-instruction-set units, simd/kernels_<set>.cpp"
+#endif
+
 namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
 using U8 = xsimd::batch<std::uint8_t, Arch>;
@@ -41,4 +51,5 @@ inline bool any_nonzero(const U8<Arch>& v) {
   }
 }
 
+}  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd
