@@ -164,8 +164,7 @@ SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& o
 
 AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
                                const SweepOptions& sweep, const KernelTable& kernels) {
-  check_sweep_inputs(options, sweep);
-  SweepFeatures features = sweep_features(a, b, options, sweep, kernels);
+  SweepFeatures features = sweep_features(a, b, options, sweep, kernels);  // validates the inputs first
   std::vector<ThresholdFeatures>& features_a = features.a;
   std::vector<ThresholdFeatures>& features_b = features.b;
   const int cycles = static_cast<int>(features_a.size());

@@ -53,7 +53,6 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
   options_ = options;
   selections_ = selections;
   kernels_ = &kernels;
-  input_ = image;
   width_ = image.width;
   height_ = image.height;
   image_entropy_bits_ = 0;

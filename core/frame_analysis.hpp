@@ -113,7 +113,6 @@ class FrameAnalysis {
   ExtractorOptions options_;
   Selections selections_ = Selections::one;
   const KernelTable* kernels_ = nullptr;
-  ImageView input_;
   int width_ = 0, height_ = 0;
   std::vector<LevelState> levels_;
   double image_entropy_bits_ = 0;
