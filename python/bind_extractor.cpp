@@ -1,5 +1,6 @@
 // aief.Extractor: ExtractorOptions as keyword arguments (defaults read from the C++ struct),
 // extract() with the GIL released, and the options back as a dict.
+#include <algorithm>
 #include <optional>
 #include <string>
 
@@ -7,6 +8,7 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "io/image_io.hpp"
 #include "python/bindings.hpp"
 #include "python/extraction_rendezvous.hpp"
 #include "python/py_extractor.hpp"
@@ -120,6 +122,20 @@ void bind_extractor(py::module_& m) {
            "The GIL is released meanwhile.")
       .def_property_readonly("options", [](const PyExtractor& e) { return options_dict(e.options()); })
       .def_property_readonly("kernel_name", &PyExtractor::kernel_name);
+  m.def(
+      "read_image",
+      [](const std::string& path) {
+        GrayImage image;
+        {
+          py::gil_scoped_release no_gil;
+          image = io::read_gray_image(path);
+        }
+        py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(image.height()), static_cast<py::ssize_t>(image.width())});
+        std::copy(image.data(), image.data() + static_cast<std::size_t>(image.width()) * image.height(), out.mutable_data());
+        return out;
+      },
+      py::arg("path"),
+      "An image file as the aief CLI reads it: 2-D uint8 gray (colour by OpenCV's BGR2GRAY, 16-bit divided by 256)");
   m.def("default_options", [] { return options_dict(ExtractorOptions{}); }, "The C++ ExtractorOptions defaults, as a dict");
 }
 

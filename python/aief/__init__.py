@@ -8,9 +8,10 @@ RANSAC homography and the adaptive threshold sweep, on numpy arrays.
     features.descriptors  # N x 32 uint8
 """
 from aief._aief import (AdaptResult, Error, Extractor, Features, __version__, adapt, default_options,
-                        find_homography, match)
+                        find_homography, match, read_image)
 
-__all__ = ["AdaptResult", "Error", "Extractor", "Features", "adapt", "default_options", "find_homography", "match"]
+__all__ = ["AdaptResult", "Error", "Extractor", "Features", "adapt", "default_options", "find_homography", "match",
+           "read_image"]
 
 
 def _detect_and_compute(self, image, mask=None):
