@@ -61,6 +61,7 @@ TEST(Options, EveryInvalidValueIsNamed) {
       {"entropy", [](ExtractorOptions& o) { o.entropy = static_cast<EntropyMeasure>(9); }},
       {"kernels", [](ExtractorOptions& o) { o.kernels = static_cast<KernelSet>(42); }},
       {"max_image_pixels", [](ExtractorOptions& o) { o.max_image_pixels = 0; }},
+      {"max_image_pixels", [](ExtractorOptions& o) { o.max_image_pixels = kLargestMaxImagePixels + 1; }},
   };
   (void)nan;
   (void)inf;
@@ -68,6 +69,18 @@ TEST(Options, EveryInvalidValueIsNamed) {
     const std::string message = error_of(c.mutate);
     EXPECT_NE(message.find(c.field), std::string::npos) << "expected an error naming " << c.field << ", got '" << message << "'";
   }
+}
+
+TEST(Options, ScaleFactorIsCheckedAsTheFloatThePyramidUses) {
+  // 1.00000001 is > 1 as a double but 1.0 as a float: before, it passed and every level budget
+  // became 0/0 ("per octave 0 0 0 0 0 0 0 1000").
+  const std::string message = error_of([](ExtractorOptions& o) { o.scale_factor = 1.00000001; });
+  EXPECT_NE(message.find("scale_factor"), std::string::npos) << message;
+  EXPECT_NE(message.find("1 as a float"), std::string::npos) << message;
+  // The smallest scale above 1 in float is accepted, and so is 4.
+  EXPECT_EQ(error_of([](ExtractorOptions& o) { o.scale_factor = static_cast<double>(std::nextafter(1.0f, 2.0f)); }), "");
+  EXPECT_EQ(error_of([](ExtractorOptions& o) { o.scale_factor = 4.0; }), "");
+  EXPECT_NE(error_of([](ExtractorOptions& o) { o.scale_factor = 4.001; }).find("scale_factor"), std::string::npos);
 }
 
 TEST(Options, NamesRoundTrip) {

@@ -20,6 +20,7 @@
 #include "io/hdf5_features.hpp"
 #endif
 #include "io/image_io.hpp"
+#include "parallel/tsan_handoff.hpp"
 #include "tools/progress.hpp"
 
 namespace aief::cli {
@@ -27,6 +28,16 @@ namespace aief::cli {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The pipeline's hand-offs, which TBB makes inside libtbb, unseen by ThreadSanitizer
+// (parallel/tsan_handoff.hpp): each serial stage runs one call at a time, an item is listed
+// before it is extracted and extracted before it is written. Globals: a stage must not read its
+// closure before the acquire.
+const char kListStage = 0, kExtractStage = 0, kWriteStage = 0;
+struct HandoffOnExit {
+  const char* tag;
+  ~HandoffOnExit() { parallel::handoff_release(tag); }
+};
 
 bool is_image_name(const fs::path& path) {
   std::string ext = path.extension().string();
@@ -120,6 +131,8 @@ BatchSummary run_batch(const BatchSettings& settings) {
         // Next image: serial, in order; an image whose output is complete is skipped.
         tbb::make_filter<void, std::shared_ptr<Item>>(tbb::filter_mode::serial_in_order,
                                                        [&](tbb::flow_control& control) -> std::shared_ptr<Item> {
+                                                         parallel::handoff_acquire(&kListStage);
+                                                         const HandoffOnExit release_listed{&kListStage};
                                                          if (next >= inputs.size()) {
                                                            control.stop();
                                                            return nullptr;
@@ -138,6 +151,8 @@ BatchSummary run_batch(const BatchSettings& settings) {
             // Read (decoding dominates) and extract: parallel.
             tbb::make_filter<std::shared_ptr<Item>, std::shared_ptr<Item>>(tbb::filter_mode::parallel,
                                                                           [&](std::shared_ptr<Item> item) {
+                                                                            parallel::handoff_acquire(&kListStage);
+                                                                            const HandoffOnExit release_extracted{&kExtractStage};
                                                                             if (item->skip) return item;
                                                                             std::unique_ptr<Extractor>& extractor = extractors.local();
                                                                             if (!extractor) extractor = std::make_unique<Extractor>(per_thread);
@@ -152,6 +167,9 @@ BatchSummary run_batch(const BatchSettings& settings) {
                                                                           }) &
             // Write: serial (atomic rename), tally, progress.
             tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_out_of_order, [&](std::shared_ptr<Item> item) {
+              parallel::handoff_acquire(&kExtractStage);
+              parallel::handoff_acquire(&kWriteStage);
+              const HandoffOnExit release_written{&kWriteStage};
               if (item->skip) {
                 ++summary.skipped;
               } else if (item->error.empty()) {
@@ -175,6 +193,8 @@ BatchSummary run_batch(const BatchSettings& settings) {
               progress.step(h5 ? item->name : fs::path(item->output).filename().string());
             }));
   });
+  parallel::handoff_acquire(&kExtractStage);
+  parallel::handoff_acquire(&kWriteStage);
   progress.finish();
   return summary;
 }
