@@ -69,25 +69,44 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
 }
 
 template <class Arch>
-int fast9_local_maxima_row(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below, int x_begin,
-                           int x_end, std::int32_t* xs) {
-  constexpr int N = static_cast<int>(U8<Arch>::size);
-  int count = 0;
-  int x = x_begin;
-  for (; x + N <= x_end; x += N) {
+void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
+                             int x_begin, int x_end, int strong_threshold, std::uint64_t* maxima,
+                             std::uint64_t* strong) {
+  constexpr int N = static_cast<int>(U8<Arch>::size);  // 16, 32 or 64: a batch never straddles a word
+  if (x_end - x_begin < N) {
+    fast9_local_maxima_bits_scalar(above, row, below, x_begin, x_end, strong_threshold, maxima, strong);
+    return;
+  }
+  const int words = fast9_maxima_words(x_end - x_begin);
+  for (int w = 0; w < words; ++w) maxima[w] = strong[w] = 0;
+  const U8<Arch> zero(std::uint8_t(0));
+  // Strong where s >= threshold, i.e. s - (threshold - 1) (saturating) is not 0.
+  const int strong_floor = strong_threshold < 1 ? 0 : strong_threshold > 256 ? 255 : strong_threshold - 1;
+  const U8<Arch> below_strong(static_cast<std::uint8_t>(strong_floor));
+  const auto batch_at = [&](int x) {
     // s is a strict maximum where s - max(neighbours) (saturating) is not 0.
     const U8<Arch> s = U8<Arch>::load_unaligned(row + x);
     U8<Arch> neighbours = U8<Arch>::load_unaligned(row + x - 1);
-    if (!any_nonzero<Arch>(xsimd::ssub(s, neighbours))) continue;  // most of a score row is 0
+    if (!any_nonzero<Arch>(xsimd::ssub(s, neighbours))) return;  // most of a score row is 0
     neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(row + x + 1));
     for (const std::uint8_t* line : {above, below})
       for (int dx = -1; dx <= 1; ++dx) neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(line + x + dx));
-    const auto keep = xsimd::ssub(s, neighbours) != U8<Arch>(std::uint8_t(0));
-    for (std::uint64_t bits = lane_bits<Arch>(keep); bits != 0; bits &= bits - 1)
-      xs[count++] = x + __builtin_ctzll(bits);  // a builtin: no shared inline std:: code in arch TUs
-  }
-  if (x < x_end) count += fast9_local_maxima_row_scalar(above, row, below, x, x_end, xs + count);
-  return count;
+    const U8<Arch> margin = xsimd::ssub(s, neighbours);
+    const std::uint64_t kept = lane_bits<Arch>(margin != zero);
+    if (kept == 0) return;
+    const std::uint64_t kept_strong = kept & lane_bits<Arch>(xsimd::ssub(s, below_strong) != zero);
+    // OR, not store: the overlapping last batch rewrites bits already set, with the same values.
+    const int i = x - x_begin;
+    maxima[i >> 6] |= kept << (i & 63);
+    strong[i >> 6] |= kept_strong << (i & 63);
+    if ((i & 63) + N > 64) {
+      maxima[(i >> 6) + 1] |= kept >> (64 - (i & 63));
+      strong[(i >> 6) + 1] |= kept_strong >> (64 - (i & 63));
+    }
+  };
+  int x = x_begin;
+  for (; x + N <= x_end; x += N) batch_at(x);
+  if (x < x_end) batch_at(x_end - N);
 }
 
 }  // namespace AIEF_SIMD_TARGET
