@@ -189,16 +189,6 @@ void FrameAnalysis::detect(int n, double threshold) {
   }
 }
 
-namespace {
-
-// Bits [begin, end) of a word (0 <= begin < end <= 64).
-std::uint64_t bit_range(int begin, int end) {
-  const std::uint64_t below_end = end == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << end) - 1;
-  return below_end & ~((std::uint64_t{1} << begin) - 1);
-}
-
-}  // namespace
-
 void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end, int score_top) {
   const BlockGrid& grid = level.geometry.grid;
   const int x_begin = grid.col_edges[static_cast<std::size_t>(c_begin)], x_end = grid.col_edges[static_cast<std::size_t>(c_end)];
@@ -230,22 +220,35 @@ void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end,
     const int begin = grid.col_edges[static_cast<std::size_t>(c)] - x_begin;
     const int end = grid.col_edges[static_cast<std::size_t>(c) + 1] - x_begin;
     const int k_first = begin / 64, k_last = (end - 1) / 64;
-    const auto mask_of = [&](int k) {
-      return bit_range(k == k_first ? begin % 64 : 0, k == k_last ? end - 64 * k : 64);
+    const std::uint64_t first_mask = ~std::uint64_t{0} << (begin % 64);
+    const std::uint64_t last_mask = ~std::uint64_t{0} >> (63 - (end - 1) % 64);
+    const auto block_bits = [&](const std::uint64_t* words_of_row, int k) {
+      std::uint64_t word = words_of_row[k];
+      if (k == k_first) word &= first_mask;
+      if (k == k_last) word &= last_mask;
+      return word;
     };
     bool any_strong = false;
-    for (int k = k_first; k <= k_last; ++k) any_strong = any_strong || (strong_any[k] & mask_of(k)) != 0;
+    for (int k = k_first; k <= k_last; ++k) any_strong = any_strong || block_bits(strong_any, k) != 0;
     const int strong_at = options_.fast_threshold;
     const std::size_t first = level.candidates.size();
-    for (int y = y0; y < y1; ++y) {
-      const std::uint64_t* maxima = maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words;
+    const auto take = [&](std::uint64_t word, int y, int k) {
       const std::uint8_t* row = scores.row(y - score_top);
-      for (int k = k_first; k <= k_last; ++k)
-        for (std::uint64_t word = maxima[k] & mask_of(k); word != 0; word &= word - 1) {
-          const int x = x_begin + 64 * k + std::countr_zero(word);
-          if (any_strong && row[x] < strong_at) continue;
-          level.candidates.push_back({x, y, row[x]});
-        }
+      for (; word != 0; word &= word - 1) {
+        const int x = x_begin + 64 * k + std::countr_zero(word);
+        if (any_strong && row[x] < strong_at) continue;
+        level.candidates.push_back({x, y, row[x]});
+      }
+    };
+    if (k_first == k_last) {  // the usual block, inside one word: one masked word per row
+      const std::uint64_t mask = first_mask & last_mask;
+      const std::uint64_t* maxima = maxima_rows + k_first;
+      for (int y = y0; y < y1; ++y, maxima += words)
+        if (const std::uint64_t word = *maxima & mask) take(word, y, k_first);
+    } else {
+      for (int y = y0; y < y1; ++y)
+        for (int k = k_first; k <= k_last; ++k)
+          take(block_bits(maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words, k), y, k);
     }
     level.block_detected[static_cast<std::size_t>(block)] = 1;
     level.block_candidates[static_cast<std::size_t>(block)] = {static_cast<std::int32_t>(first),

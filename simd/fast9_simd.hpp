@@ -23,18 +23,19 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 // Lowest (Lower = true) or highest value of the best arc of 9: max over arcs of the arc's min,
-// or min over arcs of the arc's max.
-template <class Arch, bool Lower>
-inline U8<Arch> best_arc9(const U8<Arch> r[16]) {
+// or min over arcs of the arc's max. ring(k) loads ring pixel k: each pixel is loaded where it
+// is used (a memory operand of the min/max), which keeps the 16 ring values out of registers.
+template <class Arch, bool Lower, class Ring>
+inline U8<Arch> best_arc9(const Ring& ring) {
   const auto inner = [](const U8<Arch>& a, const U8<Arch>& b) { return Lower ? xsimd::min(a, b) : xsimd::max(a, b); };
   const auto outer = [](const U8<Arch>& a, const U8<Arch>& b) { return Lower ? xsimd::max(a, b) : xsimd::min(a, b); };
   U8<Arch> m2[8], m4[8];
-  for (int j = 0; j < 8; ++j) m2[j] = inner(r[2 * j], r[2 * j + 1]);      // pixels 2j, 2j + 1
-  for (int j = 0; j < 8; ++j) m4[j] = inner(m2[j], m2[(j + 1) & 7]);     // 2j .. 2j + 3
-  U8<Arch> best = inner(inner(m4[0], m4[2]), outer(r[15], r[8]));       // j = 0: arcs at 15 and 0
+  for (int j = 0; j < 8; ++j) m2[j] = inner(ring(2 * j), ring(2 * j + 1));  // pixels 2j, 2j + 1
+  for (int j = 0; j < 8; ++j) m4[j] = inner(m2[j], m2[(j + 1) & 7]);        // 2j .. 2j + 3
+  U8<Arch> best = inner(inner(m4[0], m4[2]), outer(ring(15), ring(8)));     // j = 0: arcs at 15 and 0
   for (int j = 1; j < 8; ++j) {
-    const U8<Arch> m8 = inner(m4[j], m4[(j + 2) & 7]);                    // 2j .. 2j + 7
-    best = outer(best, inner(m8, outer(r[2 * j - 1], r[(2 * j + 8) & 15])));
+    const U8<Arch> m8 = inner(m4[j], m4[(j + 2) & 7]);                       // 2j .. 2j + 7
+    best = outer(best, inner(m8, outer(ring(2 * j - 1), ring((2 * j + 8) & 15))));
   }
   return best;
 }
@@ -47,16 +48,15 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
     fast9_scores_row_scalar(center, stride, x_begin, x_end, min_threshold, scores);
     return;
   }
-  std::ptrdiff_t offsets[16];
-  for (int k = 0; k < 16; ++k) offsets[k] = kFastRingDy[k] * stride + kFastRingDx[k];
+  // Seven row pointers and constant column offsets: the 16 ring addresses need 8 registers.
+  const std::uint8_t* rows[7];
+  for (int dy = -3; dy <= 3; ++dy) rows[dy + 3] = center + dy * stride;
   const U8<Arch> t(static_cast<std::uint8_t>(min_threshold));
   const U8<Arch> one(std::uint8_t(1)), zero(std::uint8_t(0));
 
   const auto batch_at = [&](int x) {
-    const std::uint8_t* p = center + x;
-    const U8<Arch> v = U8<Arch>::load_unaligned(p);
-    U8<Arch> ring[16];
-    for (int k = 0; k < 16; ++k) ring[k] = U8<Arch>::load_unaligned(p + offsets[k]);
+    const auto ring = [&](int k) { return U8<Arch>::load_unaligned(rows[kFastRingDy[k] + 3] + x + kFastRingDx[k]); };
+    const U8<Arch> v = U8<Arch>::load_unaligned(rows[3] + x);
     const U8<Arch> brighter = xsimd::ssub(best_arc9<Arch, true>(ring), v);
     const U8<Arch> darker = xsimd::ssub(v, best_arc9<Arch, false>(ring));
     const U8<Arch> best = xsimd::max(brighter, darker);
