@@ -4,17 +4,11 @@
 
 #include "core/auto_threshold.hpp"
 #include "core/frame_analysis.hpp"
+#include "core/starvation_guard.hpp"
 #include "parallel/scheduler.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {
-
-namespace {
-
-// Step by which a starving frame lowers F: the sweep's S_p (DESIGN.md section 3).
-constexpr double kStarvationStep = 0.2;
-
-}  // namespace
 
 struct Extractor::State {
   ExtractorOptions options;
@@ -23,6 +17,7 @@ struct Extractor::State {
   FrameAnalysis analysis;
   std::vector<std::vector<std::int32_t>> chosen;
   std::vector<double> entropies;  // all blocks' entropies, for the automatic F
+  std::vector<double> level_thresholds;  // F applied per level
 };
 
 Extractor::Extractor(ExtractorOptions options) : state_(std::make_unique<State>()) {
@@ -61,13 +56,17 @@ void Extractor::extract(ImageView image, Features& out) {
   const bool entropy_on = s.options.entropy != EntropyMeasure::off;
   const bool automatic = entropy_on && s.options.auto_threshold;
   double requested = entropy_on ? s.options.entropy_threshold : 0.0;
-  double threshold = requested;
+  const bool level_guard = entropy_on && s.options.starvation_guard == StarvationGuard::level;
+  std::vector<double>& thresholds = s.level_thresholds;
+  thresholds.assign(static_cast<std::size_t>(levels), requested);
   // One parallel region: the pyramid is a chain (level n from level n - 1), and each level runs
   // its entropies, detection and selection as soon as it is built, beside the levels still being
-  // built. The automatic F needs every level's entropies first; then detection and selection
-  // of every level follow in a second region.
+  // built. The automatic F needs every level's entropies first; detection and selection of
+  // every level then follow in a second region.
   auto select_level = [&](int n) {
-    analysis.detect(n, threshold);
+    double& threshold = thresholds[static_cast<std::size_t>(n)];
+    if (level_guard) threshold = detect_with_level_guard(analysis, n, requested);
+    else analysis.detect(n, threshold);
     analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]);
   };
   s.scheduler.for_each_in_chain(
@@ -77,33 +76,37 @@ void Extractor::extract(ImageView image, Features& out) {
         if (!automatic) select_level(n);
       });
   if (automatic) {
-    s.entropies.clear();
-    for (int n = 0; n < levels; ++n) {
-      const std::vector<double>& level = analysis.level(n).block_entropy;
-      s.entropies.insert(s.entropies.end(), level.begin(), level.end());
-    }
-    requested = threshold = auto_entropy_threshold(s.entropies);
+    auto_threshold_entropies(analysis, s.entropies);
+    requested = auto_entropy_threshold(s.entropies);
+    thresholds.assign(static_cast<std::size_t>(levels), requested);
     s.scheduler.for_each(levels, select_level);
   }
-  // Never starve (DESIGN.md section 3): while the kept blocks hold fewer candidates than the
-  // features asked for, lower F for this frame, down to 0 (every non-flat block), and select
-  // again. Rare: the selections above at the requested F are then simply replaced.
-  if (entropy_on && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
+  // Never starve, the frame rule (DESIGN.md section 3): while the kept blocks hold fewer
+  // candidates than the features asked for, lower F for this frame, down to 0 (every non-flat
+  // block), and select again. Rare: the selections above at the requested F are replaced.
+  double threshold = requested;
+  if (entropy_on && !level_guard && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
     while (threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
       threshold = std::max(0.0, threshold - kStarvationStep);
       s.scheduler.for_each(levels, [&](int n) { analysis.detect(n, threshold); });
     }
-    s.scheduler.for_each(levels, select_level);
+    thresholds.assign(static_cast<std::size_t>(levels), threshold);
+    s.scheduler.for_each(levels, [&](int n) { analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]); });
   }
   analysis.assemble(s.chosen, out);
 
   ExtractionInfo& info = out.info;
   info.entropy_threshold_requested = requested;
-  info.entropy_threshold_used = threshold;
-  info.threshold_lowered = threshold < info.entropy_threshold_requested;
+  // With the per-level guard the levels may differ: the lowest F applied is the one reported.
+  info.entropy_threshold_used = requested;
+  for (int n = 0; n < levels; ++n)
+    if (analysis.level(n).usable())
+      info.entropy_threshold_used = std::min(info.entropy_threshold_used, thresholds[static_cast<std::size_t>(n)]);
+  info.threshold_lowered = info.entropy_threshold_used < info.entropy_threshold_requested;
   info.image_entropy_bits = analysis.image_entropy_bits();
   info.blocks_total = analysis.blocks_total();
-  info.blocks_kept = analysis.blocks_kept(threshold);
+  info.blocks_kept = 0;
+  for (int n = 0; n < levels; ++n) info.blocks_kept += analysis.level_blocks_kept(n, thresholds[static_cast<std::size_t>(n)]);
 }
 
 Features extract(ImageView image, const ExtractorOptions& options) {
