@@ -4,6 +4,7 @@
 #include <string>
 
 #include "aief/error.hpp"
+#include "opencv/cv_conversions.hpp"
 
 namespace aief::orbslam3 {
 
@@ -28,13 +29,13 @@ int ORBextractor::operator()(cv::InputArray image, cv::InputArray /*mask: ignore
   // ORB-SLAM3 compares the float x with the int bounds, which converts the bounds to float.
   const auto lapping_first = static_cast<float>(vLappingArea[0]);
   const auto lapping_last = static_cast<float>(vLappingArea[1]);
-  std::size_t mono_index = 0;      // ORB-SLAM3's monoIndex: the next slot from the front
+  std::size_t mono_index = 0;        // ORB-SLAM3's monoIndex: the next slot from the front
   std::size_t stereo_index = count;  // one past ORB-SLAM3's stereoIndex: slots from the back
   for (std::size_t i = 0; i < count; ++i) {
     const Keypoint& kp = features.keypoints[i];
     const bool in_lapping_area = kp.x >= lapping_first && kp.x <= lapping_last;
     const std::size_t slot = in_lapping_area ? --stereo_index : mono_index++;
-    keypoints[slot] = cv::KeyPoint(cv::Point2f(kp.x, kp.y), kp.size, kp.angle_deg, kp.response, kp.octave, -1);
+    keypoints[slot] = detail::to_cv_keypoint(kp);
     std::copy(features.descriptors[i].begin(), features.descriptors[i].end(), rows.ptr<std::uint8_t>(static_cast<int>(slot)));
   }
   return static_cast<int>(mono_index);

@@ -74,6 +74,7 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
   read_int(settings, "ORBextractor.iniThFAST", options.fast_threshold);
   read_int(settings, "ORBextractor.minThFAST", options.fast_min_threshold);
   read_int(settings, "ORBextractor.blockSize", options.block_size);
+  read_int(settings, "ORBextractor.threads", options.threads);
   if (const cv::FileNode node = settings["ORBextractor.scaleFactor"]; !node.empty())
     options.scale_factor = static_cast<float>(read_number(node, "ORBextractor.scaleFactor"));  // float, as Tracking.cc
   if (const cv::FileNode node = settings["ORBextractor.mode"]; !node.empty()) {

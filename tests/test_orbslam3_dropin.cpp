@@ -246,9 +246,15 @@ TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
     ASSERT_TRUE(k1[i].pt == k2[i].pt && k1[i].octave == k2[i].octave) << "keypoint " << i;
   EXPECT_EQ(cv::norm(d1, d2, cv::NORM_INF), 0.0);
 
-  // Our keys too, and a wrong value names its key.
-  const cv::FileStorage ours("%YAML:1.0\nORBextractor.mode: \"orbslam2\"\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
-  EXPECT_EQ(ORBextractor::from_settings(ours).extractor().options().distribution, Distribution::quadtree);
+  // Our keys too (threads: docs/orbslam3.md's advice for 2-core boards), and a wrong value names its key.
+  const cv::FileStorage ours("%YAML:1.0\nORBextractor.mode: \"orbslam2\"\nORBextractor.threads: 1\n",
+                             cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  const ExtractorOptions ours_options = ORBextractor::from_settings(ours).extractor().options();
+  EXPECT_EQ(ours_options.distribution, Distribution::quadtree);
+  EXPECT_EQ(ours_options.threads, 1);
+  EXPECT_EQ(ORBextractor::options_from_settings(settings).threads, ExtractorOptions{}.threads);  // missing: the default
+  const cv::FileStorage negative("%YAML:1.0\nORBextractor.threads: -1\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  EXPECT_THROW(ORBextractor::from_settings(negative), Error);
   const cv::FileStorage wrong("%YAML:1.0\nORBextractor.nLevels: 7.5\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
   try {
     ORBextractor::from_settings(wrong);

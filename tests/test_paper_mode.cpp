@@ -86,7 +86,7 @@ ExtractorOptions pinned_options(const Pinned& pinned, KernelSet kernels, int thr
   ExtractorOptions base;
   base.kernels = kernels;
   base.threads = threads;
-  ExtractorOptions options = options_for_mode(parse_mode(std::string(pinned.mode) == "aief-paper" ? "aief" : pinned.mode), base);
+  ExtractorOptions options = options_for_mode(parse_mode(pinned.mode), base);
   options.auto_threshold = pinned.auto_threshold;
   return options;
 }
@@ -108,7 +108,7 @@ TEST(PaperMode, ReproducesTheOutputOfBeforeIssue9ToTheByte) {
 TEST(PaperMode, AdaptiveSweepReproducesTheChosenThresholdAndFeatures) {
   const cv::Mat a = load_sample_gray("graf", "img1.png");
   const cv::Mat b = load_sample_gray("graf", "img2.png");
-  const AdaptResult result = adapt(view_of(a), view_of(b), options_for_mode(parse_mode("aief")));
+  const AdaptResult result = adapt(view_of(a), view_of(b), options_for_mode(Mode::aief_paper));
   Fnv1a h;
   h.add_value(result.threshold);
   h.add_value(hash_of(result.features_a));
