@@ -60,6 +60,13 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --features", "expects a value"},
       {"match " + image, "two images"},
       {"eval", "--dataset"},
+      {"extract " + image + " --pool 0.5", "candidate pool"},
+      {"extract " + image + " --pool many", "candidate pool"},
+      {"extract " + image + " --coordinates centre", "unknown coordinate map"},
+      {"extract " + image + " --subpixel yes", "--subpixel"},
+      {"extract " + image + " --starvation-guard block", "unknown starvation guard"},
+      {"extract " + image + " --auto-uniform-blocks maybe", "--auto-uniform-blocks"},
+      {"eval --dataset . --methods orb", "unknown method"},
   };
   for (const Case& c : cases) {
     const CliResult r = run(c.args);
