@@ -26,6 +26,7 @@ enum class KernelSet {
   sse4_2,
   avx2,
   avx512bw,
+  neon64,  // AArch64 Advanced SIMD
 };
 
 // Named presets over ExtractorOptions, the rows of the paper's tables.
