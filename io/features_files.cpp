@@ -7,6 +7,7 @@
 
 #include "aief/error.hpp"
 #include "io/json_writer.hpp"
+#include "io/npz_writer.hpp"
 
 namespace aief::io {
 
@@ -99,7 +100,8 @@ void write_features(const std::string& path, const std::string& image_path, cons
   const std::string ext = extension_of(path);
   if (ext == ".json") return write_features_json(path, image_path, features, options);
   if (ext == ".yml" || ext == ".yaml") return write_features_yaml(path, image_path, features);
-  throw Error("output '" + path + "' must end in .json, .yml or .yaml");
+  if (ext == ".npz") return write_features_npz(path, features);
+  throw Error("output '" + path + "' must end in .json, .yml, .yaml or .npz");
 }
 
 }  // namespace aief::io

@@ -18,7 +18,7 @@ void write_features_json(const std::string& path, const std::string& image_path,
 
 void write_features_yaml(const std::string& path, const std::string& image_path, const Features& features);
 
-// By extension: .json, or .yml / .yaml. Throws aief::Error for another extension.
+// By extension: .json, .yml / .yaml, or .npz (io/npz_writer.hpp). Throws aief::Error for another extension.
 void write_features(const std::string& path, const std::string& image_path, const Features& features,
                     const ExtractorOptions& options);
 

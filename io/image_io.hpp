@@ -4,6 +4,7 @@
 // Conversion: 3- and 4-channel images -> gray by OpenCV's cvtColor (ITU-R BT.601 luma,
 // 0.299 R + 0.587 G + 0.114 B, OpenCV's fixed point); 16-bit images -> 8 bits, divided by 256
 // and rounded; other depths (float, signed) are refused. Errors are aief::Error naming the path.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,5 +18,11 @@ GrayImage read_gray_image(const std::string& path);
 // The same conversion for an image already in memory as encoded bytes (PNG, JPEG, ...);
 // `name` goes into the error messages.
 GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name);
+
+// The same conversion for 8-bit pixels already in memory (the Python module's BGR / BGRA
+// arrays): `channels` (1, 3 BGR or 4 BGRA) interleaved bytes per pixel, consecutive within a
+// row, rows `row_stride` bytes apart. `name` goes into the error messages.
+GrayImage gray_from_pixels(const std::uint8_t* pixels, int width, int height, int channels, std::ptrdiff_t row_stride,
+                           const std::string& name);
 
 }  // namespace aief::io

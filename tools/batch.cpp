@@ -16,6 +16,9 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "io/features_files.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_features.hpp"
+#endif
 #include "io/image_io.hpp"
 #include "tools/progress.hpp"
 
@@ -35,6 +38,7 @@ bool is_image_name(const fs::path& path) {
 // One image on its way through the pipeline.
 struct Item {
   std::string input, output;
+  std::string name;  // for h5
   GrayImage image;
   Features features;
   std::string error;
@@ -77,10 +81,25 @@ std::string batch_output_path(const BatchSettings& settings, const std::string& 
   return (fs::path(settings.output_dir) / (name + "." + settings.format)).string();
 }
 
+std::string batch_image_name(const BatchSettings& settings, const std::string& input) {
+  std::error_code ec;
+  fs::path relative = fs::is_directory(settings.input, ec) ? fs::relative(input, settings.input, ec) : fs::path(input);
+  if (ec || relative.empty()) relative = fs::path(input).filename();
+  return relative.lexically_normal().generic_string();
+}
+
 BatchSummary run_batch(const BatchSettings& settings) {
   const std::vector<std::string> inputs = batch_inputs(settings);
   std::error_code ec;
-  fs::create_directories(settings.output_dir, ec);
+  // h5: every image a group of one file, complete groups skipped on resume; else a file per image.
+#ifdef AIEF_HAVE_HDF5
+  std::unique_ptr<io::Hdf5File> h5;
+  if (settings.format == "h5") h5 = std::make_unique<io::Hdf5File>(settings.output_dir, io::Hdf5File::Mode::read_write);
+#else
+  if (settings.format == "h5") throw Error("this aief was built without HDF5 (install libhdf5-dev and rebuild)");
+  const void* h5 = nullptr;
+#endif
+  if (!h5) fs::create_directories(settings.output_dir, ec);
   if (ec) throw Error("cannot create output folder '" + settings.output_dir + "': " + ec.message());
 
   BatchSummary summary;
@@ -108,7 +127,12 @@ BatchSummary run_batch(const BatchSettings& settings) {
                                                          auto item = std::make_shared<Item>();
                                                          item->input = inputs[next++];
                                                          item->output = batch_output_path(settings, item->input);
+                                                         item->name = batch_image_name(settings, item->input);
+#ifdef AIEF_HAVE_HDF5
+                                                         item->skip = h5 ? h5->has_features(item->name) : fs::exists(item->output);
+#else
                                                          item->skip = fs::exists(item->output);
+#endif
                                                          return item;
                                                        }) &
             // Read (decoding dominates) and extract: parallel.
@@ -132,7 +156,12 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 ++summary.skipped;
               } else if (item->error.empty()) {
                 try {
-                  io::write_features(item->output, item->input, item->features, settings.options);
+#ifdef AIEF_HAVE_HDF5
+                  if (h5)
+                    h5->write_features(item->name, item->features);
+                  else
+#endif
+                    io::write_features(item->output, item->input, item->features, settings.options);
                   ++summary.extracted;
                   summary.keypoints += static_cast<long long>(item->features.keypoints.size());
                 } catch (const std::exception& e) {
@@ -143,7 +172,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 ++summary.failed;
                 summary.failures.push_back(item->input + ": " + item->error);
               }
-              progress.step(fs::path(item->output).filename().string());
+              progress.step(h5 ? item->name : fs::path(item->output).filename().string());
             }));
   });
   progress.finish();

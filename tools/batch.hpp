@@ -12,8 +12,8 @@ namespace aief::cli {
 
 struct BatchSettings {
   std::string input;        // a folder (its images, sorted) or a text file of paths, one per line
-  std::string output_dir;
-  std::string format = "json";  // json | yml
+  std::string output_dir;       // for format h5: the HDF5 file
+  std::string format = "json";  // json | yml | npz (a file per image) | h5 (one hloc file, io/hdf5_features.hpp)
   int shard_index = 0, shard_count = 1;
   ExtractorOptions options;
 };
@@ -31,6 +31,10 @@ struct BatchSummary {
 std::vector<std::string> batch_inputs(const BatchSettings& settings);
 // The output file of one input: its path below the input root, '/' turned to "__", + extension.
 std::string batch_output_path(const BatchSettings& settings, const std::string& input);
+
+// The image's name in an h5 file: its path below the input root (as listed for a list file), '/'-separated,
+// extension kept, as hloc names images.
+std::string batch_image_name(const BatchSettings& settings, const std::string& input);
 
 BatchSummary run_batch(const BatchSettings& settings);
 

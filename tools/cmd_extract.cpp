@@ -16,16 +16,19 @@ namespace aief::cli {
 namespace {
 
 void print_help() {
-  std::cout << "usage: aief extract IMAGE [-o OUT.json|OUT.yml] [--draw OUT.png] [options]\n"
-            << "       aief extract --batch LIST|DIR -o OUTDIR [--format json|yml] [--shard i/n] [options]\n\n"
+  std::cout << "usage: aief extract IMAGE [-o OUT.json|OUT.yml|OUT.npz] [--draw OUT.png] [options]\n"
+            << "       aief extract --batch LIST|DIR -o OUTDIR [--format json|yml|npz] [--shard i/n] [options]\n"
+            << "       aief extract --batch LIST|DIR -o FEATURES.h5 --format h5 [--shard i/n] [options]\n\n"
             << "Keypoints and 256-bit rBRIEF descriptors of one image. Without -o, prints a summary.\n\n"
-            << "  -o, --output FILE     features as JSON (.json) or OpenCV FileStorage YAML (.yml)\n"
+            << "  -o, --output FILE     features as JSON (.json), OpenCV FileStorage YAML (.yml) or numpy (.npz)\n"
             << "  --draw FILE           the keypoints drawn over the image, PNG\n"
             << "  --batch LIST|DIR      every image of a folder (recursively) or of a list file (one path\n"
             << "                        per line); one output per image in OUTDIR. Resumable: images whose\n"
             << "                        output exists are skipped; outputs appear atomically. A bad image is\n"
             << "                        reported and skipped. Exit 1 if any failed.\n"
-            << "  --format F            json (default) or yml, for --batch\n"
+            << "  --format F            json (default), yml or npz: a file per image in OUTDIR; h5: one HDF5 file\n"
+            << "                        in hloc's layout, a group per image named by its relative path (resumes\n"
+            << "                        at the first image not complete in it; one file per shard, then aief merge)\n"
             << "  --shard i/n           this run takes images i, i+n, i+2n ... of the sorted list (0 <= i < n),\n"
             << "                        e.g. i = $SLURM_ARRAY_TASK_ID: machines split a collection, no coordinator\n"
             << extractor_flags_help();
@@ -39,7 +42,8 @@ int run_extract_batch(const Args& args) {
   if (!output) throw UsageError("--batch needs -o OUTDIR");
   settings.output_dir = *output;
   settings.format = args.get("--format").value_or("json");
-  if (settings.format != "json" && settings.format != "yml") throw UsageError("--format expects json or yml, got '" + settings.format + "'");
+  if (settings.format != "json" && settings.format != "yml" && settings.format != "npz" && settings.format != "h5")
+    throw UsageError("--format expects json, yml, npz or h5, got '" + settings.format + "'");
   if (const auto shard = args.get("--shard")) {
     int index = -1, count = 0;
     char tail = 0;
