@@ -1,13 +1,15 @@
 // Every kernel of every kernel set this CPU runs, with no OpenCV: it builds wherever the engine
 // does, the aarch64 cross build included (aief_bench_kernel_sets). Names read kernel/set/image;
 // items are pixels (keypoints, descriptor pairs) so rates compare. Input: the bundled PGM crop
-// of graf, read without OpenCV. scripts/kernel_instructions runs one iteration of each under
-// qemu-aarch64 and counts the instructions the kernel's functions execute (bench/RESULTS.md).
+// of graf, read without OpenCV. bench/kernel_instructions.py counts, under qemu-aarch64, the
+// instructions one iteration of each executes (README, "ARM").
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <string>
@@ -57,8 +59,8 @@ std::shared_ptr<const Inputs> make_inputs(const GrayImage& image) {
   in->scores.assign(static_cast<std::size_t>(level0.height()), std::vector<std::uint8_t>(static_cast<std::size_t>(level0.width()), 0));
   for (int y = 3; y < level0.height() - 3; ++y)
     scalar.fast9_scores_row(level0.view().row(y), level0.width(), 3, level0.width() - 3, 7, in->scores[static_cast<std::size_t>(y)].data());
-  for (int y = kEdgeBorder; y < level0.height() - kEdgeBorder; y += 4)
-    for (int x = kEdgeBorder; x < level0.width() - kEdgeBorder; x += 4) {
+  for (int y = kEdgeBorder; y < level0.height() - kEdgeBorder; y += 8)
+    for (int x = kEdgeBorder; x < level0.width() - kEdgeBorder; x += 8) {
       in->points.push_back({x, y});
       in->angles_deg.push_back(static_cast<float>((x * 7 + y * 13) % 360));
     }
@@ -70,15 +72,21 @@ std::shared_ptr<const Inputs> make_inputs(const GrayImage& image) {
 
 }  // namespace
 
-void register_kernel_set_benchmarks() {
+// iterations > 0 fixes every benchmark's iteration count (--aief_iterations=N): two runs that
+// differ by one iteration differ by exactly one pass of the kernel, whatever the set-up costs.
+void register_kernel_set_benchmarks(int iterations) {
   const GrayImage image = test::read_pgm(std::string(AIEF_SAMPLE_DIR) + "/graf/img1_center_320x240.pgm");
   const std::string image_name = "graf_320x240";
   const std::shared_ptr<const Inputs> in = make_inputs(image);
   for (KernelSet set : available_kernel_sets()) {
     const KernelTable* k = &kernel_table(set);
     const auto name = [&](const char* kernel) { return std::string(kernel) + "/" + std::string(to_string(set)) + "/" + image_name; };
+    const auto add = [iterations](const std::string& benchmark_name, auto&& body) {
+      benchmark::internal::Benchmark* b = benchmark::RegisterBenchmark(benchmark_name.c_str(), body);
+      if (iterations > 0) b->Iterations(iterations);
+    };
 
-    benchmark::RegisterBenchmark(name("resize_bilinear_rows").c_str(), [in, k](benchmark::State& state) {
+    add(name("resize_bilinear_rows"), [in, k](benchmark::State& state) {
       std::vector<GrayImage> out;
       for (const GrayImage& level : in->levels) out.emplace_back(level.width(), level.height());
       for (auto _ : state)
@@ -86,14 +94,14 @@ void register_kernel_set_benchmarks() {
           k->resize_bilinear_rows(in->levels[n - 1].view(), in->plans[n], out[n].mutable_view(), 0, out[n].height());
       state.SetItemsProcessed(state.iterations() * (in->pixels - in->levels[0].width() * in->levels[0].height()));
     });
-    benchmark::RegisterBenchmark(name("gaussian7_rows").c_str(), [in, k](benchmark::State& state) {
+    add(name("gaussian7_rows"), [in, k](benchmark::State& state) {
       std::vector<GrayImage> out;
       for (const GrayImage& level : in->levels) out.emplace_back(level.width(), level.height());
       for (auto _ : state)
         for (std::size_t n = 0; n < in->levels.size(); ++n) k->gaussian7_rows(in->levels[n].view(), out[n].mutable_view(), 0, out[n].height());
       state.SetItemsProcessed(state.iterations() * in->pixels);
     });
-    benchmark::RegisterBenchmark(name("accumulate_histogram").c_str(), [in, k](benchmark::State& state) {
+    add(name("accumulate_histogram"), [in, k](benchmark::State& state) {
       std::uint32_t hist[256];
       for (auto _ : state)
         for (const GrayImage& level : in->levels)  // 32 x 32 blocks, as the entropy stage reads them
@@ -105,7 +113,7 @@ void register_kernel_set_benchmarks() {
             }
       state.SetItemsProcessed(state.iterations() * in->pixels);
     });
-    benchmark::RegisterBenchmark(name("fast9_scores_row").c_str(), [in, k](benchmark::State& state) {
+    add(name("fast9_scores_row"), [in, k](benchmark::State& state) {
       std::vector<std::uint8_t> scores(static_cast<std::size_t>(in->levels[0].width()));
       for (auto _ : state)
         for (const GrayImage& level : in->levels)
@@ -115,7 +123,7 @@ void register_kernel_set_benchmarks() {
           }
       state.SetItemsProcessed(state.iterations() * in->pixels);
     });
-    benchmark::RegisterBenchmark(name("fast9_local_maxima_row").c_str(), [in, k](benchmark::State& state) {
+    add(name("fast9_local_maxima_row"), [in, k](benchmark::State& state) {
       std::vector<std::int32_t> xs(in->scores[0].size());
       const int width = static_cast<int>(in->scores[0].size());
       for (auto _ : state)
@@ -124,7 +132,7 @@ void register_kernel_set_benchmarks() {
               k->fast9_local_maxima_row(in->scores[y - 1].data(), in->scores[y].data(), in->scores[y + 1].data(), 1, width - 1, xs.data()));
       state.SetItemsProcessed(state.iterations() * static_cast<long long>(in->scores.size() * in->scores[0].size()));
     });
-    benchmark::RegisterBenchmark(name("ic_moments").c_str(), [in, k](benchmark::State& state) {
+    add(name("ic_moments"), [in, k](benchmark::State& state) {
       std::vector<std::int32_t> m10(in->points.size()), m01(in->points.size());
       for (auto _ : state) {
         k->ic_moments(in->levels[0].view(), in->points.data(), static_cast<int>(in->points.size()), m10.data(), m01.data());
@@ -132,7 +140,7 @@ void register_kernel_set_benchmarks() {
       }
       state.SetItemsProcessed(state.iterations() * static_cast<long long>(in->points.size()));
     });
-    benchmark::RegisterBenchmark(name("rbrief_describe").c_str(), [in, k](benchmark::State& state) {
+    add(name("rbrief_describe"), [in, k](benchmark::State& state) {
       std::vector<std::uint8_t> descriptors(in->descriptors.size());
       for (auto _ : state) {
         k->rbrief_describe(in->blurred[0].view(), in->points.data(), in->angles_deg.data(), static_cast<int>(in->points.size()),
@@ -141,7 +149,7 @@ void register_kernel_set_benchmarks() {
       }
       state.SetItemsProcessed(state.iterations() * static_cast<long long>(in->points.size()));
     });
-    benchmark::RegisterBenchmark(name("hamming_256_many").c_str(), [in, k](benchmark::State& state) {
+    add(name("hamming_256_many"), [in, k](benchmark::State& state) {
       const int n = std::min(static_cast<int>(in->points.size()), 512);
       std::vector<std::uint16_t> distances(static_cast<std::size_t>(n));
       for (auto _ : state)
@@ -157,8 +165,16 @@ void register_kernel_set_benchmarks() {
 }  // namespace aief::bench
 
 int main(int argc, char** argv) {
+  int iterations = 0;
+  for (int i = 1; i < argc; ++i)
+    if (std::strncmp(argv[i], "--aief_iterations=", 18) == 0) {
+      iterations = std::atoi(argv[i] + 18);
+      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];  // not a Google Benchmark flag
+      --argc;
+      break;
+    }
   try {
-    aief::bench::register_kernel_set_benchmarks();
+    aief::bench::register_kernel_set_benchmarks(iterations);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "aief_bench_kernel_sets: error: %s\n", e.what());
     return 1;
