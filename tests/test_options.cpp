@@ -99,7 +99,7 @@ TEST(Options, NamesRoundTrip) {
   for (Distribution d : {Distribution::proportional, Distribution::quadtree}) EXPECT_EQ(parse_distribution(to_string(d)), d);
   for (EntropyMeasure e : {EntropyMeasure::off, EntropyMeasure::histogram, EntropyMeasure::intensity})
     EXPECT_EQ(parse_entropy_measure(to_string(e)), e);
-  for (KernelSet k : {KernelSet::auto_select, KernelSet::scalar, KernelSet::sse4_2, KernelSet::avx2, KernelSet::avx512bw})
+  for (KernelSet k : {KernelSet::auto_select, KernelSet::scalar, KernelSet::sse4_2, KernelSet::avx2, KernelSet::avx512bw, KernelSet::neon64})
     EXPECT_EQ(parse_kernel_set(to_string(k)), k);
   EXPECT_THROW(parse_mode("orb"), Error);
   EXPECT_THROW(parse_kernel_set("neon"), Error);

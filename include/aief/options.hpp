@@ -26,6 +26,7 @@ enum class KernelSet {
   sse4_2,
   avx2,
   avx512bw,
+  neon64,  // AArch64 Advanced SIMD
 };
 
 // Where a level point lands in level-0 pixels (core/keypoint_position.hpp).
