@@ -70,8 +70,8 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
 }
 
 TEST(Cli, InputErrorsExitOne) {
-  const auto dir = std::filesystem::temp_directory_path() / "aief_cli_test";
-  std::filesystem::create_directories(dir);
+  const aief::test::TempFolder folder("aief_cli");
+  const std::filesystem::path& dir = folder.path();
   std::ofstream((dir / "notes.png").string()) << "not an image";
   const CliResult missing = run("extract " + (dir / "missing.png").string());
   EXPECT_EQ(missing.status, 1);
@@ -81,12 +81,11 @@ TEST(Cli, InputErrorsExitOne) {
   EXPECT_NE(text.output.find("notes.png"), std::string::npos);
   const CliResult bad_output = run("extract " + aief::test::sample_path("boat", "img1.png") + " -o " + (dir / "f.txt").string());
   EXPECT_EQ(bad_output.status, 1);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, ExtractWritesJsonYamlAndPicture) {
-  const auto dir = std::filesystem::temp_directory_path() / "aief_cli_out";
-  std::filesystem::create_directories(dir);
+  const aief::test::TempFolder folder("aief_cli");
+  const std::filesystem::path& dir = folder.path();
   const std::string image = aief::test::sample_path("graf", "img1.png");
   const CliResult r = run("extract " + image + " -o " + (dir / "f.json").string() + " --draw " + (dir / "f.png").string());
   EXPECT_EQ(r.status, 0) << r.output;
@@ -114,7 +113,6 @@ TEST(Cli, ExtractWritesJsonYamlAndPicture) {
   const CliResult validate = run("validate");
   EXPECT_EQ(validate.status, 0) << validate.output;
   EXPECT_NE(validate.output.find("identical"), std::string::npos);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -16,14 +16,7 @@
 namespace aief {
 namespace {
 
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() : path(std::filesystem::temp_directory_path() / ("aief_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" + std::to_string(reinterpret_cast<std::uintptr_t>(this)))) {
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
+using TempDir = test::TempFolder;
 
 std::string error_of(const std::string& path) {
   try {
@@ -63,7 +56,7 @@ TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
 TEST(ImageIo, ClearErrorsForBadFiles) {
   TempDir dir;
   EXPECT_NE(error_of(dir.file("missing.png")).find("no such file"), std::string::npos);
-  EXPECT_NE(error_of(dir.path.string()).find("directory"), std::string::npos);
+  EXPECT_NE(error_of(dir.path().string()).find("directory"), std::string::npos);
   std::ofstream(dir.file("text.png")) << "this is not an image";
   EXPECT_NE(error_of(dir.file("text.png")).find("cannot read image"), std::string::npos);
   // Truncated PNG and JPEG: the first part of a valid file.

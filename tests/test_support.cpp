@@ -1,6 +1,8 @@
 #include "tests/test_support.hpp"
 
+#include <cstdlib>
 #include <random>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -35,6 +37,17 @@ cv::Mat random_textured_image(int width, int height, std::uint32_t seed) {
   cv::GaussianBlur(noise, smooth, cv::Size(5, 5), 1.5);
   cv::normalize(smooth, smooth, 0, 255, cv::NORM_MINMAX);
   return smooth;
+}
+
+TempFolder::TempFolder(const std::string& prefix) {
+  std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "_XXXXXX")).string();
+  if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
+  path_ = pattern;
+}
+
+TempFolder::~TempFolder() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
 }
 
 }  // namespace aief::test
