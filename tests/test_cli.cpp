@@ -83,6 +83,34 @@ TEST(Cli, InputErrorsExitOne) {
   EXPECT_EQ(bad_output.status, 1);
 }
 
+TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {
+  // A valid PNG declaring 30000 x 30000: decoded, it would take 0.9 GB (RGB: 2.7 GB) before the
+  // extractor's own size check. Each command must refuse it from the header.
+  const aief::test::TempFolder folder("aief_cli");
+  const std::filesystem::path& dir = folder.path();
+  const std::vector<std::uint8_t> bomb = aief::test::png_declaring(30000, 30000);
+  for (const char* path : {"bomb.png", "eval/graf/img1.png", "batch/bomb.png"}) {
+    std::filesystem::create_directories((dir / path).parent_path());
+    std::ofstream((dir / path).string(), std::ios::binary).write(reinterpret_cast<const char*>(bomb.data()),
+                                                                  static_cast<std::streamsize>(bomb.size()));
+  }
+  const std::string good = aief::test::sample_path("graf", "img2.png"), bomb_path = (dir / "bomb.png").string();
+  std::filesystem::copy_file(good, dir / "eval/graf/img2.png");
+  std::filesystem::copy_file(aief::test::sample_path("graf", "H1to2p"), dir / "eval/graf/H1to2p");
+  const std::string commands[] = {"extract " + bomb_path,
+                                  "match " + bomb_path + " " + good,
+                                  "adapt " + good + " " + bomb_path,
+                                  "eval --dataset " + (dir / "eval").string() + " --sequences graf --pairs 1-2 -o " +
+                                      (dir / "report.md").string(),
+                                  "extract --batch " + (dir / "batch").string() + " -o " + (dir / "out").string()};
+  for (const std::string& command : commands) {
+    const CliResult r = run(command);
+    EXPECT_EQ(r.status, 1) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("declares 30000x30000 pixels in its PNG header"), std::string::npos) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("refused before decoding"), std::string::npos) << command << "\n" << r.output;
+  }
+}
+
 TEST(Cli, ExtractWritesJsonYamlAndPicture) {
   const aief::test::TempFolder folder("aief_cli");
   const std::filesystem::path& dir = folder.path();

@@ -10,6 +10,7 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "io/features_files.hpp"
+#include "io/image_header.hpp"
 #include "io/image_io.hpp"
 #include "tests/test_support.hpp"
 
@@ -75,6 +76,80 @@ TEST(ImageIo, ClearErrorsForBadFiles) {
     }
     EXPECT_FALSE(message.empty()) << ext;
   }
+}
+
+std::vector<std::uint8_t> bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(ImageHeader, ReadsTheSizeEveryFormatDeclaresAndSurvivesEveryCut) {
+  // OpenCV's encoders are the oracle: what they write at 37 x 33, the parser reads back.
+  const cv::Mat gray = test::random_image(37, 33, 5);
+  cv::Mat colour;
+  cv::cvtColor(gray, colour, cv::COLOR_GRAY2BGR);
+  cv::Mat real;
+  colour.convertTo(real, CV_32FC3, 1.0 / 255.0);
+  struct Case {
+    const char* extension;
+    const cv::Mat* image;
+    std::vector<int> params;
+  };
+  const Case cases[] = {{".png", &gray, {}},   {".png", &colour, {}},  {".jpg", &gray, {}},  {".jpg", &colour, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}},
+                        {".tiff", &gray, {}},  {".webp", &colour, {}}, {".webp", &colour, {cv::IMWRITE_WEBP_QUALITY, 101}},
+                        {".bmp", &gray, {}},   {".bmp", &colour, {}},  {".pgm", &gray, {}},  {".pgm", &gray, {cv::IMWRITE_PXM_BINARY, 0}},
+                        {".ppm", &colour, {}}, {".pbm", &gray, {}},    {".pam", &gray, {}},  {".sr", &gray, {}},
+                        {".pfm", &real, {}},   {".hdr", &real, {}},    {".jp2", &colour, {}}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.extension);
+    std::vector<std::uint8_t> bytes;
+    ASSERT_TRUE(cv::imencode(c.extension, *c.image, bytes, c.params));
+    const std::optional<io::ImageHeader> header = io::read_image_header(bytes.data(), bytes.size());
+    ASSERT_TRUE(header.has_value());
+    EXPECT_EQ(header->width, 37);
+    EXPECT_EQ(header->height, 33);
+    for (std::size_t cut = 0; cut < std::min<std::size_t>(bytes.size(), 200); ++cut) io::read_image_header(bytes.data(), cut);
+  }
+  const std::vector<std::uint8_t> bomb = test::png_declaring(30000, 30000);
+  const std::optional<io::ImageHeader> header = io::read_image_header(bomb.data(), bomb.size());
+  ASSERT_TRUE(header.has_value());
+  EXPECT_EQ(header->width, 30000);
+  EXPECT_EQ(header->format, "PNG");
+  EXPECT_FALSE(io::read_image_header(reinterpret_cast<const std::uint8_t*>("GIF89a"), 6).has_value());
+}
+
+TEST(ImageIo, RefusesMorePixelsThanAllowedBeforeDecoding) {
+  TempDir dir;
+  // A 900 KB-class bomb in miniature: a valid PNG whose header declares 30000 x 30000 (and one
+  // at 65535 x 65535, which OpenCV itself would refuse with its assertion text).
+  for (const std::uint32_t side : {30000u, 65535u}) {
+    const std::vector<std::uint8_t> bomb = test::png_declaring(side, side);
+    std::ofstream(dir.file("bomb.png"), std::ios::binary).write(reinterpret_cast<const char*>(bomb.data()),
+                                                               static_cast<std::streamsize>(bomb.size()));
+    const std::string message = error_of(dir.file("bomb.png"));
+    const std::string size = std::to_string(side) + "x" + std::to_string(side);
+    EXPECT_NE(message.find("declares " + size), std::string::npos) << message;
+    EXPECT_NE(message.find("refused before decoding"), std::string::npos) << message;
+    EXPECT_EQ(message.find("OpenCV"), std::string::npos) << message;
+  }
+  // The limit is exact, in every format: w x h pixels pass at w x h, and are refused one below.
+  const cv::Mat gray = test::random_image(41, 33, 6);
+  for (const char* extension : {".png", ".jpg", ".tiff", ".webp", ".bmp", ".pgm", ".pam", ".sr", ".jp2"}) {
+    SCOPED_TRACE(extension);
+    const std::string path = dir.file(std::string("small") + extension);
+    ASSERT_TRUE(cv::imwrite(path, gray));
+    EXPECT_EQ(io::read_gray_image(path, 41 * 33).width(), 41);
+    try {
+      io::read_gray_image(path, 41 * 33 - 1);
+      ADD_FAILURE() << "not refused";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("refused before decoding"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(io::decode_gray_image(bytes_of(path), path, 41 * 33 - 1), Error);
+  }
+  // A format whose size cannot be read first is refused, not decoded blind.
+  std::ofstream(dir.file("x.gif")) << "GIF89a\x10\x00\x10\x00";
+  EXPECT_NE(error_of(dir.file("x.gif")).find("not an image aief can read"), std::string::npos);
 }
 
 TEST(FeatureFiles, JsonAndYamlCarryEveryKeypointAndDescriptor) {

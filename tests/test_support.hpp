@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -21,6 +22,10 @@ cv::Mat random_image(int width, int height, std::uint32_t seed);
 
 // Random image smoothed and contrast-stretched so it has corners of every strength.
 cv::Mat random_textured_image(int width, int height, std::uint32_t seed);
+
+// A valid small PNG file whose header (checksum fixed) declares width x height: a decompression
+// bomb's header, to test that the size is refused before decoding.
+std::vector<std::uint8_t> png_declaring(std::uint32_t width, std::uint32_t height);
 
 // A fresh folder of its own under the system temporary folder (mkdtemp), removed with all it
 // holds when the object goes: two suites running at once never share a path.

@@ -213,7 +213,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 if (item->skip) return item;
                 std::unique_ptr<Extractor>& extractor = extractors.local();
                 if (!extractor) extractor = std::make_unique<Extractor>(per_thread);
-                item->image = io::read_gray_image(item->input.path);
+                item->image = io::read_gray_image(item->input.path, settings.options.max_image_pixels);
                 extractor->extract(item->image.view(), item->features);
               } catch (const std::exception& e) {
                 item->error = e.what();

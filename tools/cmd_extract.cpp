@@ -84,7 +84,7 @@ int run_extract(const Arguments& arguments) {
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
 
-  const GrayImage image = io::read_gray_image(path);
+  const GrayImage image = io::read_gray_image(path, options.max_image_pixels);
   Extractor extractor(options);
   const auto start = std::chrono::steady_clock::now();
   const Features features = extractor.extract(image.view());

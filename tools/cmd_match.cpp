@@ -65,7 +65,7 @@ int run_match(const Arguments& arguments) {
   match_options.ratio = args.get_double("--ratio", match_options.ratio, 1e-6, 1.0);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
-  const GrayImage a = io::read_gray_image(path_a), b = io::read_gray_image(path_b);
+  const GrayImage a = io::read_gray_image(path_a, options.max_image_pixels), b = io::read_gray_image(path_b, options.max_image_pixels);
 
   Features features_a, features_b;
   std::vector<Match> matches;
