@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -60,12 +62,65 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --features", "expects a value"},
       {"match " + image, "two images"},
       {"eval", "--dataset"},
+      // Flags a mode cannot honour are refused with the conflict named, never dropped.
+      {"extract " + image + " --mode orbslam2 --threshold 7", "--threshold sets F of the entropy mask, which --mode orbslam2"},
+      {"extract " + image + " --mode orbslam2 --entropy intensity", "--mode orbslam2 has no entropy mask"},
+      {"extract " + image + " --entropy off --threshold 3", "which --entropy off turns off"},
+      {"extract " + image + " --entropy off --threshold auto", "--threshold"},
+      {"extract " + image + " --format yml", "--format applies to --batch only"},
+      {"extract " + image + " --shard 0/2", "--shard applies to --batch only"},
+      {"extract --batch x -o y --draw p.png", "--draw pictures one image"},
+      {"match " + image + " " + image + " --ratio 0.7", "--ratio applies to --matcher ratio only"},
+      // An unknown output format, before any work (no keypoint count printed).
+      {"extract " + image + " -o out.txt", "must end in .json, .yml or .yaml"},
+      // 1 is outside the range, and the message says so.
+      {"extract " + image + " --scale 1.0", "--scale expects a number in (1, 4], got '1.0'"},
+      // Shards count from 0; 1-based arrays get the recipe; no overflow.
+      {"extract --batch x -o y --shard 4/4", "SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN"},
+      {"extract --batch x -o y --shard 0/99999999999", "0 <= i < n <= 2147483647"},
+      {"extract --batch x -o y --shard 0/4294967297", "0 <= i < n <= 2147483647"},
+      {"extract --batch x -o y --shard -1/4", "--shard expects i/n"},
+      {"extract --batch x -o y --shard 1/0", "--shard expects i/n"},
+      {"extract --batch x -o y --shard 1/4x", "--shard expects i/n"},
+      {"extract --batch x -o y --shard 1", "--shard expects i/n"},
   };
   for (const Case& c : cases) {
     const CliResult r = run(c.args);
     EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find("aief: error:"), std::string::npos) << c.args;
     EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("keypoints"), std::string::npos) << c.args << " did work before refusing\n" << r.output;
+  }
+}
+
+TEST(Cli, FlagsGivenOverrideTheModeAndTakeEffect) {
+  const aief::test::TempFolder folder("aief_cli");
+  const std::string image = aief::test::sample_path("boat", "img1.png");
+  struct Case {
+    std::string flags;
+    std::vector<std::string> in_json;
+  };
+  const Case cases[] = {
+      {"--entropy off", {"\"distribution\":\"proportional\"", "\"entropy\":\"off\""}},
+      {"--mode orbslam2 --entropy off", {"\"distribution\":\"quadtree\"", "\"entropy\":\"off\""}},
+      {"--mode quadtree-entropy --entropy intensity --threshold 7",
+       {"\"distribution\":\"quadtree\"", "\"entropy\":\"intensity\"", "\"entropy_threshold\":7"}},
+      {"--mode aief --entropy intensity --threshold auto", {"\"entropy\":\"intensity\"", "\"auto_threshold\":true"}},
+  };
+  for (const Case& c : cases) {
+    const std::string output = folder.file("f.json");
+    const CliResult r = run("extract " + image + " --features 200 " + c.flags + " -o " + output);
+    ASSERT_EQ(r.status, 0) << c.flags << "\n" << r.output;
+    std::ifstream in(output);
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const std::string& expected : c.in_json) EXPECT_NE(json.find(expected), std::string::npos) << c.flags << ": " << expected;
+  }
+  // More threads than the machine has: used as many as there are, said in aief's words.
+  const CliResult many = run("extract " + image + " --features 200 --threads 256");
+  EXPECT_EQ(many.status, 0) << many.output;
+  EXPECT_EQ(many.output.find("TBB"), std::string::npos) << many.output;
+  if (std::thread::hardware_concurrency() < 256) {
+    EXPECT_NE(many.output.find("aief: note: --threads 256 is more than the"), std::string::npos) << many.output;
   }
 }
 

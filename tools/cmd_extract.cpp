@@ -79,8 +79,14 @@ int run_extract(const Arguments& arguments) {
     print_help();
     return 0;
   }
+  // Flags that belong to the other form are refused, never dropped.
+  if (args.has("--batch") && args.has("--draw")) throw UsageError("--draw pictures one image; --batch writes features only");
+  for (const char* flag : {"--format", "--shard"})
+    if (!args.has("--batch") && args.has(flag)) throw UsageError(std::string(flag) + " applies to --batch only");
   if (args.has("--batch")) return run_extract_batch(args);
   if (args.positionals().size() != 1) throw UsageError("extract expects one IMAGE (aief extract --help)");
+  if (const auto output = args.get("--output"); output && !io::is_features_file_name(*output))
+    throw UsageError("-o " + *output + ": the output must end in .json, .yml or .yaml");
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
 
