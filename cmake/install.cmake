@@ -22,7 +22,7 @@ if(TARGET aief_opencv)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 else()
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-          PATTERN opencv.hpp EXCLUDE PATTERN orbslam2_extractor.hpp EXCLUDE)
+          PATTERN opencv.hpp EXCLUDE PATTERN orbslam*_extractor*.hpp EXCLUDE)
 endif()
 install(FILES ${PROJECT_BINARY_DIR}/generated/aief/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief)
 # io headers say #include "io/...": they live under include/aief/io, with include/aief on the path.
@@ -51,10 +51,10 @@ endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/aief.pc.in ${PROJECT_BINARY_DIR}/aief.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/aief.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
-# tests/ builds every tests/test_*.cpp; without the adapter its two tests have nothing to link.
+# tests/ builds every tests/test_*.cpp; without the adapter its tests have nothing to link.
 # (CTest then lists them as *_NOT_BUILT; skipping them belongs in tests/CMakeLists.txt.)
 if(NOT TARGET aief_opencv)
-  foreach(adapter_test IN ITEMS test_opencv_adapter test_orbslam2_dropin)
+  foreach(adapter_test IN ITEMS test_opencv_adapter test_orbslam2_dropin test_orbslam3_dropin)
     if(TARGET ${adapter_test})
       set_target_properties(${adapter_test} PROPERTIES EXCLUDE_FROM_ALL ON)
     endif()

@@ -8,6 +8,9 @@ struct Candidate {
   std::int32_t x = 0;
   std::int32_t y = 0;
   std::int32_t score = 0;  // FAST score (OpenCV's definition), >= the block's threshold
+  // Scores of the four neighbours in the score map (0 where not a corner at fast_min_threshold),
+  // for the sub-pixel peak (core/keypoint_position.hpp).
+  std::uint8_t score_left = 0, score_right = 0, score_up = 0, score_down = 0;
 };
 
 // The one ranking of candidates (DESIGN.md section 1): higher score first, then y, then x.

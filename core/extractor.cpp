@@ -4,17 +4,11 @@
 
 #include "core/auto_threshold.hpp"
 #include "core/frame_analysis.hpp"
+#include "core/starvation_guard.hpp"
 #include "parallel/scheduler.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {
-
-namespace {
-
-// Step by which a starving frame lowers F: the sweep's S_p (DESIGN.md section 3).
-constexpr double kStarvationStep = 0.2;
-
-}  // namespace
 
 struct Extractor::State {
   ExtractorOptions options;
@@ -23,6 +17,7 @@ struct Extractor::State {
   FrameAnalysis analysis;
   std::vector<std::vector<std::int32_t>> chosen;
   std::vector<double> entropies;  // all blocks' entropies, for the automatic F
+  std::vector<double> level_thresholds;  // F applied per level
 };
 
 Extractor::Extractor(ExtractorOptions options) : state_(std::make_unique<State>()) {
@@ -75,33 +70,45 @@ void Extractor::extract(ImageView image, Features& out) {
   s.scheduler.for_each(levels, [&](int n) { analysis.compute_entropies(n); });
   double requested = entropy_on ? s.options.entropy_threshold : 0.0;
   if (entropy_on && s.options.auto_threshold) {
-    s.entropies.clear();
-    for (int n = 0; n < levels; ++n) {
-      const std::vector<double>& level = analysis.level(n).block_entropy;
-      s.entropies.insert(s.entropies.end(), level.begin(), level.end());
-    }
+    auto_threshold_entropies(analysis, s.entropies);
     requested = auto_entropy_threshold(s.entropies);
   }
-  double threshold = requested;
-  s.scheduler.for_each(levels, [&](int n) { analysis.detect(n, threshold); });
-  // Never starve (DESIGN.md section 3): while the kept blocks hold fewer candidates than the
-  // features asked for, lower F for this frame, down to 0 (every non-flat block).
-  while (entropy_on && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
-    threshold = std::max(0.0, threshold - kStarvationStep);
+  std::vector<double>& thresholds = s.level_thresholds;
+  thresholds.assign(static_cast<std::size_t>(levels), requested);
+  if (entropy_on && s.options.starvation_guard == StarvationGuard::level) {
+    s.scheduler.for_each(levels, [&](int n) {
+      thresholds[static_cast<std::size_t>(n)] = detect_with_level_guard(analysis, n, requested);
+    });
+  } else {
+    double threshold = requested;
     s.scheduler.for_each(levels, [&](int n) { analysis.detect(n, threshold); });
+    // Never starve (DESIGN.md section 3): while the kept blocks hold fewer candidates than the
+    // features asked for, lower F for this frame, down to 0 (every non-flat block).
+    while (entropy_on && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
+      threshold = std::max(0.0, threshold - kStarvationStep);
+      s.scheduler.for_each(levels, [&](int n) { analysis.detect(n, threshold); });
+    }
+    thresholds.assign(static_cast<std::size_t>(levels), threshold);
   }
 
   s.chosen.resize(static_cast<std::size_t>(levels));
-  s.scheduler.for_each(levels, [&](int n) { analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]); });
+  s.scheduler.for_each(levels, [&](int n) {
+    analysis.select(n, thresholds[static_cast<std::size_t>(n)], s.chosen[static_cast<std::size_t>(n)]);
+  });
   analysis.assemble(s.chosen, out);
 
   ExtractionInfo& info = out.info;
   info.entropy_threshold_requested = requested;
-  info.entropy_threshold_used = threshold;
-  info.threshold_lowered = threshold < info.entropy_threshold_requested;
+  // With the per-level guard the levels may differ: the lowest F applied is the one reported.
+  info.entropy_threshold_used = requested;
+  for (int n = 0; n < levels; ++n)
+    if (analysis.level(n).usable())
+      info.entropy_threshold_used = std::min(info.entropy_threshold_used, thresholds[static_cast<std::size_t>(n)]);
+  info.threshold_lowered = info.entropy_threshold_used < info.entropy_threshold_requested;
   info.image_entropy_bits = analysis.image_entropy_bits();
   info.blocks_total = analysis.blocks_total();
-  info.blocks_kept = analysis.blocks_kept(threshold);
+  info.blocks_kept = 0;
+  for (int n = 0; n < levels; ++n) info.blocks_kept += analysis.level_blocks_kept(n, thresholds[static_cast<std::size_t>(n)]);
 }
 
 Features extract(ImageView image, const ExtractorOptions& options) {

@@ -7,6 +7,7 @@
 
 #include "aief/error.hpp"
 #include "core/block_entropy.hpp"
+#include "core/keypoint_position.hpp"
 
 namespace aief {
 
@@ -88,6 +89,7 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
     level.blurred_top = level.blurred_end = 0;
     const int blocks = level.geometry.grid.count();
     level.block_entropy.clear();
+    level.block_uniform.clear();
     level.block_detected.assign(static_cast<std::size_t>(blocks), 0);
     level.block_candidates.assign(static_cast<std::size_t>(blocks), BlockRange{});
     level.candidates.clear();
@@ -110,6 +112,7 @@ void FrameAnalysis::compute_entropies(int n) {
   const BlockGrid& grid = level.geometry.grid;
   const ImageView pixels = level.pixels;
   level.block_entropy.resize(static_cast<std::size_t>(grid.count()));
+  level.block_uniform.resize(static_cast<std::size_t>(grid.count()));
   std::uint32_t whole[256] = {};
   std::uint32_t hist[256];
   for (int r = 0; r < grid.rows(); ++r) {
@@ -119,6 +122,8 @@ void FrameAnalysis::compute_entropies(int n) {
       std::memset(hist, 0, sizeof hist);
       kernels_->accumulate_histogram(pixels.row(y0) + x0, pixels.stride, x1 - x0, y1 - y0, hist);
       level.block_entropy[static_cast<std::size_t>(r * grid.cols() + c)] = entropy_bits(hist, options_.entropy);
+      level.block_uniform[static_cast<std::size_t>(r * grid.cols() + c)] =
+          hist[pixels.row(y0)[x0]] == static_cast<std::uint32_t>((x1 - x0) * (y1 - y0)) ? 1 : 0;
       if (n == 0)
         for (int k = 0; k < 256; ++k) whole[k] += hist[k];
     }
@@ -210,7 +215,7 @@ void FrameAnalysis::detect_block(LevelState& level, int block, int score_top) {
       const int x = level.scratch_xs[static_cast<std::size_t>(i)];
       const int score = row[x];
       any_strong = any_strong || score >= options_.fast_threshold;
-      level.candidates.push_back({x, y, score});
+      level.candidates.push_back({x, y, score, row[x - 1], row[x + 1], row[x - scores.stride], row[x + scores.stride]});
     }
   }
   if (any_strong) {
@@ -236,10 +241,24 @@ void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& c
   if (options_.distribution == Distribution::proportional) {
     std::vector<BlockRange>& blocks = level.scratch_blocks;
     blocks.clear();
+    std::int64_t total = 0;
     for (int b = 0; b < grid.count(); ++b)
-      if (block_kept(n, b, threshold)) blocks.push_back(level.block_candidates[static_cast<std::size_t>(b)]);
-    distribute_proportional(level.candidates, blocks, level.geometry.n_features, selected,
-                            level.scratch_distribution);
+      if (block_kept(n, b, threshold)) {
+        blocks.push_back(level.block_candidates[static_cast<std::size_t>(b)]);
+        total += blocks.back().size();
+      }
+    const std::int64_t pool_size = candidate_pool_size(options_.candidate_pool, level.geometry.n_features);
+    if (pool_size < 0 || total <= pool_size) {
+      distribute_proportional(level.candidates, blocks, level.geometry.n_features, selected,
+                              level.scratch_distribution);
+    } else {
+      // The level's strongest candidates first (core/candidate_pool.hpp), then the same water level.
+      pool_candidates(level.candidates, blocks, pool_size, level.scratch_pooled, level.scratch_pooled_index,
+                      level.scratch_pooled_blocks, level.scratch_pool);
+      distribute_proportional(level.scratch_pooled, level.scratch_pooled_blocks, level.geometry.n_features, selected,
+                              level.scratch_distribution);
+      for (std::int32_t& index : selected) index = level.scratch_pooled_index[static_cast<std::size_t>(index)];
+    }
   } else {
     // The quadtree sees the kept blocks' candidates as one set, over ORB-SLAM2's rectangle.
     std::vector<Candidate>& pool = level.scratch_candidates;
@@ -365,6 +384,20 @@ std::int64_t FrameAnalysis::candidate_count(double threshold) const {
   return total;
 }
 
+std::int64_t FrameAnalysis::level_candidate_count(int n, double threshold) const {
+  const LevelState& level = this->level(n);
+  std::int64_t total = 0;
+  for (int b = 0; b < level.geometry.grid.count(); ++b)
+    if (block_kept(n, b, threshold)) total += level.block_candidates[static_cast<std::size_t>(b)].size();
+  return total;
+}
+
+int FrameAnalysis::level_blocks_kept(int n, double threshold) const {
+  int kept = 0;
+  for (int b = 0; b < level(n).geometry.grid.count(); ++b) kept += block_kept(n, b, threshold) ? 1 : 0;
+  return kept;
+}
+
 int FrameAnalysis::blocks_total() const {
   int total = 0;
   for (const LevelState& level : levels_) total += level.geometry.grid.count();
@@ -388,13 +421,16 @@ void FrameAnalysis::assemble(const std::vector<std::vector<std::int32_t>>& chose
   for (int n = 0; n < level_count(); ++n) {
     const LevelState& level = this->level(n);
     const float scale = level.geometry.scale;
+    const LevelToImage mapping = level_to_image(options_.coordinates, options_.subpixel, scale, width_, height_,
+                                                level.geometry.width, level.geometry.height);
     for (std::int32_t i : chosen[static_cast<std::size_t>(n)]) {
       const Candidate& c = level.candidates[static_cast<std::size_t>(i)];
       const std::int32_t slot = level.candidate_memo_slot[static_cast<std::size_t>(i)];
       assert(slot >= 0);
       Keypoint kp;
-      kp.x = static_cast<float>(c.x) * scale;
-      kp.y = static_cast<float>(c.y) * scale;
+      const ImagePoint position = keypoint_position(c, mapping);
+      kp.x = position.x;
+      kp.y = position.y;
       kp.size = static_cast<float>(kPatchSize) * scale;
       kp.angle_deg = level.memo_angle_deg[static_cast<std::size_t>(slot)];
       kp.response = static_cast<float>(c.score);

@@ -14,6 +14,7 @@
 #include "aief/image.hpp"
 #include "aief/options.hpp"
 #include "core/candidate.hpp"
+#include "core/candidate_pool.hpp"
 #include "core/distribution.hpp"
 #include "core/kernel_table.hpp"
 #include "core/level_geometry.hpp"
@@ -40,6 +41,7 @@ struct LevelState {
   GrayImage score_band;
 
   std::vector<double> block_entropy;       // bits, per block, row-major (empty: entropy off)
+  std::vector<std::uint8_t> block_uniform;  // per block: 1 when all its pixels are one gray level
   std::vector<std::uint8_t> block_detected;
   std::vector<BlockRange> block_candidates;  // per block: its candidates, raster order
 
@@ -63,6 +65,10 @@ struct LevelState {
   std::vector<float> scratch_angles;
   std::vector<std::uint8_t> scratch_descriptors;
   DistributionScratch scratch_distribution;
+  std::vector<Candidate> scratch_pooled;
+  std::vector<std::int32_t> scratch_pooled_index;
+  std::vector<BlockRange> scratch_pooled_blocks;
+  CandidatePoolScratch scratch_pool;
 
   bool usable() const { return geometry.grid.count() > 0; }
 };
@@ -94,8 +100,11 @@ class FrameAnalysis {
   bool block_kept(int n, int b, double threshold) const;
   // Candidates in the blocks kept at F, over all levels (after detect at F).
   std::int64_t candidate_count(double threshold) const;
+  // The same for level n alone.
+  std::int64_t level_candidate_count(int n, double threshold) const;
   int blocks_total() const;
   int blocks_kept(double threshold) const;
+  int level_blocks_kept(int n, double threshold) const;
   // Entropy of level 0 (Eq. 7) in the options' measure; 0 with entropy off. After stage 2.
   double image_entropy_bits() const;
 

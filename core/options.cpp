@@ -1,6 +1,7 @@
 #include "aief/options.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -45,6 +46,12 @@ void ExtractorOptions::validate() const {
           "entropy_threshold must be in [0, 64] bits, got " + str(entropy_threshold));
   require(static_cast<int>(kernels) >= 0 && static_cast<int>(kernels) <= static_cast<int>(KernelSet::avx512bw),
           "kernels has an unknown value " + str(static_cast<int>(kernels)));
+  require(coordinates == CoordinateMap::scaled || coordinates == CoordinateMap::pixel_centre,
+          "coordinates has an unknown value " + str(static_cast<int>(coordinates)));
+  require(!std::isnan(candidate_pool) && candidate_pool >= 1.0,
+          "candidate_pool must be >= 1 (or infinity: no pool), got " + str(candidate_pool));
+  require(starvation_guard == StarvationGuard::frame || starvation_guard == StarvationGuard::level,
+          "starvation_guard has an unknown value " + str(static_cast<int>(starvation_guard)));
   require_int_range("threads", threads, 0, 256);
   require(max_image_pixels >= 1, "max_image_pixels must be >= 1, got " + str(max_image_pixels));
 }
@@ -52,8 +59,24 @@ void ExtractorOptions::validate() const {
 ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
   const EntropyMeasure measure =
       base.entropy == EntropyMeasure::off ? EntropyMeasure::histogram : base.entropy;
+  const ExtractorOptions defaults;
+  // Every mode but aief keeps the conventions of the code it reproduces (issue 9).
+  base.coordinates = CoordinateMap::scaled;
+  base.subpixel = false;
+  base.candidate_pool = std::numeric_limits<double>::infinity();
+  base.starvation_guard = StarvationGuard::frame;
+  base.auto_skips_uniform_blocks = false;
   switch (mode) {
     case Mode::aief:
+      base.distribution = Distribution::proportional;
+      base.entropy = measure;
+      base.coordinates = defaults.coordinates;
+      base.subpixel = defaults.subpixel;
+      base.candidate_pool = defaults.candidate_pool;
+      base.starvation_guard = defaults.starvation_guard;
+      base.auto_skips_uniform_blocks = defaults.auto_skips_uniform_blocks;
+      break;
+    case Mode::aief_paper:
       base.distribution = Distribution::proportional;
       base.entropy = measure;
       break;
@@ -96,6 +119,7 @@ std::string_view to_string(KernelSet value) {
 std::string_view to_string(Mode value) {
   switch (value) {
     case Mode::aief: return "aief";
+    case Mode::aief_paper: return "aief-paper";
     case Mode::orbslam2: return "orbslam2";
     case Mode::quadtree_entropy: return "quadtree-entropy";
   }
@@ -128,10 +152,46 @@ KernelSet parse_kernel_set(std::string_view name) {
 
 Mode parse_mode(std::string_view name) {
   if (name == "aief") return Mode::aief;
+  if (name == "aief-paper" || name == "aief_paper") return Mode::aief_paper;
   if (name == "orbslam2") return Mode::orbslam2;
   if (name == "quadtree-entropy" || name == "quadtree_entropy") return Mode::quadtree_entropy;
   throw Error("unknown mode '" + std::string(name) +
-              "' (expected aief, orbslam2 or quadtree-entropy)");
+              "' (expected aief, aief-paper, orbslam2 or quadtree-entropy)");
+}
+
+std::string_view to_string(CoordinateMap value) {
+  return value == CoordinateMap::scaled ? "scaled" : "pixel-centre";
+}
+
+std::string_view to_string(StarvationGuard value) {
+  return value == StarvationGuard::frame ? "frame" : "level";
+}
+
+CoordinateMap parse_coordinate_map(std::string_view name) {
+  if (name == "scaled") return CoordinateMap::scaled;
+  if (name == "pixel-centre" || name == "pixel_centre") return CoordinateMap::pixel_centre;
+  throw Error("unknown coordinate map '" + std::string(name) + "' (expected pixel-centre or scaled)");
+}
+
+StarvationGuard parse_starvation_guard(std::string_view name) {
+  if (name == "level") return StarvationGuard::level;
+  if (name == "frame") return StarvationGuard::frame;
+  throw Error("unknown starvation guard '" + std::string(name) + "' (expected level or frame)");
+}
+
+double parse_candidate_pool(std::string_view text) {
+  if (text == "inf" || text == "off") return std::numeric_limits<double>::infinity();
+  const std::string copy(text);
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(copy, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != copy.size() || !std::isfinite(value) || value < 1.0)
+    throw Error("candidate pool must be a number >= 1 or inf, got '" + copy + "'");
+  return value;
 }
 
 }  // namespace aief

@@ -1,16 +1,14 @@
 #include "io/features_files.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include <opencv2/core.hpp>
-#include <sys/stat.h>
 
 #include "aief/error.hpp"
 #include "io/json_writer.hpp"
+#include "io/npz_writer.hpp"
 
 namespace aief::io {
 
@@ -97,26 +95,17 @@ std::string extension_of(const std::string& path) {
 
 }  // namespace
 
-SourceRecord source_record_of(const std::string& path, const std::string& name) {
-  struct stat info {};
-  if (::stat(path.c_str(), &info) != 0) throw Error("cannot open image '" + path + "': " + std::strerror(errno));
-  SourceRecord record;
-  record.name = name;
-  record.bytes = static_cast<std::uintmax_t>(info.st_size);
-  record.mtime_ns = static_cast<long long>(info.st_mtim.tv_sec) * 1'000'000'000LL + info.st_mtim.tv_nsec;
-  return record;
-}
-
 bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source) {
   const std::string ext = extension_of(output_path);
   if (ext == ".json") return json_file_belongs_to(output_path, source);
   if (ext == ".yml" || ext == ".yaml") return yaml_file_belongs_to(output_path, source);
+  if (ext == ".npz") return npz_file_belongs_to(output_path, source);
   return false;
 }
 
 bool is_features_file_name(const std::string& path) {
   const std::string ext = extension_of(path);
-  return ext == ".json" || ext == ".yml" || ext == ".yaml";
+  return ext == ".json" || ext == ".yml" || ext == ".yaml" || ext == ".npz";
 }
 
 std::string features_json(const std::string& image_path, const Features& features, const ExtractorOptions& options,
@@ -182,7 +171,8 @@ void write_features(const std::string& path, const std::string& image_path, cons
   const std::string ext = extension_of(path);
   if (ext == ".json") return write_features_json(path, image_path, features, options, source);
   if (ext == ".yml" || ext == ".yaml") return write_features_yaml(path, image_path, features, source);
-  throw Error("output '" + path + "' must end in .json, .yml or .yaml");
+  if (ext == ".npz") return write_features_npz(path, features, source);
+  throw Error("output '" + path + "' must end in .json, .yml, .yaml or .npz");
 }
 
 }  // namespace aief::io

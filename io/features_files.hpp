@@ -9,22 +9,11 @@
 
 #include "aief/features.hpp"
 #include "aief/options.hpp"
+#include "io/source_record.hpp"
 
 namespace aief::io {
 
-// The image file a result came from, recorded in the result ("source") so that a resumed batch
-// can tell whether an output belongs to its input: the same name, size and modification time.
-struct SourceRecord {
-  std::string name;         // the input's relative name as listed (the batch key), never symlink-resolved
-  std::uintmax_t bytes = 0;  // file size
-  long long mtime_ns = 0;    // modification time, nanoseconds since the epoch
-};
-
-// The record of the file at `path` (symlinks followed: the size and time of what is read),
-// under `name`. Throws aief::Error when the file cannot be examined.
-SourceRecord source_record_of(const std::string& path, const std::string& name);
-
-// True when `output_path` is a complete result file (.json, .yml / .yaml) whose source record
+// True when `output_path` is a complete result file (.json, .yml / .yaml, .npz) whose source record
 // equals `source`; false when it is missing, cut short, unreadable, or from another input.
 bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source);
 
@@ -44,7 +33,7 @@ void write_features_json(const std::string& path, const std::string& image_path,
 void write_features_yaml(const std::string& path, const std::string& image_path, const Features& features,
                          const std::optional<SourceRecord>& source = std::nullopt);
 
-// By extension: .json, or .yml / .yaml. Throws aief::Error for another extension.
+// By extension: .json, .yml / .yaml, or .npz (io/npz_writer.hpp). Throws aief::Error for another extension.
 void write_features(const std::string& path, const std::string& image_path, const Features& features,
                     const ExtractorOptions& options, const std::optional<SourceRecord>& source = std::nullopt);
 

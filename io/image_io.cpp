@@ -80,4 +80,16 @@ GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::s
   return gray_from_decoded(image, name);
 }
 
+GrayImage gray_from_pixels(const std::uint8_t* pixels, int width, int height, int channels, std::ptrdiff_t row_stride,
+                           const std::string& name) {
+  if (width <= 0 || height <= 0 || pixels == nullptr)
+    throw Error("cannot use image '" + name + "': it is empty (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+  if (channels != 1 && channels != 3 && channels != 4)
+    throw Error("cannot use image '" + name + "': " + std::to_string(channels) + " channels (expected 1, 3 or 4)");
+  // A header over the caller's bytes (OpenCV does not write through it): the conversion is the
+  // one read_gray_image applies to a decoded file.
+  const cv::Mat image(height, width, CV_8UC(channels), const_cast<std::uint8_t*>(pixels), static_cast<std::size_t>(row_stride));
+  return gray_from_decoded(image, name);
+}
+
 }  // namespace aief::io

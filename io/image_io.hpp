@@ -8,6 +8,7 @@
 // Size first: the width and height the file declares are read from its header (io/image_header.hpp)
 // and a file above `max_pixels` (ExtractorOptions::max_image_pixels) is refused before anything
 // is decoded or allocated; a file whose size cannot be read from its header is refused too.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,5 +24,11 @@ GrayImage read_gray_image(const std::string& path, long long max_pixels = Extrac
 // `name` goes into the error messages.
 GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name,
                             long long max_pixels = ExtractorOptions{}.max_image_pixels);
+
+// The same conversion for 8-bit pixels already in memory (the Python module's BGR / BGRA
+// arrays): `channels` (1, 3 BGR or 4 BGRA) interleaved bytes per pixel, consecutive within a
+// row, rows `row_stride` bytes apart. `name` goes into the error messages.
+GrayImage gray_from_pixels(const std::uint8_t* pixels, int width, int height, int channels, std::ptrdiff_t row_stride,
+                           const std::string& name);
 
 }  // namespace aief::io

@@ -15,7 +15,13 @@ namespace aief::detail {
 // count of anything else, or an empty image.
 const cv::Mat& gray_of(const cv::Mat& image, cv::Mat& buffer);
 
-// keypoints := the features' keypoints as cv::KeyPoint (class_id -1), keeping its capacity.
+// One keypoint as cv::KeyPoint: pt in level-0 pixels, size, angle (degrees), response (FAST
+// score), octave, class_id -1.
+inline cv::KeyPoint to_cv_keypoint(const Keypoint& kp) {
+  return {cv::Point2f(kp.x, kp.y), kp.size, kp.angle_deg, kp.response, kp.octave, -1};
+}
+
+// keypoints := the features' keypoints as cv::KeyPoint (to_cv_keypoint), keeping its capacity.
 void fill_cv_keypoints(const Features& features, std::vector<cv::KeyPoint>& keypoints);
 
 // descriptors := N x 32 CV_8U rows; Mat::create reuses the storage when N is unchanged.

@@ -26,8 +26,7 @@ const cv::Mat& gray_of(const cv::Mat& image, cv::Mat& buffer) {
 void fill_cv_keypoints(const Features& features, std::vector<cv::KeyPoint>& keypoints) {
   keypoints.clear();
   keypoints.reserve(features.keypoints.size());
-  for (const Keypoint& kp : features.keypoints)
-    keypoints.emplace_back(cv::Point2f(kp.x, kp.y), kp.size, kp.angle_deg, kp.response, kp.octave, -1);
+  for (const Keypoint& kp : features.keypoints) keypoints.push_back(to_cv_keypoint(kp));
 }
 
 void fill_cv_descriptors(const Features& features, cv::OutputArray descriptors, bool release_when_empty) {

@@ -1,90 +1,8 @@
 #include "aief/orbslam2_extractor.hpp"
 
-#include <cmath>
-#include <limits>
-#include <string>
-
-#include "aief/error.hpp"
 #include "opencv/cv_conversions.hpp"
 
 namespace aief {
-
-namespace {
-
-ExtractorOptions orbslam2_options(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST) {
-  ExtractorOptions options;
-  options.n_features = nfeatures;
-  options.scale_factor = scaleFactor;
-  options.n_levels = nlevels;
-  options.fast_threshold = iniThFAST;
-  options.fast_min_threshold = minThFAST;
-  return options;
-}
-
-double read_number(const cv::FileNode& node, const char* key) {
-  if (!node.isInt() && !node.isReal()) throw Error(std::string(key) + " must be a number");
-  return node.real();
-}
-
-// ORB-SLAM2 reads these with an int conversion that truncates; a fractional or huge value is a
-// typo we would rather name than silently change.
-void read_int(const cv::FileStorage& settings, const char* key, int& value) {
-  const cv::FileNode node = settings[key];
-  if (node.empty()) return;
-  const double number = read_number(node, key);
-  if (number != std::floor(number) || number < std::numeric_limits<int>::min() || number > std::numeric_limits<int>::max())
-    throw Error(std::string(key) + " must be an integer, got " + std::to_string(number));
-  value = static_cast<int>(number);
-}
-
-}  // namespace
-
-ORBextractor::ORBextractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
-    : ORBextractor(orbslam2_options(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)) {}
-
-ORBextractor::ORBextractor(const ExtractorOptions& options)
-    : extractor_(options), nlevels(options.n_levels), scaleFactor(static_cast<float>(options.scale_factor)) {
-  compute_scales();
-}
-
-void ORBextractor::compute_scales() {
-  // As ORB-SLAM2's constructor: float products, sigma^2 = scale^2.
-  const auto levels = static_cast<std::size_t>(nlevels);
-  mvScaleFactor.assign(levels, 1.0f);
-  mvLevelSigma2.assign(levels, 1.0f);
-  for (std::size_t i = 1; i < levels; ++i) {
-    mvScaleFactor[i] = mvScaleFactor[i - 1] * scaleFactor;
-    mvLevelSigma2[i] = mvScaleFactor[i] * mvScaleFactor[i];
-  }
-  mvInvScaleFactor.resize(levels);
-  mvInvLevelSigma2.resize(levels);
-  for (std::size_t i = 0; i < levels; ++i) {
-    mvInvScaleFactor[i] = 1.0f / mvScaleFactor[i];
-    mvInvLevelSigma2[i] = 1.0f / mvLevelSigma2[i];
-  }
-}
-
-ExtractorOptions ORBextractor::options_from_settings(const cv::FileStorage& settings) {
-  if (!settings.isOpened()) throw Error("settings file is not open");
-  ExtractorOptions options;
-  read_int(settings, "ORBextractor.nFeatures", options.n_features);
-  read_int(settings, "ORBextractor.nLevels", options.n_levels);
-  read_int(settings, "ORBextractor.iniThFAST", options.fast_threshold);
-  read_int(settings, "ORBextractor.minThFAST", options.fast_min_threshold);
-  read_int(settings, "ORBextractor.blockSize", options.block_size);
-  if (const cv::FileNode node = settings["ORBextractor.scaleFactor"]; !node.empty())
-    options.scale_factor = static_cast<float>(read_number(node, "ORBextractor.scaleFactor"));  // float, as Tracking.cc
-  if (const cv::FileNode node = settings["ORBextractor.mode"]; !node.empty()) {
-    if (!node.isString()) throw Error("ORBextractor.mode must be aief, orbslam2 or quadtree-entropy");
-    options = options_for_mode(parse_mode(static_cast<std::string>(node)), options);
-  }
-  if (const cv::FileNode node = settings["ORBextractor.entropyThreshold"]; !node.empty()) {
-    if (node.isString() && static_cast<std::string>(node) == "auto") options.auto_threshold = true;
-    else if (node.isInt() || node.isReal()) options.entropy_threshold = node.real();
-    else throw Error("ORBextractor.entropyThreshold must be a number or \"auto\"");
-  }
-  return options;
-}
 
 ORBextractor ORBextractor::from_settings(const cv::FileStorage& settings) {
   return ORBextractor(options_from_settings(settings));
@@ -92,20 +10,9 @@ ORBextractor ORBextractor::from_settings(const cv::FileStorage& settings) {
 
 void ORBextractor::operator()(cv::InputArray image, cv::InputArray /*mask: ignored, as ORB-SLAM2*/, std::vector<cv::KeyPoint>& keypoints,
                               cv::OutputArray descriptors) {
-  const cv::Mat input = image.getMat();  // named: gray_of may return a reference to it
-  const cv::Mat& gray = detail::gray_of(input, gray_);
-  extractor_.extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}, features_);
-  detail::fill_cv_keypoints(features_, keypoints);
-  detail::fill_cv_descriptors(features_, descriptors, true);  // released when empty, as ORB-SLAM2
-  mvImagePyramid.resize(static_cast<std::size_t>(nlevels));
-  // Level 0 is the gray input itself (sharing its reference count, so it outlives the caller's
-  // Mat); the others are headers over the extractor's buffers, valid until the next call.
-  mvImagePyramid[0] = gray;
-  for (int n = 1; n < nlevels; ++n) {
-    const ImageView level = extractor_.pyramid_level(n);
-    mvImagePyramid[static_cast<std::size_t>(n)] =
-        level.empty() ? cv::Mat() : cv::Mat(level.height, level.width, CV_8UC1, const_cast<std::uint8_t*>(level.data), static_cast<std::size_t>(level.stride));
-  }
+  const Features& features = extract_frame(image);
+  detail::fill_cv_keypoints(features, keypoints);
+  detail::fill_cv_descriptors(features, descriptors, true);  // released when empty, as ORB-SLAM2
 }
 
 }  // namespace aief

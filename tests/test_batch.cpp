@@ -261,6 +261,34 @@ TEST(Batch, ResumeRedoesOutputsOfOtherInputsAndRemovesStaleTemporaries) {
   EXPECT_TRUE(files_below(out, ".tmp").empty());
 }
 
+TEST(Batch, EveryFilePerImageFormatResumesOnlyItsOwnInput) {
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path images = temp.path() / "images";
+  fs::create_directories(images / "sub");
+  fs::copy_file(aief::test::sample_path("graf", "img1.png"), images / "sub" / "a.png");
+  fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / "sub__a.png");
+  for (const char* format : {"json", "yml", "npz"}) {
+    SCOPED_TRACE(format);
+    const fs::path out = temp.path() / format;
+    const std::vector<std::string> args = {"extract", "--batch", images.string(), "-o", out.string(), "--format", format,
+                                           "--features", "100"};
+    std::string report;
+    ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
+    EXPECT_NE(report.find("2 extracted, 0 already done"), std::string::npos) << report;
+    EXPECT_EQ(files_below(out, std::string(".") + format).size(), 2u);
+    ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
+    EXPECT_NE(report.find("0 extracted, 2 already done"), std::string::npos) << report;
+    // The other image under the first one's name: its output no longer belongs, and is redone.
+    fs::copy_file(aief::test::sample_path("leuven", "img1.png"), images / "sub" / "a.png", fs::copy_options::overwrite_existing);
+    ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
+    EXPECT_NE(report.find("1 extracted (1 replacing"), std::string::npos) << report;
+    const std::string output = (out / "sub" / (std::string("a.png.") + format)).string();
+    EXPECT_TRUE(aief::io::features_file_belongs_to(output, aief::io::source_record_of((images / "sub" / "a.png").string(), "sub/a.png")));
+    EXPECT_FALSE(aief::io::features_file_belongs_to(output, aief::io::source_record_of((images / "sub__a.png").string(), "sub/a.png")));
+    fs::copy_file(aief::test::sample_path("graf", "img1.png"), images / "sub" / "a.png", fs::copy_options::overwrite_existing);
+  }
+}
+
 TEST(Batch, ShardsSplitTheCollectionExactly) {
   BatchFolder folder;
   std::set<std::string> seen;

@@ -72,7 +72,7 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract --batch x -o y --draw p.png", "--draw pictures one image"},
       {"match " + image + " " + image + " --ratio 0.7", "--ratio applies to --matcher ratio only"},
       // An unknown output format, before any work (no keypoint count printed).
-      {"extract " + image + " -o out.txt", "must end in .json, .yml or .yaml"},
+      {"extract " + image + " -o out.txt", "must end in .json, .yml, .yaml or .npz"},
       // 1 is outside the range, and the message says so.
       {"extract " + image + " --scale 1.0", "--scale expects a number in (1, 4], got '1.0'"},
       // Shards count from 0; 1-based arrays get the recipe; no overflow.
@@ -135,7 +135,7 @@ TEST(Cli, InputErrorsExitOne) {
   EXPECT_EQ(text.status, 1);
   EXPECT_NE(text.output.find("notes.png"), std::string::npos);
   const CliResult bad_output = run("extract " + aief::test::sample_path("boat", "img1.png") + " -o " + (dir / "f.txt").string());
-  EXPECT_EQ(bad_output.status, 1);
+  EXPECT_EQ(bad_output.status, 2) << "an unknown output format is a usage error, found before any work";
 }
 
 TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {

@@ -17,6 +17,9 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "io/features_files.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_features.hpp"
+#endif
 #include "io/image_io.hpp"
 #include "io/json_writer.hpp"
 #include "tools/progress.hpp"
@@ -71,7 +74,7 @@ std::string name_of_listed_path(const std::string& line) {
 // One image on its way through the pipeline.
 struct Item {
   BatchInput input;
-  std::string output;
+  std::string output;  // the file of a file-per-image format; empty for h5
   io::SourceRecord source;
   GrayImage image;
   Features features;
@@ -169,7 +172,16 @@ bool batch_output_is_current(const std::string& output, const io::SourceRecord& 
 BatchSummary run_batch(const BatchSettings& settings) {
   const std::vector<BatchInput> inputs = batch_inputs(settings);
   std::error_code ec;
-  fs::create_directories(settings.output_dir, ec);
+  // h5: every image a group of one file, named by the input's name, complete groups skipped on
+  // resume; else a file per image (batch_output_path) holding its source record.
+#ifdef AIEF_HAVE_HDF5
+  std::unique_ptr<io::Hdf5File> h5;
+  if (settings.format == "h5") h5 = std::make_unique<io::Hdf5File>(settings.output_dir, io::Hdf5File::Mode::read_write);
+#else
+  if (settings.format == "h5") throw Error("this aief was built without HDF5 (install libhdf5-dev and rebuild)");
+  const void* h5 = nullptr;
+#endif
+  if (!h5) fs::create_directories(settings.output_dir, ec);
   if (ec) throw Error("cannot create output folder '" + settings.output_dir + "': " + ec.message());
 
   BatchSummary summary;
@@ -187,7 +199,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
   arena.execute([&] {
     tbb::parallel_pipeline(
         static_cast<std::size_t>(2 * threads),
-        // Next image: serial, in order.
+        // Next image: serial, in order (the HDF5 file is asked here: one thread at a time).
         tbb::make_filter<void, std::shared_ptr<Item>>(tbb::filter_mode::serial_in_order,
                                                        [&](tbb::flow_control& control) -> std::shared_ptr<Item> {
                                                          if (next >= inputs.size()) {
@@ -196,19 +208,28 @@ BatchSummary run_batch(const BatchSettings& settings) {
                                                          }
                                                          auto item = std::make_shared<Item>();
                                                          item->input = inputs[next++];
+#ifdef AIEF_HAVE_HDF5
+                                                         if (h5) {
+                                                           item->skip = h5->has_features(item->input.name);
+                                                           return item;
+                                                         }
+#endif
                                                          item->output = batch_output_path(settings.output_dir, item->input.name,
                                                                                           settings.format);
                                                          return item;
                                                        }) &
             // Is the output current? If not: read (decoding dominates) and extract. Parallel.
             tbb::make_filter<std::shared_ptr<Item>, std::shared_ptr<Item>>(tbb::filter_mode::parallel, [&](std::shared_ptr<Item> item) {
-              std::error_code ignored;
-              fs::remove(io::temporary_path_of(item->output), ignored);  // a killed run's
+              if (item->skip) return item;
               try {
                 item->source = io::source_record_of(item->input.path, item->input.name);
-                if (fs::exists(item->output, ignored)) {
-                  item->skip = batch_output_is_current(item->output, item->source);
-                  item->replacing = !item->skip;
+                if (!item->output.empty()) {
+                  std::error_code ignored;
+                  fs::remove(io::temporary_path_of(item->output), ignored);  // a killed run's
+                  if (fs::exists(item->output, ignored)) {
+                    item->skip = batch_output_is_current(item->output, item->source);
+                    item->replacing = !item->skip;
+                  }
                 }
                 if (item->skip) return item;
                 std::unique_ptr<Extractor>& extractor = extractors.local();
@@ -227,8 +248,15 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 ++summary.skipped;
               } else if (item->error.empty()) {
                 try {
-                  fs::create_directories(fs::path(item->output).parent_path());
-                  io::write_features(item->output, item->input.path, item->features, settings.options, item->source);
+#ifdef AIEF_HAVE_HDF5
+                  if (h5) {
+                    h5->write_features(item->input.name, item->features);
+                  } else
+#endif
+                  {
+                    fs::create_directories(fs::path(item->output).parent_path());
+                    io::write_features(item->output, item->input.path, item->features, settings.options, item->source);
+                  }
                   ++summary.extracted;
                   summary.replaced += item->replacing ? 1 : 0;
                   summary.keypoints += static_cast<long long>(item->features.keypoints.size());

@@ -9,6 +9,8 @@
 // the only rewrites keep the name inside OUTDIR and stay one-to-one: '%' -> "%25", a ".." part ->
 // "%2E%2E", a leading '/' -> a first folder "%2F". So no two inputs share an output.
 //
+// HDF5 (--format h5): one file, a group per input named by the same name (hloc's features.h5).
+//
 // Resume. Every output records its input's name, size and modification time; a run skips an
 // input whose output holds exactly that record and extracts the others again (a changed image,
 // an output cut short). Outputs appear atomically (temporary file, then rename); a run first
@@ -27,8 +29,8 @@ namespace aief::cli {
 
 struct BatchSettings {
   std::string input;        // a folder (its images, recursively) or a text file of paths, one per line
-  std::string output_dir;
-  std::string format = "json";  // json | yml: the output extension
+  std::string output_dir;       // for format h5: the HDF5 file
+  std::string format = "json";  // json | yml | npz (a file per image: the output extension) | h5 (one hloc file, io/hdf5_features.hpp)
   int shard_index = 0, shard_count = 1;
   ExtractorOptions options;
 };

@@ -92,11 +92,23 @@ double Args::get_double(const std::string& name, double fallback, double min, do
   return value;
 }
 
+namespace {
+
+bool parse_on_off(const std::string& flag, const std::string& text) {
+  if (text == "on") return true;
+  if (text == "off") return false;
+  throw UsageError(flag + " expects on or off, got '" + text + "'");
+}
+
+}  // namespace
+
 std::vector<FlagSpec> extractor_flags() {
   return {{"--mode", "", true},          {"--features", "", true},      {"--levels", "", true},
           {"--scale", "", true},         {"--block", "", true},         {"--threshold", "", true},
           {"--entropy", "", true},       {"--fast-threshold", "", true}, {"--fast-min-threshold", "", true},
-          {"--kernels", "", true},       {"--threads", "", true}};
+          {"--kernels", "", true},       {"--threads", "", true},       {"--pool", "", true},
+          {"--coordinates", "", true},   {"--subpixel", "", true},      {"--starvation-guard", "", true},
+          {"--auto-uniform-blocks", "", true}};
 }
 
 ExtractorOptions extractor_options(const Args& args) {
@@ -126,6 +138,16 @@ ExtractorOptions extractor_options(const Args& args) {
     if (const auto name = args.get("--mode")) mode = parse_mode(*name);
     options = options_for_mode(mode, options);
     if (entropy_flag) options.entropy = parse_entropy_measure(*entropy_flag);
+    // The quality options refine the mode (issue 9), so they apply after it.
+    if (const auto pool = args.get("--pool")) options.candidate_pool = parse_candidate_pool(*pool);
+    if (const auto map = args.get("--coordinates")) options.coordinates = parse_coordinate_map(*map);
+    if (const auto subpixel = args.get("--subpixel")) options.subpixel = parse_on_off("--subpixel", *subpixel);
+    if (const auto guard = args.get("--starvation-guard")) options.starvation_guard = parse_starvation_guard(*guard);
+    if (const auto uniform = args.get("--auto-uniform-blocks")) {
+      if (*uniform != "skip" && *uniform != "count")
+        throw UsageError("--auto-uniform-blocks expects skip or count, got '" + *uniform + "'");
+      options.auto_skips_uniform_blocks = *uniform == "skip";
+    }
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
@@ -151,7 +173,9 @@ ExtractorOptions extractor_options(const Args& args) {
 std::string extractor_flags_help() {
   const ExtractorOptions d;
   std::ostringstream out;
-  out << "  --mode M              aief | orbslam2 | quadtree-entropy (default aief)\n"
+  out << "  --mode M              aief | aief-paper | orbslam2 | quadtree-entropy (default aief).\n"
+      << "                        aief-paper is the published algorithm to the byte (x * scale, no\n"
+      << "                        sub-pixel, no pool, frame-wide guard); orbslam2 keeps x * scale too\n"
       << "  --features N          keypoints wanted over all levels (default " << d.n_features << ")\n"
       << "  --levels L            pyramid levels (default " << d.n_levels << ")\n"
       << "  --scale S             scale factor between levels (default " << d.scale_factor << ")\n"
@@ -162,7 +186,17 @@ std::string extractor_flags_help() {
       << "  --fast-threshold T    FAST threshold (default " << d.fast_threshold << ")\n"
       << "  --fast-min-threshold T  retry threshold for a block without corners (default " << d.fast_min_threshold << ")\n"
       << "  --kernels K           auto | scalar | sse4.2 | avx2 | avx512 (default auto; same output)\n"
-      << "  --threads T           worker threads, 0 = all cores (default " << d.threads << "; same output)\n";
+      << "  --threads T           worker threads, 0 = all cores (default " << d.threads << "; same output)\n"
+      << "  --pool P|inf          candidate pool: each level keeps its best ceil(P x N_level) candidates\n"
+      << "                        before the water-level distribution; inf = none (default " << d.candidate_pool << ")\n"
+      << "  --coordinates C       pixel-centre: (x + 0.5) * W0 / Wn - 0.5 | scaled: x * scale^n (default "
+      << to_string(d.coordinates) << ")\n"
+      << "  --subpixel on|off     parabola peak of the FAST scores per axis (default " << (d.subpixel ? "on" : "off") << ")\n"
+      << "  --starvation-guard G  level: F lowered per level until it has its budget | frame: for the\n"
+      << "                        whole frame until it has n_features (default " << to_string(d.starvation_guard) << ")\n"
+      << "  --auto-uniform-blocks skip|count  whether one-gray-level blocks take part in the automatic F\n"
+      << "                        (default " << (d.auto_skips_uniform_blocks ? "skip" : "count") << ")\n"
+      << "  (--pool, --coordinates, --subpixel, --starvation-guard and --auto-uniform-blocks apply after --mode)\n";
   return out.str();
 }
 

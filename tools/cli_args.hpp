@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "aief/match.hpp"
 #include "aief/options.hpp"
 
 namespace aief::cli {
@@ -44,5 +45,8 @@ class Args {
 std::vector<FlagSpec> extractor_flags();
 ExtractorOptions extractor_options(const Args& args);
 std::string extractor_flags_help();
+
+// aief match --pairs: matching of an HDF5 features file (tools/cmd_sfm.cpp).
+int run_match_pairs(const Args& args, const MatchOptions& match_options);
 
 }  // namespace aief::cli

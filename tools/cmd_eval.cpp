@@ -23,7 +23,7 @@ namespace {
 
 void print_help() {
   std::cout << "usage: aief eval --dataset DIR [--sequences a,b,...] [--pairs 1-2|all] [-o REPORT.md]\n\n"
-            << "Runs ORB-SLAM2 mode, Quadtree + entropy, AIEF (adaptive F), AIEF (pair-free automatic F),\n"
+            << "Runs ORB-SLAM2 mode, Quadtree + entropy, AIEF paper and AIEF (adaptive F and pair-free automatic F),\n"
             << "OpenCV ORB and OpenCV SIFT on the Oxford affine sequences in DIR (<seq>/img1..6, H1to2p..6p):\n"
             << "the paper's four tables (img1 -> img2 of graf, leuven, boat, bikes) beside its figures, and\n"
             << "correct matches, accuracy and homography success under the ground truth. Writes REPORT.md,\n"
@@ -33,7 +33,12 @@ void print_help() {
             << "  --pairs P             1-2 or all (1 -> 2..6; default all)\n"
             << "  -o, --output FILE     the markdown report (default evaluation.md)\n"
             << "  --matcher K           mutual (default) | ratio | paper\n"
-            << "  --repeat N            runs per timing, median (default 3)\n";
+            << "  --repeat N            runs per timing, median (default 3)\n"
+            << "  --methods LIST        comma-separated JSON keys of the rows to run (default all):\n"
+            << "                        orbslam2, quadtree_entropy, aief_paper_adaptive, aief_paper_auto,\n"
+            << "                        aief_adaptive, aief_auto, opencv_orb, opencv_sift\n"
+            << "  --pool P|inf, --coordinates C, --subpixel on|off, --starvation-guard G\n"
+            << "                        the AIEF rows' options, as in aief extract (defaults: the library's)\n";
 }
 
 std::vector<std::string> split(const std::string& text) {
@@ -57,6 +62,11 @@ int run_eval(const Arguments& arguments) {
                               {"--output", "-o", true},
                               {"--matcher", "", true},
                               {"--repeat", "", true},
+                              {"--methods", "", true},
+                              {"--pool", "", true},
+                              {"--coordinates", "", true},
+                              {"--subpixel", "", true},
+                              {"--starvation-guard", "", true},
                               {"--help", "-h", false}});
   if (args.has("--help")) {
     print_help();
@@ -81,12 +91,33 @@ int run_eval(const Arguments& arguments) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
+  try {
+    if (const auto pool = args.get("--pool")) settings.aief.candidate_pool = parse_candidate_pool(*pool);
+    if (const auto map = args.get("--coordinates")) settings.aief.coordinates = parse_coordinate_map(*map);
+    if (const auto subpixel = args.get("--subpixel")) {
+      if (*subpixel != "on" && *subpixel != "off") throw Error("--subpixel expects on or off, got '" + *subpixel + "'");
+      settings.aief.subpixel = *subpixel == "on";
+    }
+    if (const auto guard = args.get("--starvation-guard")) settings.aief.starvation_guard = parse_starvation_guard(*guard);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  std::vector<eval::Method> methods = eval::kAllMethods;
+  if (const auto keys = args.get("--methods")) {
+    methods.clear();
+    try {
+      for (const std::string& key : split(*keys)) methods.push_back(eval::parse_method_key(key));
+    } catch (const Error& e) {
+      throw UsageError(e.what());
+    }
+    if (methods.empty()) throw UsageError("--methods needs at least one method");
+  }
   const std::string output = args.get("--output").value_or("evaluation.md");
 
   eval::EvalRun run;
   run.pairs = eval::find_pairs(*dataset, sequences, pairs_text == "all");
   if (run.pairs.empty()) throw Error("no sequence found in '" + *dataset + "'");
-  run.methods = eval::kAllMethods;
+  run.methods = methods;
   run.matcher = std::string(to_string(settings.match.kind));
   cv::setNumThreads(1);  // per-core times for every row
 

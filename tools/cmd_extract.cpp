@@ -17,10 +17,11 @@ namespace aief::cli {
 namespace {
 
 void print_help() {
-  std::cout << "usage: aief extract IMAGE [-o OUT.json|OUT.yml] [--draw OUT.png] [options]\n"
-            << "       aief extract --batch LIST|DIR -o OUTDIR [--format json|yml] [--shard i/n] [options]\n\n"
+  std::cout << "usage: aief extract IMAGE [-o OUT.json|OUT.yml|OUT.npz] [--draw OUT.png] [options]\n"
+            << "       aief extract --batch LIST|DIR -o OUTDIR [--format json|yml|npz] [--shard i/n] [options]\n"
+            << "       aief extract --batch LIST|DIR -o FEATURES.h5 --format h5 [--shard i/n] [options]\n\n"
             << "Keypoints and 256-bit rBRIEF descriptors of one image. Without -o, prints a summary.\n\n"
-            << "  -o, --output FILE     features as JSON (.json) or OpenCV FileStorage YAML (.yml)\n"
+            << "  -o, --output FILE     features as JSON (.json), OpenCV FileStorage YAML (.yml) or numpy (.npz)\n"
             << "  --draw FILE           the keypoints drawn over the image, PNG\n"
             << "  --batch LIST|DIR      every image of a folder (recursively, symlinks followed) or of a list\n"
             << "                        file (one path per line). Each image's name is its path below DIR as\n"
@@ -29,7 +30,9 @@ void print_help() {
             << "                        Resumable: an output recording this image's name, size and time is\n"
             << "                        kept, any other is redone; outputs appear atomically. A bad image is\n"
             << "                        reported and skipped. Exit 1 if any failed.\n"
-            << "  --format F            json (default) or yml, for --batch\n"
+            << "  --format F            json (default), yml or npz: a file per image in OUTDIR; h5: one HDF5 file\n"
+            << "                        in hloc's layout, a group per image named by its relative path (resumes\n"
+            << "                        at the first image not complete in it; one file per shard, then aief merge)\n"
             << "  --shard i/n           this run takes images i, i+n, i+2n ... of the list sorted by name,\n"
             << "                        0 <= i < n: machines split a collection, no coordinator. Slurm:\n"
             << "                        --shard $((SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT\n"
@@ -45,7 +48,8 @@ int run_extract_batch(const Args& args) {
   if (!output) throw UsageError("--batch needs -o OUTDIR");
   settings.output_dir = *output;
   settings.format = args.get("--format").value_or("json");
-  if (settings.format != "json" && settings.format != "yml") throw UsageError("--format expects json or yml, got '" + settings.format + "'");
+  if (settings.format != "json" && settings.format != "yml" && settings.format != "npz" && settings.format != "h5")
+    throw UsageError("--format expects json, yml, npz or h5, got '" + settings.format + "'");
   if (const auto shard = args.get("--shard")) {
     try {
       const Shard parsed = parse_shard(*shard);
@@ -86,7 +90,7 @@ int run_extract(const Arguments& arguments) {
   if (args.has("--batch")) return run_extract_batch(args);
   if (args.positionals().size() != 1) throw UsageError("extract expects one IMAGE (aief extract --help)");
   if (const auto output = args.get("--output"); output && !io::is_features_file_name(*output))
-    throw UsageError("-o " + *output + ": the output must end in .json, .yml or .yaml");
+    throw UsageError("-o " + *output + ": the output must end in .json, .yml, .yaml or .npz");
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
 

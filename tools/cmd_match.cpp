@@ -19,13 +19,16 @@ namespace aief::cli {
 namespace {
 
 void print_help() {
-  std::cout << "usage: aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o OUT.json] [--draw OUT.png]\n\n"
+  std::cout << "usage: aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o OUT.json] [--draw OUT.png]\n"
+            << "       aief match --pairs PAIRS.txt --features FEATURES.h5 -o MATCHES.h5 [--matcher K]\n\n"
             << "Extracts both images, matches them, estimates the homography A -> B with RANSAC (3 px).\n\n"
             << "  --adaptive            choose the entropy threshold F by the sweep over this pair (aief adapt)\n"
             << "  --matcher K           mutual (default) | ratio | paper\n"
             << "  --ratio R             Lowe ratio for --matcher ratio (default " << MatchOptions{}.ratio << ")\n"
             << "  -o, --output FILE     matches, inliers and homography as JSON\n"
             << "  --draw FILE           both images side by side, inliers green, outliers red, PNG\n"
+            << "  --pairs FILE          hloc pairs (\"name0 name1\" per line) matched from --features (aief extract\n"
+            << "                        --format h5) into -o MATCHES.h5, hloc's matches0 / matching_scores0 layout\n"
             << extractor_flags_help();
 }
 
@@ -48,14 +51,14 @@ int run_match(const Arguments& arguments) {
   spec.push_back({"--ratio", "", true});
   spec.push_back({"--output", "-o", true});
   spec.push_back({"--draw", "", true});
+  spec.push_back({"--pairs", "", true});
+  spec.push_back({"--features", "", true});
   spec.push_back({"--help", "-h", false});
   const Args args(arguments, spec);
   if (args.has("--help")) {
     print_help();
     return 0;
   }
-  if (args.positionals().size() != 2) throw UsageError("match expects two images A B (aief match --help)");
-  const ExtractorOptions options = extractor_options(args);
   MatchOptions match_options;
   try {
     if (const auto kind = args.get("--matcher")) match_options.kind = parse_matcher_kind(*kind);
@@ -65,6 +68,9 @@ int run_match(const Arguments& arguments) {
   if (args.has("--ratio") && match_options.kind != MatcherKind::ratio)
     throw UsageError("--ratio applies to --matcher ratio only, not " + std::string(to_string(match_options.kind)));
   match_options.ratio = args.get_double("--ratio", match_options.ratio, 0.0, 1.0, /*min_is_exclusive=*/true);
+  if (args.has("--pairs")) return run_match_pairs(args, match_options);
+  if (args.positionals().size() != 2) throw UsageError("match expects two images A B (aief match --help)");
+  const ExtractorOptions options = extractor_options(args);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
   const GrayImage a = io::read_gray_image(path_a, options.max_image_pixels), b = io::read_gray_image(path_b, options.max_image_pixels);

@@ -25,6 +25,8 @@ constexpr Command kCommands[] = {
     {"eval", "the paper's tables and ground-truth metrics on the Oxford dataset", aief::cli::run_eval},
     {"bench", "median milliseconds per stage on your image, beside cv::ORB", aief::cli::run_bench},
     {"validate", "every SIMD kernel against the scalar reference on this CPU", aief::cli::run_validate},
+    {"merge", "merge the shards' HDF5 feature files into one", aief::cli::run_merge},
+    {"colmap", "a COLMAP database from HDF5 features and matches", aief::cli::run_colmap},
 };
 
 void print_usage(std::ostream& out) {

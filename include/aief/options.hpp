@@ -28,11 +28,24 @@ enum class KernelSet {
   avx512bw,
 };
 
+// Where a level point lands in level-0 pixels (core/keypoint_position.hpp).
+enum class CoordinateMap {
+  scaled,        // x * scale_factor^n: the paper and ORB-SLAM2 (biased at coarse levels)
+  pixel_centre,  // (x + 0.5) * (W_0 / W_n) - 0.5 per axis: where the pyramid sampled the point
+};
+
+// What keeps a frame's entropy mask from starving it of keypoints.
+enum class StarvationGuard {
+  frame,  // lower F for the whole frame while all kept blocks hold < n_features candidates
+  level,  // lower F per level while the level's kept blocks hold < its budget N_n
+};
+
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
-  aief,              // proportional distribution + entropy mask at entropy_threshold
-  orbslam2,          // quadtree, no entropy
-  quadtree_entropy,  // quadtree + entropy mask
+  aief,              // AIEF with the matching-quality fixes of issue 9 (the defaults below)
+  aief_paper,        // AIEF exactly as published: x * scale, no sub-pixel, no pool, frame guard
+  orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
+  quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
 };
 
 struct ExtractorOptions {
@@ -50,6 +63,21 @@ struct ExtractorOptions {
   // Pair-free automatic F (core/auto_threshold.hpp) instead of entropy_threshold: Otsu's split
   // of the frame's own block entropies. `aief extract --threshold auto`.
   bool auto_threshold = false;
+  // Level-0 position of a keypoint. The pyramid is pixel-centre aligned, so x * scale is off by
+  // 3-8 px at levels 6-7 (issue 9); the paper and ORB-SLAM2 modes keep it for fidelity.
+  CoordinateMap coordinates = CoordinateMap::pixel_centre;
+  // Refine each keypoint to sub-pixel by a 3-point parabola per axis on the FAST score map.
+  bool subpixel = true;
+  // P of the candidate pool: with the proportional distribution each level first keeps its
+  // strongest ceil(P * N_n) candidates over the kept blocks, then distributes them by the water
+  // level; infinity = no pool (the paper). Value chosen on the Oxford set, docs/evaluation.md.
+  double candidate_pool = 1.5;
+  // With entropy on: per level (each level gets its budget when its blocks can give it) or
+  // frame-wide (the paper mode's rule).
+  StarvationGuard starvation_guard = StarvationGuard::level;
+  // Automatic F: uniform blocks (one gray level: the black border of a warped image, saturated
+  // sky) cannot hold a corner and are left out of Otsu's split. false: every block counts.
+  bool auto_skips_uniform_blocks = true;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
@@ -68,10 +96,16 @@ std::string_view to_string(Distribution value);
 std::string_view to_string(EntropyMeasure value);
 std::string_view to_string(KernelSet value);
 std::string_view to_string(Mode value);
+std::string_view to_string(CoordinateMap value);
+std::string_view to_string(StarvationGuard value);
 Distribution parse_distribution(std::string_view name);
 EntropyMeasure parse_entropy_measure(std::string_view name);
 KernelSet parse_kernel_set(std::string_view name);
 Mode parse_mode(std::string_view name);
+CoordinateMap parse_coordinate_map(std::string_view name);
+StarvationGuard parse_starvation_guard(std::string_view name);
+// A candidate pool factor P: a number >= 1, or "inf" / "off" for no pool.
+double parse_candidate_pool(std::string_view text);
 
 // Fixed geometry of ORB (ORB-SLAM2 defaults, DESIGN.md section 1).
 constexpr int kPatchSize = 31;     // rBRIEF patch side

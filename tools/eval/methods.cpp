@@ -7,7 +7,9 @@
 #include <opencv2/features2d.hpp>
 
 #include "aief/adapt.hpp"
+#include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "tools/eval/keypoint_metrics.hpp"
 
 namespace aief::eval {
 
@@ -15,6 +17,8 @@ std::string method_name(Method method) {
   switch (method) {
     case Method::orbslam2: return "ORB-SLAM2 mode (ours)";
     case Method::quadtree_entropy: return "Quadtree + entropy (F = 4)";
+    case Method::aief_paper_adaptive: return "AIEF paper (adaptive F)";
+    case Method::aief_paper_auto: return "AIEF paper (auto F, no pair)";
     case Method::aief_adaptive: return "AIEF (adaptive F)";
     case Method::aief_auto: return "AIEF (auto F, no pair)";
     case Method::opencv_orb: return "OpenCV ORB";
@@ -27,12 +31,20 @@ std::string method_key(Method method) {
   switch (method) {
     case Method::orbslam2: return "orbslam2";
     case Method::quadtree_entropy: return "quadtree_entropy";
+    case Method::aief_paper_adaptive: return "aief_paper_adaptive";
+    case Method::aief_paper_auto: return "aief_paper_auto";
     case Method::aief_adaptive: return "aief_adaptive";
     case Method::aief_auto: return "aief_auto";
     case Method::opencv_orb: return "opencv_orb";
     case Method::opencv_sift: return "opencv_sift";
   }
   return "?";
+}
+
+Method parse_method_key(const std::string& key) {
+  for (Method method : kAllMethods)
+    if (method_key(method) == key) return method;
+  throw Error("unknown method '" + key + "'");
 }
 
 namespace {
@@ -72,6 +84,21 @@ void measure(const std::vector<Point2>& pa, const std::vector<Point2>& pb, const
   }
 }
 
+// Repeatability and spread from the keypoints alone.
+void measure_keypoints(const std::vector<Point2>& a, const std::vector<Point2>& b, const Homography& truth, int width,
+                       int height, int width_b, int height_b, PairResult& r) {
+  r.keypoints_a = static_cast<int>(a.size());
+  r.keypoints_b = static_cast<int>(b.size());
+  r.repeatability = repeatability(a, b, truth, width, height, width_b, height_b);
+  r.spread = keypoint_spread(a, width, height);
+}
+
+std::vector<Point2> points_of(const Features& features) {
+  std::vector<Point2> points;
+  for (const Keypoint& kp : features.keypoints) points.push_back({kp.x, kp.y});
+  return points;
+}
+
 void measure_features(const Features& a, const Features& b, const std::vector<Match>& matches, const Homography& truth,
                       int width, int height, PairResult& r) {
   std::vector<Point2> pa, pb;
@@ -81,22 +108,30 @@ void measure_features(const Features& a, const Features& b, const std::vector<Ma
     pa.push_back({ka.x, ka.y});
     pb.push_back({kb.x, kb.y});
   }
-  r.keypoints_a = static_cast<int>(a.keypoints.size());
-  r.keypoints_b = static_cast<int>(b.keypoints.size());
+  measure_keypoints(points_of(a), points_of(b), truth, width, height, b.image_width, b.image_height, r);
   measure(pa, pb, truth, width, height, r);
 }
 
 PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth, const EvalSettings& s) {
   PairResult r;
   ExtractorOptions options;
-  options.threads = 1;  // per-core times, as the paper's and OpenCV's
   switch (method) {
     case Method::orbslam2: options = options_for_mode(Mode::orbslam2, options); break;
     case Method::quadtree_entropy: options = options_for_mode(Mode::quadtree_entropy, options); break;
-    case Method::aief_auto: options.auto_threshold = true; break;
-    default: break;
+    case Method::aief_paper_adaptive: options = options_for_mode(Mode::aief_paper, options); break;
+    case Method::aief_paper_auto:
+      options = options_for_mode(Mode::aief_paper, options);
+      options.auto_threshold = true;
+      break;
+    case Method::aief_auto:
+      options = s.aief;
+      options.auto_threshold = true;
+      break;
+    default: options = s.aief; break;
   }
-  if (method == Method::aief_adaptive) {
+  options.threads = 1;  // per-core times, as the paper's and OpenCV's
+  const bool adaptive = method == Method::aief_adaptive || method == Method::aief_paper_adaptive;
+  if (adaptive) {
     SweepOptions sweep;
     sweep.match = s.match;
     AdaptResult adapted;
@@ -108,7 +143,7 @@ PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Hom
   Extractor extractor(options);
   Features fa, fb;
   r.extract_ms = median_ms(s.timing_repeats, [&] { extractor.extract(view_of(a), fa); });
-  if (method == Method::aief_adaptive) return r;
+  if (adaptive) return r;
   extractor.extract(view_of(b), fb);
   const std::vector<Match> matches = match_descriptors(fa.descriptors, fb.descriptors, s.match);
   measure_features(fa, fb, matches, truth, a.cols, a.rows, r);
@@ -125,8 +160,12 @@ PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const H
   cv::Mat da, db;
   r.extract_ms = median_ms(s.timing_repeats, [&] { detector->detectAndCompute(a, cv::noArray(), ka, da); });
   detector->detectAndCompute(b, cv::noArray(), kb, db);
-  r.keypoints_a = static_cast<int>(ka.size());
-  r.keypoints_b = static_cast<int>(kb.size());
+  const auto points = [](const std::vector<cv::KeyPoint>& keypoints) {
+    std::vector<Point2> out;
+    for (const cv::KeyPoint& kp : keypoints) out.push_back({kp.pt.x, kp.pt.y});
+    return out;
+  };
+  measure_keypoints(points(ka), points(kb), truth, a.cols, a.rows, b.cols, b.rows, r);
 
   std::vector<Point2> pa, pb;
   if (method == Method::opencv_orb) {

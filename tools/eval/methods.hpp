@@ -9,16 +9,29 @@
 
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
+#include "aief/options.hpp"
 
 namespace aief::eval {
 
-enum class Method { orbslam2, quadtree_entropy, aief_adaptive, aief_auto, opencv_orb, opencv_sift };
+enum class Method {
+  orbslam2,
+  quadtree_entropy,
+  aief_paper_adaptive,  // --mode aief-paper: the published algorithm, the paper's tables
+  aief_paper_auto,
+  aief_adaptive,        // --mode aief (default): pixel-centre map, sub-pixel, pool, level guard
+  aief_auto,
+  opencv_orb,
+  opencv_sift
+};
 
-inline const std::vector<Method> kAllMethods = {Method::orbslam2,  Method::quadtree_entropy, Method::aief_adaptive,
-                                                Method::aief_auto, Method::opencv_orb,       Method::opencv_sift};
+inline const std::vector<Method> kAllMethods = {Method::orbslam2,   Method::quadtree_entropy, Method::aief_paper_adaptive,
+                                                Method::aief_paper_auto, Method::aief_adaptive, Method::aief_auto,
+                                                Method::opencv_orb, Method::opencv_sift};
 
 std::string method_name(Method method);  // the row label, e.g. "AIEF (adaptive F)"
 std::string method_key(Method method);   // the JSON key, e.g. "aief_adaptive"
+// The method of a JSON key; throws aief::Error for an unknown one.
+Method parse_method_key(const std::string& key);
 
 struct PairResult {
   int keypoints_a = 0, keypoints_b = 0;
@@ -32,11 +45,14 @@ struct PairResult {
   double extract_ms = 0;   // extraction + description of image A, median, one thread
   double sweep_ms = 0;     // the adaptive sweep over the pair (AIEF adaptive only)
   double threshold = -1;   // F used for image A (entropy methods)
+  double repeatability = 0;  // keypoints of A repeated in B within 3 px (keypoint_metrics.hpp)
+  double spread = 0;       // share of image A's 32 px cells holding a keypoint
 };
 
 struct EvalSettings {
   MatchOptions match;      // mutual by default
   int timing_repeats = 3;  // runs per extraction time (median)
+  ExtractorOptions aief;   // the AIEF rows' options (the paper rows use --mode aief-paper)
 };
 
 PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b, const Homography& truth,

@@ -1,0 +1,64 @@
+#pragma once
+// What the ORB-SLAM2 and ORB-SLAM3 drop-ins share (target aief::opencv): ORBextractor's
+// constructor, scale accessors and mvImagePyramid, which the two versions have in common, and
+// the settings keys both read. Each drop-in adds its own call operator:
+// aief::ORBextractor (aief/orbslam2_extractor.hpp) and aief::orbslam3::ORBextractor
+// (aief/orbslam3_extractor.hpp).
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "aief/extractor.hpp"
+
+namespace aief {
+
+class OrbSlamExtractorBase {
+ public:
+  // ORB-SLAM's signature; the rest of the options are ExtractorOptions defaults (AIEF mode).
+  OrbSlamExtractorBase(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST);
+  explicit OrbSlamExtractorBase(const ExtractorOptions& options);
+
+  // The options from a settings file as ORB-SLAM2 and ORB-SLAM3 read it: ORBextractor.nFeatures,
+  // .scaleFactor, .nLevels, .iniThFAST, .minThFAST, and ours: ORBextractor.mode (aief | orbslam2
+  // | quadtree-entropy), ORBextractor.entropyThreshold (a number, or "auto"),
+  // ORBextractor.blockSize, ORBextractor.threads (0 = TBB's default). Missing keys keep ExtractorOptions' defaults; a value of the wrong
+  // kind (text for a number, 1.5 for an integer, an unknown mode) throws aief::Error naming the
+  // key, out-of-range values throw from ExtractorOptions::validate. scaleFactor is rounded to
+  // float, as both versions' Tracking reads it, so settings and the five-number constructor give
+  // the same extractor. Also the way to change nFeatures for the monocular initialiser.
+  static ExtractorOptions options_from_settings(const cv::FileStorage& settings);
+
+  // The tables of ORB-SLAM's constructor (both versions): scale_n = scale_(n-1) * scaleFactor
+  // in float, sigma2_n = scale_n^2, and their float inverses.
+  int GetLevels() const { return nlevels; }
+  float GetScaleFactor() const { return scaleFactor; }
+  std::vector<float> GetScaleFactors() const { return mvScaleFactor; }
+  std::vector<float> GetInverseScaleFactors() const { return mvInvScaleFactor; }
+  std::vector<float> GetScaleSigmaSquares() const { return mvLevelSigma2; }
+  std::vector<float> GetInverseScaleSigmaSquares() const { return mvInvLevelSigma2; }
+
+  // The levels of the last frame (headers over the extractor's buffers: valid until the next
+  // call), as ORB-SLAM's stereo matching reads them. Levels too small to build are empty.
+  std::vector<cv::Mat> mvImagePyramid;
+
+  const Extractor& extractor() const { return extractor_; }
+
+ protected:
+  // The features of one frame, as both call operators start: image CV_8UC1 (CV_8UC3/4 converted
+  // to gray), mvImagePyramid refreshed. The result is valid until the next call. Throws
+  // aief::Error for an empty image, another type, or one smaller than 2 * kEdgeBorder + 1
+  // pixels in a side.
+  const Features& extract_frame(cv::InputArray image);
+
+ private:
+  void compute_scales();
+
+  Extractor extractor_;
+  Features features_;
+  cv::Mat gray_;
+  int nlevels;
+  float scaleFactor;
+  std::vector<float> mvScaleFactor, mvInvScaleFactor, mvLevelSigma2, mvInvLevelSigma2;
+};
+
+}  // namespace aief

@@ -1,0 +1,183 @@
+#include "io/colmap_database.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <vector>
+
+#include <sqlite3.h>
+
+#include "aief/error.hpp"
+#include "io/hdf5_features.hpp"
+#include "io/pairs_file.hpp"
+
+namespace aief::io {
+
+namespace {
+
+// COLMAP 3.x's tables (colmap/src/base/database.cc), created as COLMAP creates them.
+constexpr const char* kSchema = R"sql(
+CREATE TABLE cameras (camera_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, model INTEGER NOT NULL,
+  width INTEGER NOT NULL, height INTEGER NOT NULL, params BLOB, prior_focal_length INTEGER NOT NULL);
+CREATE TABLE images (image_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, name TEXT NOT NULL UNIQUE,
+  camera_id INTEGER NOT NULL, prior_qw REAL, prior_qx REAL, prior_qy REAL, prior_qz REAL, prior_tx REAL,
+  prior_ty REAL, prior_tz REAL, CONSTRAINT image_id_check CHECK(image_id >= 0 and image_id < 2147483647),
+  FOREIGN KEY(camera_id) REFERENCES cameras(camera_id));
+CREATE UNIQUE INDEX index_name ON images(name);
+CREATE TABLE keypoints (image_id INTEGER PRIMARY KEY NOT NULL, rows INTEGER NOT NULL, cols INTEGER NOT NULL,
+  data BLOB, FOREIGN KEY(image_id) REFERENCES images(image_id) ON DELETE CASCADE);
+CREATE TABLE descriptors (image_id INTEGER PRIMARY KEY NOT NULL, rows INTEGER NOT NULL, cols INTEGER NOT NULL,
+  data BLOB, FOREIGN KEY(image_id) REFERENCES images(image_id) ON DELETE CASCADE);
+CREATE TABLE matches (pair_id INTEGER PRIMARY KEY NOT NULL, rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
+CREATE TABLE two_view_geometries (pair_id INTEGER PRIMARY KEY NOT NULL, rows INTEGER NOT NULL,
+  cols INTEGER NOT NULL, data BLOB, config INTEGER NOT NULL, F BLOB, E BLOB, H BLOB, qvec BLOB, tvec BLOB);
+)sql";
+
+constexpr int kSimpleRadial = 2;                 // COLMAP's camera model id
+constexpr long long kMaxImageId = 2147483647;    // pair_id = id1 * kMaxImageId + id2 (COLMAP)
+constexpr double kFocalGuess = 1.2;              // COLMAP's focal prior without EXIF, times max(w, h)
+constexpr float kColmapOrigin = 0.5f;            // pixel centre in COLMAP's corner-origin pixels
+
+class Database {
+ public:
+  explicit Database(const std::string& path) : path_(path) {
+    if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) fail("cannot create");
+  }
+  ~Database() { sqlite3_close(db_); }
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+
+  void exec(const char* sql) {
+    if (sqlite3_exec(db_, sql, nullptr, nullptr, nullptr) != SQLITE_OK) fail("cannot run SQL");
+  }
+  // One statement, run once with the given binders.
+  template <class Bind>
+  void run(const char* sql, Bind&& bind) {
+    sqlite3_stmt* statement = nullptr;
+    if (sqlite3_prepare_v2(db_, sql, -1, &statement, nullptr) != SQLITE_OK) fail("cannot prepare");
+    bind(statement);
+    const int status = sqlite3_step(statement);
+    sqlite3_finalize(statement);
+    if (status != SQLITE_DONE) fail("cannot insert");
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) {
+    throw Error(what + " in COLMAP database '" + path_ + "': " + sqlite3_errmsg(db_));
+  }
+  std::string path_;
+  sqlite3* db_ = nullptr;
+};
+
+template <class T>
+void bind_blob(sqlite3_stmt* statement, int column, const std::vector<T>& values) {
+  sqlite3_bind_blob(statement, column, values.data(), static_cast<int>(values.size() * sizeof(T)), SQLITE_TRANSIENT);
+}
+
+void write_database(Database& db, const Hdf5File& features, const Hdf5File& matches_file,
+                    const std::vector<ImagePair>& pairs, ColmapExport& summary) {
+  db.exec(kSchema);
+  db.exec("BEGIN TRANSACTION");
+  std::map<std::string, std::pair<long long, int>> images;  // name -> (image id, keypoints)
+  for (const std::string& name : features.feature_names()) {
+    const Features f = features.read_features(name);
+    const long long id = static_cast<long long>(images.size()) + 1;
+    images[name] = {id, static_cast<int>(f.keypoints.size())};
+    const std::vector<double> params = {kFocalGuess * std::max(f.image_width, f.image_height), f.image_width / 2.0,
+                                        f.image_height / 2.0, 0.0};
+    db.run("INSERT INTO cameras VALUES (?, ?, ?, ?, ?, 0)", [&](sqlite3_stmt* s) {
+      sqlite3_bind_int64(s, 1, id);
+      sqlite3_bind_int(s, 2, kSimpleRadial);
+      sqlite3_bind_int(s, 3, f.image_width);
+      sqlite3_bind_int(s, 4, f.image_height);
+      bind_blob(s, 5, params);
+    });
+    db.run("INSERT INTO images (image_id, name, camera_id) VALUES (?, ?, ?)", [&](sqlite3_stmt* s) {
+      sqlite3_bind_int64(s, 1, id);
+      sqlite3_bind_text(s, 2, name.c_str(), -1, SQLITE_TRANSIENT);
+      sqlite3_bind_int64(s, 3, id);
+    });
+    std::vector<float> xy;
+    std::vector<std::uint8_t> descriptors;
+    for (std::size_t i = 0; i < f.keypoints.size(); ++i) {
+      xy.push_back(f.keypoints[i].x + kColmapOrigin);
+      xy.push_back(f.keypoints[i].y + kColmapOrigin);
+      descriptors.insert(descriptors.end(), f.descriptors[i].begin(), f.descriptors[i].end());
+    }
+    const auto rows = static_cast<int>(f.keypoints.size());
+    db.run("INSERT INTO keypoints VALUES (?, ?, 2, ?)", [&](sqlite3_stmt* s) {
+      sqlite3_bind_int64(s, 1, id);
+      sqlite3_bind_int(s, 2, rows);
+      bind_blob(s, 3, xy);
+    });
+    db.run("INSERT INTO descriptors VALUES (?, ?, 32, ?)", [&](sqlite3_stmt* s) {
+      sqlite3_bind_int64(s, 1, id);
+      sqlite3_bind_int(s, 2, rows);
+      bind_blob(s, 3, descriptors);
+    });
+    ++summary.images;
+  }
+  std::vector<long long> written;
+  for (const auto& [name0, name1] : pairs) {
+    const auto a = images.find(name0), b = images.find(name1);
+    if (a == images.end() || b == images.end())
+      throw Error("pair '" + name0 + " " + name1 + "': image '" + (a == images.end() ? name0 : name1) + "' is not in '" +
+                  features.path() + "'");
+    std::vector<Match> matches;
+    bool swapped = false;
+    if (matches_file.has_matches(hloc_pair_name(name0, name1))) {
+      matches = matches_file.read_matches(hloc_pair_name(name0, name1));
+    } else if (matches_file.has_matches(hloc_pair_name(name1, name0))) {
+      matches = matches_file.read_matches(hloc_pair_name(name1, name0));
+      swapped = true;
+    } else {
+      throw Error("pair '" + name0 + " " + name1 + "' has no matches in '" + matches_file.path() + "'");
+    }
+    long long id0 = a->second.first, id1 = b->second.first;
+    if (swapped) std::swap(id0, id1);  // id0 is now the queries' image
+    const bool flip = id0 > id1;       // COLMAP keys a pair by (smaller id, larger id)
+    const long long pair_id = std::min(id0, id1) * kMaxImageId + std::max(id0, id1);
+    if (std::find(written.begin(), written.end(), pair_id) != written.end()) continue;  // listed twice
+    written.push_back(pair_id);
+    std::vector<std::uint32_t> rows;
+    for (const Match& m : matches) {
+      rows.push_back(static_cast<std::uint32_t>(flip ? m.train : m.query));
+      rows.push_back(static_cast<std::uint32_t>(flip ? m.query : m.train));
+    }
+    db.run("INSERT INTO matches VALUES (?, ?, 2, ?)", [&](sqlite3_stmt* s) {
+      sqlite3_bind_int64(s, 1, pair_id);
+      sqlite3_bind_int(s, 2, static_cast<int>(matches.size()));
+      bind_blob(s, 3, rows);
+    });
+    ++summary.pairs;
+    summary.matches += static_cast<long long>(matches.size());
+  }
+  db.exec("COMMIT");
+}
+
+}  // namespace
+
+ColmapExport export_colmap_database(const std::string& database, const std::string& features_h5,
+                                    const std::string& matches_h5, const std::string& pairs_txt) {
+  std::error_code ec;
+  if (std::filesystem::exists(database, ec)) throw Error("COLMAP database '" + database + "' exists already (remove it first)");
+  const Hdf5File features(features_h5, Hdf5File::Mode::read);
+  const Hdf5File matches(matches_h5, Hdf5File::Mode::read);
+  const std::vector<ImagePair> pairs = read_pairs(pairs_txt);
+  const std::string temporary = database + ".tmp";
+  std::filesystem::remove(temporary, ec);
+  ColmapExport summary;
+  try {
+    Database db(temporary);
+    write_database(db, features, matches, pairs, summary);
+  } catch (...) {
+    std::filesystem::remove(temporary, ec);
+    throw;
+  }
+  std::filesystem::rename(temporary, database, ec);
+  if (ec) throw Error("cannot write COLMAP database '" + database + "': " + ec.message());
+  return summary;
+}
+
+}  // namespace aief::io

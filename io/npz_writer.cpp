@@ -1,0 +1,174 @@
+#include "io/npz_writer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "io/json_writer.hpp"
+
+namespace aief::io {
+
+namespace {
+
+// One array: its numpy dtype ("<f4"), shape and raw little-endian bytes.
+struct NpyArray {
+  std::string name;
+  std::string dtype;
+  std::vector<std::size_t> shape;
+  std::string bytes;
+};
+
+template <class T>
+std::string raw_bytes(const std::vector<T>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));  // x86-64 and AArch64: little-endian
+}
+
+// numpy's .npy format 1.0: magic, header length, a Python dict literal padded to 64 bytes.
+std::string npy_file(const NpyArray& array) {
+  std::string shape = "(";
+  for (std::size_t d : array.shape) shape += std::to_string(d) + ",";
+  if (array.shape.size() > 1) shape.pop_back();
+  shape += ")";
+  std::string header = "{'descr': '" + array.dtype + "', 'fortran_order': False, 'shape': " + shape + ", }";
+  const std::size_t unpadded = 10 + header.size() + 1;
+  header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";
+  std::string out("\x93NUMPY\x01\x00", 8);
+  out += static_cast<char>(header.size() & 0xff);
+  out += static_cast<char>(header.size() >> 8);
+  return out + header + array.bytes;
+}
+
+std::uint32_t crc32(const std::string& bytes) {
+  static const std::array<std::uint32_t, 256> table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t n = 0; n < 256; ++n) {
+      std::uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[n] = c;
+    }
+    return t;
+  }();
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (unsigned char b : bytes) c = table[(c ^ b) & 0xff] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+void put16(std::string& out, std::uint32_t v) {
+  out += static_cast<char>(v & 0xff);
+  out += static_cast<char>((v >> 8) & 0xff);
+}
+void put32(std::string& out, std::uint32_t v) {
+  put16(out, v & 0xffff);
+  put16(out, v >> 16);
+}
+
+// A zip archive of stored (uncompressed) members, as numpy.savez writes (PKWARE APPNOTE 4.3).
+std::string zip_stored(const std::vector<std::pair<std::string, std::string>>& members) {
+  std::string out, directory;
+  for (const auto& [name, data] : members) {
+    const auto offset = static_cast<std::uint32_t>(out.size());
+    const std::uint32_t crc = crc32(data);
+    const auto size = static_cast<std::uint32_t>(data.size());
+    put32(out, 0x04034b50);  // local file header
+    put16(out, 20);          // version needed
+    put16(out, 0);           // flags
+    put16(out, 0);           // stored
+    put16(out, 0);           // time
+    put16(out, 0x21);        // date: 1980-01-01
+    put32(out, crc);
+    put32(out, size);
+    put32(out, size);
+    put16(out, static_cast<std::uint32_t>(name.size()));
+    put16(out, 0);
+    out += name + data;
+    put32(directory, 0x02014b50);  // central directory entry
+    put16(directory, 20);
+    put16(directory, 20);
+    put16(directory, 0);
+    put16(directory, 0);
+    put16(directory, 0);
+    put16(directory, 0x21);
+    put32(directory, crc);
+    put32(directory, size);
+    put32(directory, size);
+    put16(directory, static_cast<std::uint32_t>(name.size()));
+    put16(directory, 0);
+    put16(directory, 0);
+    put16(directory, 0);
+    put16(directory, 0);
+    put32(directory, 0);
+    put32(directory, offset);
+    directory += name;
+  }
+  const auto directory_offset = static_cast<std::uint32_t>(out.size());
+  out += directory;
+  put32(out, 0x06054b50);  // end of central directory
+  put16(out, 0);
+  put16(out, 0);
+  put16(out, static_cast<std::uint32_t>(members.size()));
+  put16(out, static_cast<std::uint32_t>(members.size()));
+  put32(out, static_cast<std::uint32_t>(directory.size()));
+  put32(out, directory_offset);
+  put16(out, 0);
+  return out;
+}
+
+// The members that record the source: stored uncompressed, so their bytes appear verbatim in the file.
+std::vector<NpyArray> source_arrays(const SourceRecord& source) {
+  const std::vector<std::int64_t> stat = {static_cast<std::int64_t>(source.bytes), source.mtime_ns};
+  return {{"source_name", "|S" + std::to_string(std::max<std::size_t>(source.name.size(), 1)), {}, source.name.empty() ? std::string(1, '\0') : source.name},
+          {"source_stat", "<i8", {2}, raw_bytes(stat)}};
+}
+
+}  // namespace
+
+bool npz_file_belongs_to(const std::string& path, const SourceRecord& source) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // A complete zip ends with its end-of-central-directory record (22 bytes, no comment).
+  if (file.size() < 22 || file.compare(file.size() - 22, 4, "PK\x05\x06") != 0) return false;
+  for (const NpyArray& array : source_arrays(source))
+    if (file.find(npy_file(array)) == std::string::npos) return false;
+  return true;
+}
+
+std::string features_npz(const Features& features, const std::optional<SourceRecord>& source) {
+  const std::size_t n = features.keypoints.size();
+  std::vector<float> xy, size, angle, response;
+  std::vector<std::int32_t> octave;
+  std::vector<std::uint8_t> descriptors;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Keypoint& kp = features.keypoints[i];
+    xy.insert(xy.end(), {kp.x, kp.y});
+    size.push_back(kp.size);
+    angle.push_back(kp.angle_deg);
+    response.push_back(kp.response);
+    octave.push_back(kp.octave);
+    descriptors.insert(descriptors.end(), features.descriptors[i].begin(), features.descriptors[i].end());
+  }
+  const std::vector<std::int64_t> image_size = {features.image_width, features.image_height};
+  std::vector<NpyArray> arrays = {
+      {"keypoints", "<f4", {n, 2}, raw_bytes(xy)},
+      {"descriptors", "|u1", {n, kDescriptorBytes}, raw_bytes(descriptors)},
+      {"scores", "<f4", {n}, raw_bytes(response)},
+      {"size", "<f4", {n}, raw_bytes(size)},
+      {"angle", "<f4", {n}, raw_bytes(angle)},
+      {"octave", "<i4", {n}, raw_bytes(octave)},
+      {"image_size", "<i8", {2}, raw_bytes(image_size)},
+  };
+  if (source)
+    for (NpyArray& array : source_arrays(*source)) arrays.push_back(std::move(array));
+  std::vector<std::pair<std::string, std::string>> members;
+  for (const NpyArray& array : arrays) members.emplace_back(array.name + ".npy", npy_file(array));
+  return zip_stored(members);
+}
+
+void write_features_npz(const std::string& path, const Features& features, const std::optional<SourceRecord>& source) {
+  write_file_atomically(path, features_npz(features, source));
+}
+
+}  // namespace aief::io

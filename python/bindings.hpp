@@ -1,0 +1,52 @@
+#pragma once
+// Shared by the files of the Python module (python/module.cpp opens it): numpy images in,
+// numpy feature arrays out, and the functions that bind each part of the API.
+#include <string>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include "aief/features.hpp"
+#include "aief/image.hpp"
+
+namespace aief::python {
+
+namespace py = pybind11;
+
+// A caller's numpy image, described while the GIL is held, used after it is released. It keeps
+// a reference to the array, so the pixels outlive the extraction.
+class ImageInput {
+ public:
+  // uint8 arrays only: 2-D (gray, any strides), or 3-D H x W x C with C = 1, 3 (BGR) or 4
+  // (BGRA). Throws aief::Error naming what is wrong.
+  explicit ImageInput(const py::object& image);
+  // The gray plane to extract from: the caller's own memory when its rows are contiguous (no
+  // copy), else `buffer` filled by a strided copy; colour is converted into `buffer` exactly as
+  // the CLI converts a decoded file (io/image_io.hpp). Needs no GIL.
+  ImageView gray(GrayImage& buffer) const;
+
+ private:
+  py::array array_;
+  const std::uint8_t* data_ = nullptr;
+  int width_ = 0, height_ = 0, channels_ = 1;
+  py::ssize_t row_stride_ = 0, pixel_stride_ = 0, channel_stride_ = 0;  // bytes
+};
+
+// The result object of Extractor.extract: numpy arrays that own copies of the features.
+struct PyFeatures {
+  py::array_t<float> keypoints;          // N x 2, x then y, level-0 pixels (OpenCV convention)
+  py::array_t<float> size, angle, response;
+  py::array_t<std::int32_t> octave;
+  py::array_t<std::uint8_t> descriptors; // N x 32
+  py::dict info;
+  int image_width = 0, image_height = 0;
+};
+PyFeatures to_python(const Features& features);
+// N x 32 uint8 rows of a numpy array (or of a PyFeatures) as engine descriptors.
+std::vector<Descriptor> descriptors_from(const py::object& value, const char* name);
+
+void bind_extractor(py::module_& m);
+void bind_matching(py::module_& m);
+void bind_testing(py::module_& m);
+
+}  // namespace aief::python

@@ -1,0 +1,27 @@
+#pragma once
+// The class behind aief.Extractor: one engine Extractor (buffers reused frame after frame). Its
+// mutex serialises two Python threads sharing one; threads with an Extractor each run in parallel.
+#include <mutex>
+#include <string>
+
+#include "aief/extractor.hpp"
+#include "python/bindings.hpp"
+
+namespace aief::python {
+
+class PyExtractor {
+ public:
+  explicit PyExtractor(const ExtractorOptions& options) : extractor_(options) {}
+
+  // Converts the image and extracts with the GIL released.
+  PyFeatures extract(const py::object& image);
+
+  const ExtractorOptions& options() const { return extractor_.options(); }
+  std::string kernel_name() const { return std::string(extractor_.kernel_name()); }
+
+ private:
+  Extractor extractor_;
+  std::mutex mutex_;
+};
+
+}  // namespace aief::python

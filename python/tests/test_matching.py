@@ -1,0 +1,83 @@
+"""aief.match, aief.find_homography, aief.adapt: the CLI's answers, and their errors."""
+import json
+
+import numpy
+import pytest
+
+import aief
+from conftest import SEQUENCES, read_unchanged, run_cli, sample_path
+
+
+@pytest.mark.parametrize("sequence", SEQUENCES)
+def test_match_and_homography_give_the_cli_answer(cli, tmp_path, sequence):
+    out = tmp_path / "matches.json"
+    run_cli(cli, "match", sample_path(sequence, 1), sample_path(sequence, 2), "-o", out)
+    expected = json.loads(out.read_text())
+    extractor = aief.Extractor()
+    a = extractor.extract(read_unchanged(sample_path(sequence, 1)))
+    b = extractor.extract(read_unchanged(sample_path(sequence, 2)))
+    matches = aief.match(a, b)
+    assert matches.dtype == numpy.int32 and matches.shape == (expected["putative"], 3)
+    numpy.testing.assert_array_equal(matches, [[m["query"], m["train"], m["distance"]] for m in expected["matches"]])
+    numpy.testing.assert_array_equal(aief.match(a.descriptors, b.descriptors), matches)
+    H, mask = aief.find_homography(a.keypoints[matches[:, 0]], b.keypoints[matches[:, 1]])
+    assert (H is not None) == expected["homography_found"]
+    numpy.testing.assert_array_equal(mask, [m["inlier"] for m in expected["matches"]])
+    assert int(mask.sum()) == expected["inliers"]
+    numpy.testing.assert_array_equal(H.ravel(), expected["homography"])
+
+
+def test_adapt_gives_the_cli_threshold_and_curve(cli, tmp_path):
+    out = tmp_path / "adapt.json"
+    run_cli(cli, "adapt", sample_path("graf", 1), sample_path("graf", 2), "-o", out)
+    expected = json.loads(out.read_text())
+    result = aief.adapt(read_unchanged(sample_path("graf", 1)), read_unchanged(sample_path("graf", 2)))
+    assert result.found == expected["found"] and result.threshold == expected["threshold"]
+    assert [(p["threshold"], p["putative"], p["inliers"]) for p in result.curve] == \
+           [(p["threshold"], p["putative"], p["inliers"]) for p in expected["curve"]]
+    assert result.matches.shape[0] == result.curve[result.chosen_index]["putative"]
+    H, mask = result.homography
+    assert H.shape == (3, 3) and int(mask.sum()) == result.curve[result.chosen_index]["inliers"]
+
+
+def test_matcher_options():
+    rng = numpy.random.default_rng(7)
+    a = rng.integers(0, 256, (50, 32), dtype=numpy.uint8)
+    b = numpy.concatenate([a[::-1], rng.integers(0, 256, (10, 32), dtype=numpy.uint8)])
+    for matcher in ("mutual", "ratio", "paper"):
+        matches = aief.match(a, b, matcher=matcher)
+        numpy.testing.assert_array_equal(matches[:, 1], 49 - matches[:, 0])
+        assert (matches[:, 2] == 0).all()
+    assert aief.match(a, b, max_distance=0).shape == (50, 3)
+    assert aief.match(a[:0], b).shape == (0, 3)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda d: aief.match(d, d, matcher="nearest"), "unknown matcher"),
+    (lambda d: aief.match(d, d, ratio=1.5), "ratio"),
+    (lambda d: aief.match(d, d, ratio=0), "ratio"),
+    (lambda d: aief.match(d, d, max_distance=-1), "max_distance"),
+    (lambda d: aief.match(d[:, :16], d), "N x 32 uint8"),
+    (lambda d: aief.match(d.astype(numpy.int32), d), "N x 32 uint8"),
+    (lambda d: aief.match(d, [1, 2]), "b must be"),
+    (lambda d: aief.find_homography(numpy.zeros((5, 2)), numpy.zeros((4, 2))), "5 source points but 4 destination points"),
+    (lambda d: aief.find_homography(numpy.zeros((5, 3)), numpy.zeros((5, 3))), "N x 2"),
+    (lambda d: aief.find_homography("points", numpy.zeros((5, 2))), "N x 2"),
+    (lambda d: aief.find_homography(numpy.zeros((5, 2)), numpy.zeros((5, 2)), threshold_px=-1), "threshold_px"),
+    (lambda d: aief.find_homography(numpy.zeros((5, 2)), numpy.zeros((5, 2)), confidence=1.5), "confidence"),
+    (lambda d: aief.find_homography(numpy.zeros((5, 2)), numpy.zeros((5, 2)), max_iterations=0), "max_iterations"),
+    (lambda d: aief.adapt(numpy.zeros((64, 64), numpy.uint8), numpy.zeros((64, 64), numpy.uint8), step=0), "step"),
+    (lambda d: aief.adapt(numpy.zeros((64, 64), numpy.uint8), numpy.zeros((64, 64), numpy.uint8), min_inliers=-1), "min_inliers"),
+    (lambda d: aief.adapt(numpy.zeros((64, 64), numpy.uint8), numpy.zeros((8, 8), numpy.uint8)), "smaller than"),
+    (lambda d: aief.adapt(numpy.zeros((64, 64), numpy.uint8), numpy.zeros((64, 64), numpy.uint8),
+                          aief.Extractor(mode="orbslam2")), "entropy"),
+])
+def test_invalid_arguments_raise_aief_error(call, message):
+    descriptors = numpy.zeros((4, 32), numpy.uint8)
+    with pytest.raises(aief.Error, match=message):
+        call(descriptors)
+
+
+def test_no_model_gives_none():
+    H, mask = aief.find_homography(numpy.zeros((3, 2)), numpy.zeros((3, 2)))
+    assert H is None and mask.tolist() == [0, 0, 0]

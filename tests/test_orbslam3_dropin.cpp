@@ -1,0 +1,268 @@
+// aief::orbslam3::ORBextractor behaves as ORB-SLAM3's ORBextractor where ORB-SLAM3 reads it
+// (accessors, the call operator with its lapping area and returned count, settings keys) and
+// computes exactly the engine's features. The settings parsing itself is shared with the
+// ORB-SLAM2 drop-in and tested in depth there.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "aief/error.hpp"
+#include "aief/orbslam3_extractor.hpp"
+#include "tests/test_support.hpp"
+
+namespace aief {
+namespace {
+
+using orbslam3::ORBextractor;
+
+// Keypoint i of `features` (with its descriptor) is at position `slot` of the drop-in's output.
+void expect_at(const Features& features, std::size_t i, const std::vector<cv::KeyPoint>& keypoints,
+               const cv::Mat& descriptors, std::size_t slot) {
+  const Keypoint& want = features.keypoints[i];
+  const cv::KeyPoint& got = keypoints[slot];
+  ASSERT_TRUE(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size && got.angle == want.angle_deg &&
+              got.response == want.response && got.octave == want.octave && got.class_id == -1)
+      << "engine keypoint " << i << " at slot " << slot << ": got (" << got.pt.x << ", " << got.pt.y << ") octave "
+      << got.octave << ", want (" << want.x << ", " << want.y << ") octave " << want.octave;
+  for (int b = 0; b < kDescriptorBytes; ++b)
+    ASSERT_EQ(descriptors.at<std::uint8_t>(static_cast<int>(slot), b), features.descriptors[i][static_cast<std::size_t>(b)])
+        << "engine keypoint " << i << " at slot " << slot << ", descriptor byte " << b;
+}
+
+// ORB-SLAM3's split, stated as positions: the keypoints outside [x0, x1] fill the front in the
+// engine's order, those inside fill the back from the end (the first inside is last), and the
+// returned count is the number outside.
+void expect_lapping_split(const Features& features, int x0, int x1, const std::vector<cv::KeyPoint>& keypoints,
+                          const cv::Mat& descriptors, int returned) {
+  const std::size_t count = features.keypoints.size();
+  ASSERT_EQ(keypoints.size(), count);
+  ASSERT_EQ(descriptors.rows, static_cast<int>(count));
+  ASSERT_EQ(descriptors.cols, kDescriptorBytes);
+  ASSERT_EQ(descriptors.type(), CV_8U);
+  std::size_t front = 0, back = count;
+  for (std::size_t i = 0; i < count; ++i) {
+    const float x = features.keypoints[i].x;
+    const bool inside = x >= static_cast<float>(x0) && x <= static_cast<float>(x1);
+    expect_at(features, i, keypoints, descriptors, inside ? --back : front++);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  EXPECT_EQ(returned, static_cast<int>(front)) << "lapping area [" << x0 << ", " << x1 << "]";
+}
+
+ExtractorOptions options_of(int nfeatures, float scale_factor) {
+  ExtractorOptions options;
+  options.n_features = nfeatures;
+  options.scale_factor = scale_factor;  // ORB-SLAM3 passes a float
+  return options;
+}
+
+// The scale tables exactly as ORB-SLAM3's ORBextractor constructor computes them: its
+// scaleFactor member is a double, the tables are float.
+TEST(OrbSlam3DropIn, AccessorsAsOrbSlam3) {
+  for (const float factor : {1.2f, 1.3f, 1.5f, 2.0f}) {
+    for (const int levels : {1, 3, 8, 12}) {
+      const ORBextractor orb(1000, factor, levels, 20, 7);
+      const double orbslam3_scale_factor = factor;  // ORB-SLAM3: `double scaleFactor;`
+      EXPECT_EQ(orb.GetLevels(), levels);
+      EXPECT_EQ(orb.GetScaleFactor(), static_cast<float>(orbslam3_scale_factor));
+      std::vector<float> scale(static_cast<std::size_t>(levels)), sigma2(static_cast<std::size_t>(levels));
+      scale[0] = 1.0f;
+      sigma2[0] = 1.0f;
+      for (std::size_t i = 1; i < scale.size(); ++i) {
+        scale[i] = static_cast<float>(scale[i - 1] * orbslam3_scale_factor);
+        sigma2[i] = scale[i] * scale[i];
+      }
+      ASSERT_EQ(orb.GetScaleFactors().size(), scale.size());
+      ASSERT_EQ(orb.GetInverseScaleFactors().size(), scale.size());
+      ASSERT_EQ(orb.GetScaleSigmaSquares().size(), scale.size());
+      ASSERT_EQ(orb.GetInverseScaleSigmaSquares().size(), scale.size());
+      for (std::size_t i = 0; i < scale.size(); ++i) {
+        SCOPED_TRACE("factor " + std::to_string(factor) + ", level " + std::to_string(i));
+        EXPECT_EQ(orb.GetScaleFactors()[i], scale[i]);
+        EXPECT_EQ(orb.GetInverseScaleFactors()[i], 1.0f / scale[i]);
+        EXPECT_EQ(orb.GetScaleSigmaSquares()[i], sigma2[i]);
+        EXPECT_EQ(orb.GetInverseScaleSigmaSquares()[i], 1.0f / sigma2[i]);
+      }
+    }
+  }
+}
+
+TEST(OrbSlam3DropIn, ConstructorArgumentsBecomeTheOptions) {
+  const ORBextractor orb(1234, 1.3f, 6, 25, 9);
+  const ExtractorOptions& o = orb.extractor().options();
+  EXPECT_EQ(o.n_features, 1234);
+  EXPECT_EQ(o.scale_factor, static_cast<double>(1.3f));
+  EXPECT_EQ(o.n_levels, 6);
+  EXPECT_EQ(o.fast_threshold, 25);
+  EXPECT_EQ(o.fast_min_threshold, 9);
+  EXPECT_EQ(o.distribution, ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
+  EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
+}
+
+// Frame.cc's calls: stereo pinhole passes {0, 0}, monocular {0, 1000}, stereo fisheye the
+// camera's overlap; other areas cover none, all, one column, and reversed bounds.
+TEST(OrbSlam3DropIn, LappingAreaSplitAndReturnedCount) {
+  const cv::Mat gray = test::load_sample_gray("leuven", "img1.png");  // 900 x 600
+  // ORB-SLAM2 mode: level-0 keypoints lie on whole pixels, as ORB-SLAM3's, so a one-column area
+  // can hold them.
+  const ExtractorOptions options = options_for_mode(Mode::orbslam2, options_of(800, 1.2f));
+  ORBextractor orb(options);
+  const Features features = extract(test::view_of(gray), options);
+  ASSERT_GT(features.keypoints.size(), 700u);
+  const int x_of_first = static_cast<int>(features.keypoints.front().x);
+  ASSERT_EQ(static_cast<float>(x_of_first), features.keypoints.front().x);
+  const std::vector<std::vector<int>> areas = {{0, 0},      {0, 1000},  {300, 600}, {-5, 5000}, {600, 300},
+                                               {x_of_first, x_of_first}, {0, x_of_first - 1}, {x_of_first + 1, 899}};
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  for (std::vector<int> area : areas) {
+    SCOPED_TRACE("lapping area [" + std::to_string(area[0]) + ", " + std::to_string(area[1]) + "]");
+    const int returned = orb(gray, cv::Mat(), keypoints, descriptors, area);
+    expect_lapping_split(features, area[0], area[1], keypoints, descriptors, returned);
+  }
+  const int count = static_cast<int>(features.keypoints.size());
+
+  // The cases spelled out. Nothing in {0, 0} (keypoints keep 19 pixels from the edge): the
+  // engine's order, all counted, as ORB-SLAM2's drop-in gives them.
+  std::vector<int> stereo_pinhole = {0, 0};
+  EXPECT_EQ(orb(gray, cv::Mat(), keypoints, descriptors, stereo_pinhole), count);
+  expect_at(features, 0, keypoints, descriptors, 0);
+  expect_at(features, features.keypoints.size() - 1, keypoints, descriptors, features.keypoints.size() - 1);
+  // Monocular frames pass {0, 1000}: on an image 1000 pixels wide or less every keypoint is
+  // "in the area", so ORB-SLAM3 returns 0 and the order is reversed; Frame ignores both.
+  std::vector<int> monocular = {0, 1000};
+  EXPECT_EQ(orb(gray, cv::Mat(), keypoints, descriptors, monocular), 0);
+  expect_at(features, 0, keypoints, descriptors, features.keypoints.size() - 1);
+  expect_at(features, features.keypoints.size() - 1, keypoints, descriptors, 0);
+  // The bounds are inclusive: [x, x] takes the keypoints on column x and nothing else.
+  std::vector<int> one_column = {x_of_first, x_of_first};
+  int on_column = 0;
+  for (const Keypoint& kp : features.keypoints) on_column += kp.x == static_cast<float>(x_of_first) ? 1 : 0;
+  ASSERT_GE(on_column, 1);
+  EXPECT_EQ(orb(gray, cv::Mat(), keypoints, descriptors, one_column), count - on_column);
+  expect_at(features, 0, keypoints, descriptors, features.keypoints.size() - 1);  // the first inside goes last
+  for (std::size_t slot = static_cast<std::size_t>(count - on_column); slot < keypoints.size(); ++slot)
+    EXPECT_EQ(keypoints[slot].pt.x, static_cast<float>(x_of_first)) << "slot " << slot;
+  // Reversed bounds hold nothing.
+  std::vector<int> reversed = {600, 300};
+  EXPECT_EQ(orb(gray, cv::Mat(), keypoints, descriptors, reversed), count);
+}
+
+// Keypoints of coarse levels have fractional x: the int bounds compare as float, as in ORB-SLAM3.
+TEST(OrbSlam3DropIn, FractionalXAgainstIntegerBounds) {
+  const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
+  const Features features = extract(test::view_of(gray), options_of(1000, 1.2f));
+  const Keypoint* fractional = nullptr;
+  for (const Keypoint& kp : features.keypoints)
+    if (kp.x != static_cast<float>(static_cast<int>(kp.x))) fractional = &kp;
+  ASSERT_NE(fractional, nullptr) << "no keypoint with a fractional x";
+  const int below = static_cast<int>(fractional->x);  // x lies strictly between below and below + 1
+  ORBextractor orb(1000, 1.2f, 8, 20, 7);
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  for (std::vector<int> area : std::vector<std::vector<int>>{{below, below}, {below + 1, below + 1}, {below, below + 1}}) {
+    SCOPED_TRACE("lapping area [" + std::to_string(area[0]) + ", " + std::to_string(area[1]) + "]");
+    const int returned = orb(gray, cv::noArray(), keypoints, descriptors, area);
+    expect_lapping_split(features, area[0], area[1], keypoints, descriptors, returned);
+    const bool holds_fractional = area[0] == below && area[1] == below + 1;
+    bool found_in_back = false;
+    for (std::size_t slot = static_cast<std::size_t>(returned); slot < keypoints.size(); ++slot)
+      found_in_back = found_in_back || (keypoints[slot].pt.x == fractional->x && keypoints[slot].pt.y == fractional->y);
+    EXPECT_EQ(found_in_back, holds_fractional);
+  }
+}
+
+TEST(OrbSlam3DropIn, PyramidColourAndMaskAsOrbSlam3) {
+  const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
+  ORBextractor orb(500, 1.2f, 8, 20, 7);
+  std::vector<int> area = {0, 0};
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  orb(gray, cv::Mat::zeros(gray.size(), CV_8U), keypoints, descriptors, area);  // a mask that would reject every pixel
+  const Features features = extract(test::view_of(gray), options_of(500, 1.2f));
+  expect_lapping_split(features, 0, 0, keypoints, descriptors, static_cast<int>(keypoints.size()));
+
+  // The pyramid ORB-SLAM3's stereo matching reads: level 0 is the image, level n has
+  // ORB-SLAM3's size round(size / scale_n) and is the engine's level.
+  ASSERT_EQ(orb.mvImagePyramid.size(), 8u);
+  EXPECT_EQ(cv::norm(orb.mvImagePyramid[0], gray, cv::NORM_INF), 0.0);
+  for (int n = 1; n < 8; ++n) {
+    const cv::Mat& level = orb.mvImagePyramid[static_cast<std::size_t>(n)];
+    const float inverse = orb.GetInverseScaleFactors()[static_cast<std::size_t>(n)];
+    EXPECT_EQ(level.cols, cvRound(static_cast<float>(gray.cols) * inverse)) << "level " << n;
+    EXPECT_EQ(level.rows, cvRound(static_cast<float>(gray.rows) * inverse)) << "level " << n;
+    EXPECT_EQ(static_cast<const void*>(level.data), static_cast<const void*>(orb.extractor().pyramid_level(n).data)) << "level " << n;
+  }
+
+  cv::Mat bgr;
+  cv::cvtColor(gray, bgr, cv::COLOR_GRAY2BGR);
+  const int returned = orb(bgr, cv::noArray(), keypoints, descriptors, area);
+  expect_lapping_split(features, 0, 0, keypoints, descriptors, returned);
+}
+
+TEST(OrbSlam3DropIn, EmptyImageReturnsMinusOneAndOtherBadInputThrows) {
+  ORBextractor orb(500, 1.2f, 8, 20, 7);
+  std::vector<int> area = {0, 0};
+  std::vector<cv::KeyPoint> keypoints(3);
+  cv::Mat descriptors(3, 32, CV_8U, cv::Scalar(1));
+  EXPECT_EQ(orb(cv::Mat(), cv::noArray(), keypoints, descriptors, area), -1);  // ORB-SLAM3's answer
+  EXPECT_EQ(keypoints.size(), 3u);                                             // outputs untouched, as ORB-SLAM3
+  EXPECT_EQ(descriptors.rows, 3);
+  EXPECT_TRUE(orb.mvImagePyramid.empty());
+
+  // A flat image has no corner: no keypoint, descriptors released, count 0.
+  EXPECT_EQ(orb(cv::Mat(120, 160, CV_8U, cv::Scalar(128)), cv::noArray(), keypoints, descriptors, area), 0);
+  EXPECT_TRUE(keypoints.empty());
+  EXPECT_TRUE(descriptors.empty());
+
+  const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
+  std::vector<int> one_bound = {0};
+  EXPECT_THROW(orb(gray, cv::noArray(), keypoints, descriptors, one_bound), Error);
+  EXPECT_THROW(orb(cv::Mat(100, 100, CV_16U, cv::Scalar(0)), cv::noArray(), keypoints, descriptors, area), Error);
+  EXPECT_THROW(orb(cv::Mat(30, 300, CV_8U, cv::Scalar(0)), cv::noArray(), keypoints, descriptors, area), Error);  // too small
+}
+
+TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
+  // EuRoC.yaml's ORB values; Tracking.cc reads scaleFactor into a float and calls the constructor.
+  const cv::FileStorage settings(
+      "%YAML:1.0\nORBextractor.nFeatures: 1200\nORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
+      "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\n",
+      cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ORBextractor from_file = ORBextractor::from_settings(settings);
+  ORBextractor from_numbers(1200, 1.2f, 8, 20, 7);
+  EXPECT_EQ(from_file.GetScaleFactors(), from_numbers.GetScaleFactors());
+  EXPECT_EQ(from_file.extractor().options().n_features, 1200);
+  const cv::Mat gray = test::load_sample_gray("boat", "img2.png");
+  std::vector<int> area = {200, 500};
+  std::vector<cv::KeyPoint> k1, k2;
+  cv::Mat d1, d2;
+  const int mono1 = from_file(gray, cv::noArray(), k1, d1, area);
+  const int mono2 = from_numbers(gray, cv::noArray(), k2, d2, area);
+  EXPECT_EQ(mono1, mono2);
+  ASSERT_EQ(k1.size(), k2.size());
+  for (std::size_t i = 0; i < k1.size(); ++i)
+    ASSERT_TRUE(k1[i].pt == k2[i].pt && k1[i].octave == k2[i].octave) << "keypoint " << i;
+  EXPECT_EQ(cv::norm(d1, d2, cv::NORM_INF), 0.0);
+
+  // Our keys too (threads: docs/orbslam3.md's advice for 2-core boards), and a wrong value names its key.
+  const cv::FileStorage ours("%YAML:1.0\nORBextractor.mode: \"orbslam2\"\nORBextractor.threads: 1\n",
+                             cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  const ExtractorOptions ours_options = ORBextractor::from_settings(ours).extractor().options();
+  EXPECT_EQ(ours_options.distribution, Distribution::quadtree);
+  EXPECT_EQ(ours_options.threads, 1);
+  EXPECT_EQ(ORBextractor::options_from_settings(settings).threads, ExtractorOptions{}.threads);  // missing: the default
+  const cv::FileStorage negative("%YAML:1.0\nORBextractor.threads: -1\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  EXPECT_THROW(ORBextractor::from_settings(negative), Error);
+  const cv::FileStorage wrong("%YAML:1.0\nORBextractor.nLevels: 7.5\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  try {
+    ORBextractor::from_settings(wrong);
+    ADD_FAILURE() << "nLevels 7.5 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ORBextractor.nLevels"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace aief

@@ -1,0 +1,165 @@
+// The whole pipeline across the option space, bit for bit: seeded random options (sizes 39..539,
+// scale 1.01..4, blocks 8..1024, levels 1..14, every mode, both entropy measures, fixed and
+// automatic F) on textured random images and crops of the real samples; under every kernel set
+// this CPU runs at 1, 2 and 5 threads, the same bytes as the scalar reference at 1 thread
+// (DESIGN.md section 5). Each case is its own test, named by its index, and prints its options
+// when it fails, so a failure reproduces alone: --gtest_filter='*/17'.
+//
+// Cost: about 12 extractions of an image of at most 539 x 539 per case; the case count is kept
+// small enough for the sanitizer jobs (scripts/ci_sanitizers), which run it too.
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <tbb/global_control.h>
+
+#include "aief/extractor.hpp"
+#include "simd/kernels.hpp"
+#include "tests/test_support.hpp"
+
+namespace aief {
+namespace {
+
+constexpr int kCases = 40;
+constexpr std::uint32_t kSeed = 20260801;
+
+struct Case {
+  ExtractorOptions options;
+  Mode mode = Mode::aief;
+  cv::Mat image;
+  std::string description;
+};
+
+double uniform(std::mt19937& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+int uniform_int(std::mt19937& rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+
+const cv::Mat& sample_image(int index) {
+  static const cv::Mat samples[] = {test::load_sample_gray("graf", "img1.png"), test::load_sample_gray("boat", "img1.png"),
+                                    test::load_sample_gray("leuven", "img1.png")};
+  return samples[index];
+}
+
+// Case `index` of the seeded sequence: every case depends only on the seed and its index.
+Case make_case(int index) {
+  std::mt19937 rng(kSeed + static_cast<std::uint32_t>(index) * 7919u);
+  Case c;
+  const Mode modes[] = {Mode::aief, Mode::orbslam2, Mode::quadtree_entropy};
+  c.mode = modes[uniform_int(rng, 0, 2)];
+  ExtractorOptions base;
+  // Scale factors near 1 (and some far from it), where the pyramid has many small ratios.
+  base.scale_factor = uniform_int(rng, 0, 2) == 0 ? uniform(rng, 1.01, 1.1) : uniform(rng, 1.01, 4.0);
+  base.n_levels = uniform_int(rng, 1, 14);
+  // Block sides spread on a log scale over [8, 1024]: most small, some larger than the image.
+  base.block_size = static_cast<int>(std::lround(std::exp2(uniform(rng, 3.0, 10.0))));
+  base.n_features = uniform_int(rng, 1, 3) == 1 ? uniform_int(rng, 1, 100) : uniform_int(rng, 100, 3000);
+  base.fast_threshold = uniform_int(rng, 5, 40);
+  base.fast_min_threshold = uniform_int(rng, 1, base.fast_threshold);
+  base.entropy = uniform_int(rng, 0, 1) == 0 ? EntropyMeasure::histogram : EntropyMeasure::intensity;
+  base.entropy_threshold = uniform(rng, 0.0, 8.0);
+  base.auto_threshold = uniform_int(rng, 0, 2) == 0;
+  c.options = options_for_mode(c.mode, base);
+  if (c.mode != Mode::orbslam2) c.options.entropy = base.entropy;
+
+  const int width = uniform_int(rng, 39, 539), height = uniform_int(rng, 39, 539);
+  const int source = uniform_int(rng, 0, 3);
+  if (source == 0) {
+    c.image = test::random_textured_image(width, height, rng());
+  } else {
+    const cv::Mat& sample = sample_image(source - 1);
+    const int w = std::min(width, sample.cols), h = std::min(height, sample.rows);
+    const int x = uniform_int(rng, 0, sample.cols - w), y = uniform_int(rng, 0, sample.rows - h);
+    c.image = sample(cv::Rect(x, y, w, h)).clone();
+  }
+
+  std::ostringstream out;
+  out << "case " << index << ": " << c.image.cols << "x" << c.image.rows << (source == 0 ? " random" : " sample crop")
+      << ", mode " << to_string(c.mode) << ", entropy " << to_string(c.options.entropy) << ", F "
+      << (c.options.auto_threshold ? std::string("auto") : std::to_string(c.options.entropy_threshold)) << ", scale "
+      << c.options.scale_factor << ", levels " << c.options.n_levels << ", block " << c.options.block_size << ", features "
+      << c.options.n_features << ", FAST " << c.options.fast_threshold << "/" << c.options.fast_min_threshold;
+  c.description = out.str();
+  return c;
+}
+
+// "" when both results hold the same bytes, else the first difference.
+std::string first_difference(const Features& reference, const Features& other) {
+  if (reference.keypoints.size() != other.keypoints.size())
+    return std::to_string(reference.keypoints.size()) + " keypoints with scalar at 1 thread, " + std::to_string(other.keypoints.size());
+  for (std::size_t i = 0; i < reference.keypoints.size(); ++i) {
+    const Keypoint &r = reference.keypoints[i], &o = other.keypoints[i];
+    if (std::memcmp(&r, &o, sizeof r) != 0 || reference.descriptors[i] != other.descriptors[i]) {
+      std::ostringstream out;
+      out << "keypoint " << i << ": reference (" << r.x << ", " << r.y << ", octave " << r.octave << ", angle " << r.angle_deg
+          << ", response " << r.response << "), other (" << o.x << ", " << o.y << ", octave " << o.octave << ", angle "
+          << o.angle_deg << ", response " << o.response << ")"
+          << (reference.descriptors[i] != other.descriptors[i] ? ", descriptors differ" : "");
+      return out.str();
+    }
+  }
+  const ExtractionInfo &r = reference.info, &o = other.info;
+  if (std::memcmp(&r.entropy_threshold_used, &o.entropy_threshold_used, sizeof(double)) != 0 ||
+      std::memcmp(&r.image_entropy_bits, &o.image_entropy_bits, sizeof(double)) != 0 ||
+      std::memcmp(&r.entropy_threshold_requested, &o.entropy_threshold_requested, sizeof(double)) != 0 ||
+      r.threshold_lowered != o.threshold_lowered || r.blocks_total != o.blocks_total || r.blocks_kept != o.blocks_kept)
+    return "extraction info differs (threshold used " + std::to_string(r.entropy_threshold_used) + " vs " +
+           std::to_string(o.entropy_threshold_used) + ", blocks kept " + std::to_string(r.blocks_kept) + " vs " +
+           std::to_string(o.blocks_kept) + ")";
+  return "";
+}
+
+class PipelineDifferential : public testing::TestWithParam<int> {};
+
+TEST_P(PipelineDifferential, EveryKernelSetAndThreadCountGivesTheScalarBytes) {
+  const Case c = make_case(GetParam());
+  SCOPED_TRACE(c.description);
+  const ImageView view = test::view_of(c.image);
+  ExtractorOptions reference_options = c.options;
+  reference_options.kernels = KernelSet::scalar;
+  reference_options.threads = 1;
+  const Features reference = Extractor(reference_options).extract(view);
+  // TBB caps workers at the core count: lift the cap so 5 threads are 5 even on a 2-core machine.
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 5);
+  for (KernelSet set : available_kernel_sets()) {
+    for (int threads : {1, 2, 5}) {
+      if (set == KernelSet::scalar && threads == 1) continue;
+      ExtractorOptions options = c.options;
+      options.kernels = set;
+      options.threads = threads;
+      Extractor extractor(options);
+      const std::string diff = first_difference(reference, extractor.extract(view));
+      EXPECT_EQ(diff, "") << to_string(set) << " at " << threads << " thread(s)";
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SeededCases, PipelineDifferential, testing::Range(0, kCases));
+
+// The generator reaches the corners of the option space it claims to cover.
+TEST(PipelineDifferentialCases, CoverEveryModeMeasureAndBothKindsOfThreshold) {
+  int modes[3] = {}, measures[3] = {}, automatic = 0, fixed = 0, small_blocks = 0, large_blocks = 0, one_level = 0,
+      many_levels = 0, near_one = 0, large_scale = 0;
+  for (int i = 0; i < kCases; ++i) {
+    const Case c = make_case(i);
+    const ExtractorOptions& o = c.options;
+    ++modes[static_cast<int>(c.mode)];
+    ++measures[static_cast<int>(o.entropy)];
+    (o.auto_threshold ? automatic : fixed) += 1;
+    small_blocks += o.block_size <= 16;
+    large_blocks += o.block_size >= 256;
+    one_level += o.n_levels <= 2;
+    many_levels += o.n_levels >= 12;
+    near_one += o.scale_factor < 1.1;
+    large_scale += o.scale_factor > 2.5;
+  }
+  for (int count : modes) EXPECT_GT(count, 0);
+  EXPECT_GT(measures[static_cast<int>(EntropyMeasure::histogram)], 0);
+  EXPECT_GT(measures[static_cast<int>(EntropyMeasure::intensity)], 0);
+  for (int count : {automatic, fixed, small_blocks, large_blocks, one_level, many_levels, near_one, large_scale}) EXPECT_GT(count, 0);
+}
+
+}  // namespace
+}  // namespace aief

@@ -1,0 +1,104 @@
+// Feature files for SfM tools (io/hdf5_features.hpp, io/colmap_database.hpp):
+//   aief match --pairs pairs.txt --features features.h5 -o matches.h5 [--matcher K] [--ratio R]
+//   aief merge -o features.h5 shard0.h5 shard1.h5 ...
+//   aief colmap --features features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
+#include <cstdio>
+#include <iostream>
+
+#include "aief/error.hpp"
+#include "aief/match.hpp"
+#include "tools/cli_args.hpp"
+#include "tools/commands.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_features.hpp"
+#include "io/pairs_file.hpp"
+#endif
+#ifdef AIEF_HAVE_COLMAP_EXPORT
+#include "io/colmap_database.hpp"
+#endif
+
+namespace aief::cli {
+
+namespace {
+
+[[maybe_unused]] const char* const kNoHdf5 = "this aief was built without HDF5 (install libhdf5-dev and rebuild)";
+
+}  // namespace
+
+int run_match_pairs(const Args& args, const MatchOptions& match_options) {
+#ifdef AIEF_HAVE_HDF5
+  const auto features_path = args.get("--features");
+  const auto output = args.get("--output");
+  if (!features_path || !output) throw UsageError("--pairs needs --features FEATURES.h5 and -o MATCHES.h5");
+  if (!args.positionals().empty()) throw UsageError("--pairs takes its images from the pairs file, not from positional arguments");
+  const std::vector<io::ImagePair> pairs = io::read_pairs(*args.get("--pairs"));
+  const io::Hdf5File features(*features_path, io::Hdf5File::Mode::read);
+  io::Hdf5File matches_file(*output, io::Hdf5File::Mode::read_write);
+  int written = 0, skipped = 0;
+  long long total = 0;
+  for (const auto& [name0, name1] : pairs) {
+    const std::string pair = io::hloc_pair_name(name0, name1);
+    if (matches_file.has_matches(pair)) {  // resumed run, or a pair listed twice
+      ++skipped;
+      continue;
+    }
+    const Features a = features.read_features(name0), b = features.read_features(name1);
+    const std::vector<Match> matches = match_descriptors(a.descriptors, b.descriptors, match_options);
+    matches_file.write_matches(pair, static_cast<int>(a.keypoints.size()), matches);
+    ++written;
+    total += static_cast<long long>(matches.size());
+  }
+  std::printf("%d pairs matched (%s), %lld matches, %d already in %s\n", written, std::string(to_string(match_options.kind)).c_str(),
+              total, skipped, output->c_str());
+  return 0;
+#else
+  (void)args;
+  (void)match_options;
+  throw Error(kNoHdf5);
+#endif
+}
+
+int run_merge(const Arguments& arguments) {
+  const Args args(arguments, {{"--output", "-o", true}, {"--help", "-h", false}});
+  if (args.has("--help")) {
+    std::cout << "usage: aief merge -o FEATURES.h5 SHARD.h5...\n\n"
+              << "Copies the image groups of the shards' feature files (aief extract --batch --format h5 --shard i/n)\n"
+              << "into one file; images already in it are kept, an image in two shards is an error.\n";
+    return 0;
+  }
+  const auto output = args.get("--output");
+  if (!output || args.positionals().empty()) throw UsageError("merge expects -o FEATURES.h5 and one or more shard files");
+#ifdef AIEF_HAVE_HDF5
+  const int copied = io::merge_feature_files(*output, args.positionals());
+  std::printf("%d images merged into %s\n", copied, output->c_str());
+  return 0;
+#else
+  throw Error(kNoHdf5);
+#endif
+}
+
+int run_colmap(const Arguments& arguments) {
+  const Args args(arguments, {{"--features", "", true}, {"--matches", "", true}, {"--pairs", "", true},
+                              {"--output", "-o", true}, {"--help", "-h", false}});
+  if (args.has("--help")) {
+    std::cout << "usage: aief colmap --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o DATABASE.db\n\n"
+              << "A COLMAP database (cameras, images, keypoints, descriptors, matches) from aief's hloc files, for\n"
+              << "  colmap matches_importer --database_path DATABASE.db --match_list_path PAIRS.txt --match_type pairs\n"
+              << "  colmap mapper --database_path DATABASE.db --image_path IMAGES --output_path SPARSE\n"
+              << "Keypoints are shifted by +0.5 px to COLMAP's origin (the top-left pixel's corner).\n";
+    return 0;
+  }
+  const auto features = args.get("--features"), matches = args.get("--matches"), pairs = args.get("--pairs"),
+             output = args.get("--output");
+  if (!features || !matches || !pairs || !output)
+    throw UsageError("colmap expects --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o DATABASE.db");
+#ifdef AIEF_HAVE_COLMAP_EXPORT
+  const io::ColmapExport done = io::export_colmap_database(*output, *features, *matches, *pairs);
+  std::printf("COLMAP database %s: %d images, %d pairs, %lld matches\n", output->c_str(), done.images, done.pairs, done.matches);
+  return 0;
+#else
+  throw Error("this aief was built without SQLite or HDF5 (install libsqlite3-dev libhdf5-dev and rebuild)");
+#endif
+}
+
+}  // namespace aief::cli
