@@ -3,6 +3,7 @@
 // removed, an output of another input redone), skips a corrupt image with its reason, shards
 // split a collection exactly.
 #include <csignal>
+#include <cstdlib>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
@@ -162,6 +163,20 @@ TEST(Batch, CollidingSpellingsGetOneOutputEach) {
   for (const std::string& name : names) expect_output_of(out / (name + ".json"), name, images / name);
   ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
   EXPECT_NE(report.find("0 extracted, 12 already done"), std::string::npos) << report;
+}
+
+TEST(Batch, AnOutputFileThatWouldBeAnotherOutputsFolderIsRefusedBeforeAnyWork) {
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path images = temp.path() / "images", out = temp.path() / "out";
+  fs::create_directories(images / "a.png.json");
+  fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / "a.png");
+  fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / "a.png.json" / "b.png");
+  const fs::path log = temp.path() / "stderr.log";
+  const std::string command = std::string(AIEF_CLI_PATH) + " extract --batch " + images.string() + " -o " + out.string() +
+                              " 2> " + log.string();
+  EXPECT_EQ(WEXITSTATUS(std::system(command.c_str())), 1);
+  EXPECT_NE(text_of(log).find("which is another input's output file"), std::string::npos) << text_of(log);
+  EXPECT_TRUE(files_below(out, ".json").empty());
 }
 
 TEST(Batch, SymlinksAreNamedAsListedNeverResolved) {
