@@ -243,3 +243,37 @@ TEST(LevelGeometry, BudgetsNeverExceedTheFeaturesAskedFor) {
 
 }  // namespace
 }  // namespace aief
+
+namespace aief {
+namespace {
+
+TEST(LevelGeometry, LevelsTooSmallToUseGiveTheirShareToTheUsableLevels) {
+  // Before, a level too small for a keypoint kept its budget: --levels 20 delivered 964 of 1000
+  // keypoints on graf, --scale 3 963. Now the budgets of the usable levels add up to N; what is
+  // still missing is a usable level short of candidates (991 and 1000 on graf).
+  const cv::Mat gray = load_sample_gray("graf", "img1.png");
+  ExtractorOptions many_levels;
+  many_levels.n_levels = 20;
+  ExtractorOptions large_scale;
+  large_scale.scale_factor = 3.0;
+  for (const ExtractorOptions& options : {many_levels, large_scale}) {
+    const std::vector<LevelGeometry> levels = level_geometry(gray.cols, gray.rows, options);
+    int usable_budget = 0, unusable = 0;
+    for (const LevelGeometry& level : levels) {
+      if (level.grid.count() > 0) usable_budget += level.n_features;
+      else EXPECT_EQ(level.n_features, 0) << "a level without blocks keeps a budget";
+      unusable += level.grid.count() == 0;
+    }
+    EXPECT_GT(unusable, 0) << "the case must have levels too small to use";
+    EXPECT_EQ(usable_budget, options.n_features);
+    EXPECT_GE(static_cast<int>(extract(view_of(gray), options).keypoints.size()), options.n_features * 99 / 100)
+        << options.n_levels << " levels at scale " << options.scale_factor;
+  }
+  // With every level usable, ORB-SLAM2's budgets are unchanged (graf, 8 levels at 1.2).
+  const std::vector<LevelGeometry> defaults = level_geometry(gray.cols, gray.rows, ExtractorOptions{});
+  const int orbslam2_budgets[] = {217, 181, 151, 126, 105, 87, 73, 60};
+  for (std::size_t n = 0; n < defaults.size(); ++n) EXPECT_EQ(defaults[n].n_features, orbslam2_budgets[n]) << "level " << n;
+}
+
+}  // namespace
+}  // namespace aief

@@ -61,6 +61,7 @@ TEST(Options, EveryInvalidValueIsNamed) {
       {"entropy", [](ExtractorOptions& o) { o.entropy = static_cast<EntropyMeasure>(9); }},
       {"kernels", [](ExtractorOptions& o) { o.kernels = static_cast<KernelSet>(42); }},
       {"max_image_pixels", [](ExtractorOptions& o) { o.max_image_pixels = 0; }},
+      {"max_image_pixels", [](ExtractorOptions& o) { o.max_image_pixels = kLargestMaxImagePixels + 1; }},
       {"candidate_pool", [](ExtractorOptions& o) { o.candidate_pool = 0.5; }},
       {"candidate_pool", [](ExtractorOptions& o) { o.candidate_pool = std::numeric_limits<double>::quiet_NaN(); }},
       {"coordinates", [](ExtractorOptions& o) { o.coordinates = static_cast<CoordinateMap>(7); }},
@@ -72,6 +73,18 @@ TEST(Options, EveryInvalidValueIsNamed) {
     const std::string message = error_of(c.mutate);
     EXPECT_NE(message.find(c.field), std::string::npos) << "expected an error naming " << c.field << ", got '" << message << "'";
   }
+}
+
+TEST(Options, ScaleFactorIsCheckedAsTheFloatThePyramidUses) {
+  // 1.00000001 is > 1 as a double but 1.0 as a float: before, it passed and every level budget
+  // became 0/0 ("per octave 0 0 0 0 0 0 0 1000").
+  const std::string message = error_of([](ExtractorOptions& o) { o.scale_factor = 1.00000001; });
+  EXPECT_NE(message.find("scale_factor"), std::string::npos) << message;
+  EXPECT_NE(message.find("1 as a float"), std::string::npos) << message;
+  // The smallest scale above 1 in float is accepted, and so is 4.
+  EXPECT_EQ(error_of([](ExtractorOptions& o) { o.scale_factor = static_cast<double>(std::nextafter(1.0f, 2.0f)); }), "");
+  EXPECT_EQ(error_of([](ExtractorOptions& o) { o.scale_factor = 4.0; }), "");
+  EXPECT_NE(error_of([](ExtractorOptions& o) { o.scale_factor = 4.001; }).find("scale_factor"), std::string::npos);
 }
 
 TEST(Options, NamesRoundTrip) {
@@ -86,7 +99,7 @@ TEST(Options, NamesRoundTrip) {
   for (Distribution d : {Distribution::proportional, Distribution::quadtree}) EXPECT_EQ(parse_distribution(to_string(d)), d);
   for (EntropyMeasure e : {EntropyMeasure::off, EntropyMeasure::histogram, EntropyMeasure::intensity})
     EXPECT_EQ(parse_entropy_measure(to_string(e)), e);
-  for (KernelSet k : {KernelSet::auto_select, KernelSet::scalar, KernelSet::sse4_2, KernelSet::avx2, KernelSet::avx512bw})
+  for (KernelSet k : {KernelSet::auto_select, KernelSet::scalar, KernelSet::sse4_2, KernelSet::avx2, KernelSet::avx512bw, KernelSet::neon64})
     EXPECT_EQ(parse_kernel_set(to_string(k)), k);
   EXPECT_THROW(parse_mode("orb"), Error);
   EXPECT_THROW(parse_kernel_set("neon"), Error);

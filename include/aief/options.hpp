@@ -26,6 +26,7 @@ enum class KernelSet {
   sse4_2,
   avx2,
   avx512bw,
+  neon64,  // AArch64 Advanced SIMD
 };
 
 // Where a level point lands in level-0 pixels (core/keypoint_position.hpp).
@@ -113,5 +114,8 @@ constexpr int kPatchSize = 31;     // rBRIEF patch side
 constexpr int kPatchRadius = 15;   // half patch: orientation disc radius
 constexpr int kEdgeBorder = 19;    // keypoints lie at least this far from a level's edge
 constexpr int kDescriptorBytes = 32;
+// Upper bound of max_image_pixels (2^26, the default): the entropy sums in Q32 fixed point
+// (core/block_entropy.cpp, c log2 c * 2^32 per bin) stay exact below it for both measures.
+constexpr long long kLargestMaxImagePixels = 1LL << 26;
 
 }  // namespace aief
