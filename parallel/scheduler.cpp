@@ -7,6 +7,8 @@
 #include <tbb/task_group.h>
 #include <tbb/task_arena.h>
 
+#include "parallel/tsan_handoff.hpp"
+
 namespace aief::parallel {
 
 struct Scheduler::Arena {
@@ -36,9 +38,16 @@ void Scheduler::for_each(int count, IndexWork work) const {
   // shrink by 1.44x each) balance best when every free thread takes the next largest.
   const auto run = [&] {
     std::atomic<int> next{0};
+    // TBB starts every body after this point and returns only after every body has ended
+    // (parallel/tsan_handoff.hpp); the bodies themselves are not ordered with each other.
+    const char ended = 0;
+    handoff_release(&kBodyStartTag);
     tbb::parallel_for(0, workers, [&](int) {
+      handoff_acquire(&kBodyStartTag);
       for (int i = next.fetch_add(1); i < count; i = next.fetch_add(1)) work(i);
+      handoff_release(&ended);
     }, tbb::simple_partitioner{});
+    handoff_acquire(&ended);
   };
   if (arena_) arena_->arena.execute(run); else run();
 }

@@ -199,8 +199,10 @@ std::string check_hamming(const KernelTable& scalar, const KernelTable& other, c
 
 std::string check_extract(KernelSet set, const GrayImage& src) {
   if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
-  for (Mode mode : {Mode::aief, Mode::orbslam2}) {
+  // The default mode (sub-pixel, pool, per-level guard, automatic F) and the paper's conventions.
+  for (Mode mode : {Mode::aief, Mode::aief_paper, Mode::orbslam2}) {
     ExtractorOptions reference_options = options_for_mode(mode);
+    reference_options.auto_threshold = mode == Mode::aief;
     reference_options.kernels = KernelSet::scalar;
     reference_options.threads = 1;
     const Features reference = Extractor(reference_options).extract(src.view());
