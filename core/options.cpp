@@ -31,8 +31,13 @@ void require_int_range(const char* name, int value, int lo, int hi) {
 
 void ExtractorOptions::validate() const {
   require_int_range("n_features", n_features, 1, 1'000'000);
-  require(std::isfinite(scale_factor) && scale_factor > 1.0 && scale_factor <= 4.0,
-          "scale_factor must be > 1 and <= 4, got " + str(scale_factor));
+  // The pyramid computes in float (ORB-SLAM2's arithmetic, core/level_geometry.cpp): check the
+  // value it will use, so 1.00000001 (1.0 as a float, which makes every level budget 0/0) is
+  // refused rather than accepted and silently rounded.
+  const float scale_used = static_cast<float>(scale_factor);
+  require(std::isfinite(scale_factor) && scale_used > 1.0f && scale_used <= 4.0f,
+          "scale_factor must be > 1 and <= 4 in single precision (the pyramid computes in float), got " +
+              str(scale_factor) + (std::isfinite(scale_factor) && scale_used == 1.0f ? ", which is 1 as a float" : ""));
   require_int_range("n_levels", n_levels, 1, 32);
   require_int_range("fast_threshold", fast_threshold, 1, 254);
   require_int_range("fast_min_threshold", fast_min_threshold, 1, fast_threshold);
@@ -53,7 +58,9 @@ void ExtractorOptions::validate() const {
   require(starvation_guard == StarvationGuard::frame || starvation_guard == StarvationGuard::level,
           "starvation_guard has an unknown value " + str(static_cast<int>(starvation_guard)));
   require_int_range("threads", threads, 0, 256);
-  require(max_image_pixels >= 1, "max_image_pixels must be >= 1, got " + str(max_image_pixels));
+  require(max_image_pixels >= 1 && max_image_pixels <= kLargestMaxImagePixels,
+          "max_image_pixels must be in [1, " + str(kLargestMaxImagePixels) +
+              "] (2^26: larger images would overflow the exact entropy sums), got " + str(max_image_pixels));
 }
 
 ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {

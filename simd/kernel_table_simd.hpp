@@ -27,7 +27,7 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   table.set = set;
   table.name = name;
   table.fast9_scores_row = &fast9_scores_row<Arch>;
-  table.fast9_local_maxima_row = &fast9_local_maxima_row<Arch>;
+  table.fast9_local_maxima_bits = &fast9_local_maxima_bits<Arch>;
   table.hamming_256_many = &hamming_256_many<Arch>;
   table.gaussian7_rows = &gaussian7_rows<Arch>;
   table.ic_moments = &ic_moments<Arch>;
