@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "aief/extractor.hpp"
 #include "core/fast9.hpp"
 #include "core/level_geometry.hpp"
 #include "core/pyramid_resize.hpp"
@@ -151,6 +152,18 @@ void register_kernel_set_benchmarks(int iterations) {
         benchmark::DoNotOptimize(descriptors.data());
       }
       state.SetItemsProcessed(state.iterations() * static_cast<long long>(in->points.size()));
+    });
+    add(name("extract"), [image, set](benchmark::State& state) {  // the whole pipeline, one thread
+      ExtractorOptions options;
+      options.kernels = set;
+      options.threads = 1;
+      Extractor extractor(options);
+      Features features;
+      for (auto _ : state) {
+        extractor.extract(image.view(), features);
+        benchmark::DoNotOptimize(features.keypoints.data());
+      }
+      state.SetItemsProcessed(state.iterations() * image.width() * image.height());
     });
     add(name("hamming_256_many"), [in, k](benchmark::State& state) {
       const int n = std::min(static_cast<int>(in->points.size()), 512);

@@ -73,21 +73,22 @@ ResizePlan make_resize_plan(int src_width, int src_height, int dst_width, int ds
   return plan;
 }
 
+void resize_bilinear_span_scalar(const std::uint8_t* top, const std::uint8_t* bottom, const ResizePlan& plan,
+                                 std::uint32_t wy, int x_begin, int x_end, std::uint8_t* out) {
+  for (int x = x_begin; x < x_end; ++x) {
+    const int sx = plan.x_index[static_cast<std::size_t>(x)];
+    const std::uint32_t wx = plan.x_weight[static_cast<std::size_t>(x)];
+    const std::uint32_t h0 = top[sx] * (256 - wx) + top[sx + 1] * wx;
+    const std::uint32_t h1 = bottom[sx] * (256 - wx) + bottom[sx + 1] * wx;
+    out[x] = static_cast<std::uint8_t>((h0 * (256 - wy) + h1 * wy + 32768) >> 16);
+  }
+}
+
 void resize_bilinear_rows_scalar(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin, int y_end) {
-  const int width = plan.dst_width;
   for (int y = y_begin; y < y_end; ++y) {
     const int sy = plan.y_index[static_cast<std::size_t>(y)];
-    const std::uint32_t wy = plan.y_weight[static_cast<std::size_t>(y)];
-    const std::uint8_t* top = src.row(sy);
-    const std::uint8_t* bottom = src.row(sy + 1);
-    std::uint8_t* out = dst.row(y);
-    for (int x = 0; x < width; ++x) {
-      const int sx = plan.x_index[static_cast<std::size_t>(x)];
-      const std::uint32_t wx = plan.x_weight[static_cast<std::size_t>(x)];
-      const std::uint32_t h0 = top[sx] * (256 - wx) + top[sx + 1] * wx;
-      const std::uint32_t h1 = bottom[sx] * (256 - wx) + bottom[sx + 1] * wx;
-      out[x] = static_cast<std::uint8_t>((h0 * (256 - wy) + h1 * wy + 32768) >> 16);
-    }
+    resize_bilinear_span_scalar(src.row(sy), src.row(sy + 1), plan, plan.y_weight[static_cast<std::size_t>(y)], 0, plan.dst_width,
+                                dst.row(y));
   }
 }
 

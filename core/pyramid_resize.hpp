@@ -44,4 +44,9 @@ ResizePlan make_resize_plan(int src_width, int src_height, int dst_width, int ds
 void resize_bilinear_rows_scalar(ImageView src, const ResizePlan& plan, MutableImageView dst,
                                  int y_begin, int y_end);
 
+// Outputs [x_begin, x_end) of one dst row from its source rows top, bottom and the row's weight
+// wy: the scalar formula, which the vector kernels call for the pixels after their last group.
+void resize_bilinear_span_scalar(const std::uint8_t* top, const std::uint8_t* bottom, const ResizePlan& plan,
+                                 std::uint32_t wy, int x_begin, int x_end, std::uint8_t* out);
+
 }  // namespace aief

@@ -49,13 +49,7 @@ void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageVie
       const uint32x4_t high = bilinear4(t, b, vld1q_u8(shuffle[1] + 16 * g), vld1q_s16(weight[1] + 8 * g), wy_pair);
       vst1_u8(out + 8 * g, vmovn_u16(vcombine_u16(vmovn_u32(low), vmovn_u32(high))));
     }
-    for (int x = 8 * groups; x < dst_width; ++x) {
-      const int sx = plan.x_index[static_cast<std::size_t>(x)];
-      const std::uint32_t wx = plan.x_weight[static_cast<std::size_t>(x)];
-      const std::uint32_t h0 = top[sx] * (256 - wx) + top[sx + 1] * wx;
-      const std::uint32_t h1 = bottom[sx] * (256 - wx) + bottom[sx + 1] * wx;
-      out[x] = static_cast<std::uint8_t>((h0 * (256 - wy) + h1 * wy + 32768) >> 16);
-    }
+    resize_bilinear_span_scalar(top, bottom, plan, wy, 8 * groups, dst_width, out);
   }
 }
 

@@ -88,13 +88,7 @@ void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageVie
       const __m128i r16 = _mm_packs_epi32(r[0], r[1]);
       _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 8 * g), _mm_packus_epi16(r16, r16));
     }
-    for (int x = 8 * groups; x < dst_width; ++x) {
-      const int sx = plan.x_index[static_cast<std::size_t>(x)];
-      const std::uint32_t wx = plan.x_weight[static_cast<std::size_t>(x)];
-      const std::uint32_t h0 = top[sx] * (256 - wx) + top[sx + 1] * wx;
-      const std::uint32_t h1 = bottom[sx] * (256 - wx) + bottom[sx + 1] * wx;
-      out[x] = static_cast<std::uint8_t>((h0 * (256 - wy) + h1 * wy + 32768) >> 16);
-    }
+    resize_bilinear_span_scalar(top, bottom, plan, wy, 8 * groups, dst_width, out);
   }
 }
 

@@ -13,6 +13,7 @@
 #include "aief/adapt.hpp"
 #include "aief/extractor.hpp"
 #include "simd/kernels.hpp"
+#include "tests/features_hash.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -21,39 +22,8 @@ namespace {
 using test::load_sample_gray;
 using test::view_of;
 
-// FNV-1a over every output byte that a user can see.
-class Fnv1a {
- public:
-  void add(const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const std::uint8_t*>(data);
-    for (std::size_t i = 0; i < size; ++i) hash_ = (hash_ ^ bytes[i]) * 0x100000001b3ull;
-  }
-  template <class T>
-  void add_value(T value) {
-    add(&value, sizeof value);
-  }
-  std::uint64_t value() const { return hash_; }
-
- private:
-  std::uint64_t hash_ = 0xcbf29ce484222325ull;
-};
-
-std::uint64_t hash_of(const Features& features) {
-  Fnv1a h;
-  h.add_value(static_cast<std::uint64_t>(features.keypoints.size()));
-  for (const Keypoint& kp : features.keypoints) {
-    h.add_value(kp.x);
-    h.add_value(kp.y);
-    h.add_value(kp.size);
-    h.add_value(kp.angle_deg);
-    h.add_value(kp.response);
-    h.add_value(kp.octave);
-  }
-  for (const Descriptor& d : features.descriptors) h.add(d.data(), d.size());
-  h.add_value(features.info.entropy_threshold_used);
-  h.add_value(features.info.blocks_kept);
-  return h.value();
-}
+using test::Fnv1a;
+constexpr auto hash_of = test::features_hash;
 
 std::string hex(std::uint64_t value) {
   char text[32];
