@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -234,7 +235,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 if (item->skip) return item;
                 std::unique_ptr<Extractor>& extractor = extractors.local();
                 if (!extractor) extractor = std::make_unique<Extractor>(per_thread);
-                item->image = io::read_gray_image(item->input.path, settings.options.max_image_pixels);
+                item->image = io::read_gray_image(item->input.path, settings.options.max_image_pixels, &item->source.warnings);
                 extractor->extract(item->image.view(), item->features);
               } catch (const std::exception& e) {
                 item->error = e.what();
@@ -244,6 +245,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
             }) &
             // Write: serial (atomic rename), tally, progress.
             tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_out_of_order, [&](std::shared_ptr<Item> item) {
+              for (const std::string& warning : item->source.warnings) std::cerr << "aief: warning: " << warning << "\n";
               if (item->skip) {
                 ++summary.skipped;
               } else if (item->error.empty()) {
