@@ -37,8 +37,13 @@ std::uint64_t c_log2_c(std::uint64_t c, const std::uint64_t* table) {
   return c < kTableSize ? table[c] : c_log2_c_q32(c);
 }
 
+// The intensity measure sums c_k * (k log2 k) over 255 bins: up to n * 255 log2 255 * 2^32,
+// which passes 2^64 from about 2 Mpx of bright pixels (a 4K frame read 29.8 bits before). 128
+// bits hold it for any uint32 count. (GCC and Clang, the compilers the build supports.)
+__extension__ using Uint128 = unsigned __int128;
+
 // H = log2(n) - S / (n 2^32) with S = sum c log2 c in Q32.
-double entropy_from_sums(std::uint64_t n, std::uint64_t sum_q32) {
+double entropy_from_sums(std::uint64_t n, Uint128 sum_q32) {
   if (n == 0) return 0.0;
   const double h = std::log2(static_cast<double>(n)) - static_cast<double>(sum_q32) / (static_cast<double>(n) * kQ32);
   return h > 0.0 ? h : 0.0;
@@ -82,10 +87,11 @@ double histogram_entropy_bits(const std::uint32_t* hist) {
 double intensity_entropy_bits(const std::uint32_t* hist) {
   // p = f / S over pixels: H = log2(S) - (1/S) sum_pixels f log2 f = log2(S) - (1/S) sum_k c_k k log2 k.
   const std::uint64_t* table = c_log2_c_table();
-  std::uint64_t s = 0, sum = 0;
+  std::uint64_t s = 0;
+  Uint128 sum = 0;
   for (int k = 1; k < 256; ++k) {
     s += static_cast<std::uint64_t>(hist[k]) * static_cast<std::uint64_t>(k);
-    sum += static_cast<std::uint64_t>(hist[k]) * table[k];
+    sum += static_cast<Uint128>(hist[k]) * table[k];
   }
   return entropy_from_sums(s, sum);
 }

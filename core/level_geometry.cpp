@@ -44,24 +44,33 @@ std::vector<LevelGeometry> level_geometry(int width, int height, const Extractor
     level.height = static_cast<int>(std::lrint(static_cast<float>(height) * inverse));
   }
 
+  // Only the usable levels share the budget (levels shrink, so they are the first ones): a level
+  // too small for a keypoint would otherwise keep its share and the frame deliver fewer than N
+  // (964 of 1000 with 20 levels). With every level usable, L is n_levels: ORB-SLAM2's budgets.
+  int budget_levels = 0;
+  while (budget_levels < levels && level_is_usable(geometry[static_cast<std::size_t>(budget_levels)].width,
+                                                   geometry[static_cast<std::size_t>(budget_levels)].height))
+    ++budget_levels;
+  budget_levels = std::max(budget_levels, 1);
+
   // Features per level (Eq. 12-17 and ORB-SLAM2): N (1 - s) s^n / (1 - s^L), rounded, with
   // whatever is left on the last level.
   const float factor = 1.0f / scale_factor;
   float per_scale = static_cast<float>(options.n_features) * (1.0f - factor) /
                     (1.0f - static_cast<float>(std::pow(static_cast<double>(factor),
-                                                        static_cast<double>(levels))));
+                                                        static_cast<double>(budget_levels))));
   int assigned = 0;
-  for (int n = 0; n < levels - 1; ++n) {
+  for (int n = 0; n < budget_levels - 1; ++n) {
     const int count = static_cast<int>(std::lrint(per_scale));
     geometry[static_cast<std::size_t>(n)].n_features = count;
     assigned += count;
     per_scale *= factor;
   }
-  geometry.back().n_features = std::max(options.n_features - assigned, 0);
+  geometry[static_cast<std::size_t>(budget_levels) - 1].n_features = std::max(options.n_features - assigned, 0);
   // With many levels and few features the rounding can hand out more than N (17 features over
   // 20 levels at 1.04 round to 1 each; ORB-SLAM2 then returns 19): take the excess back from the
   // smallest levels, so the total never exceeds N.
-  for (int n = levels - 1; n >= 0 && assigned > options.n_features; --n) {
+  for (int n = budget_levels - 1; n >= 0 && assigned > options.n_features; --n) {
     const int take = std::min(geometry[static_cast<std::size_t>(n)].n_features, assigned - options.n_features);
     geometry[static_cast<std::size_t>(n)].n_features -= take;
     assigned -= take;

@@ -25,12 +25,12 @@ struct LevelGeometry {
   int width = 0;
   int height = 0;
   float scale = 1;     // level-0 pixels per level pixel: scale_factor^n in float (ORB-SLAM2)
-  int n_features = 0;  // N_n of Eq. 12-17, ORB-SLAM2's rounding with the rest on the last level
+  int n_features = 0;  // N_n of Eq. 12-17 over the usable levels, ORB-SLAM2's rounding, rest on the last
   BlockGrid grid;      // empty when the level is smaller than 2 * kEdgeBorder + 1
 };
 
-// All n_levels levels. Levels too small to hold a keypoint keep their size and budget but have
-// no blocks, and are not built.
+// All n_levels levels. Levels too small to hold a keypoint keep their size but have no blocks and
+// no budget (their share goes to the usable levels), and are not built.
 std::vector<LevelGeometry> level_geometry(int width, int height, const ExtractorOptions& options);
 
 // A level can hold keypoints (and is built) when both sides are >= 2 * kEdgeBorder + 1.

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "aief/error.hpp"
+#include "parallel/tsan_handoff.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {
@@ -69,7 +70,10 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std
   std::vector<int> band_col_best(band_col_distance.size());
   const std::uint8_t* train = b.front().data();  // Descriptor is a plain byte array: contiguous
 
+  const char bands_ended = 0;  // TBB's start of the bands and wait for them, for TSan
+  parallel::handoff_release(&parallel::kBodyStartTag);
   tbb::parallel_for(0, bands, [&](int band) {
+    parallel::handoff_acquire(&parallel::kBodyStartTag);
     std::vector<std::uint16_t> distances(static_cast<std::size_t>(n_b));
     int* col_distance = mutual ? band_col_distance.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
     int* col_best = mutual ? band_col_best.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
@@ -94,7 +98,9 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std
       }
       row_nearest[static_cast<std::size_t>(i)] = nearest;
     }
+    parallel::handoff_release(&bands_ended);
   });
+  parallel::handoff_acquire(&bands_ended);
 
   std::vector<int> col_best;
   if (mutual) {

@@ -31,8 +31,13 @@ void require_int_range(const char* name, int value, int lo, int hi) {
 
 void ExtractorOptions::validate() const {
   require_int_range("n_features", n_features, 1, 1'000'000);
-  require(std::isfinite(scale_factor) && scale_factor > 1.0 && scale_factor <= 4.0,
-          "scale_factor must be > 1 and <= 4, got " + str(scale_factor));
+  // The pyramid computes in float (ORB-SLAM2's arithmetic, core/level_geometry.cpp): check the
+  // value it will use, so 1.00000001 (1.0 as a float, which makes every level budget 0/0) is
+  // refused rather than accepted and silently rounded.
+  const float scale_used = static_cast<float>(scale_factor);
+  require(std::isfinite(scale_factor) && scale_used > 1.0f && scale_used <= 4.0f,
+          "scale_factor must be > 1 and <= 4 in single precision (the pyramid computes in float), got " +
+              str(scale_factor) + (std::isfinite(scale_factor) && scale_used == 1.0f ? ", which is 1 as a float" : ""));
   require_int_range("n_levels", n_levels, 1, 32);
   require_int_range("fast_threshold", fast_threshold, 1, 254);
   require_int_range("fast_min_threshold", fast_min_threshold, 1, fast_threshold);
@@ -44,7 +49,7 @@ void ExtractorOptions::validate() const {
           "entropy has an unknown value " + str(static_cast<int>(entropy)));
   require(std::isfinite(entropy_threshold) && entropy_threshold >= 0.0 && entropy_threshold <= 64.0,
           "entropy_threshold must be in [0, 64] bits, got " + str(entropy_threshold));
-  require(static_cast<int>(kernels) >= 0 && static_cast<int>(kernels) <= static_cast<int>(KernelSet::avx512bw),
+  require(static_cast<int>(kernels) >= 0 && static_cast<int>(kernels) <= static_cast<int>(KernelSet::neon64),
           "kernels has an unknown value " + str(static_cast<int>(kernels)));
   require(coordinates == CoordinateMap::scaled || coordinates == CoordinateMap::pixel_centre,
           "coordinates has an unknown value " + str(static_cast<int>(coordinates)));
@@ -53,7 +58,9 @@ void ExtractorOptions::validate() const {
   require(starvation_guard == StarvationGuard::frame || starvation_guard == StarvationGuard::level,
           "starvation_guard has an unknown value " + str(static_cast<int>(starvation_guard)));
   require_int_range("threads", threads, 0, 256);
-  require(max_image_pixels >= 1, "max_image_pixels must be >= 1, got " + str(max_image_pixels));
+  require(max_image_pixels >= 1 && max_image_pixels <= kLargestMaxImagePixels,
+          "max_image_pixels must be in [1, " + str(kLargestMaxImagePixels) +
+              "] (2^26: larger images would overflow the exact entropy sums), got " + str(max_image_pixels));
 }
 
 ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
@@ -112,6 +119,7 @@ std::string_view to_string(KernelSet value) {
     case KernelSet::sse4_2: return "sse4.2";
     case KernelSet::avx2: return "avx2";
     case KernelSet::avx512bw: return "avx512";
+    case KernelSet::neon64: return "neon64";
   }
   return "?";
 }
@@ -146,8 +154,9 @@ KernelSet parse_kernel_set(std::string_view name) {
   if (name == "sse4.2" || name == "sse4_2") return KernelSet::sse4_2;
   if (name == "avx2") return KernelSet::avx2;
   if (name == "avx512" || name == "avx512bw") return KernelSet::avx512bw;
+  if (name == "neon64") return KernelSet::neon64;
   throw Error("unknown kernel set '" + std::string(name) +
-              "' (expected auto, scalar, sse4.2, avx2 or avx512)");
+              "' (expected auto, scalar, sse4.2, avx2, avx512 or neon64)");
 }
 
 Mode parse_mode(std::string_view name) {

@@ -29,10 +29,10 @@ std::string raw_bytes(const std::vector<T>& values) {
 
 // numpy's .npy format 1.0: magic, header length, a Python dict literal padded to 64 bytes.
 std::string npy_file(const NpyArray& array) {
+  // As numpy writes it: "(n,)" for one dimension, "(n, m)" for two.
   std::string shape = "(";
-  for (std::size_t d : array.shape) shape += std::to_string(d) + ",";
-  if (array.shape.size() > 1) shape.pop_back();
-  shape += ")";
+  for (std::size_t i = 0; i < array.shape.size(); ++i) shape += (i ? ", " : "") + std::to_string(array.shape[i]);
+  shape += array.shape.size() == 1 ? ",)" : ")";
   std::string header = "{'descr': '" + array.dtype + "', 'fortran_order': False, 'shape': " + shape + ", }";
   const std::size_t unpadded = 10 + header.size() + 1;
   header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";

@@ -1,11 +1,15 @@
 // Block histograms and their entropy (DESIGN.md section 1, paper Eq. 5-6): exact integer sums
 // against a direct double computation, and the values the definitions fix.
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
 
+#include "aief/image.hpp"
 #include "core/block_entropy.hpp"
+#include "core/frame_analysis.hpp"
+#include "simd/kernels.hpp"
 
 namespace aief {
 namespace {
@@ -76,6 +80,79 @@ TEST(BlockEntropy, HistogramOfAStridedViewCountsOnlyTheView) {
   for (int y = 0; y < height - 1; ++y)
     for (int x = 0; x < width; ++x) ++expected[image[static_cast<std::size_t>(y) * stride + 3 + x]];
   EXPECT_EQ(hist, expected);
+}
+
+// Entropies of the counts, straight from the definitions in long double (no fixed point).
+long double exact_histogram_entropy(const std::vector<std::uint64_t>& counts) {
+  long double n = 0, sum = 0;
+  for (std::uint64_t c : counts) {
+    n += static_cast<long double>(c);
+    if (c > 1) sum += static_cast<long double>(c) * std::log2(static_cast<long double>(c));
+  }
+  return n == 0 ? 0 : std::log2(n) - sum / n;
+}
+
+long double exact_intensity_entropy(const std::vector<std::uint64_t>& counts) {
+  long double s = 0, sum = 0;
+  for (int k = 1; k < 256; ++k) {
+    const long double c = static_cast<long double>(counts[static_cast<std::size_t>(k)]);
+    s += c * k;
+    sum += c * k * std::log2(static_cast<long double>(k));
+  }
+  return s == 0 ? 0 : std::log2(s) - sum / s;
+}
+
+TEST(BlockEntropy, ExactForTheLargestCountsABlockOrImageCanHold) {
+  // One bright value filling the largest accepted image (2^26 pixels), and the largest block
+  // (1535 x 1535: block_size 1024 plus a merged short last block): the intensity sum of c * k
+  // log2 k passed 2^64 at about 2 Mpx of bright pixels, so these read 29.8 bits, not log2(n).
+  for (std::uint64_t n : {static_cast<std::uint64_t>(kLargestMaxImagePixels), std::uint64_t{1535} * 1535}) {
+    std::vector<std::uint32_t> hist(256, 0);
+    hist[255] = static_cast<std::uint32_t>(n);
+    EXPECT_NEAR(intensity_entropy_bits(hist.data()), std::log2(static_cast<double>(n)), 1e-9) << n << " pixels";
+    EXPECT_EQ(histogram_entropy_bits(hist.data()), 0.0) << n << " pixels";
+    // Spread over the bright half of the bins, with uneven counts.
+    std::vector<std::uint64_t> counts(256, 0);
+    for (int k = 128; k < 256; ++k) counts[static_cast<std::size_t>(k)] = n / 128 - static_cast<std::uint64_t>(k % 7);
+    for (int k = 0; k < 256; ++k) hist[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(counts[static_cast<std::size_t>(k)]);
+    EXPECT_NEAR(intensity_entropy_bits(hist.data()), static_cast<double>(exact_intensity_entropy(counts)), 1e-6) << n;
+    EXPECT_NEAR(histogram_entropy_bits(hist.data()), static_cast<double>(exact_histogram_entropy(counts)), 1e-6) << n;
+  }
+}
+
+TEST(BlockEntropy, ImageEntropyExactAtTheLargestAcceptedSizeUnderEveryKernelSet) {
+  // 8192 x 8192 = max_image_pixels' upper bound, mostly saturated white (the worst case for
+  // the intensity sums) with a textured square so the histogram measure is not trivial.
+  constexpr int kSide = 8192;
+  static_assert(static_cast<long long>(kSide) * kSide == kLargestMaxImagePixels);
+  GrayImage image(kSide, kSide);
+  std::fill_n(image.data(), static_cast<std::size_t>(kSide) * kSide, std::uint8_t{255});
+  std::mt19937 rng(11);
+  for (int y = 1000; y < 1600; ++y)
+    for (int x = 2000; x < 2700; ++x) image.data()[static_cast<std::size_t>(y) * kSide + x] = static_cast<std::uint8_t>(rng());
+  std::vector<std::uint64_t> counts(256, 0);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(kSide) * kSide; ++i) ++counts[image.data()[i]];
+
+  for (EntropyMeasure measure : {EntropyMeasure::histogram, EntropyMeasure::intensity}) {
+    const long double expected =
+        measure == EntropyMeasure::histogram ? exact_histogram_entropy(counts) : exact_intensity_entropy(counts);
+    ExtractorOptions options;
+    options.entropy = measure;
+    options.n_levels = 1;
+    options.block_size = 1024;
+    options.max_image_pixels = kLargestMaxImagePixels;
+    for (KernelSet set : available_kernel_sets()) {
+      FrameAnalysis analysis;
+      analysis.start(image.view(), options, kernel_table(set));
+      analysis.compute_entropies(0);
+      EXPECT_NEAR(analysis.image_entropy_bits(), static_cast<double>(expected), 1e-6)
+          << to_string(measure) << " under " << to_string(set);
+      for (double block_bits : analysis.level(0).block_entropy) {
+        EXPECT_GE(block_bits, 0.0);
+        EXPECT_LE(block_bits, measure == EntropyMeasure::histogram ? 8.0 : std::log2(1535.0 * 1535.0));
+      }
+    }
+  }
 }
 
 TEST(BlockEntropy, MeasureSelection) {

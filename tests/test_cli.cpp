@@ -63,6 +63,13 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --features", "expects a value"},
       {"match " + image, "two images"},
       {"eval", "--dataset"},
+      {"extract " + image + " --pool 0.5", "candidate pool"},
+      {"extract " + image + " --pool many", "candidate pool"},
+      {"extract " + image + " --coordinates centre", "unknown coordinate map"},
+      {"extract " + image + " --subpixel yes", "--subpixel"},
+      {"extract " + image + " --starvation-guard block", "unknown starvation guard"},
+      {"extract " + image + " --auto-uniform-blocks maybe", "--auto-uniform-blocks"},
+      {"eval --dataset . --methods orb", "unknown method"},
       // Flags a mode cannot honour are refused with the conflict named, never dropped.
       {"extract " + image + " --mode orbslam2 --threshold 7", "--threshold sets F of the entropy mask, which --mode orbslam2"},
       {"extract " + image + " --mode orbslam2 --entropy intensity", "--mode orbslam2 has no entropy mask"},
@@ -211,6 +218,12 @@ TEST(Cli, ExtractWritesJsonYamlAndPicture) {
   EXPECT_EQ(bench.status, 0) << bench.output;
   EXPECT_NE(bench.output.find("\"aief_ms\""), std::string::npos);
   EXPECT_NE(bench.output.find("\"opencv_orb_ms\""), std::string::npos);
+  const std::string second = aief::test::sample_path("graf", "img2.png");
+  const CliResult bench_pair = run("bench " + image + " --pair " + second + " --repeat 1 --threads 1");
+  EXPECT_EQ(bench_pair.status, 0) << bench_pair.output;
+  EXPECT_NE(bench_pair.output.find("\"sweep_ms\""), std::string::npos);
+  EXPECT_NE(bench_pair.output.find("\"pair_ms\""), std::string::npos);
+  EXPECT_EQ(run("bench " + image + " --pair " + second + " --mode orbslam2 --repeat 1").status, 2);  // no entropy, no sweep
   const CliResult validate = run("validate");
   EXPECT_EQ(validate.status, 0) << validate.output;
   EXPECT_NE(validate.output.find("identical"), std::string::npos);

@@ -51,12 +51,22 @@ TEST_P(ExtractorModes, BoundedCountsAndRepeatableOnSamples) {
       EXPECT_GE(kp.angle_deg, 0.0f);
       EXPECT_LT(kp.angle_deg, 360.0f);
       EXPECT_GE(kp.response, static_cast<float>(options.fast_min_threshold));
-      const float scale = geometry[static_cast<std::size_t>(kp.octave)].scale;
-      EXPECT_GE(kp.x / scale, kEdgeBorder - 0.01f);
-      EXPECT_GE(kp.y / scale, kEdgeBorder - 0.01f);
+      // Back to the level pixel the keypoint was detected at (sub-pixel offsets are < 0.5).
+      const LevelGeometry& level = geometry[static_cast<std::size_t>(kp.octave)];
+      const auto level_pixel = [&](const Keypoint& k) {
+        if (options.coordinates == CoordinateMap::scaled)
+          return std::pair{std::lround(k.y / level.scale), std::lround(k.x / level.scale)};
+        return std::pair{std::lround((k.y + 0.5) * level.height / gray.rows - 0.5),
+                         std::lround((k.x + 0.5) * level.width / gray.cols - 0.5)};
+      };
+      const auto [y, x] = level_pixel(kp);
+      EXPECT_GE(x, kEdgeBorder);
+      EXPECT_GE(y, kEdgeBorder);
+      EXPECT_LT(x, level.width - kEdgeBorder);
+      EXPECT_LT(y, level.height - kEdgeBorder);
       if (i > 0) {
         const Keypoint& prev = first.keypoints[i - 1];
-        EXPECT_TRUE(prev.octave < kp.octave || (prev.octave == kp.octave && (prev.y < kp.y || (prev.y == kp.y && prev.x < kp.x))))
+        EXPECT_TRUE(prev.octave < kp.octave || (prev.octave == kp.octave && level_pixel(prev) < level_pixel(kp)))
             << "keypoint " << i << " out of order";
       }
     }
@@ -68,7 +78,7 @@ TEST_P(ExtractorModes, BoundedCountsAndRepeatableOnSamples) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, ExtractorModes, testing::Values(Mode::aief, Mode::orbslam2, Mode::quadtree_entropy),
+INSTANTIATE_TEST_SUITE_P(Modes, ExtractorModes, testing::Values(Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy),
                          [](const testing::TestParamInfo<Mode>& info) {
                            std::string name(to_string(info.param));
                            std::replace(name.begin(), name.end(), '-', '_');
@@ -229,6 +239,40 @@ TEST(LevelGeometry, BudgetsNeverExceedTheFeaturesAskedFor) {
         }
         EXPECT_EQ(total, features) << features << " features, " << levels << " levels, scale " << scale;
       }
+}
+
+}  // namespace
+}  // namespace aief
+
+namespace aief {
+namespace {
+
+TEST(LevelGeometry, LevelsTooSmallToUseGiveTheirShareToTheUsableLevels) {
+  // Before, a level too small for a keypoint kept its budget: --levels 20 delivered 964 of 1000
+  // keypoints on graf, --scale 3 963. Now the budgets of the usable levels add up to N; what is
+  // still missing is a usable level short of candidates (991 and 1000 on graf).
+  const cv::Mat gray = load_sample_gray("graf", "img1.png");
+  ExtractorOptions many_levels;
+  many_levels.n_levels = 20;
+  ExtractorOptions large_scale;
+  large_scale.scale_factor = 3.0;
+  for (const ExtractorOptions& options : {many_levels, large_scale}) {
+    const std::vector<LevelGeometry> levels = level_geometry(gray.cols, gray.rows, options);
+    int usable_budget = 0, unusable = 0;
+    for (const LevelGeometry& level : levels) {
+      if (level.grid.count() > 0) usable_budget += level.n_features;
+      else EXPECT_EQ(level.n_features, 0) << "a level without blocks keeps a budget";
+      unusable += level.grid.count() == 0;
+    }
+    EXPECT_GT(unusable, 0) << "the case must have levels too small to use";
+    EXPECT_EQ(usable_budget, options.n_features);
+    EXPECT_GE(static_cast<int>(extract(view_of(gray), options).keypoints.size()), options.n_features * 99 / 100)
+        << options.n_levels << " levels at scale " << options.scale_factor;
+  }
+  // With every level usable, ORB-SLAM2's budgets are unchanged (graf, 8 levels at 1.2).
+  const std::vector<LevelGeometry> defaults = level_geometry(gray.cols, gray.rows, ExtractorOptions{});
+  const int orbslam2_budgets[] = {217, 181, 151, 126, 105, 87, 73, 60};
+  for (std::size_t n = 0; n < defaults.size(); ++n) EXPECT_EQ(defaults[n].n_features, orbslam2_budgets[n]) << "level " << n;
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include "io/hdf5_features.hpp"
 #endif
 #include "io/image_io.hpp"
+#include "parallel/tsan_handoff.hpp"
 #include "io/json_writer.hpp"
 #include "tools/progress.hpp"
 
@@ -30,6 +31,16 @@ namespace aief::cli {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The pipeline's hand-offs, which TBB makes inside libtbb, unseen by ThreadSanitizer
+// (parallel/tsan_handoff.hpp): each serial stage runs one call at a time, an item is listed
+// before it is extracted and extracted before it is written. Globals: a stage must not read its
+// closure before the acquire.
+const char kListStage = 0, kExtractStage = 0, kWriteStage = 0;
+struct HandoffOnExit {
+  const char* tag;
+  ~HandoffOnExit() { parallel::handoff_release(tag); }
+};
 
 bool is_image_name(const fs::path& path) {
   std::string ext = path.extension().string();
@@ -203,6 +214,8 @@ BatchSummary run_batch(const BatchSettings& settings) {
         // Next image: serial, in order (the HDF5 file is asked here: one thread at a time).
         tbb::make_filter<void, std::shared_ptr<Item>>(tbb::filter_mode::serial_in_order,
                                                        [&](tbb::flow_control& control) -> std::shared_ptr<Item> {
+                                                         parallel::handoff_acquire(&kListStage);
+                                                         const HandoffOnExit release_listed{&kListStage};
                                                          if (next >= inputs.size()) {
                                                            control.stop();
                                                            return nullptr;
@@ -221,6 +234,8 @@ BatchSummary run_batch(const BatchSettings& settings) {
                                                        }) &
             // Is the output current? If not: read (decoding dominates) and extract. Parallel.
             tbb::make_filter<std::shared_ptr<Item>, std::shared_ptr<Item>>(tbb::filter_mode::parallel, [&](std::shared_ptr<Item> item) {
+              parallel::handoff_acquire(&kListStage);
+              const HandoffOnExit release_extracted{&kExtractStage};
               if (item->skip) return item;
               try {
                 item->source = io::source_record_of(item->input.path, item->input.name);
@@ -245,6 +260,9 @@ BatchSummary run_batch(const BatchSettings& settings) {
             }) &
             // Write: serial (atomic rename), tally, progress.
             tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_out_of_order, [&](std::shared_ptr<Item> item) {
+              parallel::handoff_acquire(&kExtractStage);
+              parallel::handoff_acquire(&kWriteStage);
+              const HandoffOnExit release_written{&kWriteStage};
               for (const std::string& warning : item->source.warnings) std::cerr << "aief: warning: " << warning << "\n";
               if (item->skip) {
                 ++summary.skipped;
@@ -276,6 +294,8 @@ BatchSummary run_batch(const BatchSettings& settings) {
               progress.step(item->input.name);
             }));
   });
+  parallel::handoff_acquire(&kExtractStage);
+  parallel::handoff_acquire(&kWriteStage);
   progress.finish();
   return summary;
 }

@@ -185,7 +185,7 @@ std::string extractor_flags_help() {
       << "  --entropy E           histogram | intensity | off (default " << to_string(d.entropy) << "; off: no mask)\n"
       << "  --fast-threshold T    FAST threshold (default " << d.fast_threshold << ")\n"
       << "  --fast-min-threshold T  retry threshold for a block without corners (default " << d.fast_min_threshold << ")\n"
-      << "  --kernels K           auto | scalar | sse4.2 | avx2 | avx512 (default auto; same output)\n"
+      << "  --kernels K           auto | scalar | sse4.2 | avx2 | avx512 | neon64 (default auto; same output)\n"
       << "  --threads T           worker threads, 0 = all cores (default " << d.threads << "; same output)\n"
       << "  --pool P|inf          candidate pool: each level keeps its best ceil(P x N_level) candidates\n"
       << "                        before the water-level distribution; inf = none (default " << d.candidate_pool << ")\n"
