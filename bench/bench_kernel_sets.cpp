@@ -123,13 +123,15 @@ void register_kernel_set_benchmarks(int iterations) {
           }
       state.SetItemsProcessed(state.iterations() * in->pixels);
     });
-    add(name("fast9_local_maxima_row"), [in, k](benchmark::State& state) {
-      std::vector<std::int32_t> xs(in->scores[0].size());
+    add(name("fast9_local_maxima_bits"), [in, k](benchmark::State& state) {
       const int width = static_cast<int>(in->scores[0].size());
+      std::vector<std::uint64_t> maxima(static_cast<std::size_t>(fast9_maxima_words(width))), strong(maxima.size());
       for (auto _ : state)
-        for (std::size_t y = 1; y + 1 < in->scores.size(); ++y)
-          benchmark::DoNotOptimize(
-              k->fast9_local_maxima_row(in->scores[y - 1].data(), in->scores[y].data(), in->scores[y + 1].data(), 1, width - 1, xs.data()));
+        for (std::size_t y = 1; y + 1 < in->scores.size(); ++y) {
+          k->fast9_local_maxima_bits(in->scores[y - 1].data(), in->scores[y].data(), in->scores[y + 1].data(), 1, width - 1, 20,
+                                     maxima.data(), strong.data());
+          benchmark::DoNotOptimize(maxima.data());
+        }
       state.SetItemsProcessed(state.iterations() * static_cast<long long>(in->scores.size() * in->scores[0].size()));
     });
     add(name("ic_moments"), [in, k](benchmark::State& state) {

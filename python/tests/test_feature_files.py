@@ -108,10 +108,11 @@ def test_npz_single_and_batch(cli, tmp_path, image_folder):
     run_cli(cli, "extract", image_folder / "graf1.png", "-o", out)
     batch = tmp_path / "batch"
     run_cli(cli, "extract", "--batch", image_folder, "-o", batch, "--format", "npz")
-    for path, name in [(out, "graf1.png"), (batch / "sub__graf2.npz", "sub/graf2.png"), (batch / "boat1.npz", "boat1.png")]:
+    for path, name in [(out, "graf1.png"), (batch / "sub" / "graf2.png.npz", "sub/graf2.png"),
+                       (batch / "boat1.png.npz", "boat1.png")]:
         features = expected_features(image_folder, name)
         with numpy.load(path) as data:
-            assert sorted(data.files) == sorted(["keypoints", "descriptors", "scores", "size", "angle", "octave", "image_size"])
+            assert {"keypoints", "descriptors", "scores", "size", "angle", "octave", "image_size"} <= set(data.files)
             numpy.testing.assert_array_equal(data["keypoints"], features.keypoints)
             assert data["descriptors"].shape == (len(features), 32)
             numpy.testing.assert_array_equal(data["descriptors"], features.descriptors)
