@@ -24,13 +24,18 @@ void write_options(JsonWriter& json, const ExtractorOptions& o) {
   json.end_object();
 }
 
-void write_info(JsonWriter& json, const ExtractionInfo& info) {
+void write_info(JsonWriter& json, const ExtractionInfo& info, const std::vector<std::string>* decoder_warnings) {
   json.key("info").begin_object();
   json.field("entropy_threshold_requested", info.entropy_threshold_requested);
   json.field("entropy_threshold_used", info.entropy_threshold_used);
   json.field("threshold_lowered", info.threshold_lowered);
   json.field("image_entropy_bits", info.image_entropy_bits);
   json.field("blocks_total", info.blocks_total).field("blocks_kept", info.blocks_kept);
+  if (decoder_warnings) {
+    json.key("decoder_warnings").begin_array();
+    for (const std::string& warning : *decoder_warnings) json.value(warning);
+    json.end_array();
+  }
   json.end_object();
 }
 
@@ -117,7 +122,7 @@ std::string features_json(const std::string& image_path, const Features& feature
   if (source) write_source(json, *source);
   json.field("width", features.image_width).field("height", features.image_height);
   write_options(json, options);
-  write_info(json, features.info);
+  write_info(json, features.info, source ? &source->warnings : nullptr);
   json.key("keypoints").begin_array();
   for (const Keypoint& kp : features.keypoints) {
     json.begin_object();

@@ -51,9 +51,23 @@ void check_declared_size(const std::vector<std::uint8_t>& bytes, const std::stri
                 std::to_string(max_pixels) + " (refused before decoding)");
 }
 
+// A JPEG whose last scan (SOS, FF DA) is not followed by the end-of-image marker (FF D9) was cut
+// short. Inside entropy-coded data every FF is followed by 00 or a restart marker, so neither
+// marker can appear there by accident.
+bool jpeg_is_cut_short(const std::vector<std::uint8_t>& bytes) {
+  if (bytes.size() < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return false;
+  std::size_t last_scan = 0;
+  for (std::size_t i = 2; i + 1 < bytes.size(); ++i)
+    if (bytes[i] == 0xFF && bytes[i + 1] == 0xDA) last_scan = i;
+  if (last_scan == 0) return false;
+  for (std::size_t i = last_scan + 2; i + 1 < bytes.size(); ++i)
+    if (bytes[i] == 0xFF && bytes[i + 1] == 0xD9) return false;
+  return true;
+}
+
 }  // namespace
 
-GrayImage read_gray_image(const std::string& path, long long max_pixels) {
+GrayImage read_gray_image(const std::string& path, long long max_pixels, std::vector<std::string>* warnings) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("cannot open image '" + path + "': no such file");
   if (std::filesystem::is_directory(path, ec)) throw Error("cannot open image '" + path + "': it is a directory");
@@ -64,10 +78,11 @@ GrayImage read_gray_image(const std::string& path, long long max_pixels) {
   in.seekg(0);
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (!in) throw Error("cannot read image '" + path + "': read error");
-  return decode_gray_image(bytes, path, max_pixels);
+  return decode_gray_image(bytes, path, max_pixels, warnings);
 }
 
-GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels) {
+GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels,
+                            std::vector<std::string>* warnings) {
   check_declared_size(bytes, name, max_pixels);
   cv::Mat image;
   try {
@@ -77,6 +92,10 @@ GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::s
     throw Error("cannot read image '" + name + "': the decoder failed (" + e.err + ")");
   }
   if (image.empty()) throw Error("cannot read image '" + name + "': not an image OpenCV can decode, or a damaged file");
+  if (warnings && jpeg_is_cut_short(bytes))
+    warnings->push_back("image '" + name +
+                        "': the JPEG data ends before its end-of-image marker (a file cut short): the decoder filled "
+                        "the missing part with grey");
   return gray_from_decoded(image, name);
 }
 

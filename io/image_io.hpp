@@ -18,12 +18,18 @@
 
 namespace aief::io {
 
-GrayImage read_gray_image(const std::string& path, long long max_pixels = ExtractorOptions{}.max_image_pixels);
+//
+// Warnings: a file the decoder still turns into an image but not the whole of it (a JPEG cut short
+// before its end-of-image marker: libjpeg fills the rest with grey) adds a sentence to `warnings`
+// when given. Damaged data inside a JPEG scan is not detected (it would take a second decode).
+GrayImage read_gray_image(const std::string& path, long long max_pixels = ExtractorOptions{}.max_image_pixels,
+                          std::vector<std::string>* warnings = nullptr);
 
 // The same conversion for an image already in memory as encoded bytes (PNG, JPEG, ...);
 // `name` goes into the error messages.
 GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name,
-                            long long max_pixels = ExtractorOptions{}.max_image_pixels);
+                            long long max_pixels = ExtractorOptions{}.max_image_pixels,
+                            std::vector<std::string>* warnings = nullptr);
 
 // The same conversion for 8-bit pixels already in memory (the Python module's BGR / BGRA
 // arrays): `channels` (1, 3 BGR or 4 BGRA) interleaved bytes per pixel, consecutive within a

@@ -3,6 +3,7 @@
 // can tell whether an output belongs to its input: the same name, size and modification time.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace aief::io {
 
@@ -10,6 +11,9 @@ struct SourceRecord {
   std::string name;          // the input's relative name as listed (the batch key), never symlink-resolved
   std::uintmax_t bytes = 0;  // file size
   long long mtime_ns = 0;    // modification time, nanoseconds since the epoch
+  // What reading the file reported (io::read_gray_image's warnings): written into the result's
+  // "info" as "decoder_warnings", not part of the identity a resume compares.
+  std::vector<std::string> warnings;
 };
 
 // The record of the file at `path` (symlinks followed: the size and time of what is read),

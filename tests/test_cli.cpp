@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 #include <sys/wait.h>
 
 #include "tests/test_support.hpp"
@@ -171,6 +172,23 @@ TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {
     EXPECT_NE(r.output.find("declares 30000x30000 pixels in its PNG header"), std::string::npos) << command << "\n" << r.output;
     EXPECT_NE(r.output.find("refused before decoding"), std::string::npos) << command << "\n" << r.output;
   }
+}
+
+TEST(Cli, AJpegCutShortIsExtractedWithTheDecodersWarning) {
+  const aief::test::TempFolder folder("aief_cli");
+  std::vector<std::uint8_t> bytes;
+  cv::imencode(".jpg", cv::imread(aief::test::sample_path("boat", "img1.png")), bytes);
+  bytes.resize(bytes.size() / 3);
+  std::ofstream(folder.file("cut.jpg"), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                               static_cast<std::streamsize>(bytes.size()));
+  const CliResult r = run("extract " + folder.file("cut.jpg") + " -o " + folder.file("f.json"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("aief: warning: image '" + folder.file("cut.jpg") + "': the JPEG data ends before"), std::string::npos)
+      << r.output;
+  std::ifstream in(folder.file("f.json"));
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"decoder_warnings\":["), std::string::npos);
+  EXPECT_NE(json.find("a file cut short"), std::string::npos);
 }
 
 TEST(Cli, ExtractWritesJsonYamlAndPicture) {

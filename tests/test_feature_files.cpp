@@ -25,15 +25,7 @@ namespace aief {
 namespace {
 
 // A folder of this test's own, removed at the end.
-struct OwnTempDir {
-  std::filesystem::path path;
-  OwnTempDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "aief_files_XXXXXX").string();
-    path = mkdtemp(pattern.data());
-  }
-  ~OwnTempDir() { std::filesystem::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
+using OwnTempDir = test::TempFolder;
 
 Features sample_features(const char* sequence, int index) {
   const GrayImage image = io::read_gray_image(test::sample_path(sequence, "img" + std::to_string(index) + ".png"));

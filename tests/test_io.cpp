@@ -155,6 +155,29 @@ TEST(ImageIo, RefusesMorePixelsThanAllowedBeforeDecoding) {
   EXPECT_NE(error_of(dir.file("x.gif")).find("not an image aief can read"), std::string::npos);
 }
 
+TEST(ImageIo, AJpegCutShortIsDecodedWithAWarning) {
+  TempDir dir;
+  const cv::Mat colour = cv::imread(test::sample_path("boat", "img1.png"));
+  std::vector<std::string> warnings;
+  for (const int progressive : {0, 1}) {  // whole files, several scans or one: no warning
+    std::vector<std::uint8_t> bytes;
+    cv::imencode(".jpg", colour, bytes, {cv::IMWRITE_JPEG_PROGRESSIVE, progressive});
+    io::decode_gray_image(bytes, "whole.jpg", ExtractorOptions{}.max_image_pixels, &warnings);
+  }
+  EXPECT_TRUE(warnings.empty());
+  // Cut in half: libjpeg still gives an image (OpenCV refuses a cut progressive one outright).
+  std::vector<std::uint8_t> bytes;
+  cv::imencode(".jpg", colour, bytes);
+  bytes.resize(bytes.size() / 2);
+  std::ofstream(dir.file("cut.jpg"), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                            static_cast<std::streamsize>(bytes.size()));
+  const GrayImage image = io::read_gray_image(dir.file("cut.jpg"), ExtractorOptions{}.max_image_pixels, &warnings);
+  EXPECT_EQ(image.width(), colour.cols);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("cut short"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("cut.jpg"), std::string::npos) << warnings[0];
+}
+
 TEST(FeatureFiles, JsonAndYamlCarryEveryKeypointAndDescriptor) {
   TempDir dir;
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");

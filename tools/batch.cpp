@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -249,7 +250,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 if (item->skip) return item;
                 std::unique_ptr<Extractor>& extractor = extractors.local();
                 if (!extractor) extractor = std::make_unique<Extractor>(per_thread);
-                item->image = io::read_gray_image(item->input.path, settings.options.max_image_pixels);
+                item->image = io::read_gray_image(item->input.path, settings.options.max_image_pixels, &item->source.warnings);
                 extractor->extract(item->image.view(), item->features);
               } catch (const std::exception& e) {
                 item->error = e.what();
@@ -262,6 +263,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
               parallel::handoff_acquire(&kExtractStage);
               parallel::handoff_acquire(&kWriteStage);
               const HandoffOnExit release_written{&kWriteStage};
+              for (const std::string& warning : item->source.warnings) std::cerr << "aief: warning: " << warning << "\n";
               if (item->skip) {
                 ++summary.skipped;
               } else if (item->error.empty()) {

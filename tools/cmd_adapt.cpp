@@ -10,6 +10,7 @@
 #include "io/plot.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/read_image.hpp"
 
 namespace aief::cli {
 
@@ -58,7 +59,7 @@ int run_adapt(const Arguments& arguments) {
   }
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
-  const GrayImage a = io::read_gray_image(path_a, options.max_image_pixels), b = io::read_gray_image(path_b, options.max_image_pixels);
+  const GrayImage a = read_image_reporting(path_a, options.max_image_pixels), b = read_image_reporting(path_b, options.max_image_pixels);
   const AdaptResult result = adapt(a.view(), b.view(), options, sweep);
 
   std::printf("%6s %8s %7s %7s %9s %8s %7s\n", "F", "blocks", "kps_a", "kps_b", "putative", "inliers", "CMR%");

@@ -12,6 +12,8 @@
 #include "io/json_writer.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/read_image.hpp"
+#include "tools/read_image.hpp"
 #include "tools/eval/dataset.hpp"
 #include "tools/eval/methods.hpp"
 #include "tools/eval/report.hpp"
@@ -127,10 +129,10 @@ int run_eval(const Arguments& arguments) {
   GrayImage image_a;
   for (const eval::PairInput& pair : run.pairs) {
     if (pair.path_a != loaded_a) {
-      image_a = io::read_gray_image(pair.path_a);
+      image_a = read_image_reporting(pair.path_a, ExtractorOptions{}.max_image_pixels);
       loaded_a = pair.path_a;
     }
-    const GrayImage image_b = io::read_gray_image(pair.path_b);
+    const GrayImage image_b = read_image_reporting(pair.path_b, ExtractorOptions{}.max_image_pixels);
     std::vector<eval::PairResult> row;
     for (eval::Method method : run.methods) {
       row.push_back(eval::run_method(method, as_mat(image_a), as_mat(image_b), pair.truth, settings));

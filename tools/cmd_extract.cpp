@@ -11,6 +11,7 @@
 #include "tools/batch.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/read_image.hpp"
 
 namespace aief::cli {
 
@@ -94,13 +95,16 @@ int run_extract(const Arguments& arguments) {
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
 
-  const GrayImage image = io::read_gray_image(path, options.max_image_pixels);
+  std::vector<std::string> warnings;
+  const GrayImage image = read_image_reporting(path, options.max_image_pixels, &warnings);
+  io::SourceRecord source = io::source_record_of(path, path);
+  source.warnings = warnings;
   Extractor extractor(options);
   const auto start = std::chrono::steady_clock::now();
   const Features features = extractor.extract(image.view());
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-  if (const auto output = args.get("--output")) io::write_features(*output, path, features, options);
+  if (const auto output = args.get("--output")) io::write_features(*output, path, features, options, source);
   if (const auto draw = args.get("--draw")) io::draw_keypoints_png(*draw, image.view(), features);
 
   std::string per_octave;

@@ -13,6 +13,7 @@
 #include "io/json_writer.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/read_image.hpp"
 
 namespace aief::cli {
 
@@ -73,7 +74,7 @@ int run_match(const Arguments& arguments) {
   const ExtractorOptions options = extractor_options(args);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
-  const GrayImage a = io::read_gray_image(path_a, options.max_image_pixels), b = io::read_gray_image(path_b, options.max_image_pixels);
+  const GrayImage a = read_image_reporting(path_a, options.max_image_pixels), b = read_image_reporting(path_b, options.max_image_pixels);
 
   Features features_a, features_b;
   std::vector<Match> matches;
