@@ -6,6 +6,7 @@
 //           mapping or loop closing do while tracking extracts
 //   stereo  two extractors at once, each on its own camera thread, as ORB-SLAM's stereo Frame
 //           extracts the left and right images (the frame is done when both are)
+//   stereo_busy1  the stereo pair while another thread spins: a stereo rig during mapping
 // Benchmarks:
 //   contended/aief/tT/SITUATION/IMG      wall-clock time per frame (what tracking latency sees);
 //                                        CPU is the whole process's (every thread, a busy
@@ -132,21 +133,23 @@ class Rig {
   bool stopping_ = false;
 };
 
-enum class Situation { idle, busy1, stereo };
+enum class Situation { idle, busy1, stereo, stereo_busy1 };
 
 const char* name_of(Situation situation) {
   switch (situation) {
     case Situation::idle: return "idle";
     case Situation::busy1: return "busy1";
     case Situation::stereo: return "stereo";
+    case Situation::stereo_busy1: return "stereo_busy1";
   }
   return "?";
 }
 
-int cameras_in(Situation situation) { return situation == Situation::stereo ? 2 : 1; }
+int cameras_in(Situation situation) { return situation == Situation::stereo || situation == Situation::stereo_busy1 ? 2 : 1; }
 
 std::unique_ptr<BusyThread> competitor_for(Situation situation) {
-  return situation == Situation::busy1 ? std::make_unique<BusyThread>() : nullptr;
+  const bool busy = situation == Situation::busy1 || situation == Situation::stereo_busy1;
+  return busy ? std::make_unique<BusyThread>() : nullptr;
 }
 
 double median(std::vector<double> values) {
@@ -165,7 +168,7 @@ void register_contended_benchmarks() {
   for (const NamedImage& image : benchmark_images()) {
     if (image.name != "640x480" && image.name != "graf_800x640") continue;  // SLAM camera sizes
     const cv::Mat* gray = &image.gray;
-    for (Situation situation : {Situation::idle, Situation::busy1, Situation::stereo}) {
+    for (Situation situation : {Situation::idle, Situation::busy1, Situation::stereo, Situation::stereo_busy1}) {
       for (int threads : {0, 1, 2}) {
         const std::string name = "contended/aief/t" + std::to_string(threads) + "/" + name_of(situation) + "/" + image.name;
         benchmark::RegisterBenchmark(name.c_str(), [gray, threads, situation](benchmark::State& state) {

@@ -69,12 +69,12 @@ void register_kernel_benchmarks() {
       });
       benchmark::RegisterBenchmark(("fast9/" + variant + "/" + image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
         std::vector<std::uint8_t> scores;
-        std::vector<std::int32_t> xs;
+        std::vector<std::uint64_t> maxima_bits;
         std::vector<FastCorner> corners;
         std::size_t found = 0;
         for (auto _ : state)
           for (const GrayImage& level : pyramid->levels) {
-            fast9_detect(level.view(), 20, *kernels, scores, xs, corners);
+            fast9_detect(level.view(), 20, *kernels, scores, maxima_bits, corners);
             found += corners.size();
           }
         benchmark::DoNotOptimize(found);

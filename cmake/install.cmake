@@ -1,15 +1,23 @@
 # cmake --install: headers, libraries, the aief tool, a CMake package (find_package(aief) ->
-# aief::aief, aief::io, and aief::opencv when built) and a pkg-config file for the engine.
+# aief::aief, and aief::io, aief::opencv when built) and a pkg-config file for the engine.
+# Each component has its own export file, so the package config loads OpenCV only for the
+# components that link it (cmake/aiefConfig.cmake.in).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS aief aief_io EXPORT aiefTargets
+install(TARGETS aief EXPORT aiefTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-if(TARGET aief_opencv)
-  install(TARGETS aief_opencv EXPORT aiefTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-endif()
+set(AIEF_INSTALLED_COMPONENTS "")
+foreach(component IN ITEMS io opencv)
+  if(TARGET aief_${component})
+    install(TARGETS aief_${component} EXPORT aief_${component}Targets
+            ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+    install(EXPORT aief_${component}Targets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
+    list(APPEND AIEF_INSTALLED_COMPONENTS ${component})
+  endif()
+endforeach()
 if(TARGET aief_cli)
   install(TARGETS aief_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   get_target_property(aief_library_type aief TYPE)
@@ -26,7 +34,9 @@ else()
 endif()
 install(FILES ${PROJECT_BINARY_DIR}/generated/aief/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief)
 # io headers say #include "io/...": they live under include/aief/io, with include/aief on the path.
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/io/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief/io FILES_MATCHING PATTERN "*.hpp")
+if(TARGET aief_io)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/io/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief/io FILES_MATCHING PATTERN "*.hpp")
+endif()
 
 install(EXPORT aiefTargets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/aiefConfig.cmake.in ${PROJECT_BINARY_DIR}/aiefConfig.cmake

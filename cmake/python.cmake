@@ -3,7 +3,8 @@
 # and the python3 on PATH that imports numpy (a pyenv or venv python3 first on PATH often lacks
 # the Debian packages the module and its tests use).
 option(AIEF_PYTHON "Build the Python module aief (needs pybind11 and numpy)" ON)
-if(NOT AIEF_PYTHON)
+# The module reads images through aief::io (OpenCV), and is built for this host's Python only.
+if(NOT AIEF_PYTHON OR NOT AIEF_WITH_OPENCV OR CMAKE_CROSSCOMPILING)
   return()
 endif()
 if(NOT Python_EXECUTABLE)

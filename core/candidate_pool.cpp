@@ -32,6 +32,7 @@ void pool_candidates(const std::vector<Candidate>& candidates, const std::vector
   pooled.clear();
   pooled_index.clear();
   pooled_blocks.clear();
+  if (pool_size == 0) return;
 
   // The cut-off: the score s of the pool_size-th strongest candidate, found by counting scores
   // (exact, whatever the order); of the candidates at s, the first ones in (y, x) order fill the

@@ -52,49 +52,47 @@ void Extractor::extract(ImageView image, Features& out) {
   FrameAnalysis& analysis = s.analysis;
   analysis.start(image, s.options, *s.kernels);
   const int levels = analysis.level_count();
-  // The pyramid is a chain (level n from level n - 1): each level's rows are split across the
-  // threads. Everything after it is per level, and levels run in parallel, largest first.
-  const int bands = s.scheduler.concurrency();
-  for (int n = 0; n < levels; ++n) {
-    const int height = analysis.level(n).geometry.height;
-    if (bands <= 1 || height < 64) {
-      analysis.build_level(n);
-      continue;
-    }
-    s.scheduler.for_each(bands, [&](int band) {
-      analysis.build_level_rows(n, height * band / bands, height * (band + 1) / bands);
-    });
-  }
-
+  s.chosen.resize(static_cast<std::size_t>(levels));
   const bool entropy_on = s.options.entropy != EntropyMeasure::off;
-  s.scheduler.for_each(levels, [&](int n) { analysis.compute_entropies(n); });
+  const bool automatic = entropy_on && s.options.auto_threshold;
   double requested = entropy_on ? s.options.entropy_threshold : 0.0;
-  if (entropy_on && s.options.auto_threshold) {
-    auto_threshold_entropies(analysis, s.entropies);
-    requested = auto_entropy_threshold(s.entropies);
-  }
+  const bool level_guard = entropy_on && s.options.starvation_guard == StarvationGuard::level;
   std::vector<double>& thresholds = s.level_thresholds;
   thresholds.assign(static_cast<std::size_t>(levels), requested);
-  if (entropy_on && s.options.starvation_guard == StarvationGuard::level) {
-    s.scheduler.for_each(levels, [&](int n) {
-      thresholds[static_cast<std::size_t>(n)] = detect_with_level_guard(analysis, n, requested);
-    });
-  } else {
-    double threshold = requested;
-    s.scheduler.for_each(levels, [&](int n) { analysis.detect(n, threshold); });
-    // Never starve (DESIGN.md section 3): while the kept blocks hold fewer candidates than the
-    // features asked for, lower F for this frame, down to 0 (every non-flat block).
-    while (entropy_on && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
+  // One parallel region: the pyramid is a chain (level n from level n - 1), and each level runs
+  // its entropies, detection and selection as soon as it is built, beside the levels still being
+  // built. The automatic F needs every level's entropies first; detection and selection of
+  // every level then follow in a second region.
+  auto select_level = [&](int n) {
+    double& threshold = thresholds[static_cast<std::size_t>(n)];
+    if (level_guard) threshold = detect_with_level_guard(analysis, n, requested);
+    else analysis.detect(n, threshold);
+    analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]);
+  };
+  s.scheduler.for_each_in_chain(
+      levels, [&](int n) { analysis.build_level(n); },
+      [&](int n) {
+        analysis.compute_entropies(n);
+        if (!automatic) select_level(n);
+      });
+  if (automatic) {
+    auto_threshold_entropies(analysis, s.entropies);
+    requested = auto_entropy_threshold(s.entropies);
+    thresholds.assign(static_cast<std::size_t>(levels), requested);
+    s.scheduler.for_each(levels, select_level);
+  }
+  // Never starve, the frame rule (DESIGN.md section 3): while the kept blocks hold fewer
+  // candidates than the features asked for, lower F for this frame, down to 0 (every non-flat
+  // block), and select again. Rare: the selections above at the requested F are replaced.
+  double threshold = requested;
+  if (entropy_on && !level_guard && threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
+    while (threshold > 0.0 && analysis.candidate_count(threshold) < s.options.n_features) {
       threshold = std::max(0.0, threshold - kStarvationStep);
       s.scheduler.for_each(levels, [&](int n) { analysis.detect(n, threshold); });
     }
     thresholds.assign(static_cast<std::size_t>(levels), threshold);
+    s.scheduler.for_each(levels, [&](int n) { analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]); });
   }
-
-  s.chosen.resize(static_cast<std::size_t>(levels));
-  s.scheduler.for_each(levels, [&](int n) {
-    analysis.select(n, thresholds[static_cast<std::size_t>(n)], s.chosen[static_cast<std::size_t>(n)]);
-  });
   analysis.assemble(s.chosen, out);
 
   ExtractionInfo& info = out.info;

@@ -52,17 +52,22 @@ void fast9_scores_row_scalar(const std::uint8_t* center, std::ptrdiff_t stride, 
   }
 }
 
-int fast9_local_maxima_row_scalar(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
-                                  int x_begin, int x_end, std::int32_t* xs) {
-  int count = 0;
+void fast9_local_maxima_bits_scalar(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
+                                    int x_begin, int x_end, int strong_threshold, std::uint64_t* maxima,
+                                    std::uint64_t* strong) {
+  const int words = fast9_maxima_words(x_end - x_begin);
+  std::fill(maxima, maxima + words, std::uint64_t{0});
+  std::fill(strong, strong + words, std::uint64_t{0});
   for (int x = x_begin; x < x_end; ++x) {
     const int s = row[x];
     if (s == 0) continue;
     if (s > row[x - 1] && s > row[x + 1] && s > above[x - 1] && s > above[x] && s > above[x + 1] &&
-        s > below[x - 1] && s > below[x] && s > below[x + 1])
-      xs[count++] = x;
+        s > below[x - 1] && s > below[x] && s > below[x + 1]) {
+      const int i = x - x_begin;
+      maxima[i / 64] |= std::uint64_t{1} << (i % 64);
+      if (s >= strong_threshold) strong[i / 64] |= std::uint64_t{1} << (i % 64);
+    }
   }
-  return count;
 }
 
 }  // namespace aief

@@ -32,11 +32,16 @@ inline constexpr int kFastRingDy[16] = {-3, -3, -2, -1, 0, 1, 2, 3, 3, 3, 2, 1, 
 void fast9_scores_row_scalar(const std::uint8_t* center, std::ptrdiff_t stride, int x_begin,
                              int x_end, int min_threshold, std::uint8_t* scores);
 
-// Local maxima of one score row: appends to xs every x in [x_begin, x_end) with
-// row[x] > 0 and row[x] > each of its 8 neighbours in above/below/row (x - 1 .. x + 1).
-// Reads above/row/below at x_begin - 1 .. x_end. Returns the number written, ascending x.
-int fast9_local_maxima_row_scalar(const std::uint8_t* above, const std::uint8_t* row,
-                                  const std::uint8_t* below, int x_begin, int x_end,
-                                  std::int32_t* xs);
+// Local maxima of one score row, as bits: bit i of maxima[i / 64] (bit i % 64, least
+// significant first) is set when x = x_begin + i has row[x] > 0 and row[x] > each of its 8
+// neighbours in above/row/below (x - 1 .. x + 1); the same bit of strong[] when, besides,
+// row[x] >= strong_threshold. Writes all fast9_maxima_words(x_end - x_begin) words of both, unused
+// high bits 0. Reads above/row/below at x_begin - 1 .. x_end. One call covers a whole run of
+// blocks; a block then takes its bit range, strong or all (ORB-SLAM2's retry rule), without
+// a pass over its candidates.
+constexpr int fast9_maxima_words(int width) { return (width + 63) / 64; }
+void fast9_local_maxima_bits_scalar(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
+                                    int x_begin, int x_end, int strong_threshold, std::uint64_t* maxima,
+                                    std::uint64_t* strong);
 
 }  // namespace aief

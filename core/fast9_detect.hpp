@@ -16,10 +16,10 @@ struct FastCorner {
   std::int32_t score = 0;
 };
 
-// Corners in raster order. `scores` is a caller-kept buffer (resized as needed) so repeated
-// calls allocate nothing. Images smaller than 7x7 have no corner.
+// Corners in raster order. `scores` and `maxima_bits` are caller-kept buffers (resized as
+// needed) so repeated calls allocate nothing. Images smaller than 7x7 have no corner.
 void fast9_detect(ImageView image, int threshold, const KernelTable& kernels,
-                  std::vector<std::uint8_t>& scores, std::vector<std::int32_t>& xs,
+                  std::vector<std::uint8_t>& scores, std::vector<std::uint64_t>& maxima_bits,
                   std::vector<FastCorner>& corners);
 
 }  // namespace aief

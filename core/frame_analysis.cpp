@@ -1,6 +1,7 @@
 #include "core/frame_analysis.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cstring>
 #include <string>
@@ -187,47 +188,78 @@ void FrameAnalysis::detect(int n, double threshold) {
       while (end < grid.cols() && needs(r * grid.cols() + end)) ++end;
       compute_score_rows(level, score_top, score_top, grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
                          grid.col_edges[static_cast<std::size_t>(c)] - 1, grid.col_edges[static_cast<std::size_t>(end)] + 1);
-      for (; c < end; ++c) {
-        level.block_detected[static_cast<std::size_t>(r * grid.cols() + c)] = 1;
-        detect_block(level, r * grid.cols() + c, score_top);
-      }
+      detect_run(level, r, c, end, score_top);
+      c = end;
     }
   }
 }
 
-void FrameAnalysis::detect_block(LevelState& level, int block, int score_top) {
+void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end, int score_top) {
   const BlockGrid& grid = level.geometry.grid;
-  const int r = block / grid.cols(), c = block % grid.cols();
-  const int x0 = grid.col_edges[static_cast<std::size_t>(c)], x1 = grid.col_edges[static_cast<std::size_t>(c) + 1];
+  const int x_begin = grid.col_edges[static_cast<std::size_t>(c_begin)], x_end = grid.col_edges[static_cast<std::size_t>(c_end)];
   const int y0 = grid.row_edges[static_cast<std::size_t>(r)], y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
   const MutableImageView scores = level.score_band.mutable_view();
 
-  // Local maxima of the score map (threshold-free, see core/fast9.hpp), then the ORB-SLAM2
-  // retry rule: fast_threshold, or fast_min_threshold when that leaves the block empty.
-  const std::size_t first = level.candidates.size();
-  bool any_strong = false;
-  level.scratch_xs.resize(static_cast<std::size_t>(x1 - x0));
+  // Local maxima of the score map (threshold-free, see core/fast9.hpp) over the whole run, one
+  // bit row per level row; the strong ones (score >= fast_threshold) only OR-ed over the rows,
+  // which is all the retry rule asks.
+  const int words = fast9_maxima_words(x_end - x_begin);
+  std::vector<std::uint64_t>& bits = level.scratch_maxima_bits;
+  bits.resize(static_cast<std::size_t>(words) * static_cast<std::size_t>(y1 - y0 + 2));
+  std::uint64_t* strong_any = bits.data();
+  std::uint64_t* strong_row = strong_any + words;
+  std::uint64_t* maxima_rows = strong_row + words;
+  std::fill(strong_any, strong_any + words, std::uint64_t{0});
   for (int y = y0; y < y1; ++y) {
     const std::uint8_t* row = scores.row(y - score_top);
-    const int found = kernels_->fast9_local_maxima_row(row - scores.stride, row, row + scores.stride, x0, x1,
-                                                       level.scratch_xs.data());
-    for (int i = 0; i < found; ++i) {
-      const int x = level.scratch_xs[static_cast<std::size_t>(i)];
-      const int score = row[x];
-      any_strong = any_strong || score >= options_.fast_threshold;
-      level.candidates.push_back({x, y, score, row[x - 1], row[x + 1], row[x - scores.stride], row[x + scores.stride]});
+    kernels_->fast9_local_maxima_bits(row - scores.stride, row, row + scores.stride, x_begin, x_end,
+                                      options_.fast_threshold, maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words,
+                                      strong_row);
+    for (int k = 0; k < words; ++k) strong_any[k] |= strong_row[k];
+  }
+
+  // Each block takes its bit range, in raster order: the strong maxima, or all of them when it
+  // has no strong one (ORB-SLAM2's retry rule: fast_threshold, else fast_min_threshold).
+  for (int c = c_begin; c < c_end; ++c) {
+    const int block = r * grid.cols() + c;
+    const int begin = grid.col_edges[static_cast<std::size_t>(c)] - x_begin;
+    const int end = grid.col_edges[static_cast<std::size_t>(c) + 1] - x_begin;
+    const int k_first = begin / 64, k_last = (end - 1) / 64;
+    const std::uint64_t first_mask = ~std::uint64_t{0} << (begin % 64);
+    const std::uint64_t last_mask = ~std::uint64_t{0} >> (63 - (end - 1) % 64);
+    const auto block_bits = [&](const std::uint64_t* words_of_row, int k) {
+      std::uint64_t word = words_of_row[k];
+      if (k == k_first) word &= first_mask;
+      if (k == k_last) word &= last_mask;
+      return word;
+    };
+    bool any_strong = false;
+    for (int k = k_first; k <= k_last; ++k) any_strong = any_strong || block_bits(strong_any, k) != 0;
+    const int strong_at = options_.fast_threshold;
+    const std::size_t first = level.candidates.size();
+    const auto take = [&](std::uint64_t word, int y, int k) {
+      const std::uint8_t* row = scores.row(y - score_top);
+      for (; word != 0; word &= word - 1) {
+        const int x = x_begin + 64 * k + std::countr_zero(word);
+        if (any_strong && row[x] < strong_at) continue;
+        level.candidates.push_back({x, y, row[x], row[x - 1], row[x + 1], row[x - scores.stride], row[x + scores.stride]});
+      }
+    };
+    if (k_first == k_last) {  // the usual block, inside one word: one masked word per row
+      const std::uint64_t mask = first_mask & last_mask;
+      const std::uint64_t* maxima = maxima_rows + k_first;
+      for (int y = y0; y < y1; ++y, maxima += words)
+        if (const std::uint64_t word = *maxima & mask) take(word, y, k_first);
+    } else {
+      for (int y = y0; y < y1; ++y)
+        for (int k = k_first; k <= k_last; ++k)
+          take(block_bits(maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words, k), y, k);
     }
+    level.block_detected[static_cast<std::size_t>(block)] = 1;
+    level.block_candidates[static_cast<std::size_t>(block)] = {static_cast<std::int32_t>(first),
+                                                               static_cast<std::int32_t>(level.candidates.size())};
   }
-  if (any_strong) {
-    const auto weak = [&](const Candidate& candidate) { return candidate.score < options_.fast_threshold; };
-    level.candidates.erase(std::remove_if(level.candidates.begin() + static_cast<std::ptrdiff_t>(first),
-                                          level.candidates.end(), weak),
-                           level.candidates.end());
-  }
-  level.block_candidates[static_cast<std::size_t>(block)] = {static_cast<std::int32_t>(first),
-                                                             static_cast<std::int32_t>(level.candidates.size())};
-  const std::size_t count = level.candidates.size();
-  level.candidate_memo_slot.resize(count, -1);
+  level.candidate_memo_slot.resize(level.candidates.size(), -1);
 }
 
 void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& chosen) {

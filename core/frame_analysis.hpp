@@ -55,6 +55,7 @@ struct LevelState {
 
   // Per-level scratch, so levels can run on different threads.
   std::vector<std::int32_t> scratch_xs;
+  std::vector<std::uint64_t> scratch_maxima_bits;  // local maxima of a run of blocks, bit rows
   std::vector<std::int32_t> scratch_fresh_blocks;
   std::vector<std::int32_t> scratch_selected;
   std::vector<BlockRange> scratch_blocks;
@@ -115,7 +116,7 @@ class FrameAnalysis {
 
  private:
   void compute_score_rows(LevelState& level, int score_top, int y_begin, int y_end, int x_begin, int x_end);
-  void detect_block(LevelState& level, int block, int score_top);
+  void detect_run(LevelState& level, int r, int c_begin, int c_end, int score_top);
   void describe(LevelState& level, const std::vector<std::int32_t>& indices);
   void describe_through_band(LevelState& level, int count);
 

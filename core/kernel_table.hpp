@@ -20,7 +20,7 @@ struct KernelTable {
   decltype(&gaussian7_rows_scalar) gaussian7_rows = gaussian7_rows_scalar;
   decltype(&accumulate_histogram_scalar) accumulate_histogram = accumulate_histogram_scalar;
   decltype(&fast9_scores_row_scalar) fast9_scores_row = fast9_scores_row_scalar;
-  decltype(&fast9_local_maxima_row_scalar) fast9_local_maxima_row = fast9_local_maxima_row_scalar;
+  decltype(&fast9_local_maxima_bits_scalar) fast9_local_maxima_bits = fast9_local_maxima_bits_scalar;
   decltype(&ic_moments_scalar) ic_moments = ic_moments_scalar;
   decltype(&rbrief_describe_scalar) rbrief_describe = rbrief_describe_scalar;
   decltype(&hamming_256_many_scalar) hamming_256_many = hamming_256_many_scalar;

@@ -49,7 +49,7 @@ void ExtractorOptions::validate() const {
           "entropy has an unknown value " + str(static_cast<int>(entropy)));
   require(std::isfinite(entropy_threshold) && entropy_threshold >= 0.0 && entropy_threshold <= 64.0,
           "entropy_threshold must be in [0, 64] bits, got " + str(entropy_threshold));
-  require(static_cast<int>(kernels) >= 0 && static_cast<int>(kernels) <= static_cast<int>(KernelSet::avx512bw),
+  require(static_cast<int>(kernels) >= 0 && static_cast<int>(kernels) <= static_cast<int>(KernelSet::neon64),
           "kernels has an unknown value " + str(static_cast<int>(kernels)));
   require(coordinates == CoordinateMap::scaled || coordinates == CoordinateMap::pixel_centre,
           "coordinates has an unknown value " + str(static_cast<int>(coordinates)));
@@ -119,6 +119,7 @@ std::string_view to_string(KernelSet value) {
     case KernelSet::sse4_2: return "sse4.2";
     case KernelSet::avx2: return "avx2";
     case KernelSet::avx512bw: return "avx512";
+    case KernelSet::neon64: return "neon64";
   }
   return "?";
 }
@@ -153,8 +154,9 @@ KernelSet parse_kernel_set(std::string_view name) {
   if (name == "sse4.2" || name == "sse4_2") return KernelSet::sse4_2;
   if (name == "avx2") return KernelSet::avx2;
   if (name == "avx512" || name == "avx512bw") return KernelSet::avx512bw;
+  if (name == "neon64") return KernelSet::neon64;
   throw Error("unknown kernel set '" + std::string(name) +
-              "' (expected auto, scalar, sse4.2, avx2 or avx512)");
+              "' (expected auto, scalar, sse4.2, avx2, avx512 or neon64)");
 }
 
 Mode parse_mode(std::string_view name) {

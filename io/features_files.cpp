@@ -1,6 +1,7 @@
 #include "io/features_files.hpp"
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <opencv2/core.hpp>
@@ -33,6 +34,59 @@ void write_info(JsonWriter& json, const ExtractionInfo& info) {
   json.end_object();
 }
 
+void write_source(JsonWriter& json, const SourceRecord& source) {
+  json.key("source").begin_object();
+  json.field("name", source.name).field("bytes", static_cast<long long>(source.bytes)).field("mtime_ns", source.mtime_ns);
+  json.end_object();
+}
+
+// The exact text write_source gives inside a result's top-level object: what a JSON result of
+// this source contains (the writer's layout depends only on the depth, the same here).
+std::string source_json_fragment(const SourceRecord& source) {
+  std::ostringstream out;
+  JsonWriter json(out);
+  json.begin_object();
+  write_source(json, source);
+  json.end_object();
+  const std::string text = out.str();  // "{" fragment "\n}\n"
+  return text.substr(1, text.size() - 4);
+}
+
+std::string read_bytes(const std::string& path, std::ios::off_type from_end, std::size_t count) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  if (from_end > 0) {
+    in.seekg(0, std::ios::end);
+    if (in.tellg() < from_end) return {};
+    in.seekg(-from_end, std::ios::end);
+  }
+  std::string text(count, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(count));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return text;
+}
+
+bool json_file_belongs_to(const std::string& path, const SourceRecord& source) {
+  // The record comes right after "image" (at most a few KiB in); a complete file ends with the
+  // descriptor list and the closing brace.
+  constexpr std::size_t kHeadBytes = 64 * 1024;
+  const std::string tail = read_bytes(path, 4, 4);
+  if (tail != "]\n}\n") return false;
+  return read_bytes(path, 0, kHeadBytes).find(source_json_fragment(source)) != std::string::npos;
+}
+
+bool yaml_file_belongs_to(const std::string& path, const SourceRecord& source) {
+  try {
+    const cv::FileStorage fs(path, cv::FileStorage::READ);
+    if (!fs.isOpened() || fs["descriptors"].empty()) return false;
+    return static_cast<std::string>(fs["source_name"]) == source.name &&
+           static_cast<std::string>(fs["source_bytes"]) == std::to_string(source.bytes) &&
+           static_cast<std::string>(fs["source_mtime_ns"]) == std::to_string(source.mtime_ns);
+  } catch (const cv::Exception&) {
+    return false;
+  }
+}
+
 std::string extension_of(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -41,11 +95,27 @@ std::string extension_of(const std::string& path) {
 
 }  // namespace
 
-std::string features_json(const std::string& image_path, const Features& features, const ExtractorOptions& options) {
+bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source) {
+  const std::string ext = extension_of(output_path);
+  if (ext == ".json") return json_file_belongs_to(output_path, source);
+  if (ext == ".yml" || ext == ".yaml") return yaml_file_belongs_to(output_path, source);
+  if (ext == ".npz") return npz_file_belongs_to(output_path, source);
+  return false;
+}
+
+bool is_features_file_name(const std::string& path) {
+  const std::string ext = extension_of(path);
+  return ext == ".json" || ext == ".yml" || ext == ".yaml" || ext == ".npz";
+}
+
+std::string features_json(const std::string& image_path, const Features& features, const ExtractorOptions& options,
+                          const std::optional<SourceRecord>& source) {
   std::ostringstream out;
   JsonWriter json(out);
   json.begin_object();
-  json.field("image", image_path).field("width", features.image_width).field("height", features.image_height);
+  json.field("image", image_path);
+  if (source) write_source(json, *source);
+  json.field("width", features.image_width).field("height", features.image_height);
   write_options(json, options);
   write_info(json, features.info);
   json.key("keypoints").begin_array();
@@ -64,11 +134,12 @@ std::string features_json(const std::string& image_path, const Features& feature
 }
 
 void write_features_json(const std::string& path, const std::string& image_path, const Features& features,
-                         const ExtractorOptions& options) {
-  write_file_atomically(path, features_json(image_path, features, options));
+                         const ExtractorOptions& options, const std::optional<SourceRecord>& source) {
+  write_file_atomically(path, features_json(image_path, features, options, source));
 }
 
-void write_features_yaml(const std::string& path, const std::string& image_path, const Features& features) {
+void write_features_yaml(const std::string& path, const std::string& image_path, const Features& features,
+                         const std::optional<SourceRecord>& source) {
   std::vector<cv::KeyPoint> keypoints;
   keypoints.reserve(features.keypoints.size());
   for (const Keypoint& kp : features.keypoints)
@@ -77,30 +148,30 @@ void write_features_yaml(const std::string& path, const std::string& image_path,
   for (int r = 0; r < descriptors.rows; ++r)
     std::copy(features.descriptors[static_cast<std::size_t>(r)].begin(), features.descriptors[static_cast<std::size_t>(r)].end(),
               descriptors.ptr<std::uint8_t>(r));
-  // FileStorage picks the format from the name: keep the .yml extension on the temporary file.
-  const std::filesystem::path final_path(path);
-  const std::string temporary = (final_path.parent_path() / (".tmp." + final_path.filename().string())).string();
+  // Written in memory, then by write_file_atomically: one temporary-file rule for every format.
+  std::string text;
   try {
-    cv::FileStorage fs(temporary, cv::FileStorage::WRITE);
-    if (!fs.isOpened()) throw Error("cannot write '" + path + "'");
-    fs << "image" << image_path << "width" << features.image_width << "height" << features.image_height;
+    cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+    fs << "image" << image_path;
+    if (source)
+      fs << "source_name" << source->name << "source_bytes" << std::to_string(source->bytes) << "source_mtime_ns"
+         << std::to_string(source->mtime_ns);
+    fs << "width" << features.image_width << "height" << features.image_height;
     cv::write(fs, "keypoints", keypoints);
     fs << "descriptors" << descriptors;
-    fs.release();
+    text = fs.releaseAndGetString();
   } catch (const cv::Exception& e) {
     throw Error("cannot write '" + path + "': " + e.what());
   }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) throw Error("cannot write '" + path + "': " + ec.message());
+  write_file_atomically(path, text);
 }
 
 void write_features(const std::string& path, const std::string& image_path, const Features& features,
-                    const ExtractorOptions& options) {
+                    const ExtractorOptions& options, const std::optional<SourceRecord>& source) {
   const std::string ext = extension_of(path);
-  if (ext == ".json") return write_features_json(path, image_path, features, options);
-  if (ext == ".yml" || ext == ".yaml") return write_features_yaml(path, image_path, features);
-  if (ext == ".npz") return write_features_npz(path, features);
+  if (ext == ".json") return write_features_json(path, image_path, features, options, source);
+  if (ext == ".yml" || ext == ".yaml") return write_features_yaml(path, image_path, features, source);
+  if (ext == ".npz") return write_features_npz(path, features, source);
   throw Error("output '" + path + "' must end in .json, .yml, .yaml or .npz");
 }
 

@@ -2,24 +2,39 @@
 // Result files: features as JSON or as OpenCV FileStorage YAML (read back by cv::FileStorage and
 // Python's cv2.FileStorage: "keypoints" as cv::KeyPoint list, "descriptors" an N x 32 CV_8U
 // matrix). Both written atomically (temporary file, then rename).
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "aief/features.hpp"
 #include "aief/options.hpp"
+#include "io/source_record.hpp"
 
 namespace aief::io {
 
-// JSON: {"image", "width", "height", "options": {...}, "info": {...},
+// True when `output_path` is a complete result file (.json, .yml / .yaml, .npz) whose source record
+// equals `source`; false when it is missing, cut short, unreadable, or from another input.
+bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source);
+
+// True when write_features accepts the path's extension: the CLI asks before any work.
+bool is_features_file_name(const std::string& path);
+
+// JSON: {"image", "source": {"name", "bytes", "mtime_ns"} (when given), "width", "height", "options": {...}, "info": {...},
 //        "keypoints": [{"x", "y", "size", "angle", "response", "octave"}],
 //        "descriptors_hex": ["64 hex chars", ...]}
-std::string features_json(const std::string& image_path, const Features& features, const ExtractorOptions& options);
+std::string features_json(const std::string& image_path, const Features& features, const ExtractorOptions& options,
+                          const std::optional<SourceRecord>& source = std::nullopt);
 void write_features_json(const std::string& path, const std::string& image_path, const Features& features,
-                         const ExtractorOptions& options);
+                         const ExtractorOptions& options, const std::optional<SourceRecord>& source = std::nullopt);
 
-void write_features_yaml(const std::string& path, const std::string& image_path, const Features& features);
+// YAML: image, source_name / source_bytes / source_mtime_ns (strings: FileStorage integers are
+// 32-bit), width, height, keypoints, descriptors.
+void write_features_yaml(const std::string& path, const std::string& image_path, const Features& features,
+                         const std::optional<SourceRecord>& source = std::nullopt);
 
 // By extension: .json, .yml / .yaml, or .npz (io/npz_writer.hpp). Throws aief::Error for another extension.
 void write_features(const std::string& path, const std::string& image_path, const Features& features,
-                    const ExtractorOptions& options);
+                    const ExtractorOptions& options, const std::optional<SourceRecord>& source = std::nullopt);
 
 }  // namespace aief::io

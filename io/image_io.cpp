@@ -1,12 +1,15 @@
 #include "io/image_io.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
+#include "io/image_header.hpp"
 
 namespace aief::io {
 
@@ -34,31 +37,44 @@ GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
   return out;
 }
 
+// Refuses what cannot be decoded safely: an unknown format, or more pixels than allowed.
+void check_declared_size(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels) {
+  const std::optional<ImageHeader> header = read_image_header(bytes.data(), bytes.size());
+  if (!header)
+    throw Error("cannot read image '" + name +
+                "': not an image aief can read (PNG, JPEG, TIFF, WebP, BMP, PNM/PAM/PFM, Sun raster, Radiance HDR, "
+                "JPEG 2000), or its header is damaged");
+  // Compared by division: width x height may not fit in 64 bits.
+  if (header->width > 0 && header->height > max_pixels / header->width)
+    throw Error("image '" + name + "' declares " + std::to_string(header->width) + "x" + std::to_string(header->height) +
+                " pixels in its " + header->format + " header, more than max_image_pixels = " +
+                std::to_string(max_pixels) + " (refused before decoding)");
+}
+
 }  // namespace
 
-GrayImage read_gray_image(const std::string& path) {
+GrayImage read_gray_image(const std::string& path, long long max_pixels) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("cannot open image '" + path + "': no such file");
   if (std::filesystem::is_directory(path, ec)) throw Error("cannot open image '" + path + "': it is a directory");
-  if (!std::ifstream(path, std::ios::binary)) throw Error("cannot open image '" + path + "': permission denied");
-
-  cv::Mat image;
-  try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    throw Error("cannot read image '" + path + "': " + e.what());
-  }
-  if (image.empty()) throw Error("cannot read image '" + path + "': not an image OpenCV can decode, or a damaged file");
-
-  return gray_from_decoded(image, path);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw Error("cannot open image '" + path + "': permission denied");
+  // The encoded bytes in memory (a fraction of the decoded size): the header is checked first.
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(std::max<std::streamoff>(in.tellg(), 0)));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!in) throw Error("cannot read image '" + path + "': read error");
+  return decode_gray_image(bytes, path, max_pixels);
 }
 
-GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name) {
+GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels) {
+  check_declared_size(bytes, name, max_pixels);
   cv::Mat image;
   try {
     image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception& e) {
-    throw Error("cannot read image '" + name + "': " + e.what());
+    // The decoder's own message only, not OpenCV's source location and assertion text.
+    throw Error("cannot read image '" + name + "': the decoder failed (" + e.err + ")");
   }
   if (image.empty()) throw Error("cannot read image '" + name + "': not an image OpenCV can decode, or a damaged file");
   return gray_from_decoded(image, name);

@@ -4,20 +4,26 @@
 // Conversion: 3- and 4-channel images -> gray by OpenCV's cvtColor (ITU-R BT.601 luma,
 // 0.299 R + 0.587 G + 0.114 B, OpenCV's fixed point); 16-bit images -> 8 bits, divided by 256
 // and rounded; other depths (float, signed) are refused. Errors are aief::Error naming the path.
+//
+// Size first: the width and height the file declares are read from its header (io/image_header.hpp)
+// and a file above `max_pixels` (ExtractorOptions::max_image_pixels) is refused before anything
+// is decoded or allocated; a file whose size cannot be read from its header is refused too.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "aief/image.hpp"
+#include "aief/options.hpp"
 
 namespace aief::io {
 
-GrayImage read_gray_image(const std::string& path);
+GrayImage read_gray_image(const std::string& path, long long max_pixels = ExtractorOptions{}.max_image_pixels);
 
 // The same conversion for an image already in memory as encoded bytes (PNG, JPEG, ...);
 // `name` goes into the error messages.
-GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name);
+GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name,
+                            long long max_pixels = ExtractorOptions{}.max_image_pixels);
 
 // The same conversion for 8-bit pixels already in memory (the Python module's BGR / BGRA
 // arrays): `channels` (1, 3 BGR or 4 BGRA) interleaved bytes per pixel, consecutive within a

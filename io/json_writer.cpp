@@ -131,8 +131,10 @@ std::string hex_of(const std::uint8_t* bytes, std::size_t count) {
   return out;
 }
 
+std::string temporary_path_of(const std::string& path) { return path + ".tmp"; }
+
 void write_file_atomically(const std::string& path, const std::string& content) {
-  const std::string temporary = path + ".tmp";
+  const std::string temporary = temporary_path_of(path);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw Error("cannot write '" + path + "': cannot create " + temporary);

@@ -51,4 +51,8 @@ std::string hex_of(const std::uint8_t* bytes, std::size_t count);
 // interrupted run never leaves a half-written result. Throws aief::Error on failure.
 void write_file_atomically(const std::string& path, const std::string& content);
 
+// The temporary file write_file_atomically uses for `path` (path + ".tmp"): a batch removes the
+// stale one a killed run left. It never ends in an output extension, so it is no output's name.
+std::string temporary_path_of(const std::string& path);
+
 }  // namespace aief::io

@@ -1,8 +1,11 @@
 #include "io/npz_writer.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <vector>
 
 #include "io/json_writer.hpp"
@@ -26,10 +29,10 @@ std::string raw_bytes(const std::vector<T>& values) {
 
 // numpy's .npy format 1.0: magic, header length, a Python dict literal padded to 64 bytes.
 std::string npy_file(const NpyArray& array) {
+  // As numpy writes it: "(n,)" for one dimension, "(n, m)" for two.
   std::string shape = "(";
-  for (std::size_t d : array.shape) shape += std::to_string(d) + ",";
-  if (array.shape.size() > 1) shape.pop_back();
-  shape += ")";
+  for (std::size_t i = 0; i < array.shape.size(); ++i) shape += (i ? ", " : "") + std::to_string(array.shape[i]);
+  shape += array.shape.size() == 1 ? ",)" : ")";
   std::string header = "{'descr': '" + array.dtype + "', 'fortran_order': False, 'shape': " + shape + ", }";
   const std::size_t unpadded = 10 + header.size() + 1;
   header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";
@@ -114,9 +117,26 @@ std::string zip_stored(const std::vector<std::pair<std::string, std::string>>& m
   return out;
 }
 
+// The members that record the source: stored uncompressed, so their bytes appear verbatim in the file.
+std::vector<NpyArray> source_arrays(const SourceRecord& source) {
+  const std::vector<std::int64_t> stat = {static_cast<std::int64_t>(source.bytes), source.mtime_ns};
+  return {{"source_name", "|S" + std::to_string(std::max<std::size_t>(source.name.size(), 1)), {}, source.name.empty() ? std::string(1, '\0') : source.name},
+          {"source_stat", "<i8", {2}, raw_bytes(stat)}};
+}
+
 }  // namespace
 
-std::string features_npz(const Features& features) {
+bool npz_file_belongs_to(const std::string& path, const SourceRecord& source) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // A complete zip ends with its end-of-central-directory record (22 bytes, no comment).
+  if (file.size() < 22 || file.compare(file.size() - 22, 4, "PK\x05\x06") != 0) return false;
+  for (const NpyArray& array : source_arrays(source))
+    if (file.find(npy_file(array)) == std::string::npos) return false;
+  return true;
+}
+
+std::string features_npz(const Features& features, const std::optional<SourceRecord>& source) {
   const std::size_t n = features.keypoints.size();
   std::vector<float> xy, size, angle, response;
   std::vector<std::int32_t> octave;
@@ -131,7 +151,7 @@ std::string features_npz(const Features& features) {
     descriptors.insert(descriptors.end(), features.descriptors[i].begin(), features.descriptors[i].end());
   }
   const std::vector<std::int64_t> image_size = {features.image_width, features.image_height};
-  const std::vector<NpyArray> arrays = {
+  std::vector<NpyArray> arrays = {
       {"keypoints", "<f4", {n, 2}, raw_bytes(xy)},
       {"descriptors", "|u1", {n, kDescriptorBytes}, raw_bytes(descriptors)},
       {"scores", "<f4", {n}, raw_bytes(response)},
@@ -140,13 +160,15 @@ std::string features_npz(const Features& features) {
       {"octave", "<i4", {n}, raw_bytes(octave)},
       {"image_size", "<i8", {2}, raw_bytes(image_size)},
   };
+  if (source)
+    for (NpyArray& array : source_arrays(*source)) arrays.push_back(std::move(array));
   std::vector<std::pair<std::string, std::string>> members;
   for (const NpyArray& array : arrays) members.emplace_back(array.name + ".npy", npy_file(array));
   return zip_stored(members);
 }
 
-void write_features_npz(const std::string& path, const Features& features) {
-  write_file_atomically(path, features_npz(features));
+void write_features_npz(const std::string& path, const Features& features, const std::optional<SourceRecord>& source) {
+  write_file_atomically(path, features_npz(features, source));
 }
 
 }  // namespace aief::io

@@ -4,6 +4,7 @@
 #include <atomic>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 #include <tbb/task_arena.h>
 
 #include "parallel/tsan_handoff.hpp"
@@ -47,6 +48,36 @@ void Scheduler::for_each(int count, IndexWork work) const {
       handoff_release(&ended);
     }, tbb::simple_partitioner{});
     handoff_acquire(&ended);
+  };
+  if (arena_) arena_->arena.execute(run); else run();
+}
+
+void Scheduler::for_each_in_chain(int count, IndexWork make, IndexWork work) const {
+  if (count <= 0) return;
+  if (std::min(count, concurrency()) <= 1) {
+    for (int i = 0; i < count; ++i) {
+      make(i);
+      work(i);
+    }
+    return;
+  }
+  const auto run = [&] {
+    tbb::task_group group;
+    // Step i makes piece i, offers step i + 1 to a free thread, then works on piece i: the
+    // chain moves on while the large early pieces are worked on.
+    struct Step {
+      tbb::task_group& group;
+      IndexWork make, work;
+      int count;
+      void operator()(int i) const {
+        make(i);
+        if (i + 1 < count) group.run([this, i] { (*this)(i + 1); });
+        work(i);
+      }
+    };
+    const Step step{group, make, work, count};
+    step(0);
+    group.wait();
   };
   if (arena_) arena_->arena.execute(run); else run();
 }

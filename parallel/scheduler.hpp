@@ -38,6 +38,16 @@ class Scheduler {
     for_each(count, IndexWork(work));
   }
 
+  // A chain of pieces, each made from the one before (pyramid level n from level n - 1), in
+  // one parallel region: make(0), make(1), ... run in order, and work(i) runs once make(i) has
+  // returned, beside the making of the later pieces and the work on the earlier ones. No
+  // barrier between the stages; returns when every call has. Exceptions propagate.
+  void for_each_in_chain(int count, IndexWork make, IndexWork work) const;
+  template <class M, class W>
+  void for_each_in_chain(int count, M&& make, W&& work) const {
+    for_each_in_chain(count, IndexWork(make), IndexWork(work));
+  }
+
   // Threads that may run pieces at once.
   int concurrency() const;
 

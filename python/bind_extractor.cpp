@@ -33,9 +33,32 @@ namespace {
 
 // The CLI's order (tools/cli_args.cpp): entropy measure and kernels, then the mode's preset,
 // then F; validate() is the one authority on ranges.
+// The quality options of issue 9 refine the mode; None keeps the mode's value.
+struct QualityOverrides {
+  py::object pool;  // a number >= 1, or "inf" / "off"
+  std::optional<std::string> coordinates, starvation_guard;
+  std::optional<bool> subpixel, auto_skips_uniform_blocks;
+};
+
+void apply(const QualityOverrides& q, ExtractorOptions& options) {
+  if (!q.pool.is_none()) {
+    if (py::isinstance<py::str>(q.pool))
+      options.candidate_pool = parse_candidate_pool(q.pool.cast<std::string>());
+    else if (!py::isinstance<py::bool_>(q.pool) && (py::isinstance<py::float_>(q.pool) || py::isinstance<py::int_>(q.pool)))
+      options.candidate_pool = q.pool.cast<double>();
+    else
+      throw Error("pool must be a number >= 1 or \"inf\", got " + std::string(py::repr(q.pool)));
+  }
+  if (q.coordinates) options.coordinates = parse_coordinate_map(*q.coordinates);
+  if (q.starvation_guard) options.starvation_guard = parse_starvation_guard(*q.starvation_guard);
+  if (q.subpixel) options.subpixel = *q.subpixel;
+  if (q.auto_skips_uniform_blocks) options.auto_skips_uniform_blocks = *q.auto_skips_uniform_blocks;
+}
+
 ExtractorOptions options_from(int n_features, const std::string& mode, const py::object& threshold, int levels, double scale,
                               int threads, const std::string& kernels, int fast_threshold, int fast_min_threshold,
-                              int block_size, const std::optional<std::string>& entropy, long long max_image_pixels) {
+                              int block_size, const std::optional<std::string>& entropy, long long max_image_pixels,
+                              const QualityOverrides& quality) {
   ExtractorOptions options;
   options.n_features = n_features;
   options.n_levels = levels;
@@ -48,6 +71,7 @@ ExtractorOptions options_from(int n_features, const std::string& mode, const py:
   options.max_image_pixels = max_image_pixels;
   if (entropy) options.entropy = parse_entropy_measure(*entropy);
   options = options_for_mode(parse_mode(mode), options);
+  apply(quality, options);
   if (py::isinstance<py::str>(threshold)) {
     const std::string text = threshold.cast<std::string>();
     if (text != "auto") throw Error("threshold must be a number of bits or \"auto\", got \"" + text + "\"");
@@ -73,6 +97,11 @@ py::dict options_dict(const ExtractorOptions& o) {
   d["entropy"] = std::string(to_string(o.entropy));
   d["entropy_threshold"] = o.entropy_threshold;
   d["auto_threshold"] = o.auto_threshold;
+  d["coordinates"] = std::string(to_string(o.coordinates));
+  d["subpixel"] = o.subpixel;
+  d["candidate_pool"] = o.candidate_pool;
+  d["starvation_guard"] = std::string(to_string(o.starvation_guard));
+  d["auto_skips_uniform_blocks"] = o.auto_skips_uniform_blocks;
   d["kernels"] = std::string(to_string(o.kernels));
   d["threads"] = o.threads;
   d["max_image_pixels"] = o.max_image_pixels;
@@ -101,13 +130,17 @@ void bind_extractor(py::module_& m) {
   const ExtractorOptions d;
   py::class_<PyExtractor>(m, "Extractor",
                           "ORB features with the AIEF entropy mask. Defaults are the C++ ExtractorOptions'; "
-                          "invalid values raise aief.Error.")
+                          "pool, coordinates, subpixel, starvation_guard and auto_skips_uniform_blocks left None "
+                          "keep the mode's values (as the CLI's flags). Invalid values raise aief.Error.")
       .def(py::init([](int n_features, const std::string& mode, const py::object& threshold, int levels, double scale,
                        int threads, const std::string& kernels, int fast_threshold, int fast_min_threshold, int block_size,
-                       const std::optional<std::string>& entropy, long long max_image_pixels) {
+                       const std::optional<std::string>& entropy, long long max_image_pixels, const py::object& pool,
+                       const std::optional<std::string>& coordinates, const std::optional<bool>& subpixel,
+                       const std::optional<std::string>& starvation_guard, const std::optional<bool>& auto_skips_uniform_blocks) {
+             const QualityOverrides quality{pool, coordinates, starvation_guard, subpixel, auto_skips_uniform_blocks};
              return std::make_unique<PyExtractor>(options_from(n_features, mode, threshold, levels, scale, threads, kernels,
                                                                fast_threshold, fast_min_threshold, block_size, entropy,
-                                                               max_image_pixels));
+                                                               max_image_pixels, quality));
            }),
            py::arg("n_features") = d.n_features, py::arg("mode") = std::string(to_string(Mode::aief)),
            py::arg("threshold") = py::float_(d.entropy_threshold), py::arg("levels") = d.n_levels,
@@ -115,7 +148,9 @@ void bind_extractor(py::module_& m) {
            py::arg("kernels") = std::string(to_string(d.kernels)), py::kw_only(),
            py::arg("fast_threshold") = d.fast_threshold, py::arg("fast_min_threshold") = d.fast_min_threshold,
            py::arg("block_size") = d.block_size, py::arg("entropy") = py::none(),
-           py::arg("max_image_pixels") = d.max_image_pixels)
+           py::arg("max_image_pixels") = d.max_image_pixels, py::arg("pool") = py::none(), py::arg("coordinates") = py::none(),
+           py::arg("subpixel") = py::none(), py::arg("starvation_guard") = py::none(),
+           py::arg("auto_skips_uniform_blocks") = py::none())
       .def("extract", &PyExtractor::extract, py::arg("image"),
            "Features of a 2-D uint8 gray image (any strides; not copied when its rows are contiguous) or an "
            "H x W x 3 BGR / H x W x 4 BGRA uint8 image (converted to gray as the aief CLI converts files). "

@@ -23,18 +23,19 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 // Lowest (Lower = true) or highest value of the best arc of 9: max over arcs of the arc's min,
-// or min over arcs of the arc's max.
-template <class Arch, bool Lower>
-inline U8<Arch> best_arc9(const U8<Arch> r[16]) {
+// or min over arcs of the arc's max. ring(k) loads ring pixel k: each pixel is loaded where it
+// is used (a memory operand of the min/max), which keeps the 16 ring values out of registers.
+template <class Arch, bool Lower, class Ring>
+inline U8<Arch> best_arc9(const Ring& ring) {
   const auto inner = [](const U8<Arch>& a, const U8<Arch>& b) { return Lower ? xsimd::min(a, b) : xsimd::max(a, b); };
   const auto outer = [](const U8<Arch>& a, const U8<Arch>& b) { return Lower ? xsimd::max(a, b) : xsimd::min(a, b); };
   U8<Arch> m2[8], m4[8];
-  for (int j = 0; j < 8; ++j) m2[j] = inner(r[2 * j], r[2 * j + 1]);      // pixels 2j, 2j + 1
-  for (int j = 0; j < 8; ++j) m4[j] = inner(m2[j], m2[(j + 1) & 7]);     // 2j .. 2j + 3
-  U8<Arch> best = inner(inner(m4[0], m4[2]), outer(r[15], r[8]));       // j = 0: arcs at 15 and 0
+  for (int j = 0; j < 8; ++j) m2[j] = inner(ring(2 * j), ring(2 * j + 1));  // pixels 2j, 2j + 1
+  for (int j = 0; j < 8; ++j) m4[j] = inner(m2[j], m2[(j + 1) & 7]);        // 2j .. 2j + 3
+  U8<Arch> best = inner(inner(m4[0], m4[2]), outer(ring(15), ring(8)));     // j = 0: arcs at 15 and 0
   for (int j = 1; j < 8; ++j) {
-    const U8<Arch> m8 = inner(m4[j], m4[(j + 2) & 7]);                    // 2j .. 2j + 7
-    best = outer(best, inner(m8, outer(r[2 * j - 1], r[(2 * j + 8) & 15])));
+    const U8<Arch> m8 = inner(m4[j], m4[(j + 2) & 7]);                       // 2j .. 2j + 7
+    best = outer(best, inner(m8, outer(ring(2 * j - 1), ring((2 * j + 8) & 15))));
   }
   return best;
 }
@@ -47,16 +48,15 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
     fast9_scores_row_scalar(center, stride, x_begin, x_end, min_threshold, scores);
     return;
   }
-  std::ptrdiff_t offsets[16];
-  for (int k = 0; k < 16; ++k) offsets[k] = kFastRingDy[k] * stride + kFastRingDx[k];
+  // Seven row pointers and constant column offsets: the 16 ring addresses need 8 registers.
+  const std::uint8_t* rows[7];
+  for (int dy = -3; dy <= 3; ++dy) rows[dy + 3] = center + dy * stride;
   const U8<Arch> t(static_cast<std::uint8_t>(min_threshold));
   const U8<Arch> one(std::uint8_t(1)), zero(std::uint8_t(0));
 
   const auto batch_at = [&](int x) {
-    const std::uint8_t* p = center + x;
-    const U8<Arch> v = U8<Arch>::load_unaligned(p);
-    U8<Arch> ring[16];
-    for (int k = 0; k < 16; ++k) ring[k] = U8<Arch>::load_unaligned(p + offsets[k]);
+    const auto ring = [&](int k) { return U8<Arch>::load_unaligned(rows[kFastRingDy[k] + 3] + x + kFastRingDx[k]); };
+    const U8<Arch> v = U8<Arch>::load_unaligned(rows[3] + x);
     const U8<Arch> brighter = xsimd::ssub(best_arc9<Arch, true>(ring), v);
     const U8<Arch> darker = xsimd::ssub(v, best_arc9<Arch, false>(ring));
     const U8<Arch> best = xsimd::max(brighter, darker);
@@ -69,25 +69,44 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
 }
 
 template <class Arch>
-int fast9_local_maxima_row(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below, int x_begin,
-                           int x_end, std::int32_t* xs) {
-  constexpr int N = static_cast<int>(U8<Arch>::size);
-  int count = 0;
-  int x = x_begin;
-  for (; x + N <= x_end; x += N) {
+void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
+                             int x_begin, int x_end, int strong_threshold, std::uint64_t* maxima,
+                             std::uint64_t* strong) {
+  constexpr int N = static_cast<int>(U8<Arch>::size);  // 16, 32 or 64: a batch never straddles a word
+  if (x_end - x_begin < N) {
+    fast9_local_maxima_bits_scalar(above, row, below, x_begin, x_end, strong_threshold, maxima, strong);
+    return;
+  }
+  const int words = fast9_maxima_words(x_end - x_begin);
+  for (int w = 0; w < words; ++w) maxima[w] = strong[w] = 0;
+  const U8<Arch> zero(std::uint8_t(0));
+  // Strong where s >= threshold, i.e. s - (threshold - 1) (saturating) is not 0.
+  const int strong_floor = strong_threshold < 1 ? 0 : strong_threshold > 256 ? 255 : strong_threshold - 1;
+  const U8<Arch> below_strong(static_cast<std::uint8_t>(strong_floor));
+  const auto batch_at = [&](int x) {
     // s is a strict maximum where s - max(neighbours) (saturating) is not 0.
     const U8<Arch> s = U8<Arch>::load_unaligned(row + x);
     U8<Arch> neighbours = U8<Arch>::load_unaligned(row + x - 1);
-    if (!any_nonzero<Arch>(xsimd::ssub(s, neighbours))) continue;  // most of a score row is 0
+    if (!any_nonzero<Arch>(xsimd::ssub(s, neighbours))) return;  // most of a score row is 0
     neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(row + x + 1));
     for (const std::uint8_t* line : {above, below})
       for (int dx = -1; dx <= 1; ++dx) neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(line + x + dx));
-    const auto keep = xsimd::ssub(s, neighbours) != U8<Arch>(std::uint8_t(0));
-    for (std::uint64_t bits = lane_bits<Arch>(keep); bits != 0; bits &= bits - 1)
-      xs[count++] = x + __builtin_ctzll(bits);  // a builtin: no shared inline std:: code in arch TUs
-  }
-  if (x < x_end) count += fast9_local_maxima_row_scalar(above, row, below, x, x_end, xs + count);
-  return count;
+    const U8<Arch> margin = xsimd::ssub(s, neighbours);
+    const std::uint64_t kept = lane_bits<Arch>(margin != zero);
+    if (kept == 0) return;
+    const std::uint64_t kept_strong = kept & lane_bits<Arch>(xsimd::ssub(s, below_strong) != zero);
+    // OR, not store: the overlapping last batch rewrites bits already set, with the same values.
+    const int i = x - x_begin;
+    maxima[i >> 6] |= kept << (i & 63);
+    strong[i >> 6] |= kept_strong << (i & 63);
+    if ((i & 63) + N > 64) {
+      maxima[(i >> 6) + 1] |= kept >> (64 - (i & 63));
+      strong[(i >> 6) + 1] |= kept_strong >> (64 - (i & 63));
+    }
+  };
+  int x = x_begin;
+  for (; x + N <= x_end; x += N) batch_at(x);
+  if (x < x_end) batch_at(x_end - N);
 }
 
 }  // namespace AIEF_SIMD_TARGET

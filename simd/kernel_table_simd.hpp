@@ -4,11 +4,18 @@
 #include "core/kernel_table.hpp"
 #include "simd/fast9_simd.hpp"
 #include "simd/gaussian_blur_simd.hpp"
-#include "simd/hamming_simd.hpp"
 #include "simd/histogram_simd.hpp"
+#include "simd/rbrief_simd.hpp"
+// Kernels written with one instruction-set family's intrinsics, each family in its own files.
+#if defined(__aarch64__)
+#include "simd/hamming_neon.hpp"
+#include "simd/orientation_neon.hpp"
+#include "simd/pyramid_resize_neon.hpp"
+#else
+#include "simd/hamming_simd.hpp"
 #include "simd/orientation_simd.hpp"
 #include "simd/pyramid_resize_simd.hpp"
-#include "simd/rbrief_simd.hpp"
+#endif
 
 namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
@@ -20,7 +27,7 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   table.set = set;
   table.name = name;
   table.fast9_scores_row = &fast9_scores_row<Arch>;
-  table.fast9_local_maxima_row = &fast9_local_maxima_row<Arch>;
+  table.fast9_local_maxima_bits = &fast9_local_maxima_bits<Arch>;
   table.hamming_256_many = &hamming_256_many<Arch>;
   table.gaussian7_rows = &gaussian7_rows<Arch>;
   table.ic_moments = &ic_moments<Arch>;

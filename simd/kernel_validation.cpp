@@ -139,19 +139,32 @@ std::string check_fast_scores(const KernelTable& scalar, const KernelTable& othe
 
 std::string check_fast_maxima(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   if (src.width() < 3 || src.height() < 3) return "";
-  // Score-like rows: small values, many ties and zeros, so every comparison matters.
-  std::vector<std::int32_t> xa(static_cast<std::size_t>(src.width())), xb(xa.size());
+  // Score-like rows: small values, many ties and zeros, so every comparison matters. Runs that
+  // start at x = 1 and at odd offsets (the blocks of a level start anywhere), strong thresholds
+  // below, inside and above the values.
+  const int words = fast9_maxima_words(src.width());
+  std::vector<std::uint64_t> a(2 * static_cast<std::size_t>(words)), b(a.size());
   for (int y = 1; y < src.height() - 1; ++y) {
     std::vector<std::uint8_t> rows[3];
     for (int k = 0; k < 3; ++k) {
       rows[k].resize(static_cast<std::size_t>(src.width()));
       for (int x = 0; x < src.width(); ++x) rows[k][static_cast<std::size_t>(x)] = src.data()[(y - 1 + k) * src.width() + x] >> 5;
     }
-    const int na = scalar.fast9_local_maxima_row(rows[0].data(), rows[1].data(), rows[2].data(), 1, src.width() - 1, xa.data());
-    const int nb = other.fast9_local_maxima_row(rows[0].data(), rows[1].data(), rows[2].data(), 1, src.width() - 1, xb.data());
-    const std::string diff = first_difference(std::vector<std::int32_t>(xa.begin(), xa.begin() + na),
-                                              std::vector<std::int32_t>(xb.begin(), xb.begin() + nb), other.name, "maximum");
-    if (!diff.empty()) return where(src, "row " + std::to_string(y) + " " + diff);
+    for (int x_begin : {1, 2, 5}) {
+      if (x_begin >= src.width() - 1) continue;
+      for (int strong : {0, 3, 6, 300}) {
+        std::fill(a.begin(), a.end(), ~std::uint64_t{0});  // every word must be written
+        std::fill(b.begin(), b.end(), ~std::uint64_t{0});
+        scalar.fast9_local_maxima_bits(rows[0].data(), rows[1].data(), rows[2].data(), x_begin, src.width() - 1, strong,
+                                       a.data(), a.data() + words);
+        other.fast9_local_maxima_bits(rows[0].data(), rows[1].data(), rows[2].data(), x_begin, src.width() - 1, strong,
+                                      b.data(), b.data() + words);
+        const std::string diff = first_difference(a, b, other.name, "word (maxima, then strong)");
+        if (!diff.empty())
+          return where(src, "row " + std::to_string(y) + " from x " + std::to_string(x_begin) + " strong >= " +
+                                std::to_string(strong) + " " + diff);
+      }
+    }
   }
   return "";
 }
@@ -207,8 +220,10 @@ std::string check_hamming(const KernelTable& scalar, const KernelTable& other, c
 
 std::string check_extract(KernelSet set, const GrayImage& src) {
   if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
-  for (Mode mode : {Mode::aief, Mode::orbslam2}) {
+  // The default mode (sub-pixel, pool, per-level guard, automatic F) and the paper's conventions.
+  for (Mode mode : {Mode::aief, Mode::aief_paper, Mode::orbslam2}) {
     ExtractorOptions reference_options = options_for_mode(mode);
+    reference_options.auto_threshold = mode == Mode::aief;
     reference_options.kernels = KernelSet::scalar;
     reference_options.threads = 1;
     const Features reference = Extractor(reference_options).extract(src.view());
@@ -241,7 +256,7 @@ std::string check_extract(KernelSet set, const GrayImage& src) {
 
 const std::vector<std::string>& validated_kernel_names() {
   static const std::vector<std::string> names = {"resize_bilinear_rows", "gaussian7_rows", "accumulate_histogram",
-                                                 "fast9_scores_row",     "fast9_local_maxima_row", "ic_moments",
+                                                 "fast9_scores_row",     "fast9_local_maxima_bits", "ic_moments",
                                                  "rbrief_describe",      "hamming_256_many", "extract"};
   return names;
 }
@@ -269,7 +284,7 @@ std::string validate_kernel(const std::string& kernel, KernelSet set, const std:
     else if (kernel == "gaussian7_rows") diff = check_gaussian(scalar, other, image);
     else if (kernel == "accumulate_histogram") diff = check_histogram(scalar, other, image);
     else if (kernel == "fast9_scores_row") diff = check_fast_scores(scalar, other, image);
-    else if (kernel == "fast9_local_maxima_row") diff = check_fast_maxima(scalar, other, image);
+    else if (kernel == "fast9_local_maxima_bits") diff = check_fast_maxima(scalar, other, image);
     else if (kernel == "ic_moments") diff = check_moments(scalar, other, image);
     else if (kernel == "rbrief_describe") diff = check_rbrief(scalar, other, image);
     else if (kernel == "hamming_256_many") diff = check_hamming(scalar, other, image);

@@ -9,6 +9,9 @@ namespace aief::simd_sse4_2 { KernelTable kernel_table(); }
 namespace aief::simd_avx2 { KernelTable kernel_table(); }
 namespace aief::simd_avx512bw { KernelTable kernel_table(); }
 #endif
+#if AIEF_HAVE_NEON64
+namespace aief::simd_neon64 { KernelTable kernel_table(); }
+#endif
 
 namespace aief {
 
@@ -33,6 +36,10 @@ struct CpuKernels {
     if (has_avx512bw) avx512bw = simd_avx512bw::kernel_table();
   }
 #endif
+#if AIEF_HAVE_NEON64
+  // NEON is in every AArch64 CPU (base architecture): nothing to ask.
+  KernelTable neon64 = simd_neon64::kernel_table();
+#endif
 };
 
 const CpuKernels& cpu_kernels() {
@@ -50,6 +57,9 @@ std::vector<KernelSet> available_kernel_sets() {
   if (cpu.has_avx2) sets.push_back(KernelSet::avx2);
   if (cpu.has_avx512bw) sets.push_back(KernelSet::avx512bw);
 #endif
+#if AIEF_HAVE_NEON64
+  sets.push_back(KernelSet::neon64);
+#endif
   return sets;
 }
 
@@ -63,6 +73,9 @@ const KernelTable& kernel_table(KernelSet set) {
   if (set == KernelSet::sse4_2 && cpu.has_sse4_2) return cpu.sse4_2;
   if (set == KernelSet::avx2 && cpu.has_avx2) return cpu.avx2;
   if (set == KernelSet::avx512bw && cpu.has_avx512bw) return cpu.avx512bw;
+#endif
+#if AIEF_HAVE_NEON64
+  if (set == KernelSet::neon64) return cpu.neon64;
 #endif
   throw Error("kernel set " + std::string(to_string(set)) + " is not available on this CPU or build");
 }

@@ -1,5 +1,6 @@
 // The avx512 kernel table. Compiled with only the AVX-512 (F, CD, DQ, BW) flags
-// (simd/CMakeLists.txt). FAST-9 scores run 64 pixels per vector; the other kernels are
+// (simd/CMakeLists.txt). FAST-9 scores and local maxima run 64 pixels per vector (one bit word
+// per vector for the maxima); the other kernels are
 // instantiated at 256-bit width (still EVEX-encoded, 32 registers): on this project's 2-core
 // EPYC their 512-bit forms measured no faster, and 512-bit code around scalar code can cost a
 // frequency licence on Intel parts. Measured end to end on graf: entropy + FAST stage 3.08 ms
@@ -11,6 +12,7 @@ namespace aief::simd_avx512bw {
 KernelTable kernel_table() {
   KernelTable table = simd::make_kernel_table<xsimd::avx2>(KernelSet::avx512bw, "avx512");
   table.fast9_scores_row = &simd::fast9_scores_row<xsimd::avx512bw>;
+  table.fast9_local_maxima_bits = &simd::fast9_local_maxima_bits<xsimd::avx512bw>;
   return table;
 }
 

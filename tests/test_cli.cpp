@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -60,18 +62,78 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --features", "expects a value"},
       {"match " + image, "two images"},
       {"eval", "--dataset"},
+      {"extract " + image + " --pool 0.5", "candidate pool"},
+      {"extract " + image + " --pool many", "candidate pool"},
+      {"extract " + image + " --coordinates centre", "unknown coordinate map"},
+      {"extract " + image + " --subpixel yes", "--subpixel"},
+      {"extract " + image + " --starvation-guard block", "unknown starvation guard"},
+      {"extract " + image + " --auto-uniform-blocks maybe", "--auto-uniform-blocks"},
+      {"eval --dataset . --methods orb", "unknown method"},
+      // Flags a mode cannot honour are refused with the conflict named, never dropped.
+      {"extract " + image + " --mode orbslam2 --threshold 7", "--threshold sets F of the entropy mask, which --mode orbslam2"},
+      {"extract " + image + " --mode orbslam2 --entropy intensity", "--mode orbslam2 has no entropy mask"},
+      {"extract " + image + " --entropy off --threshold 3", "which --entropy off turns off"},
+      {"extract " + image + " --entropy off --threshold auto", "--threshold"},
+      {"extract " + image + " --format yml", "--format applies to --batch only"},
+      {"extract " + image + " --shard 0/2", "--shard applies to --batch only"},
+      {"extract --batch x -o y --draw p.png", "--draw pictures one image"},
+      {"match " + image + " " + image + " --ratio 0.7", "--ratio applies to --matcher ratio only"},
+      // An unknown output format, before any work (no keypoint count printed).
+      {"extract " + image + " -o out.txt", "must end in .json, .yml, .yaml or .npz"},
+      // 1 is outside the range, and the message says so.
+      {"extract " + image + " --scale 1.0", "--scale expects a number in (1, 4], got '1.0'"},
+      // Shards count from 0; 1-based arrays get the recipe; no overflow.
+      {"extract --batch x -o y --shard 4/4", "SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN"},
+      {"extract --batch x -o y --shard 0/99999999999", "0 <= i < n <= 2147483647"},
+      {"extract --batch x -o y --shard 0/4294967297", "0 <= i < n <= 2147483647"},
+      {"extract --batch x -o y --shard -1/4", "--shard expects i/n"},
+      {"extract --batch x -o y --shard 1/0", "--shard expects i/n"},
+      {"extract --batch x -o y --shard 1/4x", "--shard expects i/n"},
+      {"extract --batch x -o y --shard 1", "--shard expects i/n"},
   };
   for (const Case& c : cases) {
     const CliResult r = run(c.args);
     EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find("aief: error:"), std::string::npos) << c.args;
     EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("keypoints"), std::string::npos) << c.args << " did work before refusing\n" << r.output;
+  }
+}
+
+TEST(Cli, FlagsGivenOverrideTheModeAndTakeEffect) {
+  const aief::test::TempFolder folder("aief_cli");
+  const std::string image = aief::test::sample_path("boat", "img1.png");
+  struct Case {
+    std::string flags;
+    std::vector<std::string> in_json;
+  };
+  const Case cases[] = {
+      {"--entropy off", {"\"distribution\":\"proportional\"", "\"entropy\":\"off\""}},
+      {"--mode orbslam2 --entropy off", {"\"distribution\":\"quadtree\"", "\"entropy\":\"off\""}},
+      {"--mode quadtree-entropy --entropy intensity --threshold 7",
+       {"\"distribution\":\"quadtree\"", "\"entropy\":\"intensity\"", "\"entropy_threshold\":7"}},
+      {"--mode aief --entropy intensity --threshold auto", {"\"entropy\":\"intensity\"", "\"auto_threshold\":true"}},
+  };
+  for (const Case& c : cases) {
+    const std::string output = folder.file("f.json");
+    const CliResult r = run("extract " + image + " --features 200 " + c.flags + " -o " + output);
+    ASSERT_EQ(r.status, 0) << c.flags << "\n" << r.output;
+    std::ifstream in(output);
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const std::string& expected : c.in_json) EXPECT_NE(json.find(expected), std::string::npos) << c.flags << ": " << expected;
+  }
+  // More threads than the machine has: used as many as there are, said in aief's words.
+  const CliResult many = run("extract " + image + " --features 200 --threads 256");
+  EXPECT_EQ(many.status, 0) << many.output;
+  EXPECT_EQ(many.output.find("TBB"), std::string::npos) << many.output;
+  if (std::thread::hardware_concurrency() < 256) {
+    EXPECT_NE(many.output.find("aief: note: --threads 256 is more than the"), std::string::npos) << many.output;
   }
 }
 
 TEST(Cli, InputErrorsExitOne) {
-  const auto dir = std::filesystem::temp_directory_path() / "aief_cli_test";
-  std::filesystem::create_directories(dir);
+  const aief::test::TempFolder folder("aief_cli");
+  const std::filesystem::path& dir = folder.path();
   std::ofstream((dir / "notes.png").string()) << "not an image";
   const CliResult missing = run("extract " + (dir / "missing.png").string());
   EXPECT_EQ(missing.status, 1);
@@ -80,13 +142,40 @@ TEST(Cli, InputErrorsExitOne) {
   EXPECT_EQ(text.status, 1);
   EXPECT_NE(text.output.find("notes.png"), std::string::npos);
   const CliResult bad_output = run("extract " + aief::test::sample_path("boat", "img1.png") + " -o " + (dir / "f.txt").string());
-  EXPECT_EQ(bad_output.status, 1);
-  std::filesystem::remove_all(dir);
+  EXPECT_EQ(bad_output.status, 2) << "an unknown output format is a usage error, found before any work";
+}
+
+TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {
+  // A valid PNG declaring 30000 x 30000: decoded, it would take 0.9 GB (RGB: 2.7 GB) before the
+  // extractor's own size check. Each command must refuse it from the header.
+  const aief::test::TempFolder folder("aief_cli");
+  const std::filesystem::path& dir = folder.path();
+  const std::vector<std::uint8_t> bomb = aief::test::png_declaring(30000, 30000);
+  for (const char* path : {"bomb.png", "eval/graf/img1.png", "batch/bomb.png"}) {
+    std::filesystem::create_directories((dir / path).parent_path());
+    std::ofstream((dir / path).string(), std::ios::binary).write(reinterpret_cast<const char*>(bomb.data()),
+                                                                  static_cast<std::streamsize>(bomb.size()));
+  }
+  const std::string good = aief::test::sample_path("graf", "img2.png"), bomb_path = (dir / "bomb.png").string();
+  std::filesystem::copy_file(good, dir / "eval/graf/img2.png");
+  std::filesystem::copy_file(aief::test::sample_path("graf", "H1to2p"), dir / "eval/graf/H1to2p");
+  const std::string commands[] = {"extract " + bomb_path,
+                                  "match " + bomb_path + " " + good,
+                                  "adapt " + good + " " + bomb_path,
+                                  "eval --dataset " + (dir / "eval").string() + " --sequences graf --pairs 1-2 -o " +
+                                      (dir / "report.md").string(),
+                                  "extract --batch " + (dir / "batch").string() + " -o " + (dir / "out").string()};
+  for (const std::string& command : commands) {
+    const CliResult r = run(command);
+    EXPECT_EQ(r.status, 1) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("declares 30000x30000 pixels in its PNG header"), std::string::npos) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("refused before decoding"), std::string::npos) << command << "\n" << r.output;
+  }
 }
 
 TEST(Cli, ExtractWritesJsonYamlAndPicture) {
-  const auto dir = std::filesystem::temp_directory_path() / "aief_cli_out";
-  std::filesystem::create_directories(dir);
+  const aief::test::TempFolder folder("aief_cli");
+  const std::filesystem::path& dir = folder.path();
   const std::string image = aief::test::sample_path("graf", "img1.png");
   const CliResult r = run("extract " + image + " -o " + (dir / "f.json").string() + " --draw " + (dir / "f.png").string());
   EXPECT_EQ(r.status, 0) << r.output;
@@ -111,10 +200,15 @@ TEST(Cli, ExtractWritesJsonYamlAndPicture) {
   EXPECT_EQ(bench.status, 0) << bench.output;
   EXPECT_NE(bench.output.find("\"aief_ms\""), std::string::npos);
   EXPECT_NE(bench.output.find("\"opencv_orb_ms\""), std::string::npos);
+  const std::string second = aief::test::sample_path("graf", "img2.png");
+  const CliResult bench_pair = run("bench " + image + " --pair " + second + " --repeat 1 --threads 1");
+  EXPECT_EQ(bench_pair.status, 0) << bench_pair.output;
+  EXPECT_NE(bench_pair.output.find("\"sweep_ms\""), std::string::npos);
+  EXPECT_NE(bench_pair.output.find("\"pair_ms\""), std::string::npos);
+  EXPECT_EQ(run("bench " + image + " --pair " + second + " --mode orbslam2 --repeat 1").status, 2);  // no entropy, no sweep
   const CliResult validate = run("validate");
   EXPECT_EQ(validate.status, 0) << validate.output;
   EXPECT_NE(validate.output.find("identical"), std::string::npos);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -51,12 +51,22 @@ TEST_P(ExtractorModes, BoundedCountsAndRepeatableOnSamples) {
       EXPECT_GE(kp.angle_deg, 0.0f);
       EXPECT_LT(kp.angle_deg, 360.0f);
       EXPECT_GE(kp.response, static_cast<float>(options.fast_min_threshold));
-      const float scale = geometry[static_cast<std::size_t>(kp.octave)].scale;
-      EXPECT_GE(kp.x / scale, kEdgeBorder - 0.01f);
-      EXPECT_GE(kp.y / scale, kEdgeBorder - 0.01f);
+      // Back to the level pixel the keypoint was detected at (sub-pixel offsets are < 0.5).
+      const LevelGeometry& level = geometry[static_cast<std::size_t>(kp.octave)];
+      const auto level_pixel = [&](const Keypoint& k) {
+        if (options.coordinates == CoordinateMap::scaled)
+          return std::pair{std::lround(k.y / level.scale), std::lround(k.x / level.scale)};
+        return std::pair{std::lround((k.y + 0.5) * level.height / gray.rows - 0.5),
+                         std::lround((k.x + 0.5) * level.width / gray.cols - 0.5)};
+      };
+      const auto [y, x] = level_pixel(kp);
+      EXPECT_GE(x, kEdgeBorder);
+      EXPECT_GE(y, kEdgeBorder);
+      EXPECT_LT(x, level.width - kEdgeBorder);
+      EXPECT_LT(y, level.height - kEdgeBorder);
       if (i > 0) {
         const Keypoint& prev = first.keypoints[i - 1];
-        EXPECT_TRUE(prev.octave < kp.octave || (prev.octave == kp.octave && (prev.y < kp.y || (prev.y == kp.y && prev.x < kp.x))))
+        EXPECT_TRUE(prev.octave < kp.octave || (prev.octave == kp.octave && level_pixel(prev) < level_pixel(kp)))
             << "keypoint " << i << " out of order";
       }
     }
@@ -68,7 +78,7 @@ TEST_P(ExtractorModes, BoundedCountsAndRepeatableOnSamples) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, ExtractorModes, testing::Values(Mode::aief, Mode::orbslam2, Mode::quadtree_entropy),
+INSTANTIATE_TEST_SUITE_P(Modes, ExtractorModes, testing::Values(Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy),
                          [](const testing::TestParamInfo<Mode>& info) {
                            std::string name(to_string(info.param));
                            std::replace(name.begin(), name.end(), '-', '_');

@@ -16,9 +16,9 @@ namespace {
 
 std::vector<FastCorner> ours(const cv::Mat& gray, int threshold) {
   std::vector<std::uint8_t> scores;
-  std::vector<std::int32_t> xs;
+  std::vector<std::uint64_t> maxima_bits;
   std::vector<FastCorner> corners;
-  fast9_detect(test::view_of(gray), threshold, kernel_table(KernelSet::scalar), scores, xs, corners);
+  fast9_detect(test::view_of(gray), threshold, kernel_table(KernelSet::scalar), scores, maxima_bits, corners);
   return corners;
 }
 

@@ -10,20 +10,14 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "io/features_files.hpp"
+#include "io/image_header.hpp"
 #include "io/image_io.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
 namespace {
 
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() : path(std::filesystem::temp_directory_path() / ("aief_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" + std::to_string(reinterpret_cast<std::uintptr_t>(this)))) {
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
+using TempDir = test::TempFolder;
 
 std::string error_of(const std::string& path) {
   try {
@@ -45,6 +39,9 @@ TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
   ASSERT_EQ(gray.width(), 30);
   ASSERT_EQ(gray.height(), 20);
   EXPECT_EQ(0, std::memcmp(gray.data(), expected.data, 600));
+  // Not what the decoder's own gray conversion gives (README, "Colour to gray"): libpng truncates.
+  const cv::Mat decoder_gray = cv::imread(dir.file("c.png"), cv::IMREAD_GRAYSCALE);
+  EXPECT_NE(0, std::memcmp(gray.data(), decoder_gray.data, 600));
 
   cv::Mat rgba(10, 12, CV_8UC4, cv::Scalar(10, 20, 30, 0));
   cv::imwrite(dir.file("a.png"), rgba);
@@ -63,7 +60,7 @@ TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
 TEST(ImageIo, ClearErrorsForBadFiles) {
   TempDir dir;
   EXPECT_NE(error_of(dir.file("missing.png")).find("no such file"), std::string::npos);
-  EXPECT_NE(error_of(dir.path.string()).find("directory"), std::string::npos);
+  EXPECT_NE(error_of(dir.path().string()).find("directory"), std::string::npos);
   std::ofstream(dir.file("text.png")) << "this is not an image";
   EXPECT_NE(error_of(dir.file("text.png")).find("cannot read image"), std::string::npos);
   // Truncated PNG and JPEG: the first part of a valid file.
@@ -82,6 +79,80 @@ TEST(ImageIo, ClearErrorsForBadFiles) {
     }
     EXPECT_FALSE(message.empty()) << ext;
   }
+}
+
+std::vector<std::uint8_t> bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(ImageHeader, ReadsTheSizeEveryFormatDeclaresAndSurvivesEveryCut) {
+  // OpenCV's encoders are the oracle: what they write at 37 x 33, the parser reads back.
+  const cv::Mat gray = test::random_image(37, 33, 5);
+  cv::Mat colour;
+  cv::cvtColor(gray, colour, cv::COLOR_GRAY2BGR);
+  cv::Mat real;
+  colour.convertTo(real, CV_32FC3, 1.0 / 255.0);
+  struct Case {
+    const char* extension;
+    const cv::Mat* image;
+    std::vector<int> params;
+  };
+  const Case cases[] = {{".png", &gray, {}},   {".png", &colour, {}},  {".jpg", &gray, {}},  {".jpg", &colour, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}},
+                        {".tiff", &gray, {}},  {".webp", &colour, {}}, {".webp", &colour, {cv::IMWRITE_WEBP_QUALITY, 101}},
+                        {".bmp", &gray, {}},   {".bmp", &colour, {}},  {".pgm", &gray, {}},  {".pgm", &gray, {cv::IMWRITE_PXM_BINARY, 0}},
+                        {".ppm", &colour, {}}, {".pbm", &gray, {}},    {".pam", &gray, {}},  {".sr", &gray, {}},
+                        {".pfm", &real, {}},   {".hdr", &real, {}},    {".jp2", &colour, {}}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.extension);
+    std::vector<std::uint8_t> bytes;
+    ASSERT_TRUE(cv::imencode(c.extension, *c.image, bytes, c.params));
+    const std::optional<io::ImageHeader> header = io::read_image_header(bytes.data(), bytes.size());
+    ASSERT_TRUE(header.has_value());
+    EXPECT_EQ(header->width, 37);
+    EXPECT_EQ(header->height, 33);
+    for (std::size_t cut = 0; cut < std::min<std::size_t>(bytes.size(), 200); ++cut) io::read_image_header(bytes.data(), cut);
+  }
+  const std::vector<std::uint8_t> bomb = test::png_declaring(30000, 30000);
+  const std::optional<io::ImageHeader> header = io::read_image_header(bomb.data(), bomb.size());
+  ASSERT_TRUE(header.has_value());
+  EXPECT_EQ(header->width, 30000);
+  EXPECT_EQ(header->format, "PNG");
+  EXPECT_FALSE(io::read_image_header(reinterpret_cast<const std::uint8_t*>("GIF89a"), 6).has_value());
+}
+
+TEST(ImageIo, RefusesMorePixelsThanAllowedBeforeDecoding) {
+  TempDir dir;
+  // A 900 KB-class bomb in miniature: a valid PNG whose header declares 30000 x 30000 (and one
+  // at 65535 x 65535, which OpenCV itself would refuse with its assertion text).
+  for (const std::uint32_t side : {30000u, 65535u}) {
+    const std::vector<std::uint8_t> bomb = test::png_declaring(side, side);
+    std::ofstream(dir.file("bomb.png"), std::ios::binary).write(reinterpret_cast<const char*>(bomb.data()),
+                                                               static_cast<std::streamsize>(bomb.size()));
+    const std::string message = error_of(dir.file("bomb.png"));
+    const std::string size = std::to_string(side) + "x" + std::to_string(side);
+    EXPECT_NE(message.find("declares " + size), std::string::npos) << message;
+    EXPECT_NE(message.find("refused before decoding"), std::string::npos) << message;
+    EXPECT_EQ(message.find("OpenCV"), std::string::npos) << message;
+  }
+  // The limit is exact, in every format: w x h pixels pass at w x h, and are refused one below.
+  const cv::Mat gray = test::random_image(41, 33, 6);
+  for (const char* extension : {".png", ".jpg", ".tiff", ".webp", ".bmp", ".pgm", ".pam", ".sr", ".jp2"}) {
+    SCOPED_TRACE(extension);
+    const std::string path = dir.file(std::string("small") + extension);
+    ASSERT_TRUE(cv::imwrite(path, gray));
+    EXPECT_EQ(io::read_gray_image(path, 41 * 33).width(), 41);
+    try {
+      io::read_gray_image(path, 41 * 33 - 1);
+      ADD_FAILURE() << "not refused";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("refused before decoding"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(io::decode_gray_image(bytes_of(path), path, 41 * 33 - 1), Error);
+  }
+  // A format whose size cannot be read first is refused, not decoded blind.
+  std::ofstream(dir.file("x.gif")) << "GIF89a\x10\x00\x10\x00";
+  EXPECT_NE(error_of(dir.file("x.gif")).find("not an image aief can read"), std::string::npos);
 }
 
 TEST(FeatureFiles, JsonAndYamlCarryEveryKeypointAndDescriptor) {

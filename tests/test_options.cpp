@@ -62,6 +62,10 @@ TEST(Options, EveryInvalidValueIsNamed) {
       {"kernels", [](ExtractorOptions& o) { o.kernels = static_cast<KernelSet>(42); }},
       {"max_image_pixels", [](ExtractorOptions& o) { o.max_image_pixels = 0; }},
       {"max_image_pixels", [](ExtractorOptions& o) { o.max_image_pixels = kLargestMaxImagePixels + 1; }},
+      {"candidate_pool", [](ExtractorOptions& o) { o.candidate_pool = 0.5; }},
+      {"candidate_pool", [](ExtractorOptions& o) { o.candidate_pool = std::numeric_limits<double>::quiet_NaN(); }},
+      {"coordinates", [](ExtractorOptions& o) { o.coordinates = static_cast<CoordinateMap>(7); }},
+      {"starvation_guard", [](ExtractorOptions& o) { o.starvation_guard = static_cast<StarvationGuard>(7); }},
   };
   (void)nan;
   (void)inf;
@@ -84,11 +88,18 @@ TEST(Options, ScaleFactorIsCheckedAsTheFloatThePyramidUses) {
 }
 
 TEST(Options, NamesRoundTrip) {
-  for (Mode mode : {Mode::aief, Mode::orbslam2, Mode::quadtree_entropy}) EXPECT_EQ(parse_mode(to_string(mode)), mode);
+  for (Mode mode : {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy})
+    EXPECT_EQ(parse_mode(to_string(mode)), mode);
+  for (CoordinateMap c : {CoordinateMap::scaled, CoordinateMap::pixel_centre}) EXPECT_EQ(parse_coordinate_map(to_string(c)), c);
+  for (StarvationGuard g : {StarvationGuard::frame, StarvationGuard::level}) EXPECT_EQ(parse_starvation_guard(to_string(g)), g);
+  EXPECT_EQ(parse_candidate_pool("inf"), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(parse_candidate_pool("1.25"), 1.25);
+  EXPECT_THROW(parse_candidate_pool("0.9"), Error);
+  EXPECT_THROW(parse_candidate_pool("1.5x"), Error);
   for (Distribution d : {Distribution::proportional, Distribution::quadtree}) EXPECT_EQ(parse_distribution(to_string(d)), d);
   for (EntropyMeasure e : {EntropyMeasure::off, EntropyMeasure::histogram, EntropyMeasure::intensity})
     EXPECT_EQ(parse_entropy_measure(to_string(e)), e);
-  for (KernelSet k : {KernelSet::auto_select, KernelSet::scalar, KernelSet::sse4_2, KernelSet::avx2, KernelSet::avx512bw})
+  for (KernelSet k : {KernelSet::auto_select, KernelSet::scalar, KernelSet::sse4_2, KernelSet::avx2, KernelSet::avx512bw, KernelSet::neon64})
     EXPECT_EQ(parse_kernel_set(to_string(k)), k);
   EXPECT_THROW(parse_mode("orb"), Error);
   EXPECT_THROW(parse_kernel_set("neon"), Error);
@@ -103,6 +114,26 @@ TEST(Options, ModesSetDistributionAndEntropy) {
   ExtractorOptions intensity;
   intensity.entropy = EntropyMeasure::intensity;
   EXPECT_EQ(options_for_mode(Mode::aief, intensity).entropy, EntropyMeasure::intensity);
+}
+
+TEST(Options, OnlyTheAiefModeTakesTheMatchingQualityDefaults) {
+  const ExtractorOptions defaults;
+  const ExtractorOptions aief = options_for_mode(Mode::aief);
+  EXPECT_EQ(aief.coordinates, defaults.coordinates);
+  EXPECT_EQ(aief.subpixel, defaults.subpixel);
+  EXPECT_EQ(aief.candidate_pool, defaults.candidate_pool);
+  EXPECT_EQ(aief.starvation_guard, defaults.starvation_guard);
+  EXPECT_EQ(defaults.coordinates, CoordinateMap::pixel_centre);
+  for (Mode mode : {Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy}) {
+    const ExtractorOptions o = options_for_mode(mode);
+    SCOPED_TRACE(to_string(mode));
+    EXPECT_EQ(o.coordinates, CoordinateMap::scaled);
+    EXPECT_FALSE(o.subpixel);
+    EXPECT_TRUE(std::isinf(o.candidate_pool));
+    EXPECT_EQ(o.starvation_guard, StarvationGuard::frame);
+    EXPECT_FALSE(o.auto_skips_uniform_blocks);
+  }
+  EXPECT_EQ(options_for_mode(Mode::aief_paper).distribution, Distribution::proportional);
 }
 
 }  // namespace

@@ -135,16 +135,13 @@ TEST(OrbSlam2DropIn, NoKeypointReleasesTheDescriptorsAsOrbSlam2) {
 class SettingsFile {
  public:
   explicit SettingsFile(const std::string& body)
-      : path_((std::filesystem::temp_directory_path() /
-               ("aief_orbslam2_settings_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml"))
-                  .string()) {
+      : path_(folder_.file("settings.yaml")) {
     std::ofstream(path_) << "%YAML:1.0\n" << body;
   }
-  ~SettingsFile() { std::filesystem::remove(path_); }
   cv::FileStorage open() const { return cv::FileStorage(path_, cv::FileStorage::READ); }
 
  private:
+  test::TempFolder folder_{"aief_orbslam2"};
   std::string path_;
 };
 

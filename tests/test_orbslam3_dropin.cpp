@@ -101,7 +101,7 @@ TEST(OrbSlam3DropIn, ConstructorArgumentsBecomeTheOptions) {
   EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
 }
 
-// Frame.cc's calls: stereo pinhole passes {0, 0}, monocular {0, 1000}, stereo fisheye the
+// Frame.cc's calls: stereo pinhole and RGB-D pass {0, 0}, monocular {0, 1000}, stereo fisheye the
 // camera's overlap; other areas cover none, all, one column, and reversed bounds.
 TEST(OrbSlam3DropIn, LappingAreaSplitAndReturnedCount) {
   const cv::Mat gray = test::load_sample_gray("leuven", "img1.png");  // 900 x 600

@@ -47,8 +47,8 @@ const cv::Mat& sample_image(int index) {
 Case make_case(int index) {
   std::mt19937 rng(kSeed + static_cast<std::uint32_t>(index) * 7919u);
   Case c;
-  const Mode modes[] = {Mode::aief, Mode::orbslam2, Mode::quadtree_entropy};
-  c.mode = modes[uniform_int(rng, 0, 2)];
+  const Mode modes[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy};
+  c.mode = modes[uniform_int(rng, 0, 3)];
   ExtractorOptions base;
   // Scale factors near 1 (and some far from it), where the pyramid has many small ratios.
   base.scale_factor = uniform_int(rng, 0, 2) == 0 ? uniform(rng, 1.01, 1.1) : uniform(rng, 1.01, 4.0);

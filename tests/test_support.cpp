@@ -1,6 +1,8 @@
 #include "tests/test_support.hpp"
 
+#include <cstdlib>
 #include <random>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -35,6 +37,43 @@ cv::Mat random_textured_image(int width, int height, std::uint32_t seed) {
   cv::GaussianBlur(noise, smooth, cv::Size(5, 5), 1.5);
   cv::normalize(smooth, smooth, 0, 255, cv::NORM_MINMAX);
   return smooth;
+}
+
+namespace {
+
+// PNG chunk checksum (ISO 3309 CRC-32).
+std::uint32_t png_crc(const std::uint8_t* bytes, std::size_t count) {
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < count; ++i) {
+    crc ^= bytes[i];
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> png_declaring(std::uint32_t width, std::uint32_t height) {
+  std::vector<std::uint8_t> bytes;
+  cv::imencode(".png", cv::Mat(64, 64, CV_8UC1, cv::Scalar(0)), bytes);
+  for (int i = 0; i < 4; ++i) {  // IHDR's width and height, big-endian, at bytes 16 and 20
+    bytes[16 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(width >> (24 - 8 * i));
+    bytes[20 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(height >> (24 - 8 * i));
+  }
+  const std::uint32_t crc = png_crc(bytes.data() + 12, 17);  // over the chunk type and data
+  for (int i = 0; i < 4; ++i) bytes[29 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(crc >> (24 - 8 * i));
+  return bytes;
+}
+
+TempFolder::TempFolder(const std::string& prefix) {
+  std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "_XXXXXX")).string();
+  if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
+  path_ = pattern;
+}
+
+TempFolder::~TempFolder() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
 }
 
 }  // namespace aief::test

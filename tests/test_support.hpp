@@ -1,7 +1,9 @@
 #pragma once
 // Shared by the tests: seeded random images and the bundled sample images.
 #include <cstdint>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -20,6 +22,25 @@ cv::Mat random_image(int width, int height, std::uint32_t seed);
 
 // Random image smoothed and contrast-stretched so it has corners of every strength.
 cv::Mat random_textured_image(int width, int height, std::uint32_t seed);
+
+// A valid small PNG file whose header (checksum fixed) declares width x height: a decompression
+// bomb's header, to test that the size is refused before decoding.
+std::vector<std::uint8_t> png_declaring(std::uint32_t width, std::uint32_t height);
+
+// A fresh folder of its own under the system temporary folder (mkdtemp), removed with all it
+// holds when the object goes: two suites running at once never share a path.
+class TempFolder {
+ public:
+  explicit TempFolder(const std::string& prefix = "aief_test");
+  ~TempFolder();
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
 
 inline ImageView view_of(const cv::Mat& gray) {
   return {gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)};

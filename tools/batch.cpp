@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <set>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
@@ -21,6 +22,7 @@
 #endif
 #include "io/image_io.hpp"
 #include "parallel/tsan_handoff.hpp"
+#include "io/json_writer.hpp"
 #include "tools/progress.hpp"
 
 namespace aief::cli {
@@ -46,63 +48,143 @@ bool is_image_name(const fs::path& path) {
   return std::any_of(std::begin(kExtensions), std::end(kExtensions), [&](const char* e) { return ext == e; });
 }
 
+// The images below `folder`, named by their path as listed below the batch root (`prefix`).
+// Directory symlinks are followed, except one leading back to a folder being listed (a cycle).
+// A broken link with an image name is listed too, so it is reported, not lost.
+void list_folder(const fs::path& folder, const std::string& prefix, std::vector<fs::path>& open_folders,
+                 std::vector<BatchInput>& out) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    const std::string name = prefix + entry.path().filename().string();
+    std::error_code ec;
+    if (entry.is_directory(ec)) {
+      const fs::path real = fs::canonical(entry.path(), ec);
+      if (ec || std::find(open_folders.begin(), open_folders.end(), real) != open_folders.end()) continue;
+      open_folders.push_back(real);
+      list_folder(entry.path(), name + "/", open_folders, out);
+      open_folders.pop_back();
+    } else if (is_image_name(entry.path())) {
+      out.push_back({entry.path().string(), name});
+    }
+  }
+}
+
+// A list line as a name: "." parts and empty parts (doubled '/') dropped, nothing else changed.
+std::string name_of_listed_path(const std::string& line) {
+  std::string name = !line.empty() && line[0] == '/' ? "/" : "";
+  std::size_t begin = 0;
+  while (begin <= line.size()) {
+    std::size_t end = line.find('/', begin);
+    if (end == std::string::npos) end = line.size();
+    const std::string part = line.substr(begin, end - begin);
+    if (!part.empty() && part != ".") name += (name.empty() || name == "/" ? "" : "/") + part;
+    begin = end + 1;
+  }
+  return name;
+}
+
 // One image on its way through the pipeline.
 struct Item {
-  std::string input, output;
-  std::string name;  // for h5
+  BatchInput input;
+  std::string output;  // the file of a file-per-image format; empty for h5
+  io::SourceRecord source;
   GrayImage image;
   Features features;
   std::string error;
-  bool skip = false;
+  bool skip = false;       // its output is current
+  bool replacing = false;  // an output was there, from another or a changed input
 };
 
 }  // namespace
 
-std::vector<std::string> batch_inputs(const BatchSettings& settings) {
-  std::vector<std::string> all;
+Shard parse_shard(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  auto number = [&](const std::string& digits, long long& value) {
+    if (digits.empty() || digits.size() > 10 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
+    value = std::stoll(digits);
+    return value <= 2147483647LL;
+  };
+  long long index = -1, count = 0;
+  if (slash == std::string::npos || !number(text.substr(0, slash), index) || !number(text.substr(slash + 1), count) ||
+      count < 1)
+    throw Error("--shard expects i/n, two integers with 0 <= i < n <= 2147483647, got '" + text + "'");
+  if (index >= count)
+    throw Error("--shard " + text + ": i counts from 0, so i < n (a 1-based Slurm array: --shard $((SLURM_ARRAY_TASK_ID - " +
+                "SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT)");
+  return {static_cast<int>(index), static_cast<int>(count)};
+}
+
+std::string batch_output_path(const std::string& output_dir, const std::string& name, const std::string& format) {
+  std::string relative;
+  std::size_t begin = 0;
+  if (!name.empty() && name[0] == '/') {
+    relative = "%2F";
+    begin = 1;
+  }
+  while (begin < name.size()) {
+    std::size_t end = name.find('/', begin);
+    if (end == std::string::npos) end = name.size();
+    std::string part = name.substr(begin, end - begin);
+    if (part == "..") {
+      part = "%2E%2E";
+    } else {
+      for (std::size_t at = 0; (at = part.find('%', at)) != std::string::npos; at += 3) part.replace(at, 1, "%25");
+    }
+    if (!part.empty()) relative += (relative.empty() ? "" : "/") + part;
+    begin = end + 1;
+  }
+  return (fs::path(output_dir) / (relative + "." + format)).string();
+}
+
+std::vector<BatchInput> batch_inputs(const BatchSettings& settings) {
+  std::vector<BatchInput> all;
   std::error_code ec;
   if (fs::is_directory(settings.input, ec)) {
-    for (const fs::directory_entry& entry : fs::recursive_directory_iterator(settings.input, ec))
-      if (entry.is_regular_file() && is_image_name(entry.path())) all.push_back(entry.path().string());
-    if (ec) throw Error("cannot list '" + settings.input + "': " + ec.message());
+    std::vector<fs::path> open_folders = {fs::canonical(settings.input, ec)};
+    try {
+      list_folder(settings.input, "", open_folders, all);
+    } catch (const fs::filesystem_error& e) {
+      throw Error("cannot list '" + settings.input + "': " + e.code().message());
+    }
   } else {
     std::ifstream list(settings.input);
     if (!list) throw Error("batch input '" + settings.input + "' is neither a folder nor a readable list file");
     for (std::string line; std::getline(list, line);) {
       line.erase(line.find_last_not_of(" \t\r") + 1);
-      if (!line.empty() && line[0] != '#') all.push_back(line);
+      if (!line.empty() && line[0] != '#') all.push_back({line, name_of_listed_path(line)});
     }
   }
-  std::sort(all.begin(), all.end());
-  all.erase(std::unique(all.begin(), all.end()), all.end());
-  std::vector<std::string> mine;
+  std::sort(all.begin(), all.end(), [](const BatchInput& a, const BatchInput& b) { return a.name < b.name; });
+  all.erase(std::unique(all.begin(), all.end(), [](const BatchInput& a, const BatchInput& b) { return a.name == b.name; }),
+            all.end());
+
+  // Distinct names give distinct output files; one can still be the folder of another (an image
+  // `a.png` beside a folder `a.png.json/`): refuse that before any work rather than fail later.
+  std::set<std::string> files;
+  for (const BatchInput& input : all) files.insert(batch_output_path("", input.name, settings.format));
+  for (const BatchInput& input : all)
+    for (fs::path folder = fs::path(batch_output_path("", input.name, settings.format)).parent_path(); !folder.empty();
+         folder = folder.parent_path())
+      if (files.count(folder.string()))
+        throw Error("batch input '" + input.path + "' needs the folder '" + folder.string() + "' in '" + settings.output_dir +
+                    "', which is another input's output file");
+
+  std::vector<BatchInput> mine;
   for (std::size_t i = 0; i < all.size(); ++i)
-    if (static_cast<int>(i % static_cast<std::size_t>(settings.shard_count)) == settings.shard_index) mine.push_back(all[i]);
+    if (i % static_cast<std::size_t>(settings.shard_count) == static_cast<std::size_t>(settings.shard_index))
+      mine.push_back(all[i]);
   return mine;
 }
 
-std::string batch_output_path(const BatchSettings& settings, const std::string& input) {
+bool batch_output_is_current(const std::string& output, const io::SourceRecord& source) {
   std::error_code ec;
-  fs::path relative = fs::is_directory(settings.input, ec) ? fs::relative(input, settings.input, ec) : fs::path(input);
-  if (ec || relative.empty()) relative = fs::path(input).filename();
-  std::string name = relative.replace_extension().generic_string();
-  std::size_t at = 0;
-  while ((at = name.find('/', at)) != std::string::npos) name.replace(at, 1, "__");
-  while (!name.empty() && (name[0] == '.' || name[0] == '_')) name.erase(0, 1);  // "../x" stays inside OUTDIR
-  return (fs::path(settings.output_dir) / (name + "." + settings.format)).string();
-}
-
-std::string batch_image_name(const BatchSettings& settings, const std::string& input) {
-  std::error_code ec;
-  fs::path relative = fs::is_directory(settings.input, ec) ? fs::relative(input, settings.input, ec) : fs::path(input);
-  if (ec || relative.empty()) relative = fs::path(input).filename();
-  return relative.lexically_normal().generic_string();
+  return fs::exists(output, ec) && io::features_file_belongs_to(output, source);
 }
 
 BatchSummary run_batch(const BatchSettings& settings) {
-  const std::vector<std::string> inputs = batch_inputs(settings);
+  const std::vector<BatchInput> inputs = batch_inputs(settings);
   std::error_code ec;
-  // h5: every image a group of one file, complete groups skipped on resume; else a file per image.
+  // h5: every image a group of one file, named by the input's name, complete groups skipped on
+  // resume; else a file per image (batch_output_path) holding its source record.
 #ifdef AIEF_HAVE_HDF5
   std::unique_ptr<io::Hdf5File> h5;
   if (settings.format == "h5") h5 = std::make_unique<io::Hdf5File>(settings.output_dir, io::Hdf5File::Mode::read_write);
@@ -128,7 +210,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
   arena.execute([&] {
     tbb::parallel_pipeline(
         static_cast<std::size_t>(2 * threads),
-        // Next image: serial, in order; an image whose output is complete is skipped.
+        // Next image: serial, in order (the HDF5 file is asked here: one thread at a time).
         tbb::make_filter<void, std::shared_ptr<Item>>(tbb::filter_mode::serial_in_order,
                                                        [&](tbb::flow_control& control) -> std::shared_ptr<Item> {
                                                          parallel::handoff_acquire(&kListStage);
@@ -139,32 +221,42 @@ BatchSummary run_batch(const BatchSettings& settings) {
                                                          }
                                                          auto item = std::make_shared<Item>();
                                                          item->input = inputs[next++];
-                                                         item->output = batch_output_path(settings, item->input);
-                                                         item->name = batch_image_name(settings, item->input);
 #ifdef AIEF_HAVE_HDF5
-                                                         item->skip = h5 ? h5->has_features(item->name) : fs::exists(item->output);
-#else
-                                                         item->skip = fs::exists(item->output);
+                                                         if (h5) {
+                                                           item->skip = h5->has_features(item->input.name);
+                                                           return item;
+                                                         }
 #endif
+                                                         item->output = batch_output_path(settings.output_dir, item->input.name,
+                                                                                          settings.format);
                                                          return item;
                                                        }) &
-            // Read (decoding dominates) and extract: parallel.
-            tbb::make_filter<std::shared_ptr<Item>, std::shared_ptr<Item>>(tbb::filter_mode::parallel,
-                                                                          [&](std::shared_ptr<Item> item) {
-                                                                            parallel::handoff_acquire(&kListStage);
-                                                                            const HandoffOnExit release_extracted{&kExtractStage};
-                                                                            if (item->skip) return item;
-                                                                            std::unique_ptr<Extractor>& extractor = extractors.local();
-                                                                            if (!extractor) extractor = std::make_unique<Extractor>(per_thread);
-                                                                            try {
-                                                                              item->image = io::read_gray_image(item->input);
-                                                                              extractor->extract(item->image.view(), item->features);
-                                                                            } catch (const std::exception& e) {
-                                                                              item->error = e.what();
-                                                                            }
-                                                                            item->image = GrayImage();
-                                                                            return item;
-                                                                          }) &
+            // Is the output current? If not: read (decoding dominates) and extract. Parallel.
+            tbb::make_filter<std::shared_ptr<Item>, std::shared_ptr<Item>>(tbb::filter_mode::parallel, [&](std::shared_ptr<Item> item) {
+              parallel::handoff_acquire(&kListStage);
+              const HandoffOnExit release_extracted{&kExtractStage};
+              if (item->skip) return item;
+              try {
+                item->source = io::source_record_of(item->input.path, item->input.name);
+                if (!item->output.empty()) {
+                  std::error_code ignored;
+                  fs::remove(io::temporary_path_of(item->output), ignored);  // a killed run's
+                  if (fs::exists(item->output, ignored)) {
+                    item->skip = batch_output_is_current(item->output, item->source);
+                    item->replacing = !item->skip;
+                  }
+                }
+                if (item->skip) return item;
+                std::unique_ptr<Extractor>& extractor = extractors.local();
+                if (!extractor) extractor = std::make_unique<Extractor>(per_thread);
+                item->image = io::read_gray_image(item->input.path, settings.options.max_image_pixels);
+                extractor->extract(item->image.view(), item->features);
+              } catch (const std::exception& e) {
+                item->error = e.what();
+              }
+              item->image = GrayImage();
+              return item;
+            }) &
             // Write: serial (atomic rename), tally, progress.
             tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_out_of_order, [&](std::shared_ptr<Item> item) {
               parallel::handoff_acquire(&kExtractStage);
@@ -175,22 +267,29 @@ BatchSummary run_batch(const BatchSettings& settings) {
               } else if (item->error.empty()) {
                 try {
 #ifdef AIEF_HAVE_HDF5
-                  if (h5)
-                    h5->write_features(item->name, item->features);
-                  else
+                  if (h5) {
+                    h5->write_features(item->input.name, item->features);
+                  } else
 #endif
-                    io::write_features(item->output, item->input, item->features, settings.options);
+                  {
+                    fs::create_directories(fs::path(item->output).parent_path());
+                    io::write_features(item->output, item->input.path, item->features, settings.options, item->source);
+                  }
                   ++summary.extracted;
+                  summary.replaced += item->replacing ? 1 : 0;
                   summary.keypoints += static_cast<long long>(item->features.keypoints.size());
                 } catch (const std::exception& e) {
                   item->error = e.what();
                 }
               }
               if (!item->error.empty()) {
+                // An output from another or older input must not stay beside a failure.
+                std::error_code ignored;
+                if (item->replacing) fs::remove(item->output, ignored);
                 ++summary.failed;
-                summary.failures.push_back(item->input + ": " + item->error);
+                summary.failures.push_back(item->input.path + ": " + item->error);
               }
-              progress.step(h5 ? item->name : fs::path(item->output).filename().string());
+              progress.step(item->input.name);
             }));
   });
   parallel::handoff_acquire(&kExtractStage);

@@ -1,7 +1,11 @@
 #include "tools/cli_args.hpp"
 
 #include <cmath>
+#include <iostream>
+#include <optional>
 #include <sstream>
+
+#include <tbb/info.h>
 
 #include "aief/error.hpp"
 
@@ -68,7 +72,7 @@ int Args::get_int(const std::string& name, int fallback, int min, int max) const
   return static_cast<int>(value);
 }
 
-double Args::get_double(const std::string& name, double fallback, double min, double max) const {
+double Args::get_double(const std::string& name, double fallback, double min, double max, bool min_is_exclusive) const {
   const std::optional<std::string> text = get(name);
   if (!text) return fallback;
   std::size_t used = 0;
@@ -78,9 +82,11 @@ double Args::get_double(const std::string& name, double fallback, double min, do
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used == 0 || used != text->size() || !std::isfinite(value) || value < min || value > max) {
+  const bool below = min_is_exclusive ? value <= min : value < min;
+  if (used == 0 || used != text->size() || !std::isfinite(value) || below || value > max) {
     std::ostringstream message;
-    message << name << " expects a number in [" << min << ", " << max << "], got '" << *text << "'";
+    message << name << " expects a number in " << (min_is_exclusive ? "(" : "[") << min << ", " << max << "], got '" << *text
+            << "'";
     throw UsageError(message.str());
   }
   return value;
@@ -111,16 +117,27 @@ ExtractorOptions extractor_options(const Args& args) {
   // Ranges here only catch typos early; ExtractorOptions::validate() is the authority.
   options.n_features = args.get_int("--features", defaults.n_features, 1, 1'000'000);
   options.n_levels = args.get_int("--levels", defaults.n_levels, 1, 32);
-  options.scale_factor = args.get_double("--scale", defaults.scale_factor, 1.0 + 1e-9, 4.0);
+  options.scale_factor = args.get_double("--scale", defaults.scale_factor, 1.0, 4.0, /*min_is_exclusive=*/true);
   options.block_size = args.get_int("--block", defaults.block_size, 8, 1024);
   options.fast_threshold = args.get_int("--fast-threshold", defaults.fast_threshold, 1, 254);
   options.fast_min_threshold = args.get_int("--fast-min-threshold", defaults.fast_min_threshold, 1, 254);
   options.threads = args.get_int("--threads", defaults.threads, 0, 256);
+  // More threads than the machine runs gains nothing (output never depends on the count) and
+  // makes TBB print its own warning: use what there is, and say so.
+  if (const int available = tbb::info::default_concurrency(); options.threads > available) {
+    std::cerr << "aief: note: --threads " << options.threads << " is more than the " << available
+              << " hardware threads this process may use; using " << available << "\n";
+    options.threads = available;
+  }
+  // A mode sets the distribution and the default entropy measure; a flag the user gave either
+  // takes effect over it or, when the mode cannot honour it, is refused naming the conflict.
+  const std::optional<std::string> entropy_flag = args.get("--entropy"), threshold_flag = args.get("--threshold");
+  Mode mode = Mode::aief;
   try {
-    if (const auto entropy = args.get("--entropy")) options.entropy = parse_entropy_measure(*entropy);
     if (const auto kernels = args.get("--kernels")) options.kernels = parse_kernel_set(*kernels);
-    const Mode mode = args.get("--mode") ? parse_mode(*args.get("--mode")) : Mode::aief;
+    if (const auto name = args.get("--mode")) mode = parse_mode(*name);
     options = options_for_mode(mode, options);
+    if (entropy_flag) options.entropy = parse_entropy_measure(*entropy_flag);
     // The quality options refine the mode (issue 9), so they apply after it.
     if (const auto pool = args.get("--pool")) options.candidate_pool = parse_candidate_pool(*pool);
     if (const auto map = args.get("--coordinates")) options.coordinates = parse_coordinate_map(*map);
@@ -134,7 +151,13 @@ ExtractorOptions extractor_options(const Args& args) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  if (const auto threshold = args.get("--threshold"); threshold && *threshold == "auto") {
+  if (mode == Mode::orbslam2 && options.entropy != EntropyMeasure::off)
+    throw UsageError("--mode orbslam2 has no entropy mask, so --entropy " + *entropy_flag +
+                     " cannot apply (a quadtree with an entropy mask is --mode quadtree-entropy)");
+  if (options.entropy == EntropyMeasure::off && threshold_flag)
+    throw UsageError(std::string("--threshold sets F of the entropy mask, which ") +
+                     (entropy_flag ? "--entropy off" : "--mode orbslam2") + " turns off: drop one of the two");
+  if (threshold_flag && *threshold_flag == "auto") {
     options.auto_threshold = true;
   } else {
     options.entropy_threshold = args.get_double("--threshold", defaults.entropy_threshold, 0.0, 64.0);
@@ -159,10 +182,10 @@ std::string extractor_flags_help() {
       << "  --block B             entropy / distribution block side, pixels (default " << d.block_size << ")\n"
       << "  --threshold F|auto    entropy threshold F in bits, or auto: Otsu split of the frame's own\n"
       << "                        block entropies (default " << d.entropy_threshold << ")\n"
-      << "  --entropy E           histogram | intensity (default " << to_string(d.entropy) << ")\n"
+      << "  --entropy E           histogram | intensity | off (default " << to_string(d.entropy) << "; off: no mask)\n"
       << "  --fast-threshold T    FAST threshold (default " << d.fast_threshold << ")\n"
       << "  --fast-min-threshold T  retry threshold for a block without corners (default " << d.fast_min_threshold << ")\n"
-      << "  --kernels K           auto | scalar | sse4.2 | avx2 | avx512 (default auto; same output)\n"
+      << "  --kernels K           auto | scalar | sse4.2 | avx2 | avx512 | neon64 (default auto; same output)\n"
       << "  --threads T           worker threads, 0 = all cores (default " << d.threads << "; same output)\n"
       << "  --pool P|inf          candidate pool: each level keeps its best ceil(P x N_level) candidates\n"
       << "                        before the water-level distribution; inf = none (default " << d.candidate_pool << ")\n"

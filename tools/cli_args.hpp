@@ -32,7 +32,8 @@ class Args {
   const std::vector<std::string>& positionals() const { return positionals_; }
 
   int get_int(const std::string& name, int fallback, int min, int max) const;
-  double get_double(const std::string& name, double fallback, double min, double max) const;
+  // The value must lie in [min, max], or in (min, max] when min_is_exclusive.
+  double get_double(const std::string& name, double fallback, double min, double max, bool min_is_exclusive = false) const;
 
  private:
   std::vector<std::pair<std::string, std::string>> values_;  // flag name, value ("" for switches)

@@ -58,7 +58,7 @@ int run_adapt(const Arguments& arguments) {
   }
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
-  const GrayImage a = io::read_gray_image(path_a), b = io::read_gray_image(path_b);
+  const GrayImage a = io::read_gray_image(path_a, options.max_image_pixels), b = io::read_gray_image(path_b, options.max_image_pixels);
   const AdaptResult result = adapt(a.view(), b.view(), options, sweep);
 
   std::printf("%6s %8s %7s %7s %9s %8s %7s\n", "F", "blocks", "kps_a", "kps_b", "putative", "inliers", "CMR%");

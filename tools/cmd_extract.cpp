@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "io/drawing.hpp"
 #include "io/features_files.hpp"
@@ -22,15 +23,20 @@ void print_help() {
             << "Keypoints and 256-bit rBRIEF descriptors of one image. Without -o, prints a summary.\n\n"
             << "  -o, --output FILE     features as JSON (.json), OpenCV FileStorage YAML (.yml) or numpy (.npz)\n"
             << "  --draw FILE           the keypoints drawn over the image, PNG\n"
-            << "  --batch LIST|DIR      every image of a folder (recursively) or of a list file (one path\n"
-            << "                        per line); one output per image in OUTDIR. Resumable: images whose\n"
-            << "                        output exists are skipped; outputs appear atomically. A bad image is\n"
+            << "  --batch LIST|DIR      every image of a folder (recursively, symlinks followed) or of a list\n"
+            << "                        file (one path per line). Each image's name is its path below DIR as\n"
+            << "                        listed (or its line), never the symlink target; its output is\n"
+            << "                        OUTDIR/<name>.<format>, folders mirrored: sub/x.png -> OUTDIR/sub/x.png.json.\n"
+            << "                        Resumable: an output recording this image's name, size and time is\n"
+            << "                        kept, any other is redone; outputs appear atomically. A bad image is\n"
             << "                        reported and skipped. Exit 1 if any failed.\n"
             << "  --format F            json (default), yml or npz: a file per image in OUTDIR; h5: one HDF5 file\n"
             << "                        in hloc's layout, a group per image named by its relative path (resumes\n"
             << "                        at the first image not complete in it; one file per shard, then aief merge)\n"
-            << "  --shard i/n           this run takes images i, i+n, i+2n ... of the sorted list (0 <= i < n),\n"
-            << "                        e.g. i = $SLURM_ARRAY_TASK_ID: machines split a collection, no coordinator\n"
+            << "  --shard i/n           this run takes images i, i+n, i+2n ... of the list sorted by name,\n"
+            << "                        0 <= i < n: machines split a collection, no coordinator. Slurm:\n"
+            << "                        --shard $((SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT\n"
+            << "                        (right for 0- and 1-based arrays alike)\n"
             << extractor_flags_help();
 }
 
@@ -45,17 +51,19 @@ int run_extract_batch(const Args& args) {
   if (settings.format != "json" && settings.format != "yml" && settings.format != "npz" && settings.format != "h5")
     throw UsageError("--format expects json, yml, npz or h5, got '" + settings.format + "'");
   if (const auto shard = args.get("--shard")) {
-    int index = -1, count = 0;
-    char tail = 0;
-    if (std::sscanf(shard->c_str(), "%d/%d%c", &index, &count, &tail) != 2 || count < 1 || index < 0 || index >= count)
-      throw UsageError("--shard expects i/n with 0 <= i < n, got '" + *shard + "'");
-    settings.shard_index = index;
-    settings.shard_count = count;
+    try {
+      const Shard parsed = parse_shard(*shard);
+      settings.shard_index = parsed.index;
+      settings.shard_count = parsed.count;
+    } catch (const Error& e) {
+      throw UsageError(e.what());
+    }
   }
   settings.options = extractor_options(args);
   const BatchSummary summary = run_batch(settings);
-  std::printf("batch: %d images in this shard: %d extracted, %d already done, %d failed; %lld keypoints\n", summary.images,
-              summary.extracted, summary.skipped, summary.failed, summary.keypoints);
+  std::printf("batch: %d images in this shard: %d extracted", summary.images, summary.extracted);
+  if (summary.replaced > 0) std::printf(" (%d replacing the output of another or a changed image)", summary.replaced);
+  std::printf(", %d already done, %d failed; %lld keypoints\n", summary.skipped, summary.failed, summary.keypoints);
   for (const std::string& failure : summary.failures) std::printf("  failed: %s\n", failure.c_str());
   return summary.failed > 0 ? 1 : 0;
 }
@@ -75,12 +83,18 @@ int run_extract(const Arguments& arguments) {
     print_help();
     return 0;
   }
+  // Flags that belong to the other form are refused, never dropped.
+  if (args.has("--batch") && args.has("--draw")) throw UsageError("--draw pictures one image; --batch writes features only");
+  for (const char* flag : {"--format", "--shard"})
+    if (!args.has("--batch") && args.has(flag)) throw UsageError(std::string(flag) + " applies to --batch only");
   if (args.has("--batch")) return run_extract_batch(args);
   if (args.positionals().size() != 1) throw UsageError("extract expects one IMAGE (aief extract --help)");
+  if (const auto output = args.get("--output"); output && !io::is_features_file_name(*output))
+    throw UsageError("-o " + *output + ": the output must end in .json, .yml, .yaml or .npz");
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
 
-  const GrayImage image = io::read_gray_image(path);
+  const GrayImage image = io::read_gray_image(path, options.max_image_pixels);
   Extractor extractor(options);
   const auto start = std::chrono::steady_clock::now();
   const Features features = extractor.extract(image.view());

@@ -65,13 +65,15 @@ int run_match(const Arguments& arguments) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  match_options.ratio = args.get_double("--ratio", match_options.ratio, 1e-6, 1.0);
+  if (args.has("--ratio") && match_options.kind != MatcherKind::ratio)
+    throw UsageError("--ratio applies to --matcher ratio only, not " + std::string(to_string(match_options.kind)));
+  match_options.ratio = args.get_double("--ratio", match_options.ratio, 0.0, 1.0, /*min_is_exclusive=*/true);
   if (args.has("--pairs")) return run_match_pairs(args, match_options);
   if (args.positionals().size() != 2) throw UsageError("match expects two images A B (aief match --help)");
   const ExtractorOptions options = extractor_options(args);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
-  const GrayImage a = io::read_gray_image(path_a), b = io::read_gray_image(path_b);
+  const GrayImage a = io::read_gray_image(path_a, options.max_image_pixels), b = io::read_gray_image(path_b, options.max_image_pixels);
 
   Features features_a, features_b;
   std::vector<Match> matches;

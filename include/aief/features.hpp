@@ -9,7 +9,9 @@
 namespace aief {
 
 struct Keypoint {
-  float x = 0;         // level-0 pixels: level x times scale_factor^octave
+  // Level-0 pixels: (level x + 0.5) * (W_0 / W_octave) - 0.5 plus the sub-pixel offset by default,
+  // level x times scale_factor^octave in the aief-paper and orbslam2 modes (ExtractorOptions::coordinates).
+  float x = 0;
   float y = 0;
   float size = 0;      // kPatchSize * scale_factor^octave
   float angle_deg = 0; // intensity-centroid orientation, [0, 360)
@@ -32,7 +34,7 @@ struct ExtractionInfo {
 struct Features {
   int image_width = 0;
   int image_height = 0;
-  std::vector<Keypoint> keypoints;      // octave ascending, then y, then x within a level
+  std::vector<Keypoint> keypoints;      // octave ascending, then level y, then level x (integer pixels)
   std::vector<Descriptor> descriptors;  // descriptors[i] describes keypoints[i]
   ExtractionInfo info;
 };

@@ -24,10 +24,9 @@ IMAGE_EXTENSIONS = {".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pbm", ".bmp", ".t
 
 
 def list_images(folder):
-    """Image paths below `folder`, relative with '/', sorted as the CLI batch sorts them."""
+    """Image paths below `folder`, relative with '/': the names the CLI batch gives them, sorted as it sorts them."""
     root = pathlib.Path(folder)
-    paths = sorted(str(p) for p in root.rglob("*") if p.is_file() and p.suffix.lower() in IMAGE_EXTENSIONS)
-    return [pathlib.Path(p).relative_to(root).as_posix() for p in paths]
+    return sorted(p.relative_to(root).as_posix() for p in root.rglob("*") if p.is_file() and p.suffix.lower() in IMAGE_EXTENSIONS)
 
 
 def shard_path(output_dir, index, count):

@@ -82,12 +82,21 @@ def test_colmap_verifies_and_maps(exported):
         assert {tuple(r) for r in inliers} <= {tuple(r) for r in matches[pair_id]}  # a subset of what aief matched
     sparse = tmp_path / "sparse"
     sparse.mkdir()
+    # Two views of a plane triangulate at small angles: COLMAP's angle thresholds relaxed (docs/feature_files.md).
     subprocess.run([colmap, "mapper", "--database_path", database, "--image_path", images, "--output_path", sparse,
-                    "--Mapper.num_threads", "2", "--Mapper.min_model_size", "2"], check=True, capture_output=True, env=env)
-    model = sparse / "0"
-    assert (model / "points3D.bin").exists(), "colmap mapper reconstructed nothing"
-    subprocess.run([colmap, "model_converter", "--input_path", model, "--output_path", model, "--output_type", "TXT"],
+                    "--Mapper.num_threads", "2", "--Mapper.min_model_size", "2", "--Mapper.init_min_tri_angle", "1",
+                    "--Mapper.tri_min_angle", "0.5", "--Mapper.filter_min_tri_angle", "0.5"],
                    check=True, capture_output=True, env=env)
-    registered = [line.split()[-1] for line in (model / "images.txt").read_text().splitlines()[4::2]]
-    points = [line for line in (model / "points3D.txt").read_text().splitlines() if not line.startswith("#")]
-    assert sorted(registered) == ["graf1.png", "graf2.png"] and len(points) > 100
+    models = sorted(p for p in sparse.iterdir() if (p / "points3D.bin").exists())
+    assert models, "colmap mapper reconstructed nothing"
+    reconstructed = []
+    for model in models:
+        subprocess.run([colmap, "model_converter", "--input_path", model, "--output_path", model, "--output_type", "TXT"],
+                       check=True, capture_output=True, env=env)
+        registered = sorted(line.split()[-1] for line in (model / "images.txt").read_text().splitlines()[4::2])
+        points = [line for line in (model / "points3D.txt").read_text().splitlines() if not line.startswith("#")]
+        reconstructed.append((registered, len(points)))
+    # Each model is one of the two pairs (they share no image); graf's viewpoint change gives a real
+    # point cloud (boat, a rotation about the optical centre, has no baseline to triangulate).
+    assert all(r in (["boat1.png", "boat2.png"], ["graf1.png", "graf2.png"]) for r, _ in reconstructed), reconstructed
+    assert any(r == ["graf1.png", "graf2.png"] and n > 50 for r, n in reconstructed), reconstructed

@@ -26,6 +26,23 @@ def test_options_reach_the_engine_as_the_cli_flags_do(cli, tmp_path):
     numpy.testing.assert_array_equal(features.descriptors, descriptors)
 
 
+@pytest.mark.parametrize("flags, kwargs", [
+    (["--mode", "aief-paper"], dict(mode="aief-paper")),
+    (["--mode", "orbslam2", "--features", 500], dict(n_features=500, mode="orbslam2")),
+    (["--pool", 2, "--coordinates", "scaled", "--subpixel", "off", "--starvation-guard", "frame",
+      "--auto-uniform-blocks", "count", "--threshold", "auto"],
+     dict(pool=2, coordinates="scaled", subpixel=False, starvation_guard="frame", auto_skips_uniform_blocks=False,
+          threshold="auto")),
+    (["--pool", "inf"], dict(pool="inf")),
+])
+def test_modes_and_quality_options_as_the_cli_flags(cli, tmp_path, flags, kwargs):
+    path = sample_path("graf")
+    keypoints, descriptors = cli_features(cli, tmp_path, path, *flags)
+    features = aief.Extractor(**kwargs).extract(read_unchanged(path))
+    numpy.testing.assert_array_equal(as_rows(features), keypoints)
+    numpy.testing.assert_array_equal(features.descriptors, descriptors)
+
+
 def test_defaults_are_the_cpp_structs():
     extractor = aief.Extractor()
     assert extractor.options == aief.default_options()
@@ -127,7 +144,14 @@ def test_flat_image_has_no_keypoints():
     (dict(mode="orb"), "unknown mode"),
     (dict(kernels="neon9"), "unknown kernel set"),
     (dict(entropy="shannon"), "unknown entropy"),
-    (dict(max_image_pixels=0), "max_image_pixels must be >= 1"),
+    (dict(max_image_pixels=0), "max_image_pixels must be in"),
+    (dict(max_image_pixels=2**26 + 1), "max_image_pixels must be in"),
+    (dict(pool=0.5), "candidate_pool must be >= 1"),
+    (dict(pool=float("nan")), "candidate_pool must be >= 1"),
+    (dict(pool="big"), "candidate pool must be a number >= 1 or inf"),
+    (dict(pool=True), "pool must be a number >= 1"),
+    (dict(coordinates="rounded"), "unknown coordinate"),
+    (dict(starvation_guard="block"), "unknown starvation guard"),
 ])
 def test_invalid_options_raise_aief_error(kwargs, message):
     with pytest.raises(aief.Error, match=message) as error:

@@ -29,6 +29,7 @@ namespace ORB_SLAM3 {
 
 // Frame.cc's ExtractORB, unchanged.
 struct Frame {
+  Frame(ORBextractor* left, ORBextractor* right) : mpORBextractorLeft(left), mpORBextractorRight(right) {}
   ORBextractor* mpORBextractorLeft;
   ORBextractor* mpORBextractorRight;
   std::vector<cv::KeyPoint> mvKeys, mvKeysRight;
@@ -68,15 +69,15 @@ int run() {
   cv::randu(imLeft, cv::Scalar(0), cv::Scalar(255));
   imRight = imLeft.clone();
   // Frame.cc, stereo: both extractors in their own threads, lapping area {0, 0}.
-  Frame stereo{mpORBextractorLeft, mpORBextractorRight};
+  Frame stereo(mpORBextractorLeft, mpORBextractorRight);
   std::thread threadLeft(&Frame::ExtractORB, &stereo, 0, imLeft, 0, 0);
   std::thread threadRight(&Frame::ExtractORB, &stereo, 1, imRight, 0, 0);
   threadLeft.join();
   threadRight.join();
   // Frame.cc, monocular: {0, 1000}, the initialiser's extractor.
-  Frame mono{mpIniORBextractor, nullptr};
+  Frame mono(mpIniORBextractor, nullptr);
   mono.ExtractORB(0, imLeft, 0, 1000);
-  Frame settingsFrame{fromSettings, nullptr};
+  Frame settingsFrame(fromSettings, nullptr);
   settingsFrame.ExtractORB(0, imLeft, 0, 0);
 
   const int mnScaleLevels = mpORBextractorLeft->GetLevels();

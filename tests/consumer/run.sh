@@ -13,19 +13,29 @@ fail() { echo "install test: $*" >&2; exit 1; }
 cmake --install "$build_dir" --prefix "$work/installed" > "$work/install.log" || fail "cmake --install failed"
 mv "$work/installed" "$work/prefix"
 prefix=$work/prefix
-for file in include/aief/aief.hpp include/aief/extractor.hpp include/aief/version.hpp bin/aief; do
+# An OpenCV-free build (AIEF_WITH_OPENCV=OFF) installs the engine alone: no tool, no aief::io,
+# and its package must configure with OpenCV out of reach.
+with_opencv=ON
+if grep -q '^AIEF_WITH_OPENCV:BOOL=OFF' "$build_dir/CMakeCache.txt"; then with_opencv=OFF; fi
+for file in include/aief/aief.hpp include/aief/extractor.hpp include/aief/version.hpp; do
   test -e "$prefix/$file" || fail "missing $file in the install tree"
 done
-"$prefix/bin/aief" --version > /dev/null || fail "the installed aief tool does not run"
+if [ "$with_opencv" = ON ]; then
+  "$prefix/bin/aief" --version > /dev/null || fail "the installed aief tool does not run"
+else
+  test ! -e "$prefix/include/aief/opencv.hpp" || fail "an OpenCV-free install has include/aief/opencv.hpp"
+fi
 config=$(find "$prefix" -name aiefConfig.cmake | head -n 1)
 test -n "$config" || fail "no aiefConfig.cmake installed"
 pc_file=$(find "$prefix" -name aief.pc | head -n 1)
 test -n "$pc_file" || fail "no aief.pc installed"
 
 expect_opencv=OFF
-if grep -q '^AIEF_BUILD_OPENCV_ADAPTER:BOOL=ON' "$build_dir/CMakeCache.txt"; then expect_opencv=ON; fi
+if [ "$with_opencv" = ON ] && grep -q '^AIEF_BUILD_OPENCV_ADAPTER:BOOL=ON' "$build_dir/CMakeCache.txt"; then expect_opencv=ON; fi
+opencv_flags=()
+[ "$with_opencv" = ON ] || opencv_flags=(-DAIEF_EXPECT_IO=OFF -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON)
 cmake -S "$source_dir" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
-      -DAIEF_EXPECT_OPENCV=$expect_opencv > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "consumer configure failed"; }
+      -DAIEF_EXPECT_OPENCV=$expect_opencv "${opencv_flags[@]}" > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "consumer configure failed"; }
 cmake --build "$work/consumer" > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "consumer build failed"; }
 "$work/consumer/consumer" || fail "the find_package consumer failed"
 if [ "$expect_opencv" = ON ]; then
@@ -39,4 +49,4 @@ flags=$(pkg-config --cflags --libs aief) || fail "pkg-config does not know aief"
 # shellcheck disable=SC2086  # the flags are a word list
 c++ -std=c++17 "$source_dir/main.cpp" -o "$work/pkgconfig_consumer" $flags || fail "pkg-config consumer did not build with: $flags"
 LD_LIBRARY_PATH="$(dirname "$(dirname "$pc_file")")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$work/pkgconfig_consumer" || fail "the pkg-config consumer failed"  # a shared build has no rpath here
-echo "install (relocated), find_package (adapter: $expect_opencv) and pkg-config consumers: OK"
+echo "install (relocated), find_package (OpenCV parts: $with_opencv, adapter: $expect_opencv) and pkg-config consumers: OK"

@@ -1,0 +1,189 @@
+// Every kernel of every kernel set this CPU runs, with no OpenCV: it builds wherever the engine
+// does, the aarch64 cross build included (aief_bench_kernel_sets). Names read kernel/set/image;
+// items are pixels (keypoints, descriptor pairs) so rates compare. Input: the bundled PGM crop
+// of graf, read without OpenCV. bench/kernel_instructions.py counts, under qemu-aarch64, the
+// instructions one iteration of each executes (README, "ARM").
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/fast9.hpp"
+#include "core/level_geometry.hpp"
+#include "core/pyramid_resize.hpp"
+#include "simd/kernels.hpp"
+#include "tests/pgm_image.hpp"
+
+namespace aief::bench {
+namespace {
+
+// What every kernel reads: the pyramid the extractor builds (scalar reference), blurred levels,
+// FAST score rows, sample keypoints and descriptors.
+struct Inputs {
+  std::vector<GrayImage> levels, blurred;
+  std::vector<ResizePlan> plans;  // plans[n] makes level n from level n - 1
+  long long pixels = 0;
+  std::vector<std::vector<std::uint8_t>> scores;  // FAST scores (t = 7) of level 0, row by row
+  std::vector<PixelPoint> points;                 // a grid over level 0, inside the edge border
+  std::vector<float> angles_deg;
+  std::vector<std::uint8_t> descriptors;          // of points, 32 bytes each
+};
+
+std::shared_ptr<const Inputs> make_inputs(const GrayImage& image) {
+  auto in = std::make_shared<Inputs>();
+  const KernelTable& scalar = kernel_table(KernelSet::scalar);
+  const std::vector<LevelGeometry> geometry = level_geometry(image.width(), image.height(), ExtractorOptions{});
+  for (std::size_t n = 0; n < geometry.size(); ++n) {
+    GrayImage level(geometry[n].width, geometry[n].height);
+    if (n == 0) {
+      level = image;
+      in->plans.emplace_back();
+    } else {
+      in->plans.push_back(make_resize_plan(geometry[n - 1].width, geometry[n - 1].height, geometry[n].width, geometry[n].height));
+      scalar.resize_bilinear_rows(in->levels.back().view(), in->plans.back(), level.mutable_view(), 0, level.height());
+    }
+    GrayImage blurred(level.width(), level.height());
+    scalar.gaussian7_rows(level.view(), blurred.mutable_view(), 0, level.height());
+    in->pixels += static_cast<long long>(level.width()) * level.height();
+    in->levels.push_back(std::move(level));
+    in->blurred.push_back(std::move(blurred));
+  }
+  const GrayImage& level0 = in->levels[0];
+  in->scores.assign(static_cast<std::size_t>(level0.height()), std::vector<std::uint8_t>(static_cast<std::size_t>(level0.width()), 0));
+  for (int y = 3; y < level0.height() - 3; ++y)
+    scalar.fast9_scores_row(level0.view().row(y), level0.width(), 3, level0.width() - 3, 7, in->scores[static_cast<std::size_t>(y)].data());
+  for (int y = kEdgeBorder; y < level0.height() - kEdgeBorder; y += 8)
+    for (int x = kEdgeBorder; x < level0.width() - kEdgeBorder; x += 8) {
+      in->points.push_back({x, y});
+      in->angles_deg.push_back(static_cast<float>((x * 7 + y * 13) % 360));
+    }
+  in->descriptors.resize(in->points.size() * 32);
+  scalar.rbrief_describe(in->blurred[0].view(), in->points.data(), in->angles_deg.data(), static_cast<int>(in->points.size()),
+                         in->descriptors.data());
+  return in;
+}
+
+}  // namespace
+
+// iterations > 0 fixes every benchmark's iteration count (--aief_iterations=N): two runs that
+// differ by one iteration differ by exactly one pass of the kernel, whatever the set-up costs.
+void register_kernel_set_benchmarks(int iterations) {
+  const GrayImage image = test::read_pgm(std::string(AIEF_SAMPLE_DIR) + "/graf/img1_center_320x240.pgm");
+  const std::string image_name = "graf_320x240";
+  const std::shared_ptr<const Inputs> in = make_inputs(image);
+  for (KernelSet set : available_kernel_sets()) {
+    const KernelTable* k = &kernel_table(set);
+    const auto name = [&](const char* kernel) { return std::string(kernel) + "/" + std::string(to_string(set)) + "/" + image_name; };
+    const auto add = [iterations](const std::string& benchmark_name, auto&& body) {
+      benchmark::internal::Benchmark* b = benchmark::RegisterBenchmark(benchmark_name.c_str(), body);
+      if (iterations > 0) b->Iterations(iterations);
+    };
+
+    add(name("resize_bilinear_rows"), [in, k](benchmark::State& state) {
+      std::vector<GrayImage> out;
+      for (const GrayImage& level : in->levels) out.emplace_back(level.width(), level.height());
+      for (auto _ : state)
+        for (std::size_t n = 1; n < in->levels.size(); ++n)
+          k->resize_bilinear_rows(in->levels[n - 1].view(), in->plans[n], out[n].mutable_view(), 0, out[n].height());
+      state.SetItemsProcessed(state.iterations() * (in->pixels - in->levels[0].width() * in->levels[0].height()));
+    });
+    add(name("gaussian7_rows"), [in, k](benchmark::State& state) {
+      std::vector<GrayImage> out;
+      for (const GrayImage& level : in->levels) out.emplace_back(level.width(), level.height());
+      for (auto _ : state)
+        for (std::size_t n = 0; n < in->levels.size(); ++n) k->gaussian7_rows(in->levels[n].view(), out[n].mutable_view(), 0, out[n].height());
+      state.SetItemsProcessed(state.iterations() * in->pixels);
+    });
+    add(name("accumulate_histogram"), [in, k](benchmark::State& state) {
+      std::uint32_t hist[256];
+      for (auto _ : state)
+        for (const GrayImage& level : in->levels)  // 32 x 32 blocks, as the entropy stage reads them
+          for (int y = 0; y + 32 <= level.height(); y += 32)
+            for (int x = 0; x + 32 <= level.width(); x += 32) {
+              std::fill(hist, hist + 256, 0u);
+              k->accumulate_histogram(level.data() + y * level.width() + x, level.width(), 32, 32, hist);
+              benchmark::DoNotOptimize(hist);
+            }
+      state.SetItemsProcessed(state.iterations() * in->pixels);
+    });
+    add(name("fast9_scores_row"), [in, k](benchmark::State& state) {
+      std::vector<std::uint8_t> scores(static_cast<std::size_t>(in->levels[0].width()));
+      for (auto _ : state)
+        for (const GrayImage& level : in->levels)
+          for (int y = 3; y < level.height() - 3; ++y) {
+            k->fast9_scores_row(level.view().row(y), level.width(), 3, level.width() - 3, 7, scores.data());
+            benchmark::DoNotOptimize(scores.data());
+          }
+      state.SetItemsProcessed(state.iterations() * in->pixels);
+    });
+    add(name("fast9_local_maxima_bits"), [in, k](benchmark::State& state) {
+      const int width = static_cast<int>(in->scores[0].size());
+      std::vector<std::uint64_t> maxima(static_cast<std::size_t>(fast9_maxima_words(width))), strong(maxima.size());
+      for (auto _ : state)
+        for (std::size_t y = 1; y + 1 < in->scores.size(); ++y) {
+          k->fast9_local_maxima_bits(in->scores[y - 1].data(), in->scores[y].data(), in->scores[y + 1].data(), 1, width - 1, 20,
+                                     maxima.data(), strong.data());
+          benchmark::DoNotOptimize(maxima.data());
+        }
+      state.SetItemsProcessed(state.iterations() * static_cast<long long>(in->scores.size() * in->scores[0].size()));
+    });
+    add(name("ic_moments"), [in, k](benchmark::State& state) {
+      std::vector<std::int32_t> m10(in->points.size()), m01(in->points.size());
+      for (auto _ : state) {
+        k->ic_moments(in->levels[0].view(), in->points.data(), static_cast<int>(in->points.size()), m10.data(), m01.data());
+        benchmark::DoNotOptimize(m10.data());
+      }
+      state.SetItemsProcessed(state.iterations() * static_cast<long long>(in->points.size()));
+    });
+    add(name("rbrief_describe"), [in, k](benchmark::State& state) {
+      std::vector<std::uint8_t> descriptors(in->descriptors.size());
+      for (auto _ : state) {
+        k->rbrief_describe(in->blurred[0].view(), in->points.data(), in->angles_deg.data(), static_cast<int>(in->points.size()),
+                           descriptors.data());
+        benchmark::DoNotOptimize(descriptors.data());
+      }
+      state.SetItemsProcessed(state.iterations() * static_cast<long long>(in->points.size()));
+    });
+    add(name("hamming_256_many"), [in, k](benchmark::State& state) {
+      const int n = std::min(static_cast<int>(in->points.size()), 512);
+      std::vector<std::uint16_t> distances(static_cast<std::size_t>(n));
+      for (auto _ : state)
+        for (int i = 0; i < n; ++i) {  // every descriptor against all, as brute-force matching does
+          k->hamming_256_many(in->descriptors.data() + 32 * i, in->descriptors.data(), n, distances.data());
+          benchmark::DoNotOptimize(distances.data());
+        }
+      state.SetItemsProcessed(state.iterations() * n * n);
+    });
+  }
+}
+
+}  // namespace aief::bench
+
+int main(int argc, char** argv) {
+  int iterations = 0;
+  for (int i = 1; i < argc; ++i)
+    if (std::strncmp(argv[i], "--aief_iterations=", 18) == 0) {
+      iterations = std::atoi(argv[i] + 18);
+      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];  // not a Google Benchmark flag
+      --argc;
+      break;
+    }
+  try {
+    aief::bench::register_kernel_set_benchmarks(iterations);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "aief_bench_kernel_sets: error: %s\n", e.what());
+    return 1;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,24 @@
+#pragma once
+// The size an encoded image declares, read from its header alone: nothing is decoded or
+// allocated, so a 1 MB PNG declaring 30000 x 30000 pixels is refused before the decoder would
+// ask for gigabytes. OpenCV 4.6 has no header-only API (cv::imdecode allocates the full image),
+// hence this parser of the formats its imgcodecs reads here: PNG (IHDR), JPEG (SOFn), TIFF and
+// BigTIFF (first IFD's ImageWidth / ImageLength), WebP (VP8, VP8L, VP8X), BMP, PNM / PAM / PFM,
+// Sun raster, Radiance HDR, JPEG 2000 (JP2 ihdr box, J2K SIZ marker).
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace aief::io {
+
+struct ImageHeader {
+  std::string format;  // "PNG", "JPEG", ...
+  long long width = 0, height = 0;
+};
+
+// The declared size, or nullopt when the bytes start with no format above or its header is cut
+// short or malformed (the caller refuses such a file: its size cannot be known before decoding).
+std::optional<ImageHeader> read_image_header(const std::uint8_t* bytes, std::size_t size);
+
+}  // namespace aief::io

@@ -1,0 +1,19 @@
+#pragma once
+// The image file a result came from, recorded in the result ("source") so that a resumed batch
+// can tell whether an output belongs to its input: the same name, size and modification time.
+#include <cstdint>
+#include <string>
+
+namespace aief::io {
+
+struct SourceRecord {
+  std::string name;          // the input's relative name as listed (the batch key), never symlink-resolved
+  std::uintmax_t bytes = 0;  // file size
+  long long mtime_ns = 0;    // modification time, nanoseconds since the epoch
+};
+
+// The record of the file at `path` (symlinks followed: the size and time of what is read),
+// under `name`. Throws aief::Error when the file cannot be examined.
+SourceRecord source_record_of(const std::string& path, const std::string& name);
+
+}  // namespace aief::io

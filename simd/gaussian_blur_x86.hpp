@@ -1,0 +1,67 @@
+#pragma once
+// The register operations of the 7x7 Gaussian (simd/gaussian_blur_simd.hpp) on SSE4.1 / AVX2.
+#include <cstdint>
+#include <type_traits>
+
+#include <immintrin.h>
+
+#include "simd/simd_support.hpp"
+
+namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
+
+namespace blur_detail {
+
+// The register the kernel runs on: 128-bit (SSE4.1) or 256-bit (AVX2, also in the AVX-512
+// table). Templates on Arch, so every instruction set's copy is its own symbol.
+template <class Arch, bool kWide = std::is_base_of_v<xsimd::avx2, Arch>>
+struct Vec;
+
+template <class Arch>
+struct Vec<Arch, false> {
+  using V = __m128i;
+  static constexpr int kColumns = 8;  // u16 lanes; also the outputs of one horizontal step
+  static V columns(const std::uint8_t* p) { return _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))); }
+  static V load(const std::int16_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
+  static void store(std::int16_t* p, V v) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v); }
+  static V set16(int v) { return _mm_set1_epi16(static_cast<short>(v)); }
+  static V set32(int v) { return _mm_set1_epi32(v); }
+  static V add16(V a, V b) { return _mm_add_epi16(a, b); }
+  static V mul16(V a, V b) { return _mm_mullo_epi16(a, b); }
+  static V bias(V v) { return _mm_xor_si128(v, _mm_set1_epi16(static_cast<short>(0x8000))); }
+  static V madd(V a, V b) { return _mm_madd_epi16(a, b); }
+  static V add32(V a, V b) { return _mm_add_epi32(a, b); }
+  static V shift_down16(V v) { return _mm_srli_epi32(v, 16); }
+  // even = outputs x, x + 2, ...; odd = x + 1, x + 3, ... (0..255 in int32 lanes): 8 bytes.
+  static void store_outputs(std::uint8_t* out, V even, V odd) {
+    const V pairs = _mm_or_si128(even, _mm_slli_epi32(odd, 8));  // e | o << 8 per int32
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out), _mm_packus_epi32(pairs, pairs));
+  }
+};
+
+template <class Arch>
+struct Vec<Arch, true> {
+  using V = __m256i;
+  static constexpr int kColumns = 16;
+  static V columns(const std::uint8_t* p) { return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))); }
+  static V load(const std::int16_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+  static void store(std::int16_t* p, V v) { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
+  static V set16(int v) { return _mm256_set1_epi16(static_cast<short>(v)); }
+  static V set32(int v) { return _mm256_set1_epi32(v); }
+  static V add16(V a, V b) { return _mm256_add_epi16(a, b); }
+  static V mul16(V a, V b) { return _mm256_mullo_epi16(a, b); }
+  static V bias(V v) { return _mm256_xor_si256(v, _mm256_set1_epi16(static_cast<short>(0x8000))); }
+  static V madd(V a, V b) { return _mm256_madd_epi16(a, b); }
+  static V add32(V a, V b) { return _mm256_add_epi32(a, b); }
+  static V shift_down16(V v) { return _mm256_srli_epi32(v, 16); }
+  static void store_outputs(std::uint8_t* out, V even, V odd) {
+    const V pairs = _mm256_or_si256(even, _mm256_slli_epi32(odd, 8));
+    const V packed = _mm256_permute4x64_epi64(_mm256_packus_epi32(pairs, pairs), 0x08);  // lanes 0, 2
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm256_castsi256_si128(packed));
+  }
+};
+
+}  // namespace blur_detail
+
+}  // namespace AIEF_SIMD_TARGET
+}  // namespace aief::simd

@@ -1,0 +1,178 @@
+// HDF5 (hloc layout), npz and COLMAP writers at the C++ level, so the sanitizer builds run them;
+// python/tests/ reads the same files back with h5py, numpy, sqlite3 and colmap.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "aief/error.hpp"
+#include "aief/extractor.hpp"
+#include "aief/match.hpp"
+#include "io/image_io.hpp"
+#include "io/npz_writer.hpp"
+#include "io/pairs_file.hpp"
+#include "tests/test_support.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_features.hpp"
+#endif
+#ifdef AIEF_HAVE_COLMAP_EXPORT
+#include "io/colmap_database.hpp"
+#endif
+
+namespace aief {
+namespace {
+
+// A folder of this test's own, removed at the end.
+struct OwnTempDir {
+  std::filesystem::path path;
+  OwnTempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "aief_files_XXXXXX").string();
+    path = mkdtemp(pattern.data());
+  }
+  ~OwnTempDir() { std::filesystem::remove_all(path); }
+  std::string file(const std::string& name) const { return (path / name).string(); }
+};
+
+Features sample_features(const char* sequence, int index) {
+  const GrayImage image = io::read_gray_image(test::sample_path(sequence, "img" + std::to_string(index) + ".png"));
+  return extract(image.view());
+}
+
+void expect_same(const Features& a, const Features& b) {
+  ASSERT_EQ(a.keypoints.size(), b.keypoints.size());
+  EXPECT_EQ(a.image_width, b.image_width);
+  EXPECT_EQ(a.image_height, b.image_height);
+  for (std::size_t i = 0; i < a.keypoints.size(); ++i) {
+    EXPECT_EQ(a.keypoints[i].x, b.keypoints[i].x) << i;
+    EXPECT_EQ(a.keypoints[i].y, b.keypoints[i].y) << i;
+    EXPECT_EQ(a.keypoints[i].size, b.keypoints[i].size) << i;
+    EXPECT_EQ(a.keypoints[i].angle_deg, b.keypoints[i].angle_deg) << i;
+    EXPECT_EQ(a.keypoints[i].response, b.keypoints[i].response) << i;
+    EXPECT_EQ(a.keypoints[i].octave, b.keypoints[i].octave) << i;
+  }
+  EXPECT_EQ(a.descriptors, b.descriptors);
+}
+
+TEST(NpzWriter, ArchiveOfNpyArraysWithNumpyHeaders) {
+  const Features features = sample_features("boat", 1);
+  const std::string npz = io::features_npz(features);
+  EXPECT_EQ(npz.substr(0, 4), std::string("PK\x03\x04", 4));
+  EXPECT_EQ(npz.substr(npz.size() - 22, 4), std::string("PK\x05\x06", 4));  // end of central directory, no comment
+  const std::string n = std::to_string(features.keypoints.size());
+  for (const std::string& header : {"{'descr': '<f4', 'fortran_order': False, 'shape': (" + n + ", 2), }",
+                                   "{'descr': '|u1', 'fortran_order': False, 'shape': (" + n + ", 32), }",
+                                   "{'descr': '<i4', 'fortran_order': False, 'shape': (" + n + ",), }",
+                                   std::string("{'descr': '<i8', 'fortran_order': False, 'shape': (2,), }")})
+    EXPECT_NE(npz.find(header), std::string::npos) << header;
+  // Every .npy header is padded so its data starts 64-byte aligned within the member.
+  const std::size_t magic = npz.find("\x93NUMPY");
+  ASSERT_NE(magic, std::string::npos);
+  const std::size_t header_length = static_cast<unsigned char>(npz[magic + 8]) | (static_cast<unsigned char>(npz[magic + 9]) << 8);
+  EXPECT_EQ((10 + header_length) % 64, 0u);
+  EXPECT_EQ(npz[magic + 10 + header_length - 1], '\n');
+}
+
+TEST(PairsFile, ReadsNamesSkipsCommentsAndNamesBadLines) {
+  OwnTempDir dir;
+  std::ofstream(dir.file("pairs.txt")) << "# comment\na.png b.png\n\n  c/d.png e.png  \n";
+  const std::vector<io::ImagePair> pairs = io::read_pairs(dir.file("pairs.txt"));
+  ASSERT_EQ(pairs.size(), 2u);
+  EXPECT_EQ(pairs[1], io::ImagePair("c/d.png", "e.png"));
+  std::ofstream(dir.file("bad.txt")) << "a.png b.png\na.png b.png c.png\n";
+  try {
+    io::read_pairs(dir.file("bad.txt"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2: expected two image names"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(io::read_pairs(dir.file("missing.txt")), Error);
+}
+
+#ifdef AIEF_HAVE_HDF5
+TEST(Hdf5Features, RoundTripInNestedGroupsAndResume) {
+  OwnTempDir dir;
+  const Features a = sample_features("graf", 1), empty{};
+  {
+    io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
+    EXPECT_FALSE(file.has_features("sub/img1.png"));
+    file.write_features("sub/img1.png", a);
+    file.write_features("flat.png", empty);
+    file.write_features("sub/img1.png", a);  // rewriting replaces the group
+  }
+  const io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read);
+  EXPECT_TRUE(file.has_features("sub/img1.png"));
+  EXPECT_FALSE(file.has_features("sub"));
+  EXPECT_EQ(file.feature_names(), (std::vector<std::string>{"flat.png", "sub/img1.png"}));
+  expect_same(file.read_features("sub/img1.png"), a);
+  EXPECT_TRUE(file.read_features("flat.png").keypoints.empty());
+  EXPECT_THROW(file.read_features("none.png"), Error);
+}
+
+TEST(Hdf5Features, MatchesInHlocPairGroups) {
+  OwnTempDir dir;
+  EXPECT_EQ(io::hloc_pair_name("a/b.png", "c.png"), "a-b.png/c.png");
+  const std::vector<Match> matches = {{0, 5, 10}, {3, 1, 0}, {4, 2, 256}};
+  {
+    io::Hdf5File file(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
+    file.write_matches(io::hloc_pair_name("a/b.png", "c.png"), 6, matches);
+  }
+  const io::Hdf5File file(dir.file("m.h5"), io::Hdf5File::Mode::read);
+  EXPECT_TRUE(file.has_matches("a-b.png/c.png"));
+  EXPECT_FALSE(file.has_matches("c.png/a-b.png"));
+  const std::vector<Match> back = file.read_matches("a-b.png/c.png");
+  ASSERT_EQ(back.size(), matches.size());
+  for (std::size_t i = 0; i < matches.size(); ++i) {
+    EXPECT_EQ(back[i].query, matches[i].query);
+    EXPECT_EQ(back[i].train, matches[i].train);
+    EXPECT_EQ(back[i].distance, matches[i].distance);
+  }
+}
+
+TEST(Hdf5Features, MergeCopiesShardsAndRefusesAnImageTwice) {
+  OwnTempDir dir;
+  const Features a = sample_features("boat", 1), b = sample_features("boat", 2);
+  io::Hdf5File(dir.file("s0.h5"), io::Hdf5File::Mode::read_write).write_features("x/a.png", a);
+  io::Hdf5File(dir.file("s1.h5"), io::Hdf5File::Mode::read_write).write_features("b.png", b);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5"), dir.file("s1.h5")}), 2);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}), 0);  // already there: kept
+  {
+    const io::Hdf5File all(dir.file("all.h5"), io::Hdf5File::Mode::read);
+    expect_same(all.read_features("x/a.png"), a);
+    expect_same(all.read_features("b.png"), b);
+  }
+  EXPECT_THROW(io::merge_feature_files(dir.file("twice.h5"), {dir.file("s0.h5"), dir.file("s0.h5")}), Error);
+  EXPECT_THROW(io::merge_feature_files(dir.file("x.h5"), {dir.file("missing.h5")}), Error);
+  std::ofstream(dir.file("not.h5")) << "text";
+  EXPECT_THROW(io::Hdf5File(dir.file("not.h5"), io::Hdf5File::Mode::read), Error);
+}
+#endif
+
+#ifdef AIEF_HAVE_COLMAP_EXPORT
+TEST(ColmapDatabase, WritesOnceAndNamesWhatIsMissing) {
+  OwnTempDir dir;
+  const Features a = sample_features("graf", 1), b = sample_features("graf", 2);
+  {
+    io::Hdf5File features(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
+    features.write_features("a.png", a);
+    features.write_features("b.png", b);
+    io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
+    matches.write_matches(io::hloc_pair_name("b.png", "a.png"), static_cast<int>(b.keypoints.size()),
+                          match_descriptors(b.descriptors, a.descriptors));
+  }
+  std::ofstream(dir.file("pairs.txt")) << "a.png b.png\n";  // stored the other way round
+  const io::ColmapExport done = io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("pairs.txt"));
+  EXPECT_EQ(done.images, 2);
+  EXPECT_EQ(done.pairs, 1);
+  EXPECT_EQ(done.matches, static_cast<long long>(match_descriptors(b.descriptors, a.descriptors).size()));
+  EXPECT_THROW(io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("pairs.txt")), Error);
+  std::ofstream(dir.file("unknown.txt")) << "a.png c.png\n";
+  EXPECT_THROW(io::export_colmap_database(dir.file("db2.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("unknown.txt")), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("db2.db")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("db2.db.tmp")));
+}
+#endif
+
+}  // namespace
+}  // namespace aief
