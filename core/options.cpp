@@ -59,8 +59,8 @@ void ExtractorOptions::validate() const {
           "starvation_guard has an unknown value " + str(static_cast<int>(starvation_guard)));
   require_int_range("threads", threads, 0, 256);
   require(max_image_pixels >= 1 && max_image_pixels <= kLargestMaxImagePixels,
-          "max_image_pixels must be >= 1 and <= " + str(kLargestMaxImagePixels) +
-              " (2^26: larger images would overflow the exact entropy sums), got " + str(max_image_pixels));
+          "max_image_pixels must be in [1, " + str(kLargestMaxImagePixels) +
+              "] (2^26: larger images would overflow the exact entropy sums), got " + str(max_image_pixels));
 }
 
 ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
