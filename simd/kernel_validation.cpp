@@ -55,16 +55,21 @@ GrayImage random_gray(int width, int height, std::uint32_t seed, bool smooth) {
 
 std::string check_resize(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   if (src.width() < 2 || src.height() < 2) return "";
-  const int w = std::max(1, static_cast<int>(std::lround(src.width() / 1.2))), h = std::max(1, static_cast<int>(std::lround(src.height() / 1.2)));
-  const ResizePlan plan = make_resize_plan(src.width(), src.height(), w, h);
-  GrayImage a(w, h), b(w, h);
-  scalar.resize_bilinear_rows(src.view(), plan, a.mutable_view(), 0, h);
-  other.resize_bilinear_rows(src.view(), plan, b.mutable_view(), 0, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (a.data()[y * w + x] != b.data()[y * w + x])
-        return where(src, "-> " + std::to_string(w) + "x" + std::to_string(h) + " at (" + std::to_string(x) + ", " + std::to_string(y) +
-                              "): scalar " + std::to_string(a.data()[y * w + x]) + ", " + other.name + " " + std::to_string(b.data()[y * w + x]));
+  // Every pyramid ratio the options allow, from just above 1 to 4 (scale_factor is in (1, 4]).
+  for (double ratio : {1.01, 1.2, 1.5, 2.0, 2.7, 4.0}) {
+    const int w = std::max(1, static_cast<int>(std::lround(src.width() / ratio)));
+    const int h = std::max(1, static_cast<int>(std::lround(src.height() / ratio)));
+    const ResizePlan plan = make_resize_plan(src.width(), src.height(), w, h);
+    GrayImage a(w, h), b(w, h);
+    scalar.resize_bilinear_rows(src.view(), plan, a.mutable_view(), 0, h);
+    other.resize_bilinear_rows(src.view(), plan, b.mutable_view(), 0, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if (a.data()[y * w + x] != b.data()[y * w + x])
+          return where(src, "ratio " + std::to_string(ratio) + " -> " + std::to_string(w) + "x" + std::to_string(h) + " at (" +
+                                std::to_string(x) + ", " + std::to_string(y) + "): scalar " + std::to_string(a.data()[y * w + x]) +
+                                ", " + other.name + " " + std::to_string(b.data()[y * w + x]));
+  }
   return "";
 }
 
@@ -111,6 +116,22 @@ std::string check_fast_scores(const KernelTable& scalar, const KernelTable& othe
       other.fast9_scores_row(row, src.width(), 3, src.width() - 3, t, b.data());
       const std::string diff = first_difference(a, b, other.name, "x");
       if (!diff.empty()) return where(src, "t=" + std::to_string(t) + " row " + std::to_string(y) + " " + diff);
+    }
+  }
+  // Runs that start and end anywhere, as the pipeline's blocks do: every x_begin from the first
+  // legal column (3) over more than one 512-bit vector, each against the scalar run, on one row.
+  const int y = src.height() / 2;
+  const std::uint8_t* row = src.data() + y * src.width();
+  for (int x_begin = 3; x_begin < std::min(src.width() - 3, 3 + 70); ++x_begin) {
+    for (int x_end : {x_begin + 1, std::min(src.width() - 3, x_begin + 33), src.width() - 3}) {
+      if (x_end <= x_begin) continue;
+      std::fill(a.begin(), a.end(), 0);
+      std::fill(b.begin(), b.end(), 0);
+      scalar.fast9_scores_row(row, src.width(), x_begin, x_end, 7, a.data());
+      other.fast9_scores_row(row, src.width(), x_begin, x_end, 7, b.data());
+      const std::string diff = first_difference(a, b, other.name, "x");
+      if (!diff.empty())
+        return where(src, "row " + std::to_string(y) + " run [" + std::to_string(x_begin) + ", " + std::to_string(x_end) + ") " + diff);
     }
   }
   return "";

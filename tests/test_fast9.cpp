@@ -7,6 +7,7 @@
 
 #include "core/fast9.hpp"
 #include "core/fast9_detect.hpp"
+#include "core/frame_analysis.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 
@@ -119,6 +120,76 @@ TEST(Fast9, BelowTheMinimumThresholdScoresZero) {
       ASSERT_EQ(high[static_cast<std::size_t>(x)], expected) << "at (" << x << ", " << y << ")";
     }
   }
+}
+
+// The per-block path the pipeline runs (DESIGN.md section 1): the candidates of block b are the
+// corners of cv::FAST(level, t, true) inside b, or of cv::FAST(level, t_min, true) when t gives
+// none there (ORB-SLAM2's retry). On the real images, every level of a 3-level pyramid, several
+// block sizes and threshold pairs, under every kernel set.
+TEST(Fast9, PipelineBlockCandidatesEqualOpenCvWithTheRetryRule) {
+  struct Setting { int block_size, threshold, min_threshold; };
+  const Setting settings[] = {{8, 20, 7}, {16, 20, 7}, {32, 20, 7}, {64, 40, 10}, {100, 30, 30}, {37, 12, 5}};
+  int retried_blocks = 0, empty_blocks = 0;
+  for (const char* sequence : {"graf", "boat"}) {
+    const cv::Mat gray = test::load_sample_gray(sequence, "img1.png");
+    for (const Setting& setting : settings) {
+      ExtractorOptions options;
+      options.entropy = EntropyMeasure::off;  // every block kept
+      options.n_levels = 3;
+      options.block_size = setting.block_size;
+      options.fast_threshold = setting.threshold;
+      options.fast_min_threshold = setting.min_threshold;
+      for (KernelSet set : available_kernel_sets()) {
+        FrameAnalysis analysis;
+        analysis.start(test::view_of(gray), options, kernel_table(set));
+        for (int n = 0; n < analysis.level_count(); ++n) analysis.build_level(n);
+        for (int n = 0; n < analysis.level_count(); ++n) {
+          analysis.detect(n, 0.0);
+          const LevelState& level = analysis.level(n);
+          const cv::Mat pixels(level.pixels.height, level.pixels.width, CV_8UC1, const_cast<std::uint8_t*>(level.pixels.data),
+                               static_cast<std::size_t>(level.pixels.stride));
+          const std::vector<FastCorner> strong = opencv(pixels, setting.threshold), weak = opencv(pixels, setting.min_threshold);
+          const BlockGrid& grid = level.geometry.grid;
+          // The corners of each block, found by the block edges.
+          const auto by_block = [&](const std::vector<FastCorner>& corners) {
+            std::vector<std::vector<FastCorner>> blocks(static_cast<std::size_t>(grid.count()));
+            for (const FastCorner& c : corners) {
+              if (c.x < grid.col_edges.front() || c.x >= grid.col_edges.back() || c.y < grid.row_edges.front() ||
+                  c.y >= grid.row_edges.back())
+                continue;
+              const auto col = std::upper_bound(grid.col_edges.begin(), grid.col_edges.end(), c.x) - grid.col_edges.begin() - 1;
+              const auto row = std::upper_bound(grid.row_edges.begin(), grid.row_edges.end(), c.y) - grid.row_edges.begin() - 1;
+              blocks[static_cast<std::size_t>(row * grid.cols() + col)].push_back(c);
+            }
+            return blocks;
+          };
+          const std::vector<std::vector<FastCorner>> strong_in = by_block(strong), weak_in = by_block(weak);
+          for (int b = 0; b < grid.count(); ++b) {
+            std::vector<FastCorner> expected = strong_in[static_cast<std::size_t>(b)];
+            if (expected.empty()) {
+              expected = weak_in[static_cast<std::size_t>(b)];
+              retried_blocks += !expected.empty();
+              empty_blocks += expected.empty();
+            }
+            std::vector<FastCorner> actual;
+            const BlockRange range = level.block_candidates[static_cast<std::size_t>(b)];
+            for (std::int32_t i = range.begin; i < range.end; ++i) {
+              const Candidate& c = level.candidates[static_cast<std::size_t>(i)];
+              actual.push_back({c.x, c.y, c.score});
+            }
+            const auto same = [](const FastCorner& a, const FastCorner& c) { return a.x == c.x && a.y == c.y && a.score == c.score; };
+            if (actual.size() == expected.size() && std::equal(actual.begin(), actual.end(), expected.begin(), same)) continue;
+            expect_same(actual, expected,
+                        std::string(sequence) + " " + std::string(to_string(set)) + " level " + std::to_string(n) + " block " +
+                            std::to_string(b) + " (size " + std::to_string(setting.block_size) + ", t " +
+                            std::to_string(setting.threshold) + "/" + std::to_string(setting.min_threshold) + ")");
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(retried_blocks, 0) << "no block exercised the retry at t_min";
+  EXPECT_GT(empty_blocks, 0) << "no block was empty at both thresholds";
 }
 
 }  // namespace
