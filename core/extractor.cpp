@@ -4,6 +4,7 @@
 
 #include "core/auto_threshold.hpp"
 #include "core/frame_analysis.hpp"
+#include "core/level_shortfall.hpp"
 #include "core/starvation_guard.hpp"
 #include "parallel/scheduler.hpp"
 #include "simd/kernels.hpp"
@@ -18,6 +19,8 @@ struct Extractor::State {
   std::vector<std::vector<std::int32_t>> chosen;
   std::vector<double> entropies;  // all blocks' entropies, for the automatic F
   std::vector<double> level_thresholds;  // F applied per level
+  std::vector<int> level_budgets, raised_budgets;  // N_n, and N_n with the shortfall handed on
+  std::vector<std::int64_t> level_available;     // candidates in each level's kept blocks
 };
 
 Extractor::Extractor(ExtractorOptions options) : state_(std::make_unique<State>()) {
@@ -92,6 +95,23 @@ void Extractor::extract(ImageView image, Features& out) {
     }
     thresholds.assign(static_cast<std::size_t>(levels), threshold);
     s.scheduler.for_each(levels, [&](int n) { analysis.select(n, threshold, s.chosen[static_cast<std::size_t>(n)]); });
+  }
+  // The per-level rule goes on (core/level_shortfall.hpp): the budget that levels short of
+  // candidates leave undelivered goes to the levels with candidates to spare, finest first, so the
+  // frame delivers min(N, candidates in the kept blocks). The other modes keep their output.
+  if (s.options.starvation_guard == StarvationGuard::level) {
+    s.level_budgets.resize(static_cast<std::size_t>(levels));
+    s.level_available.resize(static_cast<std::size_t>(levels));
+    for (int n = 0; n < levels; ++n) {
+      const std::size_t i = static_cast<std::size_t>(n);
+      s.level_budgets[i] = analysis.level(n).usable() ? analysis.level(n).geometry.n_features : 0;
+      s.level_available[i] = analysis.level_candidate_count(n, thresholds[i]);
+    }
+    if (raise_budgets_for_shortfall(s.level_budgets, s.level_available, s.raised_budgets))
+      s.scheduler.for_each(levels, [&](int n) {
+        const std::size_t i = static_cast<std::size_t>(n);
+        if (s.raised_budgets[i] != s.level_budgets[i]) analysis.select(n, thresholds[i], s.raised_budgets[i], s.chosen[i]);
+      });
   }
   analysis.assemble(s.chosen, out);
 

@@ -263,9 +263,13 @@ void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end,
 }
 
 void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& chosen) {
+  select(n, threshold, level(n).geometry.n_features, chosen);
+}
+
+void FrameAnalysis::select(int n, double threshold, int budget, std::vector<std::int32_t>& chosen) {
   LevelState& level = this->level(n);
   chosen.clear();
-  if (!level.usable() || level.geometry.n_features <= 0) return;
+  if (!level.usable() || budget <= 0) return;
   const BlockGrid& grid = level.geometry.grid;
 
   std::vector<std::int32_t>& selected = level.scratch_selected;
@@ -279,15 +283,15 @@ void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& c
         blocks.push_back(level.block_candidates[static_cast<std::size_t>(b)]);
         total += blocks.back().size();
       }
-    const std::int64_t pool_size = candidate_pool_size(options_.candidate_pool, level.geometry.n_features);
+    const std::int64_t pool_size = candidate_pool_size(options_.candidate_pool, budget);
     if (pool_size < 0 || total <= pool_size) {
-      distribute_proportional(level.candidates, blocks, level.geometry.n_features, selected,
+      distribute_proportional(level.candidates, blocks, budget, selected,
                               level.scratch_distribution);
     } else {
       // The level's strongest candidates first (core/candidate_pool.hpp), then the same water level.
       pool_candidates(level.candidates, blocks, pool_size, level.scratch_pooled, level.scratch_pooled_index,
                       level.scratch_pooled_blocks, level.scratch_pool);
-      distribute_proportional(level.scratch_pooled, level.scratch_pooled_blocks, level.geometry.n_features, selected,
+      distribute_proportional(level.scratch_pooled, level.scratch_pooled_blocks, budget, selected,
                               level.scratch_distribution);
       for (std::int32_t& index : selected) index = level.scratch_pooled_index[static_cast<std::size_t>(index)];
     }
@@ -307,7 +311,7 @@ void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& c
     }
     constexpr int kQuadtreeMargin = kEdgeBorder - 3;  // ORB-SLAM2's minBorderX
     distribute_quadtree(pool, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin, kQuadtreeMargin,
-                        level.geometry.height - kQuadtreeMargin, level.geometry.n_features, selected,
+                        level.geometry.height - kQuadtreeMargin, budget, selected,
                         level.scratch_distribution);
     for (std::int32_t& index : selected) index = pool_index[static_cast<std::size_t>(index)];
   }
