@@ -192,8 +192,10 @@ std::string extractor_flags_help() {
       << "  --coordinates C       pixel-centre: (x + 0.5) * W0 / Wn - 0.5 | scaled: x * scale^n (default "
       << to_string(d.coordinates) << ")\n"
       << "  --subpixel on|off     parabola peak of the FAST scores per axis (default " << (d.subpixel ? "on" : "off") << ")\n"
-      << "  --starvation-guard G  level: F lowered per level until it has its budget | frame: for the\n"
-      << "                        whole frame until it has n_features (default " << to_string(d.starvation_guard) << ")\n"
+      << "  --starvation-guard G  level: F lowered per level until it has its budget, and what a level\n"
+      << "                        still lacks goes to the levels with candidates to spare, finest first |\n"
+      << "                        frame: F lowered for the whole frame until it has n_features (default "
+      << to_string(d.starvation_guard) << ")\n"
       << "  --auto-uniform-blocks skip|count  whether one-gray-level blocks take part in the automatic F\n"
       << "                        (default " << (d.auto_skips_uniform_blocks ? "skip" : "count") << ")\n"
       << "  (--pool, --coordinates, --subpixel, --starvation-guard and --auto-uniform-blocks apply after --mode)\n";

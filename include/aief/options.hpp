@@ -75,7 +75,9 @@ struct ExtractorOptions {
   // still chooses; measured against 1, 1.1, 1.5, 2, 3 and none in docs/evaluation.md.
   double candidate_pool = 1.25;
   // With entropy on: per level (each level gets its budget when its blocks can give it) or
-  // frame-wide (the paper mode's rule).
+  // frame-wide (the paper mode's rule). With `level`, what a level still lacks (its kept blocks
+  // hold fewer candidates than its budget, entropy on or off) goes to the levels with unselected
+  // candidates, finest first: the frame gets min(n_features, candidates in the kept blocks).
   StarvationGuard starvation_guard = StarvationGuard::level;
   // Automatic F: uniform blocks (one gray level: the black border of a warped image, saturated
   // sky) cannot hold a corner and are left out of Otsu's split. false: every block counts.
