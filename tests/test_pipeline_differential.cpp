@@ -9,6 +9,8 @@
 // small enough for the sanitizer jobs (scripts/ci_sanitizers), which run it too.
 #include <cmath>
 #include <cstring>
+#include <iterator>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -44,11 +46,12 @@ const cv::Mat& sample_image(int index) {
 }
 
 // Case `index` of the seeded sequence: every case depends only on the seed and its index.
+constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy};
+
 Case make_case(int index) {
   std::mt19937 rng(kSeed + static_cast<std::uint32_t>(index) * 7919u);
   Case c;
-  const Mode modes[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy};
-  c.mode = modes[uniform_int(rng, 0, 3)];
+  c.mode = kEveryMode[uniform_int(rng, 0, static_cast<int>(std::size(kEveryMode)) - 1)];
   ExtractorOptions base;
   // Scale factors near 1 (and some far from it), where the pyramid has many small ratios.
   base.scale_factor = uniform_int(rng, 0, 2) == 0 ? uniform(rng, 1.01, 1.1) : uniform(rng, 1.01, 4.0);
@@ -140,12 +143,13 @@ INSTANTIATE_TEST_SUITE_P(SeededCases, PipelineDifferential, testing::Range(0, kC
 
 // The generator reaches the corners of the option space it claims to cover.
 TEST(PipelineDifferentialCases, CoverEveryModeMeasureAndBothKindsOfThreshold) {
-  int modes[3] = {}, measures[3] = {}, automatic = 0, fixed = 0, small_blocks = 0, large_blocks = 0, one_level = 0,
+  std::map<Mode, int> modes;
+  int measures[3] = {}, automatic = 0, fixed = 0, small_blocks = 0, large_blocks = 0, one_level = 0,
       many_levels = 0, near_one = 0, large_scale = 0;
   for (int i = 0; i < kCases; ++i) {
     const Case c = make_case(i);
     const ExtractorOptions& o = c.options;
-    ++modes[static_cast<int>(c.mode)];
+    ++modes[c.mode];
     ++measures[static_cast<int>(o.entropy)];
     (o.auto_threshold ? automatic : fixed) += 1;
     small_blocks += o.block_size <= 16;
@@ -155,7 +159,7 @@ TEST(PipelineDifferentialCases, CoverEveryModeMeasureAndBothKindsOfThreshold) {
     near_one += o.scale_factor < 1.1;
     large_scale += o.scale_factor > 2.5;
   }
-  for (int count : modes) EXPECT_GT(count, 0);
+  for (Mode mode : kEveryMode) EXPECT_GT(modes[mode], 0) << to_string(mode);
   EXPECT_GT(measures[static_cast<int>(EntropyMeasure::histogram)], 0);
   EXPECT_GT(measures[static_cast<int>(EntropyMeasure::intensity)], 0);
   for (int count : {automatic, fixed, small_blocks, large_blocks, one_level, many_levels, near_one, large_scale}) EXPECT_GT(count, 0);
