@@ -69,15 +69,24 @@ void Scheduler::for_each_in_chain(int count, IndexWork make, IndexWork work) con
       tbb::task_group& group;
       IndexWork make, work;
       int count;
+      const char ended = 0;  // TSan tag: every step's end happens before the wait returns
       void operator()(int i) const {
         make(i);
-        if (i + 1 < count) group.run([this, i] { (*this)(i + 1); });
+        if (i + 1 < count) {
+          handoff_release(this);  // TBB starts step i + 1 after this spawn (tsan_handoff.hpp)
+          group.run([this, i] {
+            handoff_acquire(this);
+            (*this)(i + 1);
+          });
+        }
         work(i);
+        handoff_release(&ended);
       }
     };
     const Step step{group, make, work, count};
     step(0);
     group.wait();
+    handoff_acquire(&step.ended);
   };
   if (arena_) arena_->arena.execute(run); else run();
 }
