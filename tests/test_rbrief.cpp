@@ -24,7 +24,7 @@ constexpr int kBytes = 32;
 
 cv::Mat blur_ours(const cv::Mat& src) {
   cv::Mat dst(src.size(), CV_8UC1, cv::Scalar(0));
-  gaussian7_rows_scalar(test::view_of(src), {dst.data, dst.cols, dst.rows, static_cast<std::ptrdiff_t>(dst.step)}, 0, src.rows);
+  gaussian7_rows_scalar(test::view_of(src), {dst.data, dst.cols, dst.rows, static_cast<std::ptrdiff_t>(dst.step)}, 0, src.rows, 0, src.cols);
   return dst;
 }
 
