@@ -212,6 +212,21 @@ BatchSummary run_batch(const BatchSettings& settings) {
   // object with its own synchronisation (a shared_ptr's count) or TSan sees the move as a race.
   // An item lives from the stage that lists it to the stage that writes it.
   std::vector<std::unique_ptr<Item>> items(inputs.size());
+  // An output from another or older input must not stay beside a failure.
+  const auto remove_output = [&](Item& item) {
+#ifdef AIEF_HAVE_HDF5
+    if (h5) {
+      try {
+        h5->remove_features(item.input.name);
+      } catch (const std::exception& e) {
+        item.error += std::string("; its old group could not be removed: ") + e.what();
+      }
+      return;
+    }
+#endif
+    std::error_code ignored;
+    fs::remove(item.output, ignored);
+  };
   std::size_t next = 0;
   tbb::task_arena arena(threads);
   arena.execute([&] {
@@ -230,8 +245,14 @@ BatchSummary run_batch(const BatchSettings& settings) {
           item->position = next;
           item->input = inputs[next++];
 #ifdef AIEF_HAVE_HDF5
-          if (h5) {
-            item->skip = h5->has_features(item->input.name);
+          if (h5) {  // current: a complete group written from this very file (size and mtime)
+            try {
+              item->source = io::source_record_of(item->input.path, item->input.name);
+              item->skip = h5->features_belong_to(item->input.name, item->source);
+              item->replacing = !item->skip && h5->has_features(item->input.name);
+            } catch (const std::exception& e) {
+              item->error = e.what();
+            }
             return item;
           }
 #endif
@@ -242,10 +263,10 @@ BatchSummary run_batch(const BatchSettings& settings) {
             tbb::make_filter<Item*, Item*>(tbb::filter_mode::parallel, [&](Item* item) {
               parallel::handoff_acquire(&kListStage);
               const HandoffOnExit release_extracted{&kExtractStage};
-              if (item->skip) return item;
+              if (item->skip || !item->error.empty()) return item;
               try {
-                item->source = io::source_record_of(item->input.path, item->input.name);
-                if (!item->output.empty()) {
+                if (!item->output.empty()) {  // a file per image (h5: asked by the listing stage)
+                  item->source = io::source_record_of(item->input.path, item->input.name);
                   std::error_code ignored;
                   fs::remove(io::temporary_path_of(item->output), ignored);  // a killed run's
                   if (fs::exists(item->output, ignored)) {
@@ -276,7 +297,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 try {
 #ifdef AIEF_HAVE_HDF5
                   if (h5) {
-                    h5->write_features(item->input.name, item->features);
+                    h5->write_features(item->input.name, item->features, &item->source);
                   } else
 #endif
                   {
@@ -291,9 +312,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 }
               }
               if (!item->error.empty()) {
-                // An output from another or older input must not stay beside a failure.
-                std::error_code ignored;
-                if (item->replacing) fs::remove(item->output, ignored);
+                if (item->replacing) remove_output(*item);
                 ++summary.failed;
                 summary.failures.push_back(item->input.path + ": " + item->error);
               }
