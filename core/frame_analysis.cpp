@@ -123,9 +123,11 @@ void FrameAnalysis::compute_entropies(int n) {
       const int y0 = grid.row_edges[static_cast<std::size_t>(r)], y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
       std::memset(hist, 0, sizeof hist);
       kernels_->accumulate_histogram(pixels.row(y0) + x0, pixels.stride, x1 - x0, y1 - y0, hist);
-      level.block_entropy[static_cast<std::size_t>(r * grid.cols() + c)] = entropy_bits(hist, options_.entropy);
+      const int area = (x1 - x0) * (y1 - y0);
+      level.block_entropy[static_cast<std::size_t>(r * grid.cols() + c)] =
+          entropy_bits(hist, static_cast<std::uint64_t>(area), options_.entropy);
       level.block_uniform[static_cast<std::size_t>(r * grid.cols() + c)] =
-          hist[pixels.row(y0)[x0]] == static_cast<std::uint32_t>((x1 - x0) * (y1 - y0)) ? 1 : 0;
+          hist[pixels.row(y0)[x0]] == static_cast<std::uint32_t>(area) ? 1 : 0;
       if (n == 0)
         for (int k = 0; k < 256; ++k) whole[k] += hist[k];
     }
