@@ -39,7 +39,8 @@ void print_help() {
             << "  --methods LIST        comma-separated JSON keys of the rows to run (default all):\n"
             << "                        orbslam2, quadtree_entropy, aief_paper_adaptive, aief_paper_auto,\n"
             << "                        aief_adaptive, aief_auto, opencv_orb, opencv_sift\n"
-            << "  --pool P|inf, --coordinates C, --subpixel on|off, --starvation-guard G\n"
+            << "  --pool P|inf, --coordinates C, --subpixel on|off, --starvation-guard G, --ranking R,\n"
+            << "  --auto-two-classes on|off\n"
             << "                        the AIEF rows' options, as in aief extract (defaults: the library's)\n";
 }
 
@@ -69,6 +70,8 @@ int run_eval(const Arguments& arguments) {
                               {"--coordinates", "", true},
                               {"--subpixel", "", true},
                               {"--starvation-guard", "", true},
+                              {"--ranking", "", true},
+                              {"--auto-two-classes", "", true},
                               {"--help", "-h", false}});
   if (args.has("--help")) {
     print_help();
@@ -101,6 +104,11 @@ int run_eval(const Arguments& arguments) {
       settings.aief.subpixel = *subpixel == "on";
     }
     if (const auto guard = args.get("--starvation-guard")) settings.aief.starvation_guard = parse_starvation_guard(*guard);
+    if (const auto ranking = args.get("--ranking")) settings.aief.candidate_ranking = parse_candidate_ranking(*ranking);
+    if (const auto two = args.get("--auto-two-classes")) {
+      if (*two != "on" && *two != "off") throw Error("--auto-two-classes expects on or off, got '" + *two + "'");
+      settings.aief.auto_requires_two_classes = *two == "on";
+    }
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
