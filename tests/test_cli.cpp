@@ -69,6 +69,9 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --subpixel yes", "--subpixel"},
       {"extract " + image + " --starvation-guard block", "unknown starvation guard"},
       {"extract " + image + " --auto-uniform-blocks maybe", "--auto-uniform-blocks"},
+      {"extract " + image + " --ranking harris", "unknown candidate ranking"},
+      {"extract " + image + " --auto-two-classes yes", "--auto-two-classes"},
+      {"eval --dataset . --ranking harris", "unknown candidate ranking"},
       {"eval --dataset . --methods orb", "unknown method"},
       // Flags a mode cannot honour are refused with the conflict named, never dropped.
       {"extract " + image + " --mode orbslam2 --threshold 7", "--threshold sets F of the entropy mask, which --mode orbslam2"},
