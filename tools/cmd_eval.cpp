@@ -2,6 +2,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 #include <sstream>
 
@@ -156,7 +158,14 @@ int run_eval(const Arguments& arguments) {
   const std::filesystem::path plots_folder = report_path.parent_path() / plots_name;
   if (!report_path.parent_path().empty()) std::filesystem::create_directories(report_path.parent_path());
   const std::vector<std::string> plots = eval::write_plots(run, plots_folder.string());
-  io::write_file_atomically(output, eval::markdown_report(run, plots_name));
+  std::string hand_written;  // kept from the report this one replaces
+  if (std::ifstream previous{output}) {
+    const std::string text((std::istreambuf_iterator<char>(previous)), std::istreambuf_iterator<char>());
+    hand_written = eval::hand_written_section(text);
+  }
+  std::string report = eval::markdown_report(run, plots_name);
+  if (!hand_written.empty()) report += "\n" + hand_written;
+  io::write_file_atomically(output, report);
   std::filesystem::path json_path = report_path;
   json_path.replace_extension(".json");
   io::write_file_atomically(json_path.string(), eval::json_report(run));
