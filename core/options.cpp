@@ -57,6 +57,8 @@ void ExtractorOptions::validate() const {
           "candidate_pool must be >= 1 (or infinity: no pool), got " + str(candidate_pool));
   require(starvation_guard == StarvationGuard::frame || starvation_guard == StarvationGuard::level,
           "starvation_guard has an unknown value " + str(static_cast<int>(starvation_guard)));
+  require(candidate_ranking == CandidateRanking::peak_score || candidate_ranking == CandidateRanking::cross_score,
+          "candidate_ranking has an unknown value " + str(static_cast<int>(candidate_ranking)));
   require_int_range("threads", threads, 0, 256);
   require(max_image_pixels >= 1 && max_image_pixels <= kLargestMaxImagePixels,
           "max_image_pixels must be in [1, " + str(kLargestMaxImagePixels) +

@@ -66,6 +66,7 @@ TEST(Options, EveryInvalidValueIsNamed) {
       {"candidate_pool", [](ExtractorOptions& o) { o.candidate_pool = std::numeric_limits<double>::quiet_NaN(); }},
       {"coordinates", [](ExtractorOptions& o) { o.coordinates = static_cast<CoordinateMap>(7); }},
       {"starvation_guard", [](ExtractorOptions& o) { o.starvation_guard = static_cast<StarvationGuard>(7); }},
+      {"candidate_ranking", [](ExtractorOptions& o) { o.candidate_ranking = static_cast<CandidateRanking>(5); }},
   };
   (void)nan;
   (void)inf;
