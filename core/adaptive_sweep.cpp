@@ -41,16 +41,27 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
   return offsets;
 }
 
+// Whether thresholds F and G keep the same blocks of level n: then the level selects the same
+// candidates (its distribution depends on its kept blocks alone).
+bool same_level_blocks_kept(const FrameAnalysis& analysis, int n, double f, double g) {
+  const int blocks = analysis.level(n).geometry.grid.count();
+  for (int b = 0; b < blocks; ++b)
+    if (analysis.block_kept(n, b, f) != analysis.block_kept(n, b, g)) return false;
+  return true;
+}
+
 // Extracts the features of one image at threshold F from its analysis (no starvation rule:
-// the sweep measures each F as it is), with the identity of each feature.
-void features_at(FrameAnalysis& analysis, double threshold, const std::vector<std::int32_t>& id_offsets,
+// the sweep measures each F as it is), with the identity of each feature. `chosen` holds each
+// level's selection at `previous` (when there is one, i.e. previous >= 0); a level whose kept
+// blocks did not change since keeps it.
+void features_at(FrameAnalysis& analysis, double threshold, double previous, const std::vector<std::int32_t>& id_offsets,
                  std::vector<std::vector<std::int32_t>>& chosen, ThresholdFeatures& result) {
   const int levels = analysis.level_count();
   chosen.resize(static_cast<std::size_t>(levels));
   result.ids.clear();
   for (int n = 0; n < levels; ++n) {
     std::vector<std::int32_t>& level_chosen = chosen[static_cast<std::size_t>(n)];
-    analysis.select(n, threshold, level_chosen);
+    if (previous < 0 || !same_level_blocks_kept(analysis, n, previous, threshold)) analysis.select(n, threshold, level_chosen);
     for (std::int32_t i : level_chosen) result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
   }
   Features& out = result.features;
@@ -66,11 +77,8 @@ void features_at(FrameAnalysis& analysis, double threshold, const std::vector<st
 // Whether thresholds F and G keep the same blocks on every level: then they select the same
 // features (the distribution and the descriptors depend on the kept blocks alone).
 bool same_blocks_kept(const FrameAnalysis& analysis, double f, double g) {
-  for (int n = 0; n < analysis.level_count(); ++n) {
-    const int blocks = analysis.level(n).geometry.grid.count();
-    for (int b = 0; b < blocks; ++b)
-      if (analysis.block_kept(n, b, f) != analysis.block_kept(n, b, g)) return false;
-  }
+  for (int n = 0; n < analysis.level_count(); ++n)
+    if (!same_level_blocks_kept(analysis, n, f, g)) return false;
   return true;
 }
 
@@ -155,7 +163,7 @@ SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& o
         here.features.info.entropy_threshold_requested = threshold;
         here.features.info.entropy_threshold_used = threshold;
       } else {
-        features_at(analysis, threshold, id_offsets, chosen, here);
+        features_at(analysis, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
       }
     }
   });

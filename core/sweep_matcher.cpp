@@ -9,21 +9,6 @@
 
 namespace aief {
 
-// Inserts in `closer` order; the last entry of a full list falls off, and a list that fills up
-// stops claiming completeness (see offer for why that keeps the prefix invariant).
-void NeighbourList::insert(Neighbour neighbour) {
-  const bool full = count == kLength;
-  if (full && !closer(neighbour, entries[static_cast<std::size_t>(kLength - 1)])) return;
-  int at = full ? kLength - 1 : count;
-  while (at > 0 && closer(neighbour, entries[static_cast<std::size_t>(at - 1)])) {
-    entries[static_cast<std::size_t>(at)] = entries[static_cast<std::size_t>(at - 1)];
-    --at;
-  }
-  entries[static_cast<std::size_t>(at)] = neighbour;
-  if (!full) ++count;
-  if (count == kLength) complete = false;
-}
-
 // Dropping elements keeps a prefix a prefix (of the smaller set, ending at the last survivor),
 // and a complete list complete. Renumbering keeps the order because the elements that stayed
 // keep their relative order (checked by the caller), so ties still break to the lower index.

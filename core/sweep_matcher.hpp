@@ -56,6 +56,22 @@ struct NeighbourList {
   void insert(Neighbour neighbour);
 };
 
+// Inserts in `closer` order; the last entry of a full list falls off, and a list that fills up
+// stops claiming completeness (see offer for why that keeps the prefix invariant). Inline: the
+// sweep offers a few hundred thousand pairs.
+inline void NeighbourList::insert(Neighbour neighbour) {
+  const bool full = count == kLength;
+  if (full && !closer(neighbour, entries[static_cast<std::size_t>(kLength - 1)])) return;
+  int at = full ? kLength - 1 : count;
+  while (at > 0 && closer(neighbour, entries[static_cast<std::size_t>(at - 1)])) {
+    entries[static_cast<std::size_t>(at)] = entries[static_cast<std::size_t>(at - 1)];
+    --at;
+  }
+  entries[static_cast<std::size_t>(at)] = neighbour;
+  if (!full) ++count;
+  if (count == kLength) complete = false;
+}
+
 class SweepMatcher {
  public:
   SweepMatcher(const MatchOptions& options, const KernelTable& kernels);
