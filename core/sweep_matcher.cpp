@@ -92,21 +92,22 @@ void carry_lists(std::vector<NeighbourList>& lists, const std::vector<std::int32
 void SweepMatcher::offer_row(Side& query_side, std::int32_t query, Side& train_side, int n_train) {
   constexpr int kChunk = 32;  // short: a new query's list accepts everything until it fills
   NeighbourList* query_list = keeps_lists(query_side) ? &query_side.lists[static_cast<std::size_t>(query)] : nullptr;
-  const bool train_lists = keeps_lists(train_side);
   positions_.resize(kChunk);
   for (int begin = 0; begin < n_train; begin += kChunk) {
     const int length = std::min(kChunk, n_train - begin);
     const int query_bound = query_list != nullptr ? query_list->bound() : -1;
     const int worth = kernels_->positions_within_bounds(row_.data() + begin, train_side.bounds.data() + begin, length,
                                                         query_bound, positions_.data());
+    // Each list is touched only when the pair is within its own bound (most pairs pass one).
     for (int w = 0; w < worth; ++w) {
       const std::int32_t train = begin + positions_[static_cast<std::size_t>(w)];
       const int distance = row_[static_cast<std::size_t>(train)];
-      if (query_list != nullptr) query_list->offer({distance, train});
-      if (!train_lists) continue;
+      if (distance <= query_bound) query_list->offer({distance, train});
+      std::int16_t& train_bound = train_side.bounds[static_cast<std::size_t>(train)];
+      if (distance > train_bound) continue;  // also where no train list is kept (bound -1)
       NeighbourList& train_list = train_side.lists[static_cast<std::size_t>(train)];
       train_list.offer({distance, query});
-      train_side.bounds[static_cast<std::size_t>(train)] = static_cast<std::int16_t>(train_list.bound());
+      train_bound = static_cast<std::int16_t>(train_list.bound());
     }
   }
   if (query_list != nullptr) query_side.bounds[static_cast<std::size_t>(query)] = static_cast<std::int16_t>(query_list->bound());
