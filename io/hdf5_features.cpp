@@ -94,8 +94,8 @@ Handle create_group(hid_t file, const std::string& name, const std::string& path
   return group;
 }
 
-// Removes a group a killed run left without its last dataset.
-void remove_incomplete(hid_t file, const std::string& name) {
+// Removes a group: one a killed run left without its last dataset, or one being replaced.
+void remove_group(hid_t file, const std::string& name) {
   if (exists(file, name)) H5Ldelete(file, name.c_str(), H5P_DEFAULT);
 }
 
@@ -123,8 +123,21 @@ bool Hdf5File::has_features(const std::string& name) const { return exists(file_
 
 bool Hdf5File::has_matches(const std::string& pair_name) const { return exists(file_, pair_name + "/matching_scores0"); }
 
-void Hdf5File::write_features(const std::string& name, const Features& features) {
-  remove_incomplete(file_, name);
+bool Hdf5File::features_belong_to(const std::string& name, const SourceRecord& source) const {
+  if (!has_features(name) || !exists(file_, name + "/source")) return false;
+  const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
+  std::vector<hsize_t> dims;
+  const std::vector<std::int64_t> stored = read_dataset<std::int64_t>(group.get(), "source", dims, name);
+  return stored.size() == 2 && static_cast<std::uintmax_t>(stored[0]) == source.bytes && stored[1] == source.mtime_ns;
+}
+
+void Hdf5File::remove_features(const std::string& name) {
+  remove_group(file_, name);
+  if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error("cannot flush '" + path_ + "' (disk full?)");
+}
+
+void Hdf5File::write_features(const std::string& name, const Features& features, const SourceRecord* source) {
+  remove_group(file_, name);
   const Handle group = create_group(file_, name, path_);
   const std::size_t n = features.keypoints.size();
   std::vector<float> xy(2 * n), size(n), angle(n), response(n);
@@ -147,6 +160,9 @@ void Hdf5File::write_features(const std::string& name, const Features& features)
   write_dataset(group.get(), "size", {count}, size, name);
   write_dataset(group.get(), "angle", {count}, angle, name);
   write_dataset(group.get(), "octave", {count}, octave, name);
+  if (source)
+    write_dataset(group.get(), "source", {2},
+                  std::vector<std::int64_t>{static_cast<std::int64_t>(source->bytes), source->mtime_ns}, name);
   // Last: its presence marks the group complete (has_features).
   write_dataset(group.get(), "image_size", {2}, std::vector<std::int64_t>{features.image_width, features.image_height}, name);
   if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error("cannot flush '" + path_ + "' (disk full?)");
@@ -191,7 +207,7 @@ Features Hdf5File::read_features(const std::string& name) const {
 }
 
 void Hdf5File::write_matches(const std::string& pair_name, int keypoints0, const std::vector<Match>& matches) {
-  remove_incomplete(file_, pair_name);
+  remove_group(file_, pair_name);
   const Handle group = create_group(file_, pair_name, path_);
   std::vector<std::int32_t> matches0(static_cast<std::size_t>(keypoints0), -1);
   std::vector<float> scores0(static_cast<std::size_t>(keypoints0), 0.0f);
@@ -255,7 +271,7 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
       if (std::find(taken.begin(), end, name) != end) continue;  // from an earlier merge into this output
       if (std::find(end, taken.end(), name) != taken.end())
         throw Error("image '" + name + "' is in two of the files merged (the second: '" + input + "')");
-      remove_incomplete(out.id(), name);
+      remove_group(out.id(), name);
       if (H5Ocopy(in.id(), name.c_str(), out.id(), name.c_str(), H5P_DEFAULT, intermediate.get()) < 0)
         throw Error("cannot copy '" + name + "' from '" + input + "' into '" + output + "'");
       taken.push_back(name);

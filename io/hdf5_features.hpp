@@ -10,7 +10,9 @@
 //     descriptors  32 x N uint8 (hloc stores descriptors dimension-first)
 //     scores       N float32, the FAST response
 //     image_size   2 int64, (width, height)
-//   and, for aief's own readers, size, angle (degrees) and octave, N each.
+//   and, for aief's own readers, size, angle (degrees) and octave, N each, and source: 2 int64,
+//   the image file's size in bytes and its modification time in nanoseconds (a batch resume
+//   re-extracts an image whose file changed).
 //   matches.h5: one group per pair, hloc's names_to_pair: name0 and name1 with '/' replaced by '-',
 //   joined by '/', holding matches0 (N0 int32, the index in image 1 or -1) and matching_scores0
 //   (N0 float32, 1 - distance / 256, 0 when unmatched). hloc writes int16 / float16; its readers
@@ -21,6 +23,7 @@
 
 #include "aief/features.hpp"
 #include "aief/match.hpp"
+#include "io/source_record.hpp"
 
 namespace aief::io {
 
@@ -40,8 +43,13 @@ class Hdf5File {
   // Whether `name` is a complete image group (features) or pair group (matches).
   bool has_features(const std::string& name) const;
   bool has_matches(const std::string& pair_name) const;
-  // Writes one image's group, replacing an incomplete one.
-  void write_features(const std::string& name, const Features& features);
+  // Whether `name` is a complete image group written from the file `source` describes (same
+  // size and modification time; a group written without a source never is).
+  bool features_belong_to(const std::string& name, const SourceRecord& source) const;
+  // Writes one image's group, replacing any group of that name; with `source`, records it.
+  void write_features(const std::string& name, const Features& features, const SourceRecord* source = nullptr);
+  // Removes an image's group, if there is one.
+  void remove_features(const std::string& name);
   // Reads back what write_features wrote (keypoints, size, angle, octave, response, descriptors,
   // image size; info is not stored).
   Features read_features(const std::string& name) const;

@@ -19,6 +19,9 @@
 #include <sys/wait.h>
 
 #include "io/features_files.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_features.hpp"
+#endif
 #include "tests/test_support.hpp"
 
 extern char** environ;
@@ -303,6 +306,41 @@ TEST(Batch, EveryFilePerImageFormatResumesOnlyItsOwnInput) {
     fs::copy_file(aief::test::sample_path("graf", "img1.png"), images / "sub" / "a.png", fs::copy_options::overwrite_existing);
   }
 }
+
+#ifdef AIEF_HAVE_HDF5
+// One HDF5 file holds every image: a resume keeps the groups written from the files as they are,
+// redoes a group whose file changed, and drops the group of a file that no longer reads.
+TEST(Batch, H5ResumeRedoesTheGroupOfAChangedFileAndDropsTheGroupOfABrokenOne) {
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path images = temp.path() / "images", h5 = temp.path() / "features.h5";
+  fs::create_directories(images);
+  fs::copy_file(aief::test::sample_path("graf", "img1.png"), images / "changed.png");
+  fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / "kept.png");
+  fs::copy_file(aief::test::sample_path("leuven", "img1.png"), images / "breaks.png");
+  const std::vector<std::string> args = {"extract", "--batch", images.string(), "-o", h5.string(), "--format", "h5",
+                                         "--features", "100"};
+  std::string report;
+  ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
+  ASSERT_NE(report.find("3 extracted, 0 already done"), std::string::npos) << report;
+  ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
+  EXPECT_NE(report.find("0 extracted, 3 already done"), std::string::npos) << report;
+
+  fs::copy_file(aief::test::sample_path("leuven", "img2.png"), images / "changed.png", fs::copy_options::overwrite_existing);
+  std::ofstream(images / "breaks.png", std::ios::trunc) << "not an image any more";
+  ASSERT_EQ(run_batch(args, temp.path(), &report), 1) << report;
+  EXPECT_NE(report.find("1 extracted (1 replacing"), std::string::npos) << report;
+  EXPECT_NE(report.find("1 already done, 1 failed"), std::string::npos) << report;
+
+  const aief::io::Hdf5File file(h5.string(), aief::io::Hdf5File::Mode::read);
+  EXPECT_EQ(file.feature_names(), (std::vector<std::string>{"changed.png", "kept.png"}));
+  for (const char* name : {"changed.png", "kept.png"})
+    EXPECT_TRUE(file.features_belong_to(name, aief::io::source_record_of((images / name).string(), name))) << name;
+  const cv::Mat changed = cv::imread((images / "changed.png").string(), cv::IMREAD_GRAYSCALE);
+  const aief::Features features = file.read_features("changed.png");
+  EXPECT_EQ(features.image_width, changed.cols);
+  EXPECT_EQ(features.image_height, changed.rows);
+}
+#endif
 
 TEST(Batch, ShardsSplitTheCollectionExactly) {
   BatchFolder folder;

@@ -86,6 +86,7 @@ std::string name_of_listed_path(const std::string& line) {
 // One image on its way through the pipeline.
 struct Item {
   BatchInput input;
+  std::size_t position = 0;  // in the batch's inputs
   std::string output;  // the file of a file-per-image format; empty for h5
   io::SourceRecord source;
   GrayImage image;
@@ -206,40 +207,66 @@ BatchSummary run_batch(const BatchSettings& settings) {
   per_thread.threads = 1;
   tbb::enumerable_thread_specific<std::unique_ptr<Extractor>> extractors;
 
+  // The pipeline's tokens are plain pointers to items owned here: TBB moves a token between
+  // stages in its own inline code, which TSan does not instrument, so a token must not be an
+  // object with its own synchronisation (a shared_ptr's count) or TSan sees the move as a race.
+  // An item lives from the stage that lists it to the stage that writes it.
+  std::vector<std::unique_ptr<Item>> items(inputs.size());
+  // An output from another or older input must not stay beside a failure.
+  const auto remove_output = [&](Item& item) {
+#ifdef AIEF_HAVE_HDF5
+    if (h5) {
+      try {
+        h5->remove_features(item.input.name);
+      } catch (const std::exception& e) {
+        item.error += std::string("; its old group could not be removed: ") + e.what();
+      }
+      return;
+    }
+#endif
+    std::error_code ignored;
+    fs::remove(item.output, ignored);
+  };
   std::size_t next = 0;
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_pipeline(
         static_cast<std::size_t>(2 * threads),
         // Next image: serial, in order (the HDF5 file is asked here: one thread at a time).
-        tbb::make_filter<void, std::shared_ptr<Item>>(tbb::filter_mode::serial_in_order,
-                                                       [&](tbb::flow_control& control) -> std::shared_ptr<Item> {
-                                                         parallel::handoff_acquire(&kListStage);
-                                                         const HandoffOnExit release_listed{&kListStage};
-                                                         if (next >= inputs.size()) {
-                                                           control.stop();
-                                                           return nullptr;
-                                                         }
-                                                         auto item = std::make_shared<Item>();
-                                                         item->input = inputs[next++];
+        tbb::make_filter<void, Item*>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) -> Item* {
+          parallel::handoff_acquire(&kListStage);
+          const HandoffOnExit release_listed{&kListStage};
+          if (next >= inputs.size()) {
+            control.stop();
+            return nullptr;
+          }
+          items[next] = std::make_unique<Item>();
+          Item* item = items[next].get();
+          item->position = next;
+          item->input = inputs[next++];
 #ifdef AIEF_HAVE_HDF5
-                                                         if (h5) {
-                                                           item->skip = h5->has_features(item->input.name);
-                                                           return item;
-                                                         }
+          if (h5) {  // current: a complete group written from this very file (size and mtime)
+            try {
+              item->source = io::source_record_of(item->input.path, item->input.name);
+              item->skip = h5->features_belong_to(item->input.name, item->source);
+              item->replacing = !item->skip && h5->has_features(item->input.name);
+            } catch (const std::exception& e) {
+              item->error = e.what();
+            }
+            return item;
+          }
 #endif
-                                                         item->output = batch_output_path(settings.output_dir, item->input.name,
-                                                                                          settings.format);
-                                                         return item;
-                                                       }) &
+          item->output = batch_output_path(settings.output_dir, item->input.name, settings.format);
+          return item;
+        }) &
             // Is the output current? If not: read (decoding dominates) and extract. Parallel.
-            tbb::make_filter<std::shared_ptr<Item>, std::shared_ptr<Item>>(tbb::filter_mode::parallel, [&](std::shared_ptr<Item> item) {
+            tbb::make_filter<Item*, Item*>(tbb::filter_mode::parallel, [&](Item* item) {
               parallel::handoff_acquire(&kListStage);
               const HandoffOnExit release_extracted{&kExtractStage};
-              if (item->skip) return item;
+              if (item->skip || !item->error.empty()) return item;
               try {
-                item->source = io::source_record_of(item->input.path, item->input.name);
-                if (!item->output.empty()) {
+                if (!item->output.empty()) {  // a file per image (h5: asked by the listing stage)
+                  item->source = io::source_record_of(item->input.path, item->input.name);
                   std::error_code ignored;
                   fs::remove(io::temporary_path_of(item->output), ignored);  // a killed run's
                   if (fs::exists(item->output, ignored)) {
@@ -259,7 +286,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
               return item;
             }) &
             // Write: serial (atomic rename), tally, progress.
-            tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_out_of_order, [&](std::shared_ptr<Item> item) {
+            tbb::make_filter<Item*, void>(tbb::filter_mode::serial_out_of_order, [&](Item* item) {
               parallel::handoff_acquire(&kExtractStage);
               parallel::handoff_acquire(&kWriteStage);
               const HandoffOnExit release_written{&kWriteStage};
@@ -270,7 +297,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 try {
 #ifdef AIEF_HAVE_HDF5
                   if (h5) {
-                    h5->write_features(item->input.name, item->features);
+                    h5->write_features(item->input.name, item->features, &item->source);
                   } else
 #endif
                   {
@@ -285,13 +312,12 @@ BatchSummary run_batch(const BatchSettings& settings) {
                 }
               }
               if (!item->error.empty()) {
-                // An output from another or older input must not stay beside a failure.
-                std::error_code ignored;
-                if (item->replacing) fs::remove(item->output, ignored);
+                if (item->replacing) remove_output(*item);
                 ++summary.failed;
                 summary.failures.push_back(item->input.path + ": " + item->error);
               }
               progress.step(item->input.name);
+              items[item->position].reset();
             }));
   });
   parallel::handoff_acquire(&kExtractStage);

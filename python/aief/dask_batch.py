@@ -3,7 +3,8 @@ file in hloc's layout (the layout of `aief extract --batch --format h5`, io/hdf5
 
 Shard i of n takes images i, i+n, i+2n ... of the sorted list, as `aief extract --shard i/n`
 does, so `aief merge -o features.h5 OUTDIR/features.*-of-n.h5` gives the single-process file's
-groups, byte for byte in every dataset. A shard file resumes: complete groups are skipped.
+groups, byte for byte in every dataset. A shard file resumes: a complete group whose `source`
+(the image file's size and modification time) is the file as it is now is skipped.
 
     python3 -m aief.dask_batch IMAGES OUTDIR --shards 8 --scheduler tcp://host:8786
     python3 -m aief.dask_batch IMAGES OUTDIR --shards 4 --local-workers 2   # a LocalCluster here
@@ -33,7 +34,18 @@ def shard_path(output_dir, index, count):
     return os.path.join(output_dir, f"features.{index}-of-{count}.h5")
 
 
-def write_group(file, name, features):
+def source_of(path):
+    """The image file's identity a resume compares: size in bytes, modification time in ns (io/source_record.cpp)."""
+    info = os.stat(path)
+    return numpy.array([info.st_size, info.st_mtime_ns], numpy.int64)
+
+
+def is_current(file, name, source):
+    """Whether `name` is a complete group written from the file `source` describes."""
+    return f"{name}/image_size" in file and f"{name}/source" in file and numpy.array_equal(file[name]["source"][()], source)
+
+
+def write_group(file, name, features, source):
     """One image's group, as io/hdf5_features.cpp writes it (image_size last marks it complete)."""
     if name in file:
         del file[name]
@@ -44,6 +56,7 @@ def write_group(file, name, features):
     group.create_dataset("size", data=features.size)
     group.create_dataset("angle", data=features.angle)
     group.create_dataset("octave", data=features.octave)
+    group.create_dataset("source", data=source)
     group.create_dataset("image_size", data=numpy.array([features.image_width, features.image_height], numpy.int64))
     file.flush()
 
@@ -56,11 +69,13 @@ def extract_shard(folder, names, output, options):
     extracted = skipped = keypoints = 0
     with h5py.File(output, "a") as file:
         for name in names:
-            if f"{name}/image_size" in file:
+            path = os.path.join(folder, name)
+            source = source_of(path)
+            if is_current(file, name, source):
                 skipped += 1
                 continue
-            features = extractor.extract(aief.read_image(os.path.join(folder, name)))
-            write_group(file, name, features)
+            features = extractor.extract(aief.read_image(path))
+            write_group(file, name, features, source)
             extracted += 1
             keypoints += len(features)
     return extracted, skipped, keypoints
