@@ -2,19 +2,23 @@
 // The kernel table of one xsimd arch: included only by the per-arch translation units
 // (kernels_<arch>.cpp), each compiled with that arch's flags alone.
 #include "core/kernel_table.hpp"
+#include "simd/bound_filter_simd.hpp"
 #include "simd/fast9_simd.hpp"
 #include "simd/gaussian_blur_simd.hpp"
 #include "simd/histogram_simd.hpp"
 #include "simd/rbrief_simd.hpp"
 // Kernels written with one instruction-set family's intrinsics, each family in its own files.
 #if defined(__aarch64__)
+#include "simd/hamming_blocked_neon.hpp"
 #include "simd/hamming_neon.hpp"
 #include "simd/orientation_neon.hpp"
 #include "simd/pyramid_resize_neon.hpp"
 #else
+#include "simd/hamming_blocked_simd.hpp"
 #include "simd/hamming_simd.hpp"
 #include "simd/orientation_simd.hpp"
 #include "simd/pyramid_resize_simd.hpp"
+#include "simd/rbrief_gather_x86.hpp"
 #endif
 
 namespace aief::simd {
@@ -29,9 +33,14 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   table.fast9_scores_row = &fast9_scores_row<Arch>;
   table.fast9_local_maxima_bits = &fast9_local_maxima_bits<Arch>;
   table.hamming_256_many = &hamming_256_many<Arch>;
+  table.hamming_256_blocked = &hamming_256_blocked<Arch>;
+  table.positions_within_bounds = &positions_within_bounds<Arch>;
   table.gaussian7_rows = &gaussian7_rows<Arch>;
   table.ic_moments = &ic_moments<Arch>;
   table.rbrief_describe = &rbrief_describe<Arch>;
+#if !defined(__aarch64__)
+  if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) table.rbrief_describe = &rbrief_describe_gather<Arch>;
+#endif
   table.resize_bilinear_rows = &resize_bilinear_rows<Arch>;
   table.accumulate_histogram = &accumulate_histogram<Arch>;
   return table;
