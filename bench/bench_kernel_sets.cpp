@@ -51,7 +51,7 @@ std::shared_ptr<const Inputs> make_inputs(const GrayImage& image) {
       scalar.resize_bilinear_rows(in->levels.back().view(), in->plans.back(), level.mutable_view(), 0, level.height());
     }
     GrayImage blurred(level.width(), level.height());
-    scalar.gaussian7_rows(level.view(), blurred.mutable_view(), 0, level.height());
+    scalar.gaussian7_rows(level.view(), blurred.mutable_view(), 0, level.height(), 0, level.width());
     in->pixels += static_cast<long long>(level.width()) * level.height();
     in->levels.push_back(std::move(level));
     in->blurred.push_back(std::move(blurred));
@@ -99,7 +99,7 @@ void register_kernel_set_benchmarks(int iterations) {
       std::vector<GrayImage> out;
       for (const GrayImage& level : in->levels) out.emplace_back(level.width(), level.height());
       for (auto _ : state)
-        for (std::size_t n = 0; n < in->levels.size(); ++n) k->gaussian7_rows(in->levels[n].view(), out[n].mutable_view(), 0, out[n].height());
+        for (std::size_t n = 0; n < in->levels.size(); ++n) k->gaussian7_rows(in->levels[n].view(), out[n].mutable_view(), 0, out[n].height(), 0, out[n].width());
       state.SetItemsProcessed(state.iterations() * in->pixels);
     });
     add(name("accumulate_histogram"), [in, k](benchmark::State& state) {

@@ -64,7 +64,7 @@ void register_kernel_benchmarks() {
         for (const GrayImage& level : pyramid->levels) out.emplace_back(level.width(), level.height());
         for (auto _ : state)
           for (std::size_t n = 0; n < pyramid->levels.size(); ++n)
-            kernels->gaussian7_rows(pyramid->levels[n].view(), out[n].mutable_view(), 0, out[n].height());
+            kernels->gaussian7_rows(pyramid->levels[n].view(), out[n].mutable_view(), 0, out[n].height(), 0, out[n].width());
         state.SetItemsProcessed(state.iterations() * pyramid->pixels);
       });
       benchmark::RegisterBenchmark(("fast9/" + variant + "/" + image.name).c_str(), [pyramid, kernels](benchmark::State& state) {

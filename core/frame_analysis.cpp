@@ -9,6 +9,7 @@
 #include "aief/error.hpp"
 #include "core/block_entropy.hpp"
 #include "core/keypoint_position.hpp"
+#include "core/patch_blur.hpp"
 
 namespace aief {
 
@@ -347,7 +348,8 @@ void FrameAnalysis::describe(LevelState& level, const std::vector<std::int32_t>&
         ic_angle_deg(level.scratch_m10[static_cast<std::size_t>(i)], level.scratch_m01[static_cast<std::size_t>(i)]);
   if (selections_ == Selections::many) {
     if (level.blurred_end == 0) {
-      kernels_->gaussian7_rows(level.pixels, level.blurred.mutable_view(), 0, level.geometry.height);
+      kernels_->gaussian7_rows(level.pixels, level.blurred.mutable_view(), 0, level.geometry.height, 0,
+                               level.geometry.width);
       level.blurred_end = level.geometry.height;
     }
     kernels_->rbrief_describe(level.blurred.view(), points.data(), level.scratch_angles.data(), count,
@@ -369,7 +371,8 @@ void FrameAnalysis::describe_through_band(LevelState& level, int count) {
   // The points come in raster order, so the blurred rows they read, [y - kEdgeBorder, y +
   // kEdgeBorder], form a window sliding down the level. The band holds blurred rows [top, end);
   // when a point needs a row below it, the rows still needed move to the band's top and only
-  // the new ones are blurred: every blurred row is computed once, in a buffer that stays in cache.
+  // the new ones are blurred: every blurred row is computed once, in a buffer that stays in cache,
+  // and only at the columns the points' patches cover (core/patch_blur.hpp).
   const std::vector<PixelPoint>& points = level.scratch_points;
   std::vector<PixelPoint>& shifted = level.scratch_band_points;
   shifted.resize(static_cast<std::size_t>(count));
@@ -402,8 +405,8 @@ void FrameAnalysis::describe_through_band(LevelState& level, int count) {
       std::memmove(band.data, band.row(new_top - top), static_cast<std::size_t>(end - new_top) * static_cast<std::size_t>(band.stride));
       kept_end = end;
     }
-    kernels_->gaussian7_rows(level.pixels, {band.row(kept_end - new_top), width, new_end - kept_end, band.stride}, kept_end,
-                             new_end);
+    blur_patch_rows(*kernels_, level.pixels, {band.row(kept_end - new_top), width, new_end - kept_end, band.stride},
+                    kept_end, new_end, points.data(), count, level.scratch_blur_columns);
     top = new_top;
     end = new_end;
   }

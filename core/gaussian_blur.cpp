@@ -13,10 +13,10 @@ int reflect101(int i, int size) {
   return i;
 }
 
-// Horizontal pass of one source row into h (u16 per pixel).
-void horizontal(const std::uint8_t* row, int width, std::uint16_t* h) {
+// Horizontal pass of columns [x_begin, x_end) of one source row into h (u16 per pixel).
+void horizontal(const std::uint8_t* row, int width, int x_begin, int x_end, std::uint16_t* h) {
   const auto& k = kGaussian7Q8;
-  for (int x = 0; x < width; ++x) {
+  for (int x = x_begin; x < x_end; ++x) {
     std::uint32_t sum = 0;
     if (x >= 3 && x + 3 < width) {
       for (int t = 0; t < 7; ++t) sum += k[static_cast<std::size_t>(t)] * row[x + t - 3];
@@ -29,8 +29,9 @@ void horizontal(const std::uint8_t* row, int width, std::uint16_t* h) {
 
 }  // namespace
 
-void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int y_end) {
+void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin, int x_end) {
   assert(src.width >= 4 && src.height >= 4);
+  assert(0 <= x_begin && x_begin <= x_end && x_end <= src.width);
   const int width = src.width, height = src.height;
   // Seven horizontal rows in a ring, refilled as the window slides down.
   thread_local std::vector<std::uint16_t> ring;
@@ -41,7 +42,7 @@ void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int
     const int slot = ((sy % 7) + 7) % 7;
     std::uint16_t* h = ring.data() + static_cast<std::size_t>(slot) * static_cast<std::size_t>(width);
     if (ring_row[slot] != sy) {
-      horizontal(src.row(reflect101(sy, height)), width, h);
+      horizontal(src.row(reflect101(sy, height)), width, x_begin, x_end, h);
       ring_row[slot] = sy;
     }
     return h;
@@ -51,7 +52,7 @@ void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int
     const std::uint16_t* rows[7];
     for (int t = 0; t < 7; ++t) rows[t] = horizontal_row(y + t - 3);
     std::uint8_t* out = dst.row(y - y_begin);
-    for (int x = 0; x < width; ++x) {
+    for (int x = x_begin; x < x_end; ++x) {
       std::uint32_t sum = 32768;
       for (int t = 0; t < 7; ++t) sum += k[static_cast<std::size_t>(t)] * static_cast<std::uint32_t>(rows[t][x]);
       out[x] = static_cast<std::uint8_t>(sum >> 16);

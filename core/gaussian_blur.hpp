@@ -14,10 +14,12 @@ namespace aief {
 
 inline constexpr std::array<std::uint16_t, 7> kGaussian7Q8 = {18, 34, 48, 56, 48, 34, 18};
 
-// Blurs rows [y_begin, y_end) of src into dst: dst row i holds blurred row y_begin + i, so dst
-// may be the whole plane (y_begin = 0) or a band of y_end - y_begin rows. dst is src's width,
-// src's width and height are >= 4, and they do not overlap. Reads src rows y_begin - 3 ..
-// y_end + 2 (reflected at the edges).
-void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int y_end);
+// Blurs columns [x_begin, x_end) of rows [y_begin, y_end) of src into dst: dst row i holds
+// blurred row y_begin + i at the same columns (its other columns are left as they are), so dst
+// may be the whole plane (y_begin = 0) or a band of y_end - y_begin rows, and a caller may blur
+// only the columns it reads. dst is src's width, 0 <= x_begin <= x_end <= width, src's width
+// and height are >= 4, and they do not overlap. Reads src rows y_begin - 3 .. y_end + 2 and
+// columns x_begin - 3 .. x_end + 2 (reflected at the edges).
+void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin, int x_end);
 
 }  // namespace aief

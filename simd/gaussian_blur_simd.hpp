@@ -31,7 +31,7 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
-void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end) {
+void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin, int x_end) {
   using Ops = blur_detail::Vec<Arch>;
   using V = typename Ops::V;
   constexpr int L = Ops::kColumns;
@@ -56,8 +56,8 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end)
       for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][x];
       return static_cast<std::int16_t>(v ^ 0x8000u);
     };
-    for (int x0 = 0; x0 < width; x0 += kChunk) {
-      const int x1 = x0 < width - kChunk ? x0 + kChunk : width;
+    for (int x0 = x_begin; x0 < x_end; x0 += kChunk) {
+      const int x1 = x0 < x_end - kChunk ? x0 + kChunk : x_end;
       const int origin = x0 - 4;  // column[i] is the vertical sum of column origin + i
 
       // Vertical pass over the columns inside the row, [c0, c1); symmetric taps: rows k and

@@ -76,11 +76,18 @@ std::string check_resize(const KernelTable& scalar, const KernelTable& other, co
 std::string check_gaussian(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   if (src.width() < 4 || src.height() < 4) return "";
   GrayImage a(src.width(), src.height()), b(src.width(), src.height());
-  scalar.gaussian7_rows(src.view(), a.mutable_view(), 0, src.height());
-  // The other kernel in two bands, as the extractor streams it: dst row 0 is the band's first row.
+  scalar.gaussian7_rows(src.view(), a.mutable_view(), 0, src.height(), 0, src.width());
+  // The other kernel in two bands, as the extractor streams it (dst row 0 is the band's first
+  // row), and each band in column spans, as it blurs only the columns rBRIEF reads: a span at
+  // either edge, a narrow one (scalar tail) and a wide one.
   const int cut = src.height() / 3;
-  other.gaussian7_rows(src.view(), b.mutable_view(), 0, cut);
-  other.gaussian7_rows(src.view(), {b.data() + cut * src.width(), src.width(), src.height() - cut, src.width()}, cut, src.height());
+  std::vector<int> column_cuts = {0, std::min(src.width(), 5), src.width() / 2, src.width()};
+  column_cuts.erase(std::unique(column_cuts.begin(), column_cuts.end()), column_cuts.end());
+  for (std::size_t i = 0; i + 1 < column_cuts.size(); ++i) {
+    other.gaussian7_rows(src.view(), b.mutable_view(), 0, cut, column_cuts[i], column_cuts[i + 1]);
+    other.gaussian7_rows(src.view(), {b.data() + cut * src.width(), src.width(), src.height() - cut, src.width()}, cut,
+                         src.height(), column_cuts[i], column_cuts[i + 1]);
+  }
   for (int y = 0; y < src.height(); ++y)
     for (int x = 0; x < src.width(); ++x)
       if (a.data()[y * src.width() + x] != b.data()[y * src.width() + x])

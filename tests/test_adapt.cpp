@@ -32,9 +32,9 @@ KernelTable counting_kernels() {
     counts.resized_rows += y1 - y0;
     resize_bilinear_rows_scalar(src, plan, dst, y0, y1);
   };
-  table.gaussian7_rows = [](ImageView src, MutableImageView dst, int y0, int y1) {
+  table.gaussian7_rows = [](ImageView src, MutableImageView dst, int y0, int y1, int x0, int x1) {
     counts.blurred_rows += y1 - y0;
-    gaussian7_rows_scalar(src, dst, y0, y1);
+    gaussian7_rows_scalar(src, dst, y0, y1, x0, x1);
   };
   table.accumulate_histogram = [](const std::uint8_t* data, std::ptrdiff_t stride, int w, int h, std::uint32_t* hist) {
     counts.histogram_pixels += static_cast<long long>(w) * h;

@@ -1,0 +1,26 @@
+#pragma once
+// Blurs only what rBRIEF reads. Every sample of a keypoint's rotated pattern lies within
+// kEdgeBorder of it (core/rbrief.hpp), so a blurred row y is read only at the columns
+// [x - kEdgeBorder, x + kEdgeBorder] of the points with |y - point.y| <= kEdgeBorder: on graf
+// the union of those patches is 55-58% of the pyramid's pixels, where a blur of whole rows
+// covers nearly all of them.
+#include <vector>
+
+#include "aief/image.hpp"
+#include "core/kernel_table.hpp"
+#include "core/pixel_point.hpp"
+
+namespace aief {
+
+// Rows of one strip: the columns blurred are the union over the points near the strip, so a
+// short strip blurs little more than the patches; a taller one makes fewer, longer kernel calls.
+constexpr int kPatchBlurStripRows = 8;
+
+// Blurs rows [y_begin, y_end) of `level` into `dst` (dst row i is level row y_begin + i, as
+// KernelTable::gaussian7_rows), at least at every column an rBRIEF sample of one of the points
+// reads; other columns of dst are left as they are. points are in raster order (y ascending);
+// columns_scratch is reused storage.
+void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageView dst, int y_begin, int y_end,
+                     const PixelPoint* points, int count, std::vector<int>& columns_scratch);
+
+}  // namespace aief
