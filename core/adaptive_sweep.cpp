@@ -41,16 +41,27 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
   return offsets;
 }
 
+// Whether thresholds F and G keep the same blocks of level n: then the level selects the same
+// candidates (its distribution depends on its kept blocks alone).
+bool same_level_blocks_kept(const FrameAnalysis& analysis, int n, double f, double g) {
+  const int blocks = analysis.level(n).geometry.grid.count();
+  for (int b = 0; b < blocks; ++b)
+    if (analysis.block_kept(n, b, f) != analysis.block_kept(n, b, g)) return false;
+  return true;
+}
+
 // Extracts the features of one image at threshold F from its analysis (no starvation rule:
-// the sweep measures each F as it is), with the identity of each feature.
-void features_at(FrameAnalysis& analysis, double threshold, const std::vector<std::int32_t>& id_offsets,
+// the sweep measures each F as it is), with the identity of each feature. `chosen` holds each
+// level's selection at `previous` (when there is one, i.e. previous >= 0); a level whose kept
+// blocks did not change since keeps it.
+void features_at(FrameAnalysis& analysis, double threshold, double previous, const std::vector<std::int32_t>& id_offsets,
                  std::vector<std::vector<std::int32_t>>& chosen, ThresholdFeatures& result) {
   const int levels = analysis.level_count();
   chosen.resize(static_cast<std::size_t>(levels));
   result.ids.clear();
   for (int n = 0; n < levels; ++n) {
     std::vector<std::int32_t>& level_chosen = chosen[static_cast<std::size_t>(n)];
-    analysis.select(n, threshold, level_chosen);
+    if (previous < 0 || !same_level_blocks_kept(analysis, n, previous, threshold)) analysis.select(n, threshold, level_chosen);
     for (std::int32_t i : level_chosen) result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
   }
   Features& out = result.features;
@@ -66,11 +77,8 @@ void features_at(FrameAnalysis& analysis, double threshold, const std::vector<st
 // Whether thresholds F and G keep the same blocks on every level: then they select the same
 // features (the distribution and the descriptors depend on the kept blocks alone).
 bool same_blocks_kept(const FrameAnalysis& analysis, double f, double g) {
-  for (int n = 0; n < analysis.level_count(); ++n) {
-    const int blocks = analysis.level(n).geometry.grid.count();
-    for (int b = 0; b < blocks; ++b)
-      if (analysis.block_kept(n, b, f) != analysis.block_kept(n, b, g)) return false;
-  }
+  for (int n = 0; n < analysis.level_count(); ++n)
+    if (!same_level_blocks_kept(analysis, n, f, g)) return false;
   return true;
 }
 
@@ -121,7 +129,7 @@ void check_sweep_inputs(const ExtractorOptions& options, const SweepOptions& swe
 }  // namespace
 
 SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
-                             const KernelTable& kernels) {
+                             const KernelTable& kernels, Repeats repeats) {
   check_sweep_inputs(options, sweep);
   // The two images are independent until matching: each is analysed, and later selected at every
   // threshold, on its own thread.
@@ -151,11 +159,18 @@ SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& o
       const double previous = sweep.first_threshold + sweep.step * (c - 1);
       ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
       if (c > 0 && same_blocks_kept(analysis, previous, threshold)) {
-        here = features[static_cast<std::size_t>(c - 1)];  // select() reads the threshold only through the mask
+        // select() reads the threshold only through the mask.
+        const ThresholdFeatures& before = features[static_cast<std::size_t>(c - 1)];
+        if (repeats == Repeats::copied) {
+          here = before;
+        } else {
+          here.features.info = before.features.info;
+          here.repeat_of = before.repeat_of >= 0 ? before.repeat_of : c - 1;
+        }
         here.features.info.entropy_threshold_requested = threshold;
         here.features.info.entropy_threshold_used = threshold;
       } else {
-        features_at(analysis, threshold, id_offsets, chosen, here);
+        features_at(analysis, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
       }
     }
   });
@@ -164,10 +179,13 @@ SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& o
 
 AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
                                const SweepOptions& sweep, const KernelTable& kernels) {
-  SweepFeatures features = sweep_features(a, b, options, sweep, kernels);  // validates the inputs first
+  // Repeated thresholds are not copied: each one's features are those of the first of its run.
+  SweepFeatures features = sweep_features(a, b, options, sweep, kernels, Repeats::referenced);  // validates the inputs first
   std::vector<ThresholdFeatures>& features_a = features.a;
   std::vector<ThresholdFeatures>& features_b = features.b;
   const int cycles = static_cast<int>(features_a.size());
+  const auto at_a = [&](std::size_t c) -> const ThresholdFeatures& { return features_a[c].resolved(features_a); };
+  const auto at_b = [&](std::size_t c) -> const ThresholdFeatures& { return features_b[c].resolved(features_b); };
 
   AdaptResult result;
   result.image_entropy_bits = features.image_entropy_bits;
@@ -177,8 +195,10 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
   std::vector<int> distinct;
   for (int c = 0; c < cycles; ++c) {
     const std::size_t i = static_cast<std::size_t>(c);
-    const bool same = c > 0 && same_features(features_a[i].features, features_a[i - 1].features) &&
-                      same_features(features_b[i].features, features_b[i - 1].features);
+    const auto same_as_previous = [&](const auto& at) {
+      return &at(i) == &at(i - 1) || same_features(at(i).features, at(i - 1).features);
+    };
+    const bool same = c > 0 && same_as_previous(at_a) && same_as_previous(at_b);
     source[i] = same ? source[i - 1] : c;
     if (!same) distinct.push_back(c);
   }
@@ -195,9 +215,8 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     SweepMatcher matcher(sweep.match, kernels);
     for (int k = distinct_count * run / runs; k < distinct_count * (run + 1) / runs; ++k) {
       const std::size_t i = static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]);
-      evaluated[i].matches = matcher.match(features_a[i].features.descriptors, features_a[i].ids,
-                                           features_b[i].features.descriptors, features_b[i].ids);
-      evaluated[i].homography = homography_of(features_a[i].features, features_b[i].features, evaluated[i].matches,
+      evaluated[i].matches = matcher.match(at_a(i).features.descriptors, at_a(i).ids, at_b(i).features.descriptors, at_b(i).ids);
+      evaluated[i].homography = homography_of(at_a(i).features, at_b(i).features, evaluated[i].matches,
                                               sweep.ransac);
     }
   });
@@ -211,8 +230,8 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     point.threshold = sweep.first_threshold + sweep.step * c;
     point.kept_blocks = features_a[i].features.info.blocks_kept;
     point.kept_blocks_b = features_b[i].features.info.blocks_kept;
-    point.keypoints_a = static_cast<int>(features_a[i].features.keypoints.size());
-    point.keypoints_b = static_cast<int>(features_b[i].features.keypoints.size());
+    point.keypoints_a = static_cast<int>(at_a(i).features.keypoints.size());
+    point.keypoints_b = static_cast<int>(at_b(i).features.keypoints.size());
     point.putative = static_cast<int>(evaluated[i].matches.size());
     point.inliers = evaluated[i].homography.found ? evaluated[i].homography.inliers : 0;
     point.cmr = point.putative > 0 ? static_cast<double>(point.inliers) / point.putative : 0.0;
@@ -229,8 +248,14 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
   const int chosen_index = result.chosen_index >= 0 ? result.chosen_index : 0;
   result.found = result.chosen_index >= 0;
   result.threshold = result.curve[static_cast<std::size_t>(chosen_index)].threshold;
-  result.features_a = std::move(features_a[static_cast<std::size_t>(chosen_index)].features);
-  result.features_b = std::move(features_b[static_cast<std::size_t>(chosen_index)].features);
+  // The chosen threshold's features, wherever they are held, with its own info (thresholds).
+  for (std::vector<ThresholdFeatures>* image : {&features_a, &features_b}) {
+    ThresholdFeatures& chosen = (*image)[static_cast<std::size_t>(chosen_index)];
+    const ExtractionInfo info = chosen.features.info;
+    Features& out = image == &features_a ? result.features_a : result.features_b;
+    out = std::move(chosen.repeat_of >= 0 ? (*image)[static_cast<std::size_t>(chosen.repeat_of)].features : chosen.features);
+    out.info = info;
+  }
   result.matches = std::move(evaluated[static_cast<std::size_t>(chosen_index)].matches);
   result.homography = std::move(evaluated[static_cast<std::size_t>(chosen_index)].homography);
   return result;

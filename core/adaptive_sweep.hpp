@@ -17,7 +17,18 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
 struct ThresholdFeatures {
   Features features;
   std::vector<std::int32_t> ids;
+  // With Repeats::referenced, a threshold that keeps the same blocks as the one before holds
+  // only features.info and names here the earlier threshold whose features it repeats.
+  int repeat_of = -1;
+
+  // The features at this threshold, wherever they are held (`all` is the image's sweep).
+  const ThresholdFeatures& resolved(const std::vector<ThresholdFeatures>& all) const {
+    return repeat_of >= 0 ? all[static_cast<std::size_t>(repeat_of)] : *this;
+  }
 };
+
+// Whether a threshold that repeats the previous one's features gets its own copy of them.
+enum class Repeats { copied, referenced };
 
 // Both images at every threshold F_0 + c S_p of the sweep, c < ceil(E / S_p) (at least one).
 struct SweepFeatures {
@@ -26,6 +37,6 @@ struct SweepFeatures {
 };
 
 SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
-                             const KernelTable& kernels);
+                             const KernelTable& kernels, Repeats repeats = Repeats::copied);
 
 }  // namespace aief

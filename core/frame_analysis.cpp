@@ -241,12 +241,15 @@ void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end,
     bool any_strong = false;
     for (int k = k_first; k <= k_last; ++k) any_strong = any_strong || block_bits(strong_any, k) != 0;
     const std::uint64_t* taken_rows = any_strong ? strong_rows : maxima_rows;
+    const bool rank_by_cross = options_.candidate_ranking == CandidateRanking::cross_score;
     const std::size_t first = level.candidates.size();
     const auto take = [&](std::uint64_t word, int y, int k) {
       const std::uint8_t* row = scores.row(y - score_top);
       for (; word != 0; word &= word - 1) {
         const int x = x_begin + 64 * k + std::countr_zero(word);
-        level.candidates.push_back({x, y, row[x], row[x - 1], row[x + 1], row[x - scores.stride], row[x + scores.stride]});
+        Candidate& c = level.candidates.emplace_back(
+            Candidate{x, y, row[x], row[x - 1], row[x + 1], row[x - scores.stride], row[x + scores.stride]});
+        if (rank_by_cross) c.rank_extra = c.score_left + c.score_right + c.score_up + c.score_down;
       }
     };
     if (k_first == k_last) {  // the usual block, inside one word: one masked word per row

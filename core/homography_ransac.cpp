@@ -19,10 +19,17 @@ void RansacOptions::validate() const {
   if (max_iterations < 1) fail("max_iterations", max_iterations, ">= 1");
 }
 
-Point2 apply_homography(const Homography& H, Point2 p) {
+namespace {
+
+// apply_homography's arithmetic, inlined into the inlier count (RANSAC's inner loop).
+inline Point2 project(const Homography& H, Point2 p) {
   const double w = H[6] * p.x + H[7] * p.y + H[8];
   return {(H[0] * p.x + H[1] * p.y + H[2]) / w, (H[3] * p.x + H[4] * p.y + H[5]) / w};
 }
+
+}  // namespace
+
+Point2 apply_homography(const Homography& H, Point2 p) { return project(H, p); }
 
 double mean_corner_error(const Homography& estimated, const Homography& truth, int width, int height) {
   const Point2 corners[4] = {{0, 0}, {static_cast<double>(width), 0}, {static_cast<double>(width), static_cast<double>(height)},
@@ -204,7 +211,7 @@ int count_inliers(const Homography& H, const std::vector<Point2>& src, const std
   double sum = 0;
   if (inliers) inliers->clear();
   for (int i : order) {
-    const Point2 p = apply_homography(H, src[static_cast<std::size_t>(i)]);
+    const Point2 p = project(H, src[static_cast<std::size_t>(i)]);
     const double dx = p.x - dst[static_cast<std::size_t>(i)].x, dy = p.y - dst[static_cast<std::size_t>(i)].y;
     const double e = dx * dx + dy * dy;
     if (e <= threshold_sq) {  // NaN (a point sent to infinity) is never an inlier

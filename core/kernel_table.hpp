@@ -4,9 +4,11 @@
 // has the contract of its scalar reference in core/ and must give the same bytes.
 #include "aief/options.hpp"
 #include "core/block_entropy.hpp"
+#include "core/bound_filter.hpp"
 #include "core/fast9.hpp"
 #include "core/gaussian_blur.hpp"
 #include "core/hamming.hpp"
+#include "core/hamming_blocked.hpp"
 #include "core/orientation.hpp"
 #include "core/pyramid_resize.hpp"
 #include "core/rbrief.hpp"
@@ -24,6 +26,8 @@ struct KernelTable {
   decltype(&ic_moments_scalar) ic_moments = ic_moments_scalar;
   decltype(&rbrief_describe_scalar) rbrief_describe = rbrief_describe_scalar;
   decltype(&hamming_256_many_scalar) hamming_256_many = hamming_256_many_scalar;
+  decltype(&hamming_256_blocked_scalar) hamming_256_blocked = hamming_256_blocked_scalar;
+  decltype(&positions_within_bounds_scalar) positions_within_bounds = positions_within_bounds_scalar;
 };
 
 }  // namespace aief

@@ -5,23 +5,9 @@
 #include <numeric>
 
 #include "aief/error.hpp"
+#include "core/hamming_blocked.hpp"
 
 namespace aief {
-
-// Inserts in `closer` order; the last entry of a full list falls off, and a list that fills up
-// stops claiming completeness (see offer for why that keeps the prefix invariant).
-void NeighbourList::insert(Neighbour neighbour) {
-  const bool full = count == kLength;
-  if (full && !closer(neighbour, entries[static_cast<std::size_t>(kLength - 1)])) return;
-  int at = full ? kLength - 1 : count;
-  while (at > 0 && closer(neighbour, entries[static_cast<std::size_t>(at - 1)])) {
-    entries[static_cast<std::size_t>(at)] = entries[static_cast<std::size_t>(at - 1)];
-    --at;
-  }
-  entries[static_cast<std::size_t>(at)] = neighbour;
-  if (!full) ++count;
-  if (count == kLength) complete = false;
-}
 
 // Dropping elements keeps a prefix a prefix (of the smaller set, ending at the last survivor),
 // and a complete list complete. Renumbering keeps the order because the elements that stayed
@@ -99,60 +85,65 @@ void carry_lists(std::vector<NeighbourList>& lists, const std::vector<std::int32
 
 }  // namespace
 
-// Offers the pairs (query, trains[k]) at distances[k] to the query's list and, for the cross
-// check, to the train's list. A pair above both lists' bounds would be refused by both, so it is
-// skipped: the row is filtered a chunk at a time with the bounds of the moment (they only shrink).
-void SweepMatcher::offer_row(std::int32_t query, const std::uint16_t* distances, const std::vector<std::int32_t>& trains) {
-  constexpr int kChunk = 64;
-  NeighbourList& list = a_.lists[static_cast<std::size_t>(query)];
-  const int n = static_cast<int>(trains.size());
-  worth_offering_.resize(kChunk);
-  for (int begin = 0; begin < n; begin += kChunk) {
-    const int end = std::min(n, begin + kChunk);
-    const int query_bound = list.bound();
-    int worth = 0;
-    for (int k = begin; k < end; ++k) {
-      const int distance = distances[k];
-      const bool for_b = mutual_ && distance <= b_bounds_[static_cast<std::size_t>(trains[static_cast<std::size_t>(k)])];
-      worth_offering_[static_cast<std::size_t>(worth)] = k;
-      worth += (distance <= query_bound) | for_b;
-    }
+// Offers the pairs (query, k) at row_[k], k < n_train, to the query's list and to train k's list,
+// where those lists are kept. A pair above both lists' bounds would be refused by both, so the
+// row goes through the filter a chunk at a time, with the query's bound of the moment (bounds
+// only shrink: a stale one lets a few more through, which offer() refuses).
+void SweepMatcher::offer_row(Side& query_side, std::int32_t query, Side& train_side, int n_train) {
+  constexpr int kChunk = 32;  // short: a new query's list accepts everything until it fills
+  NeighbourList* query_list = keeps_lists(query_side) ? &query_side.lists[static_cast<std::size_t>(query)] : nullptr;
+  positions_.resize(kChunk);
+  for (int begin = 0; begin < n_train; begin += kChunk) {
+    const int length = std::min(kChunk, n_train - begin);
+    const int query_bound = query_list != nullptr ? query_list->bound() : -1;
+    const int worth = kernels_->positions_within_bounds(row_.data() + begin, train_side.bounds.data() + begin, length,
+                                                        query_bound, positions_.data());
+    // Each list is touched only when the pair is within its own bound (most pairs pass one).
     for (int w = 0; w < worth; ++w) {
-      const int k = worth_offering_[static_cast<std::size_t>(w)];
-      const std::int32_t train = trains[static_cast<std::size_t>(k)];
-      list.offer({distances[k], train});
-      if (!mutual_) continue;
-      NeighbourList& train_list = b_.lists[static_cast<std::size_t>(train)];
-      train_list.offer({distances[k], query});
-      b_bounds_[static_cast<std::size_t>(train)] = train_list.bound();
+      const std::int32_t train = begin + positions_[static_cast<std::size_t>(w)];
+      const int distance = row_[static_cast<std::size_t>(train)];
+      if (distance <= query_bound) query_list->offer({distance, train});
+      std::int16_t& train_bound = train_side.bounds[static_cast<std::size_t>(train)];
+      if (distance > train_bound) continue;  // also where no train list is kept (bound -1)
+      NeighbourList& train_list = train_side.lists[static_cast<std::size_t>(train)];
+      train_list.offer({distance, query});
+      train_bound = static_cast<std::int16_t>(train_list.bound());
     }
   }
+  if (query_list != nullptr) query_side.bounds[static_cast<std::size_t>(query)] = static_cast<std::int16_t>(query_list->bound());
 }
 
-// Offers each list exactly the pairs it has not seen: an old feature of A the new features of B,
-// a new feature of A every feature of B (and the same pairs, read the other way, to B's lists).
-// Old-old pairs were offered at an earlier call, when both features were there.
+// Offers each list exactly the pairs it has not seen: every pair with a new feature of B (rows of
+// the new features of B against all of A), then every pair of a new feature of A with an old one
+// of B (rows of the new features of A against all of B, the new ones of B excluded: offered
+// already). Old-old pairs were offered at an earlier call, when both features were there.
 void SweepMatcher::update_lists(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b) {
   carry_lists(a_.lists, a_.new_index_of_old, a.size(), b_.new_index_of_old);
-  if (mutual_) {
-    carry_lists(b_.lists, b_.new_index_of_old, b.size(), a_.new_index_of_old);
-    b_bounds_.resize(b.size());
-    for (std::size_t j = 0; j < b.size(); ++j) b_bounds_[j] = b_.lists[j].bound();
+  if (mutual_) carry_lists(b_.lists, b_.new_index_of_old, b.size(), a_.new_index_of_old);
+  for (Side* side : {&a_, &b_}) {
+    side->bounds.resize(side->ids.size());
+    for (std::size_t i = 0; i < side->ids.size(); ++i)
+      side->bounds[i] = static_cast<std::int16_t>(keeps_lists(*side) ? side->lists[i].bound() : -1);
   }
+  if (a.empty() || b.empty()) return;
+  block_descriptors(a.front().data(), static_cast<int>(a.size()), a_.blocked);
+  block_descriptors(b.front().data(), static_cast<int>(b.size()), b_.blocked);
+  const int blocks_a = hamming_block_count(static_cast<int>(a.size()));
+  const int blocks_b = hamming_block_count(static_cast<int>(b.size()));
+  row_.resize(static_cast<std::size_t>(std::max(blocks_a, blocks_b) * kHammingBlock));
 
-  new_b_descriptors_.clear();
-  for (std::int32_t j : b_.new_elements) new_b_descriptors_.push_back(b[static_cast<std::size_t>(j)]);
-  all_b_.resize(b.size());
-  std::iota(all_b_.begin(), all_b_.end(), 0);
-  row_.resize(std::max(b.size(), new_b_descriptors_.size()));
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const bool all_of_b = a_.is_new[i] != 0;
-    const std::vector<Descriptor>& train = all_of_b ? b : new_b_descriptors_;
-    if (train.empty()) continue;
-    const int n = static_cast<int>(train.size());
-    kernels_->hamming_256_many(a[i].data(), train.front().data(), n, row_.data());
-    distances_computed_ += n;
-    offer_row(static_cast<std::int32_t>(i), row_.data(), all_of_b ? all_b_ : b_.new_elements);
+  for (std::int32_t j : b_.new_elements) {
+    kernels_->hamming_256_blocked(b[static_cast<std::size_t>(j)].data(), a_.blocked.data(), blocks_a, row_.data());
+    distances_computed_ += static_cast<long long>(a.size());
+    offer_row(b_, j, a_, static_cast<int>(a.size()));
+  }
+  if (b_.new_elements.size() == b.size()) return;  // every pair seen above
+  constexpr std::uint16_t kExcluded = 0x7fff;      // above every bound (core/bound_filter.hpp)
+  for (std::int32_t i : a_.new_elements) {
+    kernels_->hamming_256_blocked(a[static_cast<std::size_t>(i)].data(), b_.blocked.data(), blocks_b, row_.data());
+    distances_computed_ += static_cast<long long>(b.size() - b_.new_elements.size());
+    for (std::int32_t j : b_.new_elements) row_[static_cast<std::size_t>(j)] = kExcluded;
+    offer_row(a_, i, b_, static_cast<int>(b.size()));
   }
 }
 

@@ -56,6 +56,22 @@ struct NeighbourList {
   void insert(Neighbour neighbour);
 };
 
+// Inserts in `closer` order; the last entry of a full list falls off, and a list that fills up
+// stops claiming completeness (see offer for why that keeps the prefix invariant). Inline: the
+// sweep offers a few hundred thousand pairs.
+inline void NeighbourList::insert(Neighbour neighbour) {
+  const bool full = count == kLength;
+  if (full && !closer(neighbour, entries[static_cast<std::size_t>(kLength - 1)])) return;
+  int at = full ? kLength - 1 : count;
+  while (at > 0 && closer(neighbour, entries[static_cast<std::size_t>(at - 1)])) {
+    entries[static_cast<std::size_t>(at)] = entries[static_cast<std::size_t>(at - 1)];
+    --at;
+  }
+  entries[static_cast<std::size_t>(at)] = neighbour;
+  if (!full) ++count;
+  if (count == kLength) complete = false;
+}
+
 class SweepMatcher {
  public:
   SweepMatcher(const MatchOptions& options, const KernelTable& kernels);
@@ -72,11 +88,14 @@ class SweepMatcher {
   long long distances_computed() const { return distances_computed_; }
 
  private:
-  // One image's current set: its ids, and its features' lists of neighbours in the other set.
+  // One image's current set: its ids, its features' lists of neighbours in the other set with
+  // each list's bound() beside it (the filter's input), and this call's descriptors blocked.
   struct Side {
     std::vector<std::int32_t> ids;
     std::vector<std::int32_t> index_of_id;       // index in the current set, -1 when absent
     std::vector<NeighbourList> lists;
+    std::vector<std::int16_t> bounds;            // lists[i].bound(), or -1 where no list is kept
+    std::vector<std::uint32_t> blocked;          // this call's descriptors (core/hamming_blocked.hpp)
     std::vector<std::int32_t> new_index_of_old;  // this call: where each previous element went
     std::vector<std::uint8_t> is_new;            // this call: per element, new to the set
     std::vector<std::int32_t> new_elements;      // this call: their indices, ascending
@@ -84,8 +103,9 @@ class SweepMatcher {
 
   static bool renumber(Side& side, const std::vector<std::int32_t>& ids);
   static void forget_previous(Side& side);
+  bool keeps_lists(const Side& side) const { return &side == &a_ || mutual_; }
   void update_lists(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b);
-  void offer_row(std::int32_t query, const std::uint16_t* distances, const std::vector<std::int32_t>& trains);
+  void offer_row(Side& query_side, std::int32_t query, Side& train_side, int n_train);
   void recompute(NeighbourList& list, const Descriptor& query, const std::vector<Descriptor>& others);
   const NeighbourList& list_knowing(Side& side, int index, int wanted, const std::vector<Descriptor>& own,
                                     const std::vector<Descriptor>& others);
@@ -94,11 +114,8 @@ class SweepMatcher {
   const KernelTable* kernels_;
   bool mutual_;  // the cross check needs the lists of B too
   Side a_, b_;
-  std::vector<std::uint16_t> row_;
-  std::vector<Descriptor> new_b_descriptors_;
-  std::vector<std::int32_t> all_b_;           // 0, 1, ..., |B| - 1
-  std::vector<int> b_bounds_;                 // bound() of each list of B, kept in step
-  std::vector<std::int32_t> worth_offering_;
+  std::vector<std::uint16_t> row_;         // one query's distances to the other set
+  std::vector<std::int32_t> positions_;    // the filter's output for one chunk of row_
   long long distances_computed_ = 0;
 };
 

@@ -225,6 +225,54 @@ std::string check_hamming(const KernelTable& scalar, const KernelTable& other, c
   return "";
 }
 
+// The image's bytes as descriptors, blocked; the query is each of the first few descriptors.
+std::string check_hamming_blocked(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  const int n = std::min(src.width() * src.height() / 32, 300);
+  if (n < 1) return "";
+  std::vector<std::uint32_t> blocked;
+  block_descriptors(src.data(), n, blocked);
+  const int blocks = hamming_block_count(n);
+  std::vector<std::uint16_t> a(static_cast<std::size_t>(blocks * kHammingBlock)), b(a.size());
+  for (int query = 0; query < std::min(n, 5); ++query) {
+    for (int count : {blocks, blocks - 1, 1}) {
+      if (count < 1) continue;
+      std::fill(a.begin(), a.end(), 0xffff);
+      std::fill(b.begin(), b.end(), 0xffff);
+      scalar.hamming_256_blocked(src.data() + 32 * query, blocked.data(), count, a.data());
+      other.hamming_256_blocked(src.data() + 32 * query, blocked.data(), count, b.data());
+      const std::string diff = first_difference(a, b, other.name, "distance to train");
+      if (!diff.empty()) return where(src, "query " + std::to_string(query) + ", " + diff);
+    }
+  }
+  return "";
+}
+
+// Distances and bounds made from the image's bytes: distances in 0..256 plus the excluded value
+// 0x7fff, bounds in -1..256, at every query bound the matcher uses (-1 none, 256 all).
+std::string check_bound_filter(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+  const int n = src.width() * src.height();
+  if (n < 1) return "";
+  std::vector<std::uint16_t> distances(static_cast<std::size_t>(n));
+  std::vector<std::int16_t> bounds(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const int v = src.data()[k], u = src.data()[(k * 7 + 3) % n];
+    distances[static_cast<std::size_t>(k)] = static_cast<std::uint16_t>(v == 255 ? 0x7fff : v + (u & 1));
+    bounds[static_cast<std::size_t>(k)] = static_cast<std::int16_t>(u == 0 ? -1 : u == 255 ? 256 : u);
+  }
+  std::vector<std::int32_t> a(static_cast<std::size_t>(n)), b(a.size());
+  for (int query_bound : {-1, 0, 60, 128, 200, 256}) {
+    for (int count : {n, n - 1, std::min(n, 33)}) {
+      a.resize(static_cast<std::size_t>(scalar.positions_within_bounds(distances.data(), bounds.data(), count, query_bound, a.data())));
+      b.resize(static_cast<std::size_t>(other.positions_within_bounds(distances.data(), bounds.data(), count, query_bound, b.data())));
+      const std::string diff = first_difference(a, b, other.name, "position within bounds");
+      if (!diff.empty()) return where(src, "query bound " + std::to_string(query_bound) + ", " + diff);
+      a.resize(static_cast<std::size_t>(n));
+      b.resize(static_cast<std::size_t>(n));
+    }
+  }
+  return "";
+}
+
 std::string check_extract(KernelSet set, const GrayImage& src) {
   if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
   // The default mode (sub-pixel, pool, per-level guard, automatic F) and the paper's conventions.
@@ -264,7 +312,8 @@ std::string check_extract(KernelSet set, const GrayImage& src) {
 const std::vector<std::string>& validated_kernel_names() {
   static const std::vector<std::string> names = {"resize_bilinear_rows", "gaussian7_rows", "accumulate_histogram",
                                                  "fast9_scores_row",     "fast9_local_maxima_bits", "ic_moments",
-                                                 "rbrief_describe",      "hamming_256_many", "extract"};
+                                                 "rbrief_describe",      "hamming_256_many", "hamming_256_blocked",
+                                                 "positions_within_bounds", "extract"};
   return names;
 }
 
@@ -295,6 +344,8 @@ std::string validate_kernel(const std::string& kernel, KernelSet set, const std:
     else if (kernel == "ic_moments") diff = check_moments(scalar, other, image);
     else if (kernel == "rbrief_describe") diff = check_rbrief(scalar, other, image);
     else if (kernel == "hamming_256_many") diff = check_hamming(scalar, other, image);
+    else if (kernel == "hamming_256_blocked") diff = check_hamming_blocked(scalar, other, image);
+    else if (kernel == "positions_within_bounds") diff = check_bound_filter(scalar, other, image);
     else if (kernel == "extract") diff = check_extract(set, image);
     else return "unknown kernel '" + kernel + "'";
     if (!diff.empty()) return diff;

@@ -8,6 +8,7 @@
 namespace aief::simd_sse4_2 { KernelTable kernel_table(); }
 namespace aief::simd_avx2 { KernelTable kernel_table(); }
 namespace aief::simd_avx512bw { KernelTable kernel_table(); }
+namespace aief::simd_avx512vpopcntdq { decltype(&aief::hamming_256_blocked_scalar) hamming_256_blocked(); }
 #endif
 #if AIEF_HAVE_NEON64
 namespace aief::simd_neon64 { KernelTable kernel_table(); }
@@ -34,6 +35,7 @@ struct CpuKernels {
     if (has_sse4_2) sse4_2 = simd_sse4_2::kernel_table();
     if (has_avx2) avx2 = simd_avx2::kernel_table();
     if (has_avx512bw) avx512bw = simd_avx512bw::kernel_table();
+    if (has_avx512bw && __builtin_cpu_supports("avx512vpopcntdq")) avx512bw.hamming_256_blocked = simd_avx512vpopcntdq::hamming_256_blocked();
   }
 #endif
 #if AIEF_HAVE_NEON64

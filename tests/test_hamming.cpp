@@ -1,11 +1,14 @@
 // Hamming distance of 256-bit descriptors against a bit-by-bit count; the many-train form
-// equal to the single one, at any byte alignment.
+// equal to the single one, at any byte alignment; the blocked (transposed) form and the sweep
+// matcher's bound filter against their definitions.
 #include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "core/bound_filter.hpp"
 #include "core/hamming.hpp"
+#include "core/hamming_blocked.hpp"
 
 namespace aief {
 namespace {
@@ -62,6 +65,48 @@ TEST(Hamming, ManyEqualsSingle) {
         EXPECT_EQ(distances[static_cast<std::size_t>(n)], 0xffff) << "wrote past " << n << " distances";
       }
     }
+}
+
+TEST(Hamming, BlockedEqualsTheBitByBitCountAndPadsWithZeroDescriptors) {
+  const std::vector<std::uint8_t> train = random_bytes(70 * 32, 31);
+  const std::vector<std::uint8_t> query = random_bytes(32, 37);
+  const std::vector<std::uint8_t> zeros(32, 0);
+  for (int n : {1, 15, 16, 17, 70}) {
+    std::vector<std::uint32_t> blocked;
+    block_descriptors(train.data(), n, blocked);
+    const int blocks = hamming_block_count(n);
+    ASSERT_EQ(blocked.size(), static_cast<std::size_t>(blocks * kHammingBlock * kDescriptorWords));
+    std::vector<std::uint16_t> distances(static_cast<std::size_t>(blocks * kHammingBlock) + 1, 0xffff);
+    hamming_256_blocked_scalar(query.data(), blocked.data(), blocks, distances.data());
+    for (int j = 0; j < blocks * kHammingBlock; ++j) {
+      const std::uint8_t* expected_train = j < n ? train.data() + j * 32 : zeros.data();
+      ASSERT_EQ(distances[static_cast<std::size_t>(j)], hamming_bit_by_bit(query.data(), expected_train)) << "train " << j << " of " << n;
+    }
+    EXPECT_EQ(distances.back(), 0xffff) << "wrote past " << blocks << " blocks";
+  }
+}
+
+TEST(BoundFilter, KeepsExactlyThePositionsWithinEitherBound) {
+  std::mt19937 rng(41);
+  std::uniform_int_distribution<int> distance(0, 256), bound(-1, 256);
+  for (int n : {0, 1, 31, 32, 33, 100}) {
+    std::vector<std::uint16_t> distances(static_cast<std::size_t>(n));
+    std::vector<std::int16_t> bounds(static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) {
+      distances[static_cast<std::size_t>(k)] = static_cast<std::uint16_t>(k % 9 == 0 ? 0x7fff : distance(rng));  // 0x7fff: excluded
+      bounds[static_cast<std::size_t>(k)] = static_cast<std::int16_t>(bound(rng));
+    }
+    for (int query_bound : {-1, 0, 100, 256}) {
+      std::vector<std::int32_t> positions(static_cast<std::size_t>(n));
+      positions.resize(static_cast<std::size_t>(positions_within_bounds_scalar(distances.data(), bounds.data(), n, query_bound, positions.data())));
+      std::vector<std::int32_t> expected;
+      for (int k = 0; k < n; ++k) {
+        const int d = distances[static_cast<std::size_t>(k)];
+        if (d != 0x7fff && (d <= query_bound || d <= bounds[static_cast<std::size_t>(k)])) expected.push_back(k);
+      }
+      EXPECT_EQ(positions, expected) << "n " << n << ", query bound " << query_bound;
+    }
+  }
 }
 
 }  // namespace

@@ -117,26 +117,30 @@ TEST(NeighbourList, HoldsAnExactPrefixOfTheOtherSet) {
   EXPECT_EQ(whole.entries[0].index, 0);
 }
 
+// Under every kernel set (the blocked Hamming and the bound filter are kernels), against the
+// scalar brute force.
 TEST(SweepMatcher, EqualsBruteForceOnTiedRandomSetsThatChange) {
-  const KernelTable& kernels = kernel_table(KernelSet::auto_select);
+  const KernelTable& scalar = kernel_table(KernelSet::scalar);
   const int pool_size = 300;
   const std::vector<Descriptor> pool_a = tied_pool(pool_size, 1), pool_b = tied_pool(pool_size, 2);
-  for (const MatchOptions& rule : every_rule()) {
-    std::mt19937 rng(7);
-    SweepMatcher matcher(rule, kernels);
-    std::vector<std::int32_t> ids_a, ids_b;
-    for (int call = 0; call < 60; ++call) {
-      // Mostly small steps (the sweep's), some large ones that empty the lists, an empty set,
-      // and a call whose order changed.
-      const double churn = call % 10 == 9 ? 0.5 : 0.03;
-      const bool shuffle = call == 31;
-      ids_a = call == 20 ? std::vector<std::int32_t>{} : next_ids(ids_a, pool_size, call == 0 ? 0.6 : churn, shuffle, rng);
-      ids_b = call == 40 ? std::vector<std::int32_t>{0} : next_ids(ids_b, pool_size, call == 0 ? 0.6 : churn, false, rng);
-      const Selection a = select_ids(pool_a, ids_a), b = select_ids(pool_b, ids_b);
-      const std::vector<Match> expected = match_descriptors(a.descriptors, b.descriptors, rule, kernels);
-      const std::vector<Match> actual = matcher.match(a.descriptors, a.ids, b.descriptors, b.ids);
-      expect_same(expected, actual, "kind " + std::string(to_string(rule.kind)) + " max_distance " +
-                                        std::to_string(rule.max_distance) + " call " + std::to_string(call));
+  for (KernelSet set : available_kernel_sets()) {
+    for (const MatchOptions& rule : every_rule()) {
+      std::mt19937 rng(7);
+      SweepMatcher matcher(rule, kernel_table(set));
+      std::vector<std::int32_t> ids_a, ids_b;
+      for (int call = 0; call < 60; ++call) {
+        // Mostly small steps (the sweep's), some large ones that empty the lists, an empty set,
+        // and a call whose order changed.
+        const double churn = call % 10 == 9 ? 0.5 : 0.03;
+        const bool shuffle = call == 31;
+        ids_a = call == 20 ? std::vector<std::int32_t>{} : next_ids(ids_a, pool_size, call == 0 ? 0.6 : churn, shuffle, rng);
+        ids_b = call == 40 ? std::vector<std::int32_t>{0} : next_ids(ids_b, pool_size, call == 0 ? 0.6 : churn, false, rng);
+        const Selection a = select_ids(pool_a, ids_a), b = select_ids(pool_b, ids_b);
+        const std::vector<Match> expected = match_descriptors(a.descriptors, b.descriptors, rule, scalar);
+        const std::vector<Match> actual = matcher.match(a.descriptors, a.ids, b.descriptors, b.ids);
+        expect_same(expected, actual, std::string(to_string(set)) + " kind " + std::string(to_string(rule.kind)) + " max_distance " +
+                                          std::to_string(rule.max_distance) + " call " + std::to_string(call));
+      }
     }
   }
 }
