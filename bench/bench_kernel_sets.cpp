@@ -175,6 +175,19 @@ void register_kernel_set_benchmarks(int iterations) {
         }
       state.SetItemsProcessed(state.iterations() * n * n);
     });
+    add(name("hamming_256_blocked"), [in, k](benchmark::State& state) {  // the sweep matcher's layout
+      const int n = std::min(static_cast<int>(in->points.size()), 512);
+      std::vector<std::uint32_t> blocked;
+      block_descriptors(in->descriptors.data(), n, blocked);
+      const int blocks = hamming_block_count(n);
+      std::vector<std::uint16_t> distances(static_cast<std::size_t>(blocks * kHammingBlock));
+      for (auto _ : state)
+        for (int i = 0; i < n; ++i) {
+          k->hamming_256_blocked(in->descriptors.data() + 32 * i, blocked.data(), blocks, distances.data());
+          benchmark::DoNotOptimize(distances.data());
+        }
+      state.SetItemsProcessed(state.iterations() * n * n);
+    });
   }
 }
 
