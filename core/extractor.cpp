@@ -59,6 +59,7 @@ void Extractor::extract(ImageView image, Features& out) {
   const bool entropy_on = s.options.entropy != EntropyMeasure::off;
   const bool automatic = entropy_on && s.options.auto_threshold;
   double requested = entropy_on ? s.options.entropy_threshold : 0.0;
+  double effectiveness = 0;
   const bool level_guard = entropy_on && s.options.starvation_guard == StarvationGuard::level;
   std::vector<double>& thresholds = s.level_thresholds;
   thresholds.assign(static_cast<std::size_t>(levels), requested);
@@ -80,7 +81,9 @@ void Extractor::extract(ImageView image, Features& out) {
       });
   if (automatic) {
     auto_threshold_entropies(analysis, s.entropies);
-    requested = auto_entropy_threshold(s.entropies, s.options.auto_requires_two_classes).threshold_bits;
+    const AutoThreshold chosen = auto_entropy_threshold(s.entropies, s.options.auto_requires_two_classes);
+    requested = chosen.threshold_bits;
+    effectiveness = chosen.effectiveness;
     thresholds.assign(static_cast<std::size_t>(levels), requested);
     s.scheduler.for_each(levels, select_level);
   }
@@ -124,6 +127,7 @@ void Extractor::extract(ImageView image, Features& out) {
       info.entropy_threshold_used = std::min(info.entropy_threshold_used, thresholds[static_cast<std::size_t>(n)]);
   info.threshold_lowered = info.entropy_threshold_used < info.entropy_threshold_requested;
   info.image_entropy_bits = analysis.image_entropy_bits();
+  info.auto_threshold_effectiveness = effectiveness;
   info.blocks_total = analysis.blocks_total();
   info.blocks_kept = 0;
   for (int n = 0; n < levels; ++n) info.blocks_kept += analysis.level_blocks_kept(n, thresholds[static_cast<std::size_t>(n)]);

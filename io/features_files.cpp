@@ -31,6 +31,7 @@ void write_info(JsonWriter& json, const ExtractionInfo& info, const std::vector<
   json.field("threshold_lowered", info.threshold_lowered);
   json.field("image_entropy_bits", info.image_entropy_bits);
   json.field("blocks_total", info.blocks_total).field("blocks_kept", info.blocks_kept);
+  json.field("auto_threshold_effectiveness", info.auto_threshold_effectiveness);
   if (decoder_warnings) {
     json.key("decoder_warnings").begin_array();
     for (const std::string& warning : *decoder_warnings) json.value(warning);

@@ -39,6 +39,7 @@ PyFeatures to_python(const Features& features) {
   out.info["image_entropy_bits"] = info.image_entropy_bits;
   out.info["blocks_total"] = info.blocks_total;
   out.info["blocks_kept"] = info.blocks_kept;
+  out.info["auto_threshold_effectiveness"] = info.auto_threshold_effectiveness;
   out.image_width = features.image_width;
   out.image_height = features.image_height;
   return out;

@@ -120,6 +120,8 @@ TEST(AutoThreshold, FrameOfOneTextureKeepsEveryBlock) {
   options.auto_threshold = true;
   const Features features = extract(test::view_of(gray), options);
   EXPECT_EQ(features.info.entropy_threshold_requested, 0.0);
+  EXPECT_GT(features.info.auto_threshold_effectiveness, 0.0) << "the reason F = 0 is reported";
+  EXPECT_LT(features.info.auto_threshold_effectiveness, kAutoMinEffectiveness);
   EXPECT_EQ(features.info.blocks_kept, features.info.blocks_total);
   EXPECT_EQ(static_cast<int>(features.keypoints.size()), options.n_features);
 }
@@ -135,6 +137,7 @@ TEST(AutoThreshold, FrameWithASmoothPartDropsIt) {
   options.auto_threshold = true;
   const Features features = extract(test::view_of(gray), options);
   EXPECT_GT(features.info.entropy_threshold_requested, 2.0);
+  EXPECT_GE(features.info.auto_threshold_effectiveness, kAutoMinEffectiveness);
   EXPECT_LT(features.info.blocks_kept, features.info.blocks_total * 9 / 10);
   int in_ramp = 0;  // a block straddling the edge of the ramp holds texture: 40 px of margin
   for (const Keypoint& kp : features.keypoints) in_ramp += kp.x < ramp_end - 40 ? 1 : 0;

@@ -107,6 +107,7 @@ std::string first_difference(const Features& reference, const Features& other) {
   if (std::memcmp(&r.entropy_threshold_used, &o.entropy_threshold_used, sizeof(double)) != 0 ||
       std::memcmp(&r.image_entropy_bits, &o.image_entropy_bits, sizeof(double)) != 0 ||
       std::memcmp(&r.entropy_threshold_requested, &o.entropy_threshold_requested, sizeof(double)) != 0 ||
+      std::memcmp(&r.auto_threshold_effectiveness, &o.auto_threshold_effectiveness, sizeof(double)) != 0 ||
       r.threshold_lowered != o.threshold_lowered || r.blocks_total != o.blocks_total || r.blocks_kept != o.blocks_kept)
     return "extraction info differs (threshold used " + std::to_string(r.entropy_threshold_used) + " vs " +
            std::to_string(o.entropy_threshold_used) + ", blocks kept " + std::to_string(r.blocks_kept) + " vs " +

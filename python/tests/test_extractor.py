@@ -89,6 +89,7 @@ def test_result_arrays():
     assert features.octave.dtype == numpy.int32
     assert (features.image_width, features.image_height) == (800, 640)
     assert features.info["entropy_threshold_used"] == 4.0 and features.info["blocks_kept"] <= features.info["blocks_total"]
+    assert features.info["auto_threshold_effectiveness"] == 0.0  # a given F, not --threshold auto
 
 
 @pytest.mark.parametrize("image, message", [
