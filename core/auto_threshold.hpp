@@ -6,13 +6,29 @@
 // high-information blocks, histogram of 0.05-bit bins), lowered when needed so that the mask
 // keeps at least kAutoMinKeptShare of the blocks: on a scene that is textured everywhere Otsu
 // would otherwise cut through the texture itself.
+//
+// With the two-class test (the aief mode, issue 9), the split is used only when the entropies
+// form two classes. Otsu's effectiveness eta = between-class variance at the split / total
+// variance says how well one threshold separates them: 2/pi = 0.64 for a normal distribution,
+// 0.75 for a uniform one, towards 1 for two distinct populations. Below kAutoMinEffectiveness the
+// entropies are one population (a brick wall, gravel, foliage: texture everywhere), there is no
+// low-information class to drop, and F = 0 keeps every block (uniform ones aside, see
+// core/starvation_guard.hpp). 0.75 is the uniform spread: a frame must split better than an even
+// spread of entropies, which has no classes, to lose blocks.
 #include <vector>
 
 namespace aief {
 
 inline constexpr double kAutoMinKeptShare = 0.75;
+inline constexpr double kAutoMinEffectiveness = 0.75;
+
+struct AutoThreshold {
+  double threshold_bits = 0;   // F
+  double effectiveness = 0;    // Otsu's eta at the split, in [0, 1] (0 when all entropies are equal)
+};
 
 // Reorders `block_entropies_bits` (a selection runs in place, so a frame allocates nothing).
-double auto_entropy_threshold(std::vector<double>& block_entropies_bits);
+// `require_two_classes`: F = 0 when eta < kAutoMinEffectiveness.
+AutoThreshold auto_entropy_threshold(std::vector<double>& block_entropies_bits, bool require_two_classes);
 
 }  // namespace aief

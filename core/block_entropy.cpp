@@ -72,16 +72,21 @@ void accumulate_histogram_scalar(const std::uint8_t* data, std::ptrdiff_t stride
 }
 
 double histogram_entropy_bits(const std::uint32_t* hist) {
-  const std::uint64_t* table = c_log2_c_table();
-  std::uint64_t n = 0, sum = 0;
+  std::uint64_t n = 0;
   for (int k = 0; k < 256; ++k) n += hist[k];
-  if (n < kTableSize) {
+  return histogram_entropy_bits(hist, n);
+}
+
+double histogram_entropy_bits(const std::uint32_t* hist, std::uint64_t pixels) {
+  const std::uint64_t* table = c_log2_c_table();
+  std::uint64_t sum = 0;
+  if (pixels < kTableSize) {
     // Every count is in the table (a block's histogram): a loop without branches.
     for (int k = 0; k < 256; ++k) sum += table[hist[k]];
   } else {
     for (int k = 0; k < 256; ++k) sum += c_log2_c(hist[k], table);
   }
-  return entropy_from_sums(n, sum);
+  return entropy_from_sums(pixels, sum);
 }
 
 double intensity_entropy_bits(const std::uint32_t* hist) {
@@ -99,6 +104,11 @@ double intensity_entropy_bits(const std::uint32_t* hist) {
 double entropy_bits(const std::uint32_t* hist, EntropyMeasure measure) {
   assert(measure != EntropyMeasure::off);
   return measure == EntropyMeasure::intensity ? intensity_entropy_bits(hist) : histogram_entropy_bits(hist);
+}
+
+double entropy_bits(const std::uint32_t* hist, std::uint64_t pixels, EntropyMeasure measure) {
+  assert(measure != EntropyMeasure::off);
+  return measure == EntropyMeasure::intensity ? intensity_entropy_bits(hist) : histogram_entropy_bits(hist, pixels);
 }
 
 }  // namespace aief

@@ -11,10 +11,18 @@ struct Candidate {
   // Scores of the four neighbours in the score map (0 where not a corner at fast_min_threshold),
   // for the sub-pixel peak (core/keypoint_position.hpp).
   std::uint8_t score_left = 0, score_right = 0, score_up = 0, score_down = 0;
+  // Added to the score when candidates are ranked: the four neighbours' scores with
+  // CandidateRanking::cross_score (the score map summed over the cross), 0 with peak_score.
+  std::int32_t rank_extra = 0;
 };
 
-// The one ranking of candidates (DESIGN.md section 1): higher score first, then y, then x.
+// What candidates are ranked by: the score, or the cross sum (ExtractorOptions::candidate_ranking).
+inline std::int32_t rank_strength(const Candidate& c) { return c.score + c.rank_extra; }
+
+// The one ranking of candidates (DESIGN.md section 1): higher strength first, then higher score,
+// then y, then x. With rank_extra = 0 (peak_score) that is score, then y, then x.
 inline bool stronger(const Candidate& a, const Candidate& b) {
+  if (rank_strength(a) != rank_strength(b)) return rank_strength(a) > rank_strength(b);
   if (a.score != b.score) return a.score > b.score;
   if (a.y != b.y) return a.y < b.y;
   return a.x < b.x;

@@ -18,10 +18,10 @@ std::int64_t candidate_pool_size(double pool_factor, int n_wanted);
 
 // Buffers the pool reuses between calls.
 struct CandidatePoolScratch {
-  std::vector<std::int32_t> tied;  // indices of the candidates at the cut-off score
+  std::vector<std::int32_t> tied;  // indices of the candidates at the cut-off strength
 };
 
-// The `pool_size` strongest candidates of `blocks` (stronger(): score, then y, then x), copied
+// The `pool_size` strongest candidates of `blocks` (stronger(): strength, score, y, x), copied
 // block by block into `pooled` (each block's candidates keep their order) with their indices into
 // `candidates` in `pooled_index` and the pooled ranges in `pooled_blocks` (blocks left empty are
 // dropped). Requires pool_size >= 0; when the blocks hold no more than pool_size candidates they

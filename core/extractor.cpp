@@ -80,7 +80,7 @@ void Extractor::extract(ImageView image, Features& out) {
       });
   if (automatic) {
     auto_threshold_entropies(analysis, s.entropies);
-    requested = auto_entropy_threshold(s.entropies);
+    requested = auto_entropy_threshold(s.entropies, s.options.auto_requires_two_classes).threshold_bits;
     thresholds.assign(static_cast<std::size_t>(levels), requested);
     s.scheduler.for_each(levels, select_level);
   }

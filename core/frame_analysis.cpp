@@ -123,9 +123,11 @@ void FrameAnalysis::compute_entropies(int n) {
       const int y0 = grid.row_edges[static_cast<std::size_t>(r)], y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
       std::memset(hist, 0, sizeof hist);
       kernels_->accumulate_histogram(pixels.row(y0) + x0, pixels.stride, x1 - x0, y1 - y0, hist);
-      level.block_entropy[static_cast<std::size_t>(r * grid.cols() + c)] = entropy_bits(hist, options_.entropy);
+      const int area = (x1 - x0) * (y1 - y0);
+      level.block_entropy[static_cast<std::size_t>(r * grid.cols() + c)] =
+          entropy_bits(hist, static_cast<std::uint64_t>(area), options_.entropy);
       level.block_uniform[static_cast<std::size_t>(r * grid.cols() + c)] =
-          hist[pixels.row(y0)[x0]] == static_cast<std::uint32_t>((x1 - x0) * (y1 - y0)) ? 1 : 0;
+          hist[pixels.row(y0)[x0]] == static_cast<std::uint32_t>(area) ? 1 : 0;
       if (n == 0)
         for (int k = 0; k < 256; ++k) whole[k] += hist[k];
     }
@@ -202,17 +204,18 @@ void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end,
   const MutableImageView scores = level.score_band.mutable_view();
 
   // Local maxima of the score map (threshold-free, see core/fast9.hpp) over the whole run, one
-  // bit row per level row; the strong ones (score >= fast_threshold) only OR-ed over the rows,
-  // which is all the retry rule asks.
+  // bit row per level row, and the strong ones (score >= fast_threshold) likewise, also OR-ed
+  // over the rows, which is what the retry rule asks.
   const int words = fast9_maxima_words(x_end - x_begin);
   std::vector<std::uint64_t>& bits = level.scratch_maxima_bits;
-  bits.resize(static_cast<std::size_t>(words) * static_cast<std::size_t>(y1 - y0 + 2));
+  bits.resize(static_cast<std::size_t>(words) * static_cast<std::size_t>(2 * (y1 - y0) + 1));
   std::uint64_t* strong_any = bits.data();
-  std::uint64_t* strong_row = strong_any + words;
-  std::uint64_t* maxima_rows = strong_row + words;
+  std::uint64_t* strong_rows = strong_any + words;
+  std::uint64_t* maxima_rows = strong_rows + static_cast<std::ptrdiff_t>(y1 - y0) * words;
   std::fill(strong_any, strong_any + words, std::uint64_t{0});
   for (int y = y0; y < y1; ++y) {
     const std::uint8_t* row = scores.row(y - score_top);
+    std::uint64_t* strong_row = strong_rows + static_cast<std::ptrdiff_t>(y - y0) * words;
     kernels_->fast9_local_maxima_bits(row - scores.stride, row, row + scores.stride, x_begin, x_end,
                                       options_.fast_threshold, maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words,
                                       strong_row);
@@ -220,7 +223,8 @@ void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end,
   }
 
   // Each block takes its bit range, in raster order: the strong maxima, or all of them when it
-  // has no strong one (ORB-SLAM2's retry rule: fast_threshold, else fast_min_threshold).
+  // has no strong one (ORB-SLAM2's retry rule: fast_threshold, else fast_min_threshold). Reading
+  // the strong bit rows skips the weak maxima of a strong block without a compare per maximum.
   for (int c = c_begin; c < c_end; ++c) {
     const int block = r * grid.cols() + c;
     const int begin = grid.col_edges[static_cast<std::size_t>(c)] - x_begin;
@@ -236,25 +240,27 @@ void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end,
     };
     bool any_strong = false;
     for (int k = k_first; k <= k_last; ++k) any_strong = any_strong || block_bits(strong_any, k) != 0;
-    const int strong_at = options_.fast_threshold;
+    const std::uint64_t* taken_rows = any_strong ? strong_rows : maxima_rows;
+    const bool rank_by_cross = options_.candidate_ranking == CandidateRanking::cross_score;
     const std::size_t first = level.candidates.size();
     const auto take = [&](std::uint64_t word, int y, int k) {
       const std::uint8_t* row = scores.row(y - score_top);
       for (; word != 0; word &= word - 1) {
         const int x = x_begin + 64 * k + std::countr_zero(word);
-        if (any_strong && row[x] < strong_at) continue;
-        level.candidates.push_back({x, y, row[x], row[x - 1], row[x + 1], row[x - scores.stride], row[x + scores.stride]});
+        Candidate& c = level.candidates.emplace_back(
+            Candidate{x, y, row[x], row[x - 1], row[x + 1], row[x - scores.stride], row[x + scores.stride]});
+        if (rank_by_cross) c.rank_extra = c.score_left + c.score_right + c.score_up + c.score_down;
       }
     };
     if (k_first == k_last) {  // the usual block, inside one word: one masked word per row
       const std::uint64_t mask = first_mask & last_mask;
-      const std::uint64_t* maxima = maxima_rows + k_first;
-      for (int y = y0; y < y1; ++y, maxima += words)
-        if (const std::uint64_t word = *maxima & mask) take(word, y, k_first);
+      const std::uint64_t* taken = taken_rows + k_first;
+      for (int y = y0; y < y1; ++y, taken += words)
+        if (const std::uint64_t word = *taken & mask) take(word, y, k_first);
     } else {
       for (int y = y0; y < y1; ++y)
         for (int k = k_first; k <= k_last; ++k)
-          take(block_bits(maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words, k), y, k);
+          take(block_bits(taken_rows + static_cast<std::ptrdiff_t>(y - y0) * words, k), y, k);
     }
     level.block_detected[static_cast<std::size_t>(block)] = 1;
     level.block_candidates[static_cast<std::size_t>(block)] = {static_cast<std::int32_t>(first),

@@ -57,6 +57,8 @@ void ExtractorOptions::validate() const {
           "candidate_pool must be >= 1 (or infinity: no pool), got " + str(candidate_pool));
   require(starvation_guard == StarvationGuard::frame || starvation_guard == StarvationGuard::level,
           "starvation_guard has an unknown value " + str(static_cast<int>(starvation_guard)));
+  require(candidate_ranking == CandidateRanking::peak_score || candidate_ranking == CandidateRanking::cross_score,
+          "candidate_ranking has an unknown value " + str(static_cast<int>(candidate_ranking)));
   require_int_range("threads", threads, 0, 256);
   require(max_image_pixels >= 1 && max_image_pixels <= kLargestMaxImagePixels,
           "max_image_pixels must be in [1, " + str(kLargestMaxImagePixels) +
@@ -73,6 +75,8 @@ ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
   base.candidate_pool = std::numeric_limits<double>::infinity();
   base.starvation_guard = StarvationGuard::frame;
   base.auto_skips_uniform_blocks = false;
+  base.candidate_ranking = CandidateRanking::peak_score;
+  base.auto_requires_two_classes = false;
   switch (mode) {
     case Mode::aief:
       base.distribution = Distribution::proportional;
@@ -82,6 +86,8 @@ ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
       base.candidate_pool = defaults.candidate_pool;
       base.starvation_guard = defaults.starvation_guard;
       base.auto_skips_uniform_blocks = defaults.auto_skips_uniform_blocks;
+      base.candidate_ranking = defaults.candidate_ranking;
+      base.auto_requires_two_classes = defaults.auto_requires_two_classes;
       break;
     case Mode::aief_paper:
       base.distribution = Distribution::proportional;
@@ -174,6 +180,16 @@ std::string_view to_string(CoordinateMap value) {
 
 std::string_view to_string(StarvationGuard value) {
   return value == StarvationGuard::frame ? "frame" : "level";
+}
+
+std::string_view to_string(CandidateRanking value) {
+  return value == CandidateRanking::peak_score ? "peak" : "cross";
+}
+
+CandidateRanking parse_candidate_ranking(std::string_view name) {
+  if (name == "cross") return CandidateRanking::cross_score;
+  if (name == "peak") return CandidateRanking::peak_score;
+  throw Error("unknown candidate ranking '" + std::string(name) + "' (expected cross or peak)");
 }
 
 CoordinateMap parse_coordinate_map(std::string_view name) {

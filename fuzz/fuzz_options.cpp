@@ -56,6 +56,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.entropy = static_cast<aief::EntropyMeasure>(in.take<std::uint8_t>() % 4);
   options.threads = in.take<std::uint8_t>() % 3;
   options.kernels = static_cast<aief::KernelSet>(in.take<std::uint8_t>() % 6);
+  options.candidate_ranking = static_cast<aief::CandidateRanking>(in.take<std::uint8_t>() % 3);
+  options.auto_requires_two_classes = (in.take<std::uint8_t>() & 1) != 0;
   try {
     aief::Extractor extractor(options);
     const aief::Features features = extractor.extract({test_image().data(), 97, 83, 97});

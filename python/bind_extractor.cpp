@@ -36,8 +36,8 @@ namespace {
 // The quality options of issue 9 refine the mode; None keeps the mode's value.
 struct QualityOverrides {
   py::object pool;  // a number >= 1, or "inf" / "off"
-  std::optional<std::string> coordinates, starvation_guard;
-  std::optional<bool> subpixel, auto_skips_uniform_blocks;
+  std::optional<std::string> coordinates, starvation_guard, ranking;
+  std::optional<bool> subpixel, auto_skips_uniform_blocks, auto_requires_two_classes;
 };
 
 void apply(const QualityOverrides& q, ExtractorOptions& options) {
@@ -53,6 +53,8 @@ void apply(const QualityOverrides& q, ExtractorOptions& options) {
   if (q.starvation_guard) options.starvation_guard = parse_starvation_guard(*q.starvation_guard);
   if (q.subpixel) options.subpixel = *q.subpixel;
   if (q.auto_skips_uniform_blocks) options.auto_skips_uniform_blocks = *q.auto_skips_uniform_blocks;
+  if (q.ranking) options.candidate_ranking = parse_candidate_ranking(*q.ranking);
+  if (q.auto_requires_two_classes) options.auto_requires_two_classes = *q.auto_requires_two_classes;
 }
 
 ExtractorOptions options_from(int n_features, const std::string& mode, const py::object& threshold, int levels, double scale,
@@ -102,6 +104,8 @@ py::dict options_dict(const ExtractorOptions& o) {
   d["candidate_pool"] = o.candidate_pool;
   d["starvation_guard"] = std::string(to_string(o.starvation_guard));
   d["auto_skips_uniform_blocks"] = o.auto_skips_uniform_blocks;
+  d["candidate_ranking"] = std::string(to_string(o.candidate_ranking));
+  d["auto_requires_two_classes"] = o.auto_requires_two_classes;
   d["kernels"] = std::string(to_string(o.kernels));
   d["threads"] = o.threads;
   d["max_image_pixels"] = o.max_image_pixels;
@@ -130,14 +134,17 @@ void bind_extractor(py::module_& m) {
   const ExtractorOptions d;
   py::class_<PyExtractor>(m, "Extractor",
                           "ORB features with the AIEF entropy mask. Defaults are the C++ ExtractorOptions'; "
-                          "pool, coordinates, subpixel, starvation_guard and auto_skips_uniform_blocks left None "
+                          "pool, coordinates, subpixel, starvation_guard, auto_skips_uniform_blocks, ranking and "
+                          "auto_requires_two_classes left None "
                           "keep the mode's values (as the CLI's flags). Invalid values raise aief.Error.")
       .def(py::init([](int n_features, const std::string& mode, const py::object& threshold, int levels, double scale,
                        int threads, const std::string& kernels, int fast_threshold, int fast_min_threshold, int block_size,
                        const std::optional<std::string>& entropy, long long max_image_pixels, const py::object& pool,
                        const std::optional<std::string>& coordinates, const std::optional<bool>& subpixel,
-                       const std::optional<std::string>& starvation_guard, const std::optional<bool>& auto_skips_uniform_blocks) {
-             const QualityOverrides quality{pool, coordinates, starvation_guard, subpixel, auto_skips_uniform_blocks};
+                       const std::optional<std::string>& starvation_guard, const std::optional<bool>& auto_skips_uniform_blocks,
+                       const std::optional<std::string>& ranking, const std::optional<bool>& auto_requires_two_classes) {
+             const QualityOverrides quality{pool,     coordinates, starvation_guard,         ranking,
+                                            subpixel, auto_skips_uniform_blocks, auto_requires_two_classes};
              return std::make_unique<PyExtractor>(options_from(n_features, mode, threshold, levels, scale, threads, kernels,
                                                                fast_threshold, fast_min_threshold, block_size, entropy,
                                                                max_image_pixels, quality));
@@ -150,7 +157,8 @@ void bind_extractor(py::module_& m) {
            py::arg("block_size") = d.block_size, py::arg("entropy") = py::none(),
            py::arg("max_image_pixels") = d.max_image_pixels, py::arg("pool") = py::none(), py::arg("coordinates") = py::none(),
            py::arg("subpixel") = py::none(), py::arg("starvation_guard") = py::none(),
-           py::arg("auto_skips_uniform_blocks") = py::none())
+           py::arg("auto_skips_uniform_blocks") = py::none(), py::arg("ranking") = py::none(),
+           py::arg("auto_requires_two_classes") = py::none())
       .def("extract", &PyExtractor::extract, py::arg("image"),
            "Features of a 2-D uint8 gray image (any strides; not copied when its rows are contiguous) or an "
            "H x W x 3 BGR / H x W x 4 BGRA uint8 image (converted to gray as the aief CLI converts files). "

@@ -160,6 +160,18 @@ TEST(BlockEntropy, MeasureSelection) {
   const std::vector<std::uint32_t> hist = histogram_of(pixels, 4, 1);
   EXPECT_EQ(entropy_bits(hist.data(), EntropyMeasure::histogram), histogram_entropy_bits(hist.data()));
   EXPECT_EQ(entropy_bits(hist.data(), EntropyMeasure::intensity), intensity_entropy_bits(hist.data()));
+  EXPECT_EQ(entropy_bits(hist.data(), 4, EntropyMeasure::histogram), histogram_entropy_bits(hist.data()));
+  EXPECT_EQ(entropy_bits(hist.data(), 4, EntropyMeasure::intensity), intensity_entropy_bits(hist.data()));
+}
+
+TEST(BlockEntropy, GivenPixelCountEqualsTheSummedOne) {
+  // Blocks (counts in the table) and a histogram past the table's 4096 counts.
+  for (const auto& [width, height] : {std::pair{32, 32}, std::pair{63, 47}, std::pair{1, 1}, std::pair{300, 200}}) {
+    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height);
+    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<std::uint8_t>((i * 7919 + i / 13) % 97);
+    const std::vector<std::uint32_t> hist = histogram_of(pixels, width, height);
+    EXPECT_EQ(histogram_entropy_bits(hist.data(), pixels.size()), histogram_entropy_bits(hist.data())) << width << "x" << height;
+  }
 }
 
 }  // namespace

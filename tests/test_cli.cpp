@@ -69,6 +69,9 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --subpixel yes", "--subpixel"},
       {"extract " + image + " --starvation-guard block", "unknown starvation guard"},
       {"extract " + image + " --auto-uniform-blocks maybe", "--auto-uniform-blocks"},
+      {"extract " + image + " --ranking harris", "unknown candidate ranking"},
+      {"extract " + image + " --auto-two-classes yes", "--auto-two-classes"},
+      {"eval --dataset . --ranking harris", "unknown candidate ranking"},
       {"eval --dataset . --methods orb", "unknown method"},
       // Flags a mode cannot honour are refused with the conflict named, never dropped.
       {"extract " + image + " --mode orbslam2 --threshold 7", "--threshold sets F of the entropy mask, which --mode orbslam2"},
@@ -189,6 +192,27 @@ TEST(Cli, AJpegCutShortIsExtractedWithTheDecodersWarning) {
   const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(json.find("\"decoder_warnings\":["), std::string::npos);
   EXPECT_NE(json.find("a file cut short"), std::string::npos);
+}
+
+TEST(Cli, EvalRegeneratesItsReportAndKeepsTheHandWrittenSection) {
+  const aief::test::TempFolder folder("aief_cli_eval");
+  const std::filesystem::path report = folder.path() / "report.md";
+  const std::string marker = "<!-- hand-written below: aief eval keeps this line and all after it -->";
+  std::ofstream(report) << "stale generated table\n" << marker << "\n## Notes\nmeasured by hand\n";
+  const std::string dataset = std::filesystem::path(aief::test::sample_path("graf", "img1.png")).parent_path().parent_path().string();
+  const std::string command = "eval --dataset " + dataset + " --sequences graf --pairs 1-2 --methods aief_auto --repeat 1 -o " +
+                              report.string();
+  for (int run_index = 0; run_index < 2; ++run_index) {  // twice: the section is kept once, not stacked
+    const CliResult r = run(command);
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::ifstream in(report);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("stale generated table"), std::string::npos);
+    EXPECT_EQ(text.find("# aief evaluation"), 0u);
+    const std::size_t at = text.find(marker);
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_EQ(text.substr(at), marker + "\n## Notes\nmeasured by hand\n");
+  }
 }
 
 TEST(Cli, ExtractWritesJsonYamlAndPicture) {

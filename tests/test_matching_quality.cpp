@@ -209,13 +209,18 @@ TEST(StarvationGuard, EveryLevelGetsItsBudgetWithAutoFOnATextureThatSmoothsOut) 
   ExtractorOptions paper = options_for_mode(Mode::aief_paper);
   paper.auto_threshold = true;
   const std::vector<int> paper_counts = keypoints_per_level(Extractor(paper).extract(view_of(noise)), options.n_levels);
+  // The default mode, and its guard alone under Otsu's split (the two-class test may keep every block).
+  ExtractorOptions otsu_split = options;
+  otsu_split.auto_requires_two_classes = false;
   const std::vector<int> counts = keypoints_per_level(Extractor(options).extract(view_of(noise)), options.n_levels);
+  const std::vector<int> split_counts = keypoints_per_level(Extractor(otsu_split).extract(view_of(noise)), options.n_levels);
   int paper_starved = 0;
   for (std::size_t n = 0; n < geometry.size(); ++n) {
     SCOPED_TRACE(testing::Message() << "level " << n << ": " << available[n] << " candidates at F = 0, budget "
                                     << geometry[n].n_features);
     if (available[n] < geometry[n].n_features) continue;
     EXPECT_EQ(counts[n], geometry[n].n_features);
+    EXPECT_EQ(split_counts[n], geometry[n].n_features);
     paper_starved += paper_counts[n] < geometry[n].n_features ? 1 : 0;
   }
   EXPECT_GT(paper_starved, 0) << "the texture no longer starves the frame-wide rule: the test proves nothing";
@@ -243,6 +248,8 @@ TEST(AutoThreshold, UniformBlocksDoNotSteerTheSplit) {
   gray.copyTo(framed(cv::Rect(200, 160, gray.cols, gray.rows)));
   ExtractorOptions options;
   options.auto_threshold = true;
+  // Otsu's split itself (graf alone is one class, which the two-class test would keep whole).
+  options.auto_requires_two_classes = false;
   const double skipping = Extractor(options).extract(view_of(framed)).info.entropy_threshold_requested;
   options.auto_skips_uniform_blocks = false;
   const double counting = Extractor(options).extract(view_of(framed)).info.entropy_threshold_requested;

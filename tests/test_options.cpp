@@ -66,6 +66,7 @@ TEST(Options, EveryInvalidValueIsNamed) {
       {"candidate_pool", [](ExtractorOptions& o) { o.candidate_pool = std::numeric_limits<double>::quiet_NaN(); }},
       {"coordinates", [](ExtractorOptions& o) { o.coordinates = static_cast<CoordinateMap>(7); }},
       {"starvation_guard", [](ExtractorOptions& o) { o.starvation_guard = static_cast<StarvationGuard>(7); }},
+      {"candidate_ranking", [](ExtractorOptions& o) { o.candidate_ranking = static_cast<CandidateRanking>(5); }},
   };
   (void)nan;
   (void)inf;
@@ -123,6 +124,9 @@ TEST(Options, OnlyTheAiefModeTakesTheMatchingQualityDefaults) {
   EXPECT_EQ(aief.subpixel, defaults.subpixel);
   EXPECT_EQ(aief.candidate_pool, defaults.candidate_pool);
   EXPECT_EQ(aief.starvation_guard, defaults.starvation_guard);
+  EXPECT_EQ(aief.candidate_ranking, defaults.candidate_ranking);
+  EXPECT_EQ(aief.auto_requires_two_classes, defaults.auto_requires_two_classes);
+  EXPECT_TRUE(defaults.auto_requires_two_classes);
   EXPECT_EQ(defaults.coordinates, CoordinateMap::pixel_centre);
   for (Mode mode : {Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy}) {
     const ExtractorOptions o = options_for_mode(mode);
@@ -132,6 +136,8 @@ TEST(Options, OnlyTheAiefModeTakesTheMatchingQualityDefaults) {
     EXPECT_TRUE(std::isinf(o.candidate_pool));
     EXPECT_EQ(o.starvation_guard, StarvationGuard::frame);
     EXPECT_FALSE(o.auto_skips_uniform_blocks);
+    EXPECT_EQ(o.candidate_ranking, CandidateRanking::peak_score);
+    EXPECT_FALSE(o.auto_requires_two_classes);
   }
   EXPECT_EQ(options_for_mode(Mode::aief_paper).distribution, Distribution::proportional);
 }

@@ -108,7 +108,7 @@ std::vector<FlagSpec> extractor_flags() {
           {"--entropy", "", true},       {"--fast-threshold", "", true}, {"--fast-min-threshold", "", true},
           {"--kernels", "", true},       {"--threads", "", true},       {"--pool", "", true},
           {"--coordinates", "", true},   {"--subpixel", "", true},      {"--starvation-guard", "", true},
-          {"--auto-uniform-blocks", "", true}};
+          {"--auto-uniform-blocks", "", true}, {"--ranking", "", true},       {"--auto-two-classes", "", true}};
 }
 
 ExtractorOptions extractor_options(const Args& args) {
@@ -148,6 +148,9 @@ ExtractorOptions extractor_options(const Args& args) {
         throw UsageError("--auto-uniform-blocks expects skip or count, got '" + *uniform + "'");
       options.auto_skips_uniform_blocks = *uniform == "skip";
     }
+    if (const auto ranking = args.get("--ranking")) options.candidate_ranking = parse_candidate_ranking(*ranking);
+    if (const auto two = args.get("--auto-two-classes"))
+      options.auto_requires_two_classes = parse_on_off("--auto-two-classes", *two);
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
@@ -198,7 +201,14 @@ std::string extractor_flags_help() {
       << to_string(d.starvation_guard) << ")\n"
       << "  --auto-uniform-blocks skip|count  whether one-gray-level blocks take part in the automatic F\n"
       << "                        (default " << (d.auto_skips_uniform_blocks ? "skip" : "count") << ")\n"
-      << "  (--pool, --coordinates, --subpixel, --starvation-guard and --auto-uniform-blocks apply after --mode)\n";
+      << "  --ranking cross|peak  what the pool and the distribution rank candidates by: cross = FAST scores\n"
+      << "                        summed over the corner and its 4 neighbours, peak = the corner's score\n"
+      << "                        (default " << to_string(d.candidate_ranking) << ")\n"
+      << "  --auto-two-classes on|off  automatic F: split only when the block entropies form two classes\n"
+      << "                        (Otsu's effectiveness >= 0.75), else F = 0 keeps every block (default "
+      << (d.auto_requires_two_classes ? "on" : "off") << ")\n"
+      << "  (--pool, --coordinates, --subpixel, --starvation-guard, --auto-uniform-blocks, --ranking and\n"
+      << "   --auto-two-classes apply after --mode)\n";
   return out.str();
 }
 

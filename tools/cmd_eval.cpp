@@ -2,6 +2,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 #include <sstream>
 
@@ -39,7 +41,8 @@ void print_help() {
             << "  --methods LIST        comma-separated JSON keys of the rows to run (default all):\n"
             << "                        orbslam2, quadtree_entropy, aief_paper_adaptive, aief_paper_auto,\n"
             << "                        aief_adaptive, aief_auto, opencv_orb, opencv_sift\n"
-            << "  --pool P|inf, --coordinates C, --subpixel on|off, --starvation-guard G\n"
+            << "  --pool P|inf, --coordinates C, --subpixel on|off, --starvation-guard G, --ranking R,\n"
+            << "  --auto-two-classes on|off\n"
             << "                        the AIEF rows' options, as in aief extract (defaults: the library's)\n";
 }
 
@@ -69,6 +72,8 @@ int run_eval(const Arguments& arguments) {
                               {"--coordinates", "", true},
                               {"--subpixel", "", true},
                               {"--starvation-guard", "", true},
+                              {"--ranking", "", true},
+                              {"--auto-two-classes", "", true},
                               {"--help", "-h", false}});
   if (args.has("--help")) {
     print_help();
@@ -101,6 +106,11 @@ int run_eval(const Arguments& arguments) {
       settings.aief.subpixel = *subpixel == "on";
     }
     if (const auto guard = args.get("--starvation-guard")) settings.aief.starvation_guard = parse_starvation_guard(*guard);
+    if (const auto ranking = args.get("--ranking")) settings.aief.candidate_ranking = parse_candidate_ranking(*ranking);
+    if (const auto two = args.get("--auto-two-classes")) {
+      if (*two != "on" && *two != "off") throw Error("--auto-two-classes expects on or off, got '" + *two + "'");
+      settings.aief.auto_requires_two_classes = *two == "on";
+    }
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
@@ -148,7 +158,14 @@ int run_eval(const Arguments& arguments) {
   const std::filesystem::path plots_folder = report_path.parent_path() / plots_name;
   if (!report_path.parent_path().empty()) std::filesystem::create_directories(report_path.parent_path());
   const std::vector<std::string> plots = eval::write_plots(run, plots_folder.string());
-  io::write_file_atomically(output, eval::markdown_report(run, plots_name));
+  std::string hand_written;  // kept from the report this one replaces
+  if (std::ifstream previous{output}) {
+    const std::string text((std::istreambuf_iterator<char>(previous)), std::istreambuf_iterator<char>());
+    hand_written = eval::hand_written_section(text);
+  }
+  std::string report = eval::markdown_report(run, plots_name);
+  if (!hand_written.empty()) report += "\n" + hand_written;
+  io::write_file_atomically(output, report);
   std::filesystem::path json_path = report_path;
   json_path.replace_extension(".json");
   io::write_file_atomically(json_path.string(), eval::json_report(run));

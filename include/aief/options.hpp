@@ -41,6 +41,12 @@ enum class StarvationGuard {
   level,  // lower F per level while the level's kept blocks hold < its budget N_n
 };
 
+// What a level ranks its candidates by, in the candidate pool and the distribution.
+enum class CandidateRanking {
+  peak_score,   // the FAST score of the corner pixel (ORB-SLAM2, the paper)
+  cross_score,  // the FAST score map summed over the corner and its four neighbours (issue 9)
+};
+
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
   aief,              // AIEF with the matching-quality fixes of issue 9 (the defaults below)
@@ -74,6 +80,11 @@ struct ExtractorOptions {
   // level; infinity = no pool (the paper). 1.25: a quarter more than the budget, so the water level
   // still chooses; measured against 1, 1.1, 1.5, 2, 3 and none in docs/evaluation.md.
   double candidate_pool = 1.25;
+  // Ranking of candidates in the pool and the distribution (ties: peak score, then y, then x).
+  // A single pixel's FAST score is the extreme of a noisy max-min test; a real corner keeps a
+  // response on the pixels beside it, so the sum over the cross measures its strength over an area
+  // (as Harris integrates over a window) at no extra pass: the scores are in the score map.
+  CandidateRanking candidate_ranking = CandidateRanking::cross_score;
   // With entropy on: per level (each level gets its budget when its blocks can give it) or
   // frame-wide (the paper mode's rule). With `level`, what a level still lacks (its kept blocks
   // hold fewer candidates than its budget, entropy on or off) goes to the levels with unselected
@@ -82,6 +93,11 @@ struct ExtractorOptions {
   // Automatic F: uniform blocks (one gray level: the black border of a warped image, saturated
   // sky) cannot hold a corner and are left out of Otsu's split. false: every block counts.
   bool auto_skips_uniform_blocks = true;
+  // Automatic F: Otsu's split only when the block entropies fall into two classes, i.e. when its
+  // effectiveness (between-class over total variance) reaches kAutoMinEffectiveness
+  // (core/auto_threshold.hpp); otherwise the frame has no low-information class and F = 0 keeps
+  // every block. false: always Otsu's split (capped to keep three quarters of the blocks).
+  bool auto_requires_two_classes = true;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
@@ -102,12 +118,14 @@ std::string_view to_string(KernelSet value);
 std::string_view to_string(Mode value);
 std::string_view to_string(CoordinateMap value);
 std::string_view to_string(StarvationGuard value);
+std::string_view to_string(CandidateRanking value);
 Distribution parse_distribution(std::string_view name);
 EntropyMeasure parse_entropy_measure(std::string_view name);
 KernelSet parse_kernel_set(std::string_view name);
 Mode parse_mode(std::string_view name);
 CoordinateMap parse_coordinate_map(std::string_view name);
 StarvationGuard parse_starvation_guard(std::string_view name);
+CandidateRanking parse_candidate_ranking(std::string_view name);
 // A candidate pool factor P: a number >= 1, or "inf" / "off" for no pool.
 double parse_candidate_pool(std::string_view text);
 

@@ -34,6 +34,8 @@ def test_options_reach_the_engine_as_the_cli_flags_do(cli, tmp_path):
      dict(pool=2, coordinates="scaled", subpixel=False, starvation_guard="frame", auto_skips_uniform_blocks=False,
           threshold="auto")),
     (["--pool", "inf"], dict(pool="inf")),
+    (["--ranking", "peak", "--auto-two-classes", "off", "--threshold", "auto"],
+     dict(ranking="peak", auto_requires_two_classes=False, threshold="auto")),
 ])
 def test_modes_and_quality_options_as_the_cli_flags(cli, tmp_path, flags, kwargs):
     path = sample_path("graf")

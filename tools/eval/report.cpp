@@ -113,6 +113,11 @@ MethodSummary summarize(const EvalRun& run, std::size_t m) {
 
 }  // namespace
 
+std::string hand_written_section(const std::string& previous_report) {
+  const std::size_t at = previous_report.find(kHandWrittenMarker);
+  return at == std::string::npos ? std::string() : previous_report.substr(at);
+}
+
 std::string markdown_report(const EvalRun& run, const std::string& plot_folder) {
   std::ostringstream md;
   md << "# aief evaluation on the Oxford affine sequences\n\n"
