@@ -160,7 +160,7 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
   // offset rounds past 18.
   double radius = 0;
   for (int i = 0; i < 256; ++i)
-    for (int p = 0; p < 4; p += 2) radius = std::max(radius, std::hypot(double{pattern[i][p]}, double{pattern[i][p + 1]}));
+    for (int p = 0; p < 4; p += 2) radius = std::max(radius, std::hypot(static_cast<double>(pattern[i][p]), static_cast<double>(pattern[i][p + 1])));
   EXPECT_LT(radius, kEdgeBorder - 0.5);
 }
 
