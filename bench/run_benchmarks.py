@@ -35,6 +35,16 @@ def medians(report):
     return times
 
 
+def ratio_counters(report):
+    """adapt/ratio/t<T>/<image>: medians of the sweep_ms, pair_ms and sweep_over_pair counters (the
+    sweep and the pair timed alternately in one loop: a same-run ratio)."""
+    rows = {}
+    for b in report["benchmarks"]:
+        if b.get("aggregate_name") == "median" and b["run_name"].startswith("adapt/ratio/"):
+            rows[b["run_name"]] = {k: b[k] for k in ("sweep_ms", "pair_ms", "sweep_over_pair") if k in b}
+    return rows
+
+
 def cpu_name():
     try:
         with open("/proc/cpuinfo") as f:
@@ -122,7 +132,8 @@ def main():
     for name, ms in t.items():
         parts = name.split("/")
         if parts[0] == "adapt":
-            sweep[(parts[2], parts[3])][parts[1]] = ms
+            if parts[1] != "ratio":
+                sweep[(parts[2], parts[3])][parts[1]] = ms
         elif parts[0] == "extract":
             extract[parts[-1]]["/".join(parts[1:-1])] = ms
         else:
@@ -150,6 +161,17 @@ def main():
         if "sweep" in row and "extract_both_and_match" in row:
             lines.append(f"| {image} | {threads} | {row['sweep']:.1f} | {row['extract_both_and_match']:.1f} |"
                          f" {row['sweep'] / row['extract_both_and_match']:.2f}x |")
+    ratios = ratio_counters(report)
+    if ratios:
+        lines += ["", "Timed alternately in one loop (`adapt/ratio/...`: each iteration runs the sweep, then the"
+                  " extract of both images and the match), the ratio that the noise of a shared machine moves least:", "",
+                  "| image | threads | sweep ms | extract both + match ms | ratio |", "|---|---|---|---|---|"]
+        for name in sorted(ratios, key=lambda n: (n.split("/")[3], n.split("/")[2])):
+            row = ratios[name]
+            _, _, threads, image = name.split("/")
+            if "sweep_over_pair" in row:
+                lines.append(f"| {image} | {threads} | {row.get('sweep_ms', 0):.1f} | {row.get('pair_ms', 0):.1f} |"
+                             f" {row['sweep_over_pair']:.2f}x |")
     lines += ["", "## Kernels over a whole pyramid (8 levels) vs OpenCV's kernel for the same job", "",
               "fast9: scores + 3x3 suppression at t = 20 vs `cv::FAST(level, 20, true)`; gaussian7 vs"
               " `cv::GaussianBlur` 7x7 sigma 2; pyramid vs `cv::resize` INTER_LINEAR; histogram vs `cv::calcHist`.", "",
