@@ -17,8 +17,7 @@ namespace aief {
 const std::int8_t (*orb_pattern_31())[4];
 
 // Writes 32 bytes per point to descriptors (n * 32). Points lie >= kEdgeBorder from every edge
-// of `blurred`, so every rotated sample is inside it, with a row below it (the gather kernels,
-// simd/rbrief_gather_x86.hpp, read the 3 bytes after each sample).
+// of `blurred`, so every rotated sample (at most 18 from its point in x and y) is inside it.
 void rbrief_describe_scalar(ImageView blurred, const PixelPoint* points, const float* angle_deg,
                             int n, std::uint8_t* descriptors);
 

@@ -18,7 +18,6 @@
 #include "simd/hamming_simd.hpp"
 #include "simd/orientation_simd.hpp"
 #include "simd/pyramid_resize_simd.hpp"
-#include "simd/rbrief_gather_x86.hpp"
 #endif
 
 namespace aief::simd {
@@ -38,9 +37,6 @@ KernelTable make_kernel_table(KernelSet set, const char* name) {
   table.gaussian7_rows = &gaussian7_rows<Arch>;
   table.ic_moments = &ic_moments<Arch>;
   table.rbrief_describe = &rbrief_describe<Arch>;
-#if !defined(__aarch64__)
-  if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) table.rbrief_describe = &rbrief_describe_gather<Arch>;
-#endif
   table.resize_bilinear_rows = &resize_bilinear_rows<Arch>;
   table.accumulate_histogram = &accumulate_histogram<Arch>;
   return table;

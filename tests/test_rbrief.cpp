@@ -153,9 +153,10 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
         widest = std::max({widest, std::abs(cvRound(fx * a - fy * b)), std::abs(cvRound(fx * b + fy * a))});
       }
   }
-  // Strictly inside: the gather kernels (simd/rbrief_gather_x86.hpp) read the 3 bytes after a
-  // sample, which needs a row below every sample's row.
+  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_simd.hpp) stores each sample as an
+  // unsigned offset from the patch corner 18 rows and columns up-left of the point.
   EXPECT_LT(widest, kEdgeBorder);
+  EXPECT_LE(widest, 18);
   // Whatever the angle: no pattern point is farther than 18.5 from the centre, so no rotated
   // offset rounds past 18.
   double radius = 0;
