@@ -243,13 +243,14 @@ void FrameAnalysis::detect_run(LevelState& level, int r, int c_begin, int c_end,
     const std::uint64_t* taken_rows = any_strong ? strong_rows : maxima_rows;
     const bool rank_by_cross = options_.candidate_ranking == CandidateRanking::cross_score;
     const std::size_t first = level.candidates.size();
+    const std::ptrdiff_t stride = scores.stride;
+    // The cross sum is taken from the scores just read, not reloaded from the stored candidate.
     const auto take = [&](std::uint64_t word, int y, int k) {
       const std::uint8_t* row = scores.row(y - score_top);
       for (; word != 0; word &= word - 1) {
         const int x = x_begin + 64 * k + std::countr_zero(word);
-        Candidate& c = level.candidates.emplace_back(
-            Candidate{x, y, row[x], row[x - 1], row[x + 1], row[x - scores.stride], row[x + scores.stride]});
-        if (rank_by_cross) c.rank_extra = c.score_left + c.score_right + c.score_up + c.score_down;
+        const std::uint8_t left = row[x - 1], right = row[x + 1], up = row[x - stride], down = row[x + stride];
+        level.candidates.push_back(Candidate{x, y, row[x], left, right, up, down, rank_by_cross ? left + right + up + down : 0});
       }
     };
     if (k_first == k_last) {  // the usual block, inside one word: one masked word per row

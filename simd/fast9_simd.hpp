@@ -15,6 +15,7 @@
 // independent arcs. The darker side is the same with min and max swapped.
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "core/fast9.hpp"
 #include "simd/simd_support.hpp"
@@ -68,13 +69,33 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
   if (x < x_end) batch_at(x_end - N);  // one overlapping last batch: same values rewritten
 }
 
+// The next narrower x86 arch, whose vectors fit a run too short for Arch's (void: none).
+template <class Arch>
+struct narrower_arch {
+  using type = void;
+};
+#if !defined(__aarch64__)
+template <>
+struct narrower_arch<xsimd::avx512bw> {
+  using type = xsimd::avx2;
+};
+template <>
+struct narrower_arch<xsimd::avx2> {
+  using type = xsimd::sse4_2;
+};
+#endif
+
 template <class Arch>
 void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
                              int x_begin, int x_end, int strong_threshold, std::uint64_t* maxima,
                              std::uint64_t* strong) {
   constexpr int N = static_cast<int>(U8<Arch>::size);  // 16, 32 or 64: a batch never straddles a word
-  if (x_end - x_begin < N) {
-    fast9_local_maxima_bits_scalar(above, row, below, x_begin, x_end, strong_threshold, maxima, strong);
+  if (x_end - x_begin < N) {  // a short run (a block or two): narrower vectors, else the reference
+    using Narrower = typename narrower_arch<Arch>::type;
+    if constexpr (!std::is_void_v<Narrower>)
+      fast9_local_maxima_bits<Narrower>(above, row, below, x_begin, x_end, strong_threshold, maxima, strong);
+    else
+      fast9_local_maxima_bits_scalar(above, row, below, x_begin, x_end, strong_threshold, maxima, strong);
     return;
   }
   const int words = fast9_maxima_words(x_end - x_begin);
