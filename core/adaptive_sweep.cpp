@@ -100,23 +100,17 @@ bool same_features(const Features& x, const Features& y) {
   return true;
 }
 
-struct Evaluated {
-  std::vector<Match> matches;
-  HomographyResult homography;
-};
-
-HomographyResult homography_of(const Features& a, const Features& b, const std::vector<Match>& matches,
-                               const RansacOptions& ransac) {
-  std::vector<Point2> src, dst;
-  src.reserve(matches.size());
-  dst.reserve(matches.size());
+void homography_of(const Features& a, const Features& b, const std::vector<Match>& matches, const RansacOptions& ransac,
+                   std::vector<Point2>& src, std::vector<Point2>& dst, HomographyResult& out) {
+  src.clear();
+  dst.clear();
   for (const Match& m : matches) {
     const Keypoint& ka = a.keypoints[static_cast<std::size_t>(m.query)];
     const Keypoint& kb = b.keypoints[static_cast<std::size_t>(m.train)];
     src.push_back({ka.x, ka.y});
     dst.push_back({kb.x, kb.y});
   }
-  return find_homography_ransac(src, dst, ransac);
+  out = find_homography_ransac(src, dst, ransac);
 }
 
 void check_sweep_inputs(const ExtractorOptions& options, const SweepOptions& sweep) {
@@ -128,36 +122,39 @@ void check_sweep_inputs(const ExtractorOptions& options, const SweepOptions& swe
 
 }  // namespace
 
-SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
-                             const KernelTable& kernels, Repeats repeats) {
-  check_sweep_inputs(options, sweep);
+SweepPipeline::SweepPipeline(const ExtractorOptions& options, const SweepOptions& sweep, const KernelTable& kernels)
+    : options_(options), sweep_(sweep), kernels_(&kernels) {
+  check_sweep_inputs(options_, sweep_);
+  scheduler_ = parallel::Scheduler(options_.threads);
+}
+
+const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats repeats) {
   // The two images are independent until matching: each is analysed, and later selected at every
   // threshold, on its own thread.
-  const parallel::Scheduler scheduler(options.threads);
-  FrameAnalysis analysis_a, analysis_b;
-  scheduler.for_each(2, [&](int image) {
-    if (image == 0) analyse(analysis_a, a, options, kernels, sweep.first_threshold);
-    else analyse(analysis_b, b, options, kernels, sweep.first_threshold);
+  scheduler_.for_each(2, [&](int image) {
+    if (image == 0) analyse(analysis_a_, a, options_, *kernels_, sweep_.first_threshold);
+    else analyse(analysis_b_, b, options_, *kernels_, sweep_.first_threshold);
   });
 
-  SweepFeatures result;
-  result.image_entropy_bits = analysis_a.image_entropy_bits();
+  SweepFeatures& result = features_;
+  result.image_entropy_bits = analysis_a_.image_entropy_bits();
   // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
-  const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep.step)));
+  const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep_.step)));
 
   // Selection and description share the memo of an analysis: serial per image, the two images
-  // side by side.
+  // side by side. The features of each threshold keep their storage from pair to pair.
   result.a.resize(static_cast<std::size_t>(cycles));
   result.b.resize(static_cast<std::size_t>(cycles));
-  scheduler.for_each(2, [&](int image) {
-    FrameAnalysis& analysis = image == 0 ? analysis_a : analysis_b;
+  scheduler_.for_each(2, [&](int image) {
+    FrameAnalysis& analysis = image == 0 ? analysis_a_ : analysis_b_;
     std::vector<ThresholdFeatures>& features = image == 0 ? result.a : result.b;
+    std::vector<std::vector<std::int32_t>>& chosen = image == 0 ? chosen_a_ : chosen_b_;
     const std::vector<std::int32_t> id_offsets = level_id_offsets(analysis);
-    std::vector<std::vector<std::int32_t>> chosen;
     for (int c = 0; c < cycles; ++c) {
-      const double threshold = sweep.first_threshold + sweep.step * c;
-      const double previous = sweep.first_threshold + sweep.step * (c - 1);
+      const double threshold = sweep_.first_threshold + sweep_.step * c;
+      const double previous = sweep_.first_threshold + sweep_.step * (c - 1);
       ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
+      here.repeat_of = -1;
       if (c > 0 && same_blocks_kept(analysis, previous, threshold)) {
         // select() reads the threshold only through the mask.
         const ThresholdFeatures& before = features[static_cast<std::size_t>(c - 1)];
@@ -177,22 +174,30 @@ SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& o
   return result;
 }
 
-AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
-                               const SweepOptions& sweep, const KernelTable& kernels) {
+void SweepPipeline::evaluate(MatchRun& run, std::size_t c) {
+  const ThresholdFeatures& a = features_.a[c].resolved(features_.a);
+  const ThresholdFeatures& b = features_.b[c].resolved(features_.b);
+  Evaluated& evaluated = evaluated_[c];
+  evaluated.matches = run.matcher.match(a.features.descriptors, a.ids, b.features.descriptors, b.ids);
+  homography_of(a.features, b.features, evaluated.matches, sweep_.ransac, run.src, run.dst, evaluated.homography);
+}
+
+void SweepPipeline::run(ImageView a, ImageView b, AdaptResult& result) {
   // Repeated thresholds are not copied: each one's features are those of the first of its run.
-  SweepFeatures features = sweep_features(a, b, options, sweep, kernels, Repeats::referenced);  // validates the inputs first
-  std::vector<ThresholdFeatures>& features_a = features.a;
-  std::vector<ThresholdFeatures>& features_b = features.b;
+  features(a, b, Repeats::referenced);
+  std::vector<ThresholdFeatures>& features_a = features_.a;
+  std::vector<ThresholdFeatures>& features_b = features_.b;
   const int cycles = static_cast<int>(features_a.size());
   const auto at_a = [&](std::size_t c) -> const ThresholdFeatures& { return features_a[c].resolved(features_a); };
   const auto at_b = [&](std::size_t c) -> const ThresholdFeatures& { return features_b[c].resolved(features_b); };
 
-  AdaptResult result;
-  result.image_entropy_bits = features.image_entropy_bits;
+  result.image_entropy_bits = features_.image_entropy_bits;
   // Low thresholds often keep every block: a threshold whose two feature sets equal the previous
   // one's has the same matches and model, so only the first of such a run is evaluated.
-  std::vector<int> source(static_cast<std::size_t>(cycles));
-  std::vector<int> distinct;
+  std::vector<int>& source = source_;
+  std::vector<int>& distinct = distinct_;
+  source.resize(static_cast<std::size_t>(cycles));
+  distinct.clear();
   for (int c = 0; c < cycles; ++c) {
     const std::size_t i = static_cast<std::size_t>(c);
     const auto same_as_previous = [&](const auto& at) {
@@ -207,35 +212,32 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
   // the threshold's model. With several threads the walk is cut into one run of consecutive
   // thresholds per thread, each with its own matcher (whose first threshold is matched in full):
   // the same answers, each slot written by one run.
-  std::vector<Evaluated> evaluated(static_cast<std::size_t>(cycles));
-  const parallel::Scheduler scheduler(options.threads);
+  evaluated_.resize(static_cast<std::size_t>(cycles));
   const int distinct_count = static_cast<int>(distinct.size());
-  const int runs = std::min(scheduler.concurrency(), distinct_count);
-  scheduler.for_each(runs, [&](int run) {
-    SweepMatcher matcher(sweep.match, kernels);
-    for (int k = distinct_count * run / runs; k < distinct_count * (run + 1) / runs; ++k) {
-      const std::size_t i = static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]);
-      evaluated[i].matches = matcher.match(at_a(i).features.descriptors, at_a(i).ids, at_b(i).features.descriptors, at_b(i).ids);
-      evaluated[i].homography = homography_of(at_a(i).features, at_b(i).features, evaluated[i].matches,
-                                              sweep.ransac);
-    }
+  const int runs = std::min(scheduler_.concurrency(), distinct_count);
+  while (static_cast<int>(runs_.size()) < runs) runs_.push_back({SweepMatcher(sweep_.match, *kernels_), {}, {}});
+  scheduler_.for_each(runs, [&](int r) {
+    MatchRun& run = runs_[static_cast<std::size_t>(r)];
+    run.matcher.reset();
+    for (int k = distinct_count * r / runs; k < distinct_count * (r + 1) / runs; ++k)
+      evaluate(run, static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]));
   });
-  for (int c = 0; c < cycles; ++c)
-    if (source[static_cast<std::size_t>(c)] != c) evaluated[static_cast<std::size_t>(c)] = evaluated[static_cast<std::size_t>(source[static_cast<std::size_t>(c)])];
 
   result.curve.resize(static_cast<std::size_t>(cycles));
+  result.chosen_index = -1;
   for (int c = 0; c < cycles; ++c) {
     const std::size_t i = static_cast<std::size_t>(c);
+    const Evaluated& evaluated = evaluated_[static_cast<std::size_t>(source[i])];
     SweepPoint& point = result.curve[i];
-    point.threshold = sweep.first_threshold + sweep.step * c;
+    point.threshold = sweep_.first_threshold + sweep_.step * c;
     point.kept_blocks = features_a[i].features.info.blocks_kept;
     point.kept_blocks_b = features_b[i].features.info.blocks_kept;
     point.keypoints_a = static_cast<int>(at_a(i).features.keypoints.size());
     point.keypoints_b = static_cast<int>(at_b(i).features.keypoints.size());
-    point.putative = static_cast<int>(evaluated[i].matches.size());
-    point.inliers = evaluated[i].homography.found ? evaluated[i].homography.inliers : 0;
+    point.putative = static_cast<int>(evaluated.matches.size());
+    point.inliers = evaluated.homography.found ? evaluated.homography.inliers : 0;
     point.cmr = point.putative > 0 ? static_cast<double>(point.inliers) / point.putative : 0.0;
-    point.eligible = point.inliers >= sweep.min_inliers;
+    point.eligible = point.inliers >= sweep_.min_inliers;
     // Highest CMR among eligible thresholds; ties: more inliers, then the lower F (seen first).
     if (!point.eligible) continue;
     if (result.chosen_index >= 0) {
@@ -245,24 +247,55 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     result.chosen_index = c;
   }
 
-  const int chosen_index = result.chosen_index >= 0 ? result.chosen_index : 0;
+  const std::size_t chosen = static_cast<std::size_t>(result.chosen_index >= 0 ? result.chosen_index : 0);
   result.found = result.chosen_index >= 0;
-  result.threshold = result.curve[static_cast<std::size_t>(chosen_index)].threshold;
-  // The chosen threshold's features, wherever they are held, with its own info (thresholds).
-  for (std::vector<ThresholdFeatures>* image : {&features_a, &features_b}) {
-    ThresholdFeatures& chosen = (*image)[static_cast<std::size_t>(chosen_index)];
-    const ExtractionInfo info = chosen.features.info;
-    Features& out = image == &features_a ? result.features_a : result.features_b;
-    out = std::move(chosen.repeat_of >= 0 ? (*image)[static_cast<std::size_t>(chosen.repeat_of)].features : chosen.features);
-    out.info = info;
-  }
-  result.matches = std::move(evaluated[static_cast<std::size_t>(chosen_index)].matches);
-  result.homography = std::move(evaluated[static_cast<std::size_t>(chosen_index)].homography);
+  result.threshold = result.curve[chosen].threshold;
+  // The chosen threshold's features, wherever they are held, with its own info (thresholds);
+  // copied, so the sweep's storage stays for the next pair.
+  result.features_a = at_a(chosen).features;
+  result.features_a.info = features_a[chosen].features.info;
+  result.features_b = at_b(chosen).features;
+  result.features_b.info = features_b[chosen].features.info;
+  const Evaluated& evaluated = evaluated_[static_cast<std::size_t>(source[chosen])];
+  result.matches = evaluated.matches;
+  result.homography = evaluated.homography;
+}
+
+SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
+                             const KernelTable& kernels, Repeats repeats) {
+  SweepPipeline pipeline(options, sweep, kernels);
+  return pipeline.features(a, b, repeats);
+}
+
+AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
+                               const SweepOptions& sweep, const KernelTable& kernels) {
+  SweepPipeline pipeline(options, sweep, kernels);
+  AdaptResult result;
+  pipeline.run(a, b, result);
   return result;
 }
 
+struct AdaptiveSweep::State {
+  SweepPipeline pipeline;
+};
+
+AdaptiveSweep::AdaptiveSweep(const ExtractorOptions& options, const SweepOptions& sweep)
+    : state_(std::make_unique<State>(State{SweepPipeline(options, sweep, kernel_table(options.kernels))})) {}
+
+AdaptiveSweep::~AdaptiveSweep() = default;
+AdaptiveSweep::AdaptiveSweep(AdaptiveSweep&&) noexcept = default;
+AdaptiveSweep& AdaptiveSweep::operator=(AdaptiveSweep&&) noexcept = default;
+
+AdaptResult AdaptiveSweep::run(ImageView a, ImageView b) {
+  AdaptResult result;
+  run(a, b, result);
+  return result;
+}
+
+void AdaptiveSweep::run(ImageView a, ImageView b, AdaptResult& out) { state_->pipeline.run(a, b, out); }
+
 AdaptResult adapt(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep) {
-  return adapt_with_kernels(a, b, options, sweep, kernel_table(options.kernels));
+  return AdaptiveSweep(options, sweep).run(a, b);
 }
 
 }  // namespace aief

@@ -27,6 +27,14 @@ SweepMatcher::SweepMatcher(const MatchOptions& options, const KernelTable& kerne
   options_.validate();
 }
 
+void SweepMatcher::reset() {
+  for (Side* side : {&a_, &b_}) {
+    for (std::int32_t id : side->ids) side->index_of_id[static_cast<std::size_t>(id)] = -1;
+    side->ids.clear();
+    side->lists.clear();
+  }
+}
+
 // Maps the previous set onto the new one. Returns false when two features present at both calls
 // swapped order (the lists' tie-breaking would no longer follow the indices).
 bool SweepMatcher::renumber(Side& side, const std::vector<std::int32_t>& ids) {

@@ -88,6 +88,9 @@ class SweepMatcher {
   std::vector<Match> match(const std::vector<Descriptor>& a, const std::vector<std::int32_t>& ids_a,
                            const std::vector<Descriptor>& b, const std::vector<std::int32_t>& ids_b);
 
+  // Forgets the previous calls (a new pair of images), keeping the buffers.
+  void reset();
+
   // Descriptor distances computed by the calls so far (for tests and benchmarks).
   long long distances_computed() const { return distances_computed_; }
 
