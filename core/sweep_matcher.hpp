@@ -123,6 +123,7 @@ class SweepMatcher {
   Side a_, b_;
   std::vector<std::uint16_t> row_;         // one query's distances to the other set
   std::vector<std::int32_t> positions_;    // the filter's output for one chunk of row_
+  std::vector<std::int16_t> no_bounds_;    // -1s: train bounds that take nothing (recompute)
   long long distances_computed_ = 0;
 };
 
