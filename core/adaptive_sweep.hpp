@@ -66,6 +66,8 @@ class SweepPipeline {
   };
 
   void evaluate(MatchRun& run, std::size_t c);
+  // Where the distinct thresholds are cut into `runs` runs (core/sweep_runs.hpp).
+  std::vector<int> cut_into_runs(int runs);
 
   ExtractorOptions options_;
   SweepOptions sweep_;
@@ -77,6 +79,7 @@ class SweepPipeline {
   std::vector<int> source_, distinct_;
   std::vector<Evaluated> evaluated_;
   std::vector<MatchRun> runs_;
+  std::vector<int> present_at_, new_a_, new_b_;  // cut_into_runs' counts of new features
 };
 
 }  // namespace aief

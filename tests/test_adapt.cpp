@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include "core/adaptive_sweep.hpp"
 #include "core/kernel_table.hpp"
 #include "core/level_geometry.hpp"
+#include "core/sweep_runs.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 
@@ -214,6 +216,56 @@ TEST(AdaptiveSweep, ReusedOverPairsEqualsAFreshSweepAtEveryKernelSetAndThreadCou
       EXPECT_TRUE(same_result(boat, result)) << where << " boat after graf";
       reused.run(view_of(graf1), view_of(graf2), result);
       EXPECT_TRUE(same_result(graf, result)) << where << " graf after boat";
+    }
+  }
+}
+
+double largest_run_cost(const std::vector<double>& fresh, const std::vector<double>& incremental, const std::vector<int>& begin) {
+  double largest = 0;
+  for (std::size_t r = 0; r + 1 < begin.size(); ++r) {
+    double cost = fresh[static_cast<std::size_t>(begin[r])];
+    for (int k = begin[r] + 1; k < begin[r + 1]; ++k) cost += incremental[static_cast<std::size_t>(k)];
+    largest = std::max(largest, cost);
+  }
+  return largest;
+}
+
+TEST(BalancedRuns, CutsWhereTheWorkIsEvenNotTheCount) {
+  // Thresholds 0-1 are expensive to reach, 2-5 cheap: an even count would give run 0 the bulk.
+  const std::vector<double> fresh = {100, 100, 100, 100, 100, 100};
+  const std::vector<double> incremental = {0, 90, 5, 5, 5, 5};
+  const std::vector<int> begin = balanced_runs(fresh, incremental, 2);
+  EXPECT_EQ(begin, (std::vector<int>{0, 1, 6}));
+  EXPECT_EQ(largest_run_cost(fresh, incremental, begin), 120);
+}
+
+TEST(BalancedRuns, EqualsTheBestOfEveryCutOnRandomCosts) {
+  std::uint64_t state = 7;
+  const auto next = [&] { return static_cast<double>((state = state * 6364136223846793005ull + 1442695040888963407ull) >> 54); };
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % 9;
+    std::vector<double> fresh(static_cast<std::size_t>(n)), incremental(static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) {
+      incremental[static_cast<std::size_t>(k)] = next();
+      fresh[static_cast<std::size_t>(k)] = incremental[static_cast<std::size_t>(k)] + next();
+    }
+    for (int runs = 1; runs <= std::min(n, 3); ++runs) {
+      const std::vector<int> begin = balanced_runs(fresh, incremental, runs);
+      ASSERT_EQ(begin.size(), static_cast<std::size_t>(runs) + 1);
+      EXPECT_EQ(begin.front(), 0);
+      EXPECT_EQ(begin.back(), n);
+      for (int r = 0; r < runs; ++r) EXPECT_LT(begin[static_cast<std::size_t>(r)], begin[static_cast<std::size_t>(r) + 1]);
+      // Every cut into `runs` non-empty runs, by bit mask of run starts.
+      double best = std::numeric_limits<double>::infinity();
+      for (unsigned mask = 0; mask < (1u << n); ++mask) {
+        if (!(mask & 1u) || __builtin_popcount(mask) != runs) continue;
+        std::vector<int> cut;
+        for (int k = 0; k < n; ++k)
+          if (mask & (1u << k)) cut.push_back(k);
+        cut.push_back(n);
+        best = std::min(best, largest_run_cost(fresh, incremental, cut));
+      }
+      EXPECT_EQ(largest_run_cost(fresh, incremental, begin), best) << "n " << n << " runs " << runs;
     }
   }
 }
