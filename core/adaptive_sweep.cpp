@@ -1,5 +1,6 @@
 #include "core/adaptive_sweep.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -42,27 +43,58 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
   return offsets;
 }
 
-// Whether thresholds F and G keep the same blocks of level n: then the level selects the same
-// candidates (its distribution depends on its kept blocks alone).
-bool same_level_blocks_kept(const FrameAnalysis& analysis, int n, double f, double g) {
-  const int blocks = analysis.level(n).geometry.grid.count();
-  for (int b = 0; b < blocks; ++b)
-    if (analysis.block_kept(n, b, f) != analysis.block_kept(n, b, g)) return false;
-  return true;
-}
+// Each level's block entropies in ascending order, to compare thresholds without visiting every
+// block: Eq. 9 keeps a block when its entropy e > F, so thresholds F < G keep the same blocks of a
+// level exactly when no e has F < e <= G, and F keeps the blocks above the first e > F.
+class SortedBlockEntropies {
+ public:
+  explicit SortedBlockEntropies(const FrameAnalysis& analysis) : levels_(static_cast<std::size_t>(analysis.level_count())) {
+    for (int n = 0; n < analysis.level_count(); ++n) {
+      std::vector<double>& sorted = levels_[static_cast<std::size_t>(n)];
+      sorted = analysis.level(n).block_entropy;  // every block of a usable level (the sweep needs an entropy measure)
+      std::sort(sorted.begin(), sorted.end());
+    }
+  }
+
+  // Whether thresholds F and G keep the same blocks of level n: then the level selects the same
+  // candidates (its distribution depends on its kept blocks alone).
+  bool same_level_blocks_kept(int n, double f, double g) const {
+    if (f > g) std::swap(f, g);
+    const std::vector<double>& sorted = levels_[static_cast<std::size_t>(n)];
+    const auto first_above_f = std::upper_bound(sorted.begin(), sorted.end(), f);
+    return first_above_f == sorted.end() || *first_above_f > g;
+  }
+  // The same on every level: then F and G select the same features (the distribution and the
+  // descriptors depend on the kept blocks alone).
+  bool same_blocks_kept(double f, double g) const {
+    for (int n = 0; n < static_cast<int>(levels_.size()); ++n)
+      if (!same_level_blocks_kept(n, f, g)) return false;
+    return true;
+  }
+  int blocks_kept(double f) const {
+    std::size_t kept = 0;
+    for (const std::vector<double>& sorted : levels_)
+      kept += static_cast<std::size_t>(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), f));
+    return static_cast<int>(kept);
+  }
+
+ private:
+  std::vector<std::vector<double>> levels_;
+};
 
 // Extracts the features of one image at threshold F from its analysis (no starvation rule:
 // the sweep measures each F as it is), with the identity of each feature. `chosen` holds each
 // level's selection at `previous` (when there is one, i.e. previous >= 0); a level whose kept
 // blocks did not change since keeps it.
-void features_at(FrameAnalysis& analysis, double threshold, double previous, const std::vector<std::int32_t>& id_offsets,
-                 std::vector<std::vector<std::int32_t>>& chosen, ThresholdFeatures& result) {
+void features_at(FrameAnalysis& analysis, const SortedBlockEntropies& entropies, double threshold, double previous,
+                 const std::vector<std::int32_t>& id_offsets, std::vector<std::vector<std::int32_t>>& chosen,
+                 ThresholdFeatures& result) {
   const int levels = analysis.level_count();
   chosen.resize(static_cast<std::size_t>(levels));
   result.ids.clear();
   for (int n = 0; n < levels; ++n) {
     std::vector<std::int32_t>& level_chosen = chosen[static_cast<std::size_t>(n)];
-    if (previous < 0 || !same_level_blocks_kept(analysis, n, previous, threshold)) analysis.select(n, threshold, level_chosen);
+    if (previous < 0 || !entropies.same_level_blocks_kept(n, previous, threshold)) analysis.select(n, threshold, level_chosen);
     for (std::int32_t i : level_chosen) result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
   }
   Features& out = result.features;
@@ -72,15 +104,7 @@ void features_at(FrameAnalysis& analysis, double threshold, double previous, con
   out.info.threshold_lowered = false;
   out.info.image_entropy_bits = analysis.image_entropy_bits();
   out.info.blocks_total = analysis.blocks_total();
-  out.info.blocks_kept = analysis.blocks_kept(threshold);
-}
-
-// Whether thresholds F and G keep the same blocks on every level: then they select the same
-// features (the distribution and the descriptors depend on the kept blocks alone).
-bool same_blocks_kept(const FrameAnalysis& analysis, double f, double g) {
-  for (int n = 0; n < analysis.level_count(); ++n)
-    if (!same_level_blocks_kept(analysis, n, f, g)) return false;
-  return true;
+  out.info.blocks_kept = entropies.blocks_kept(threshold);
 }
 
 void analyse(FrameAnalysis& analysis, ImageView image, const ExtractorOptions& options,
@@ -151,12 +175,13 @@ const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats r
     std::vector<ThresholdFeatures>& features = image == 0 ? result.a : result.b;
     std::vector<std::vector<std::int32_t>>& chosen = image == 0 ? chosen_a_ : chosen_b_;
     const std::vector<std::int32_t> id_offsets = level_id_offsets(analysis);
+    const SortedBlockEntropies entropies(analysis);
     for (int c = 0; c < cycles; ++c) {
       const double threshold = sweep_.first_threshold + sweep_.step * c;
       const double previous = sweep_.first_threshold + sweep_.step * (c - 1);
       ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
       here.repeat_of = -1;
-      if (c > 0 && same_blocks_kept(analysis, previous, threshold)) {
+      if (c > 0 && entropies.same_blocks_kept(previous, threshold)) {
         // select() reads the threshold only through the mask.
         const ThresholdFeatures& before = features[static_cast<std::size_t>(c - 1)];
         if (repeats == Repeats::copied) {
@@ -168,7 +193,7 @@ const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats r
         here.features.info.entropy_threshold_requested = threshold;
         here.features.info.entropy_threshold_used = threshold;
       } else {
-        features_at(analysis, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
+        features_at(analysis, entropies, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
       }
     }
   });
