@@ -12,6 +12,10 @@ inline namespace AIEF_SIMD_TARGET {
 
 namespace blur_detail {
 
+// Vertical sums v (0..65280) are stored as the int16 v - kBias (|v - kBias| <= 32640), so the
+// horizontal pmaddwd sum is S - 256 kBias = S + 2^15 - 2^23: the rounding term comes for free.
+constexpr short kBias = 32640;
+
 // The register the kernel runs on: 128-bit (SSE4.1) or 256-bit (AVX2, also in the AVX-512
 // table). Templates on Arch, so every instruction set's copy is its own symbol.
 template <class Arch, bool kWide = std::is_base_of_v<xsimd::avx2, Arch>>
@@ -28,14 +32,16 @@ struct Vec<Arch, false> {
   static V set32(int v) { return _mm_set1_epi32(v); }
   static V add16(V a, V b) { return _mm_add_epi16(a, b); }
   static V mul16(V a, V b) { return _mm_mullo_epi16(a, b); }
-  static V bias(V v) { return _mm_xor_si128(v, _mm_set1_epi16(static_cast<short>(0x8000))); }
+  static V opaque(V v) { __asm__("" : "+x"(v)); return v; }
+  static V bias(V v) { return _mm_sub_epi16(v, _mm_set1_epi16(kBias)); }
   static V madd(V a, V b) { return _mm_madd_epi16(a, b); }
   static V add32(V a, V b) { return _mm_add_epi32(a, b); }
-  static V shift_down16(V v) { return _mm_srli_epi32(v, 16); }
-  // even = outputs x, x + 2, ...; odd = x + 1, x + 3, ... (0..255 in int32 lanes): 8 bytes.
+  // even = outputs x, x + 2, ...; odd = x + 1, x + 3, ..., each as S + 2^15 - 2^23 in int32
+  // lanes: bits 16..31 hold the output - 128 as an int16, so one arithmetic shift, a word blend
+  // and a signed pack give the bytes output - 128 (output ^ 0x80): 8 bytes.
   static void store_outputs(std::uint8_t* out, V even, V odd) {
-    const V pairs = _mm_or_si128(even, _mm_slli_epi32(odd, 8));  // e | o << 8 per int32
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out), _mm_packus_epi32(pairs, pairs));
+    const V pairs = _mm_blend_epi16(_mm_srai_epi32(even, 16), odd, 0xAA);  // (e - 128, o - 128) per int32
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out), _mm_xor_si128(_mm_packs_epi16(pairs, pairs), _mm_set1_epi8(static_cast<char>(0x80))));
   }
 };
 
@@ -50,14 +56,14 @@ struct Vec<Arch, true> {
   static V set32(int v) { return _mm256_set1_epi32(v); }
   static V add16(V a, V b) { return _mm256_add_epi16(a, b); }
   static V mul16(V a, V b) { return _mm256_mullo_epi16(a, b); }
-  static V bias(V v) { return _mm256_xor_si256(v, _mm256_set1_epi16(static_cast<short>(0x8000))); }
+  static V opaque(V v) { __asm__("" : "+x"(v)); return v; }
+  static V bias(V v) { return _mm256_sub_epi16(v, _mm256_set1_epi16(kBias)); }
   static V madd(V a, V b) { return _mm256_madd_epi16(a, b); }
   static V add32(V a, V b) { return _mm256_add_epi32(a, b); }
-  static V shift_down16(V v) { return _mm256_srli_epi32(v, 16); }
   static void store_outputs(std::uint8_t* out, V even, V odd) {
-    const V pairs = _mm256_or_si256(even, _mm256_slli_epi32(odd, 8));
-    const V packed = _mm256_permute4x64_epi64(_mm256_packus_epi32(pairs, pairs), 0x08);  // lanes 0, 2
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm256_castsi256_si128(packed));
+    const V pairs = _mm256_blend_epi16(_mm256_srai_epi32(even, 16), odd, 0xAA);
+    const V packed = _mm256_permute4x64_epi64(_mm256_packs_epi16(pairs, pairs), 0x08);  // lanes 0, 2
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_xor_si128(_mm256_castsi256_si128(packed), _mm_set1_epi8(static_cast<char>(0x80))));
   }
 };
 
