@@ -9,10 +9,11 @@ namespace aief {
 
 namespace {
 
-// Two patches' column spans closer than this are blurred as one span: a kernel call's row setup
-// and the scalar columns at a span's ends cost about as much as blurring the gap (callgrind on
-// graf, strips of 8 rows: blur 5.69 M instructions with gap 0, 4.96 M with 64, 5.03 M with 128).
-constexpr int kSpanMergeGap = 64;
+// Two patches' column spans closer than this are blurred as one span: a span's row setup, its
+// 7 extra vertical columns and its overlapping last vector cost about as much as blurring the gap
+// (callgrind on graf, AVX2, strips of 8 rows, blur + blur_patch_rows: 4.21 M instructions with
+// gap 0, 3.96 M with 16, 3.88 M with 32, 3.92 M with 64, 4.08 M with 128).
+constexpr int kSpanMergeGap = 32;
 
 }  // namespace
 

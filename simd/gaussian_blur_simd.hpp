@@ -87,7 +87,9 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
       if (vector_columns) {
         // Batches from c0 on; one that would pass the row's end starts at width - L instead
         // (within the slack, and the columns it recomputes get the same sums).
-        for (int c = c0; c < c1; c += L) vertical(c < width - L ? c : width - L);
+        int c = c0;
+        for (; c < c1 && c <= width - L; c += L) vertical(c);
+        if (c < c1) vertical(width - L);
       } else {
         for (int c = c0; c < c1; ++c) {
           std::uint32_t v = 0;
@@ -105,13 +107,17 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
         return Ops::add32(Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
                           Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6)));
       };
-      if (vector_outputs) {
+      if constexpr (Ops::kMaskedTail) {
+        int x = x0;
+        for (; x <= x1 - L; x += L) Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
+        if (x < x1) Ops::store_outputs_masked(out + x, horizontal(column + x - 3), horizontal(column + x - 2), x1 - x);
+      } else if (vector_outputs) {
         // The last step overlaps the one before when the chunk is not a multiple of L: the same
         // bytes rewritten, and no column outside [x0, x1) is written.
-        for (int x = x0; x < x1; x += L) {
-          const int at = x < x1 - L ? x : x1 - L;
-          Ops::store_outputs(out + at, horizontal(column + at - 3), horizontal(column + at - 2));
-        }
+        const auto step = [&](int x) { Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2)); };
+        int x = x0;
+        for (; x <= x1 - L; x += L) step(x);
+        if (x < x1) step(x1 - L);
       } else {
         for (int x = x0; x < x1; ++x) {
           std::int32_t p = 0;

@@ -16,15 +16,16 @@ namespace blur_detail {
 // horizontal pmaddwd sum is S - 256 kBias = S + 2^15 - 2^23: the rounding term comes for free.
 constexpr short kBias = 32640;
 
-// The register the kernel runs on: 128-bit (SSE4.1) or 256-bit (AVX2, also in the AVX-512
-// table). Templates on Arch, so every instruction set's copy is its own symbol.
-template <class Arch, bool kWide = std::is_base_of_v<xsimd::avx2, Arch>>
+// The register the kernel runs on: 128-bit (SSE4.1), 256-bit (AVX2) or 512-bit (AVX-512BW).
+// Templates on Arch, so every instruction set's copy is its own symbol.
+template <class Arch, int kBits = std::is_base_of_v<xsimd::avx512bw, Arch> ? 512 : std::is_base_of_v<xsimd::avx2, Arch> ? 256 : 128>
 struct Vec;
 
 template <class Arch>
-struct Vec<Arch, false> {
+struct Vec<Arch, 128> {
   using V = __m128i;
   static constexpr int kColumns = 8;  // u16 lanes; also the outputs of one horizontal step
+  static constexpr bool kMaskedTail = false;  // the last step of a span overlaps the one before
   static V columns(const std::uint8_t* p) { return _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))); }
   static V load(const std::int16_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
   static void store(std::int16_t* p, V v) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v); }
@@ -46,9 +47,10 @@ struct Vec<Arch, false> {
 };
 
 template <class Arch>
-struct Vec<Arch, true> {
+struct Vec<Arch, 256> {
   using V = __m256i;
   static constexpr int kColumns = 16;
+  static constexpr bool kMaskedTail = false;
   static V columns(const std::uint8_t* p) { return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))); }
   static V load(const std::int16_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
   static void store(std::int16_t* p, V v) { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
@@ -64,6 +66,40 @@ struct Vec<Arch, true> {
     const V pairs = _mm256_blend_epi16(_mm256_srai_epi32(even, 16), odd, 0xAA);
     const V packed = _mm256_permute4x64_epi64(_mm256_packs_epi16(pairs, pairs), 0x08);  // lanes 0, 2
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_xor_si128(_mm256_castsi256_si128(packed), _mm_set1_epi8(static_cast<char>(0x80))));
+  }
+};
+
+// 32 columns a step. A step's outputs narrow to bytes in order with one vpmovwb, and the last
+// step of a span stores only its first n bytes (a masked vpmovwb), so spans need no overlapping
+// step and none narrower than 32 outputs falls back to scalar code.
+template <class Arch>
+struct Vec<Arch, 512> {
+  using V = __m512i;
+  static constexpr int kColumns = 32;
+  static constexpr bool kMaskedTail = true;
+  static V columns(const std::uint8_t* p) { return _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p))); }
+  static V load(const std::int16_t* p) { return _mm512_loadu_si512(p); }
+  static void store(std::int16_t* p, V v) { _mm512_storeu_si512(p, v); }
+  static V set16(int v) { return _mm512_set1_epi16(static_cast<short>(v)); }
+  static V set32(int v) { return _mm512_set1_epi32(v); }
+  static V add16(V a, V b) { return _mm512_add_epi16(a, b); }
+  static V mul16(V a, V b) { return _mm512_mullo_epi16(a, b); }
+  static V opaque(V v) { __asm__("" : "+v"(v)); return v; }
+  static V bias(V v) { return _mm512_sub_epi16(v, _mm512_set1_epi16(kBias)); }
+  static V madd(V a, V b) { return _mm512_madd_epi16(a, b); }
+  static V add32(V a, V b) { return _mm512_add_epi32(a, b); }
+  // (e - 128, o - 128) per int32 as in the 128-bit form; vpmovwb keeps them in order.
+  static __m256i output_bytes(V even, V odd) {
+    const V pairs = _mm512_mask_blend_epi16(0xAAAAAAAAu, _mm512_srai_epi32(even, 16), odd);
+    return _mm256_xor_si256(_mm512_cvtepi16_epi8(pairs), _mm256_set1_epi8(static_cast<char>(0x80)));
+  }
+  static void store_outputs(std::uint8_t* out, V even, V odd) {
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), output_bytes(even, odd));
+  }
+  static void store_outputs_masked(std::uint8_t* out, V even, V odd, int n) {  // 0 < n < 32
+    const V pairs = _mm512_mask_blend_epi16(0xAAAAAAAAu, _mm512_srai_epi32(even, 16), odd);
+    const V bytes = _mm512_xor_si512(pairs, _mm512_set1_epi16(0x80));  // the low byte of each word
+    _mm512_mask_cvtepi16_storeu_epi8(out, (1u << n) - 1, bytes);
   }
 };
 

@@ -16,7 +16,8 @@ KernelTable kernel_table() {
   table.fast9_local_maxima_bits = &simd::fast9_local_maxima_bits<xsimd::avx512bw>;
   table.positions_within_bounds = &simd::positions_within_bounds<xsimd::avx512bw>;  // one mask compare per 32
   table.rbrief_describe = &simd::rbrief_describe_gather<xsimd::avx512bw>;
-  table.resize_bilinear_rows = &simd::resize_bilinear_rows_avx512<xsimd::avx512bw>;  // vpermw: ~15 instructions per 16 outputs
+  table.resize_bilinear_rows = &simd::resize_bilinear_rows_avx512<xsimd::avx512bw>;
+  table.gaussian7_rows = &simd::gaussian7_rows<xsimd::avx512bw>;  // 32 columns a step, masked last step  // vpermw: ~15 instructions per 16 outputs
   return table;
 }
 
