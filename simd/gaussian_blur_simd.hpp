@@ -45,7 +45,8 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   // the slack on both sides takes the vector loop's batches that start left of x0 - 3 or end
   // right of x1 + 3 (still inside the row).
   constexpr int kSlack = L;
-  alignas(64) std::int16_t column_buffer[kSlack + kChunk + 7 + kSlack];
+  constexpr int kBandRows = 8;  // rows whose vertical sums are kept at once (kPatchBlurStripRows)
+  alignas(64) std::int16_t column_buffer[kBandRows][kSlack + kChunk + 7 + kSlack];
 
   // opaque: multiplied by constants, the compiler would rewrite each pmullw as 3-4 shifts and adds.
   const V w0 = Ops::opaque(Ops::set16(w[0])), w1 = Ops::opaque(Ops::set16(w[1]));
@@ -55,74 +56,83 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   const V pair45 = Ops::opaque(Ops::set32(w[4] | w[5] << 16)), pair6 = Ops::opaque(Ops::set32(w[6]));
 
   // Chunks outside, rows inside: a chunk's bounds and edge handling are worked out once for all
-  // rows, and a row costs its seven row pointers and two vector loops.
+  // rows. Rows go in bands of kBandRows: the vertical pass of the whole band first, then the
+  // horizontal one, so the horizontal loads (unaligned, each spanning two of the vertical pass's
+  // stores) find those stores long written to L1 instead of waiting on store forwarding.
   for (int x0 = x_begin; x0 < x_end; x0 += kChunk) {
     const int x1 = x0 < x_end - kChunk ? x0 + kChunk : x_end;
-    std::int16_t* const column = column_buffer + kSlack - (x0 - 3);  // column[q]: the sum of column q
     // The columns the horizontal pass reads that lie inside the row, [c0, c1); x1 + 3 is read
     // only under a zero weight.
     const int c0 = x0 > 3 ? x0 - 3 : 0, c1 = x1 + 4 < width ? x1 + 4 : width;
     const bool vector_columns = width >= L;
     const bool vector_outputs = x1 - x0 >= L;
+    const auto column_row = [&](int band_row) { return column_buffer[band_row] + kSlack - (x0 - 3); };  // [q]: column q
 
-    for (int y = y_begin; y < y_end; ++y) {
-      const std::uint8_t* rows[7];
-      if (y >= 3 && y + 3 < height) {
-        rows[0] = src.row(y - 3);
-        for (int k = 1; k < 7; ++k) rows[k] = rows[k - 1] + stride;
-      } else {
-        for (int k = 0; k < 7; ++k) rows[k] = src.row(mirror(y + k - 3, height));
-      }
-      std::uint8_t* out = dst.row(y - y_begin);
-
-      // Vertical pass, symmetric taps: rows k and 6 - k share a weight, added first (<= 510).
-      const auto vertical = [&](int c) {
-        const V sum = Ops::add16(
-            Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[0] + c), Ops::columns(rows[6] + c)), w0),
-                       Ops::mul16(Ops::add16(Ops::columns(rows[1] + c), Ops::columns(rows[5] + c)), w1)),
-            Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[2] + c), Ops::columns(rows[4] + c)), w2),
-                       Ops::mul16(Ops::columns(rows[3] + c), w3)));
-        Ops::store(column + c, Ops::bias(sum));
-      };
-      if (vector_columns) {
-        // Batches from c0 on; one that would pass the row's end starts at width - L instead
-        // (within the slack, and the columns it recomputes get the same sums).
-        int c = c0;
-        for (; c < c1 && c <= width - L; c += L) vertical(c);
-        if (c < c1) vertical(width - L);
-      } else {
-        for (int c = c0; c < c1; ++c) {
-          std::uint32_t v = 0;
-          for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][c];
-          column[c] = static_cast<std::int16_t>(static_cast<int>(v) - blur_detail::kBias);
+    for (int y0 = y_begin; y0 < y_end; y0 += kBandRows) {
+      const int y1 = y0 < y_end - kBandRows ? y0 + kBandRows : y_end;
+      for (int y = y0; y < y1; ++y) {
+        const std::uint8_t* rows[7];
+        if (y >= 3 && y + 3 < height) {
+          rows[0] = src.row(y - 3);
+          for (int k = 1; k < 7; ++k) rows[k] = rows[k - 1] + stride;
+        } else {
+          for (int k = 0; k < 7; ++k) rows[k] = src.row(mirror(y + k - 3, height));
         }
-      }
-      // Columns outside the row: mirror images (BORDER_REFLECT_101); width + 3 is read only under
-      // a zero weight, and its mirror image may lie left of the row, so it is set to 0.
-      for (int q = x0 - 3; q < c0; ++q) column[q] = column[-q];
-      for (int q = c1; q < x1 + 4; ++q) column[q] = q < width + 3 ? column[2 * width - 2 - q] : std::int16_t{0};
+        std::int16_t* const column = column_row(y - y0);
 
-      // Horizontal pass, L outputs a step: L / 2 even ones and L / 2 odd ones, as P (above).
-      const auto horizontal = [&](const std::int16_t* v) {  // v = column of the output's tap 0
-        return Ops::add32(Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
-                          Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6)));
-      };
-      if constexpr (Ops::kMaskedTail) {
-        int x = x0;
-        for (; x <= x1 - L; x += L) Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
-        if (x < x1) Ops::store_outputs_masked(out + x, horizontal(column + x - 3), horizontal(column + x - 2), x1 - x);
-      } else if (vector_outputs) {
-        // The last step overlaps the one before when the chunk is not a multiple of L: the same
-        // bytes rewritten, and no column outside [x0, x1) is written.
-        const auto step = [&](int x) { Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2)); };
-        int x = x0;
-        for (; x <= x1 - L; x += L) step(x);
-        if (x < x1) step(x1 - L);
-      } else {
-        for (int x = x0; x < x1; ++x) {
-          std::int32_t p = 0;
-          for (int t = 0; t < 7; ++t) p += w[static_cast<std::size_t>(t)] * column[x - 3 + t];
-          out[x] = static_cast<std::uint8_t>((p + (1 << 23)) >> 16);
+        // Vertical pass, symmetric taps: rows k and 6 - k share a weight, added first (<= 510).
+        const auto vertical = [&](int c) {
+          const V sum = Ops::add16(
+              Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[0] + c), Ops::columns(rows[6] + c)), w0),
+                         Ops::mul16(Ops::add16(Ops::columns(rows[1] + c), Ops::columns(rows[5] + c)), w1)),
+              Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[2] + c), Ops::columns(rows[4] + c)), w2),
+                         Ops::mul16(Ops::columns(rows[3] + c), w3)));
+          Ops::store(column + c, Ops::bias(sum));
+        };
+        if (vector_columns) {
+          // Batches from c0 on; one that would pass the row's end starts at width - L instead
+          // (within the slack, and the columns it recomputes get the same sums).
+          int c = c0;
+          for (; c < c1 && c <= width - L; c += L) vertical(c);
+          if (c < c1) vertical(width - L);
+        } else {
+          for (int c = c0; c < c1; ++c) {
+            std::uint32_t v = 0;
+            for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][c];
+            column[c] = static_cast<std::int16_t>(static_cast<int>(v) - blur_detail::kBias);
+          }
+        }
+        // Columns outside the row: mirror images (BORDER_REFLECT_101); width + 3 is read only
+        // under a zero weight, and its mirror image may lie left of the row, so it is set to 0.
+        for (int q = x0 - 3; q < c0; ++q) column[q] = column[-q];
+        for (int q = c1; q < x1 + 4; ++q) column[q] = q < width + 3 ? column[2 * width - 2 - q] : std::int16_t{0};
+      }
+
+      for (int y = y0; y < y1; ++y) {
+        const std::int16_t* const column = column_row(y - y0);
+        std::uint8_t* out = dst.row(y - y_begin);
+        // Horizontal pass, L outputs a step: L / 2 even ones and L / 2 odd ones, as P (above).
+        const auto horizontal = [&](const std::int16_t* v) {  // v = column of the output's tap 0
+          return Ops::add32(Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
+                            Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6)));
+        };
+        if constexpr (Ops::kMaskedTail) {
+          int x = x0;
+          for (; x <= x1 - L; x += L) Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
+          if (x < x1) Ops::store_outputs_masked(out + x, horizontal(column + x - 3), horizontal(column + x - 2), x1 - x);
+        } else if (vector_outputs) {
+          // The last step overlaps the one before when the chunk is not a multiple of L: the
+          // same bytes rewritten, and no column outside [x0, x1) is written.
+          const auto step = [&](int x) { Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2)); };
+          int x = x0;
+          for (; x <= x1 - L; x += L) step(x);
+          if (x < x1) step(x1 - L);
+        } else {
+          for (int x = x0; x < x1; ++x) {
+            std::int32_t p = 0;
+            for (int t = 0; t < 7; ++t) p += w[static_cast<std::size_t>(t)] * column[x - 3 + t];
+            out[x] = static_cast<std::uint8_t>((p + (1 << 23)) >> 16);
+          }
         }
       }
     }
