@@ -52,6 +52,7 @@ int run_bench(const Arguments& arguments) {
               << "Prints one JSON line: median milliseconds over N runs of each stage (pyramid, block\n"
               << "entropies + FAST, distribution + description) and of the whole extract, and of\n"
               << "cv::ORB(1000, 1.2, 8).detectAndCompute on the same gray image, with their ratio.\n"
+              << "cv::ORB runs on one OpenCV thread, as in bench/RESULTS.md.\n"
               << "With --pair: sweep_ms (the adaptive sweep on IMAGE, IMAGE2), pair_ms (extract both\n"
               << "and one match) and sweep_ratio = sweep_ms / pair_ms.\n\n"
               << "  --repeat N            runs per measurement (default 21)\n"
@@ -106,7 +107,10 @@ int run_bench(const Arguments& arguments) {
     select.push_back(t_select);
   }
 
-  // cv::ORB on the same gray image, same process.
+  // cv::ORB on the same gray image, same process, on one OpenCV thread like bench/RESULTS.md
+  // (OpenCV's own worker threads would otherwise share the cores with the timing).
+  const int opencv_threads = cv::getNumThreads();
+  cv::setNumThreads(1);
   const cv::Mat gray(image.height(), image.width(), CV_8UC1, const_cast<std::uint8_t*>(image.data()));
   cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 8);
   std::vector<cv::KeyPoint> keypoints;
@@ -118,6 +122,7 @@ int run_bench(const Arguments& arguments) {
     orb->detectAndCompute(gray, cv::noArray(), keypoints, descriptors);
     orb_ms.push_back(ms_since(start));
   }
+  cv::setNumThreads(opencv_threads);
 
   // The sweep on the pair beside what it replaces: extract both images and match once.
   std::vector<double> sweep_ms, pair_ms;
