@@ -88,18 +88,16 @@ struct Vec<Arch, 512> {
   static V bias(V v) { return _mm512_sub_epi16(v, _mm512_set1_epi16(kBias)); }
   static V madd(V a, V b) { return _mm512_madd_epi16(a, b); }
   static V add32(V a, V b) { return _mm512_add_epi32(a, b); }
-  // (e - 128, o - 128) per int32 as in the 128-bit form; vpmovwb keeps them in order.
-  static __m256i output_bytes(V even, V odd) {
-    const V pairs = _mm512_mask_blend_epi16(0xAAAAAAAAu, _mm512_srai_epi32(even, 16), odd);
-    return _mm256_xor_si256(_mm512_cvtepi16_epi8(pairs), _mm256_set1_epi8(static_cast<char>(0x80)));
+  // The outputs in the low byte of each word, in order (the 128-bit form's (e - 128, o - 128)
+  // pairs, xor 0x80); vpmovwb narrows them without a lane shuffle.
+  static V output_words(V even, V odd) {
+    return _mm512_xor_si512(_mm512_mask_blend_epi16(0xAAAAAAAAu, _mm512_srai_epi32(even, 16), odd), _mm512_set1_epi16(0x80));
   }
   static void store_outputs(std::uint8_t* out, V even, V odd) {
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), output_bytes(even, odd));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm512_cvtepi16_epi8(output_words(even, odd)));
   }
-  static void store_outputs_masked(std::uint8_t* out, V even, V odd, int n) {  // 0 < n < 32
-    const V pairs = _mm512_mask_blend_epi16(0xAAAAAAAAu, _mm512_srai_epi32(even, 16), odd);
-    const V bytes = _mm512_xor_si512(pairs, _mm512_set1_epi16(0x80));  // the low byte of each word
-    _mm512_mask_cvtepi16_storeu_epi8(out, (1u << n) - 1, bytes);
+  static void store_outputs_masked(std::uint8_t* out, V even, V odd, int n) {  // the first n outputs, 0 < n < 32
+    _mm512_mask_cvtepi16_storeu_epi8(out, (1u << n) - 1, output_words(even, odd));
   }
 };
 
