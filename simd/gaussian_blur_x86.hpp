@@ -46,6 +46,9 @@ struct Vec<Arch, 128> {
   }
 };
 
+// Each wider form only where its unit's flags allow it: clang checks the asm operand sizes of
+// the opaque() barrier even in a specialization it never instantiates.
+#if defined(__AVX2__)
 template <class Arch>
 struct Vec<Arch, 256> {
   using V = __m256i;
@@ -69,6 +72,9 @@ struct Vec<Arch, 256> {
   }
 };
 
+#endif  // __AVX2__
+
+#if defined(__AVX512BW__)
 // 32 columns a step. A step's outputs narrow to bytes in order with one vpmovwb, and the last
 // step of a span stores only its first n bytes (a masked vpmovwb), so spans need no overlapping
 // step and none narrower than 32 outputs falls back to scalar code.
@@ -100,6 +106,7 @@ struct Vec<Arch, 512> {
     _mm512_mask_cvtepi16_storeu_epi8(out, (1u << n) - 1, output_words(even, odd));
   }
 };
+#endif  // __AVX512BW__
 
 }  // namespace blur_detail
 
