@@ -67,7 +67,7 @@ struct LevelState {
   std::vector<Candidate> scratch_candidates;
   std::vector<PixelPoint> scratch_points;
   std::vector<PixelPoint> scratch_band_points;
-  std::vector<int> scratch_blur_columns;
+  std::vector<std::uint64_t> scratch_blur_columns;
   std::vector<std::int32_t> scratch_m10, scratch_m01;
   std::vector<float> scratch_angles;
   std::vector<std::uint8_t> scratch_descriptors;
