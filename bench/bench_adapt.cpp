@@ -29,8 +29,9 @@ void register_adapt_benchmarks() {
       benchmark::RegisterBenchmark(("adapt/sweep" + suffix).c_str(), [a, b, threads](benchmark::State& state) {
         ExtractorOptions options;
         options.threads = threads;
+        AdaptiveSweep sweep(options);  // reused, as a user sweeping many pairs would
         AdaptResult result;
-        for (auto _ : state) result = adapt(view_of(*a), view_of(*b), options);
+        for (auto _ : state) sweep.run(view_of(*a), view_of(*b), result);
         state.counters["thresholds"] = static_cast<double>(result.curve.size());
       })->Unit(benchmark::kMillisecond);
       benchmark::RegisterBenchmark(("adapt/extract_both_and_match" + suffix).c_str(), [a, b, threads](benchmark::State& state) {
@@ -61,11 +62,13 @@ void register_ratio_benchmarks() {
         options.threads = threads;
         Extractor extractor(options);
         Features fa, fb;
-        AdaptResult result = adapt(view_of(*a), view_of(*b), options);  // warm, as the extractor's first frame
+        AdaptiveSweep sweep(options);
+        AdaptResult result;
+        sweep.run(view_of(*a), view_of(*b), result);  // warm, as the extractor's first frame
         double sweep_s = 0, pair_s = 0;
         for (auto _ : state) {
           const Clock::time_point start = Clock::now();
-          result = adapt(view_of(*a), view_of(*b), options);
+          sweep.run(view_of(*a), view_of(*b), result);
           const Clock::time_point swept = Clock::now();
           extractor.extract(view_of(*a), fa);
           extractor.extract(view_of(*b), fb);

@@ -1,5 +1,6 @@
 #include "core/adaptive_sweep.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -7,6 +8,7 @@
 #include "aief/error.hpp"
 #include "core/frame_analysis.hpp"
 #include "core/matcher.hpp"
+#include "core/sweep_runs.hpp"
 #include "core/sweep_matcher.hpp"
 #include "parallel/scheduler.hpp"
 #include "simd/kernels.hpp"
@@ -41,27 +43,58 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
   return offsets;
 }
 
-// Whether thresholds F and G keep the same blocks of level n: then the level selects the same
-// candidates (its distribution depends on its kept blocks alone).
-bool same_level_blocks_kept(const FrameAnalysis& analysis, int n, double f, double g) {
-  const int blocks = analysis.level(n).geometry.grid.count();
-  for (int b = 0; b < blocks; ++b)
-    if (analysis.block_kept(n, b, f) != analysis.block_kept(n, b, g)) return false;
-  return true;
-}
+// Each level's block entropies in ascending order, to compare thresholds without visiting every
+// block: Eq. 9 keeps a block when its entropy e > F, so thresholds F < G keep the same blocks of a
+// level exactly when no e has F < e <= G, and F keeps the blocks above the first e > F.
+class SortedBlockEntropies {
+ public:
+  explicit SortedBlockEntropies(const FrameAnalysis& analysis) : levels_(static_cast<std::size_t>(analysis.level_count())) {
+    for (int n = 0; n < analysis.level_count(); ++n) {
+      std::vector<double>& sorted = levels_[static_cast<std::size_t>(n)];
+      sorted = analysis.level(n).block_entropy;  // every block of a usable level (the sweep needs an entropy measure)
+      std::sort(sorted.begin(), sorted.end());
+    }
+  }
+
+  // Whether thresholds F and G keep the same blocks of level n: then the level selects the same
+  // candidates (its distribution depends on its kept blocks alone).
+  bool same_level_blocks_kept(int n, double f, double g) const {
+    if (f > g) std::swap(f, g);
+    const std::vector<double>& sorted = levels_[static_cast<std::size_t>(n)];
+    const auto first_above_f = std::upper_bound(sorted.begin(), sorted.end(), f);
+    return first_above_f == sorted.end() || *first_above_f > g;
+  }
+  // The same on every level: then F and G select the same features (the distribution and the
+  // descriptors depend on the kept blocks alone).
+  bool same_blocks_kept(double f, double g) const {
+    for (int n = 0; n < static_cast<int>(levels_.size()); ++n)
+      if (!same_level_blocks_kept(n, f, g)) return false;
+    return true;
+  }
+  int blocks_kept(double f) const {
+    std::size_t kept = 0;
+    for (const std::vector<double>& sorted : levels_)
+      kept += static_cast<std::size_t>(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), f));
+    return static_cast<int>(kept);
+  }
+
+ private:
+  std::vector<std::vector<double>> levels_;
+};
 
 // Extracts the features of one image at threshold F from its analysis (no starvation rule:
 // the sweep measures each F as it is), with the identity of each feature. `chosen` holds each
 // level's selection at `previous` (when there is one, i.e. previous >= 0); a level whose kept
 // blocks did not change since keeps it.
-void features_at(FrameAnalysis& analysis, double threshold, double previous, const std::vector<std::int32_t>& id_offsets,
-                 std::vector<std::vector<std::int32_t>>& chosen, ThresholdFeatures& result) {
+void features_at(FrameAnalysis& analysis, const SortedBlockEntropies& entropies, double threshold, double previous,
+                 const std::vector<std::int32_t>& id_offsets, std::vector<std::vector<std::int32_t>>& chosen,
+                 ThresholdFeatures& result) {
   const int levels = analysis.level_count();
   chosen.resize(static_cast<std::size_t>(levels));
   result.ids.clear();
   for (int n = 0; n < levels; ++n) {
     std::vector<std::int32_t>& level_chosen = chosen[static_cast<std::size_t>(n)];
-    if (previous < 0 || !same_level_blocks_kept(analysis, n, previous, threshold)) analysis.select(n, threshold, level_chosen);
+    if (previous < 0 || !entropies.same_level_blocks_kept(n, previous, threshold)) analysis.select(n, threshold, level_chosen);
     for (std::int32_t i : level_chosen) result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
   }
   Features& out = result.features;
@@ -71,15 +104,7 @@ void features_at(FrameAnalysis& analysis, double threshold, double previous, con
   out.info.threshold_lowered = false;
   out.info.image_entropy_bits = analysis.image_entropy_bits();
   out.info.blocks_total = analysis.blocks_total();
-  out.info.blocks_kept = analysis.blocks_kept(threshold);
-}
-
-// Whether thresholds F and G keep the same blocks on every level: then they select the same
-// features (the distribution and the descriptors depend on the kept blocks alone).
-bool same_blocks_kept(const FrameAnalysis& analysis, double f, double g) {
-  for (int n = 0; n < analysis.level_count(); ++n)
-    if (!same_level_blocks_kept(analysis, n, f, g)) return false;
-  return true;
+  out.info.blocks_kept = entropies.blocks_kept(threshold);
 }
 
 void analyse(FrameAnalysis& analysis, ImageView image, const ExtractorOptions& options,
@@ -100,23 +125,17 @@ bool same_features(const Features& x, const Features& y) {
   return true;
 }
 
-struct Evaluated {
-  std::vector<Match> matches;
-  HomographyResult homography;
-};
-
-HomographyResult homography_of(const Features& a, const Features& b, const std::vector<Match>& matches,
-                               const RansacOptions& ransac) {
-  std::vector<Point2> src, dst;
-  src.reserve(matches.size());
-  dst.reserve(matches.size());
+void homography_of(const Features& a, const Features& b, const std::vector<Match>& matches, const RansacOptions& ransac,
+                   std::vector<Point2>& src, std::vector<Point2>& dst, HomographyResult& out) {
+  src.clear();
+  dst.clear();
   for (const Match& m : matches) {
     const Keypoint& ka = a.keypoints[static_cast<std::size_t>(m.query)];
     const Keypoint& kb = b.keypoints[static_cast<std::size_t>(m.train)];
     src.push_back({ka.x, ka.y});
     dst.push_back({kb.x, kb.y});
   }
-  return find_homography_ransac(src, dst, ransac);
+  out = find_homography_ransac(src, dst, ransac);
 }
 
 void check_sweep_inputs(const ExtractorOptions& options, const SweepOptions& sweep) {
@@ -128,37 +147,41 @@ void check_sweep_inputs(const ExtractorOptions& options, const SweepOptions& swe
 
 }  // namespace
 
-SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
-                             const KernelTable& kernels, Repeats repeats) {
-  check_sweep_inputs(options, sweep);
+SweepPipeline::SweepPipeline(const ExtractorOptions& options, const SweepOptions& sweep, const KernelTable& kernels)
+    : options_(options), sweep_(sweep), kernels_(&kernels) {
+  check_sweep_inputs(options_, sweep_);
+  scheduler_ = parallel::Scheduler(options_.threads);
+}
+
+const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats repeats) {
   // The two images are independent until matching: each is analysed, and later selected at every
   // threshold, on its own thread.
-  const parallel::Scheduler scheduler(options.threads);
-  FrameAnalysis analysis_a, analysis_b;
-  scheduler.for_each(2, [&](int image) {
-    if (image == 0) analyse(analysis_a, a, options, kernels, sweep.first_threshold);
-    else analyse(analysis_b, b, options, kernels, sweep.first_threshold);
+  scheduler_.for_each(2, [&](int image) {
+    if (image == 0) analyse(analysis_a_, a, options_, *kernels_, sweep_.first_threshold);
+    else analyse(analysis_b_, b, options_, *kernels_, sweep_.first_threshold);
   });
 
-  SweepFeatures result;
-  result.image_entropy_bits = analysis_a.image_entropy_bits();
+  SweepFeatures& result = features_;
+  result.image_entropy_bits = analysis_a_.image_entropy_bits();
   // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
-  const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep.step)));
+  const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep_.step)));
 
   // Selection and description share the memo of an analysis: serial per image, the two images
-  // side by side.
+  // side by side. The features of each threshold keep their storage from pair to pair.
   result.a.resize(static_cast<std::size_t>(cycles));
   result.b.resize(static_cast<std::size_t>(cycles));
-  scheduler.for_each(2, [&](int image) {
-    FrameAnalysis& analysis = image == 0 ? analysis_a : analysis_b;
+  scheduler_.for_each(2, [&](int image) {
+    FrameAnalysis& analysis = image == 0 ? analysis_a_ : analysis_b_;
     std::vector<ThresholdFeatures>& features = image == 0 ? result.a : result.b;
+    std::vector<std::vector<std::int32_t>>& chosen = image == 0 ? chosen_a_ : chosen_b_;
     const std::vector<std::int32_t> id_offsets = level_id_offsets(analysis);
-    std::vector<std::vector<std::int32_t>> chosen;
+    const SortedBlockEntropies entropies(analysis);
     for (int c = 0; c < cycles; ++c) {
-      const double threshold = sweep.first_threshold + sweep.step * c;
-      const double previous = sweep.first_threshold + sweep.step * (c - 1);
+      const double threshold = sweep_.first_threshold + sweep_.step * c;
+      const double previous = sweep_.first_threshold + sweep_.step * (c - 1);
       ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
-      if (c > 0 && same_blocks_kept(analysis, previous, threshold)) {
+      here.repeat_of = -1;
+      if (c > 0 && entropies.same_blocks_kept(previous, threshold)) {
         // select() reads the threshold only through the mask.
         const ThresholdFeatures& before = features[static_cast<std::size_t>(c - 1)];
         if (repeats == Repeats::copied) {
@@ -170,29 +193,77 @@ SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& o
         here.features.info.entropy_threshold_requested = threshold;
         here.features.info.entropy_threshold_used = threshold;
       } else {
-        features_at(analysis, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
+        features_at(analysis, entropies, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
       }
     }
   });
   return result;
 }
 
-AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
-                               const SweepOptions& sweep, const KernelTable& kernels) {
+void SweepPipeline::evaluate(MatchRun& run, std::size_t c) {
+  const ThresholdFeatures& a = features_.a[c].resolved(features_.a);
+  const ThresholdFeatures& b = features_.b[c].resolved(features_.b);
+  Evaluated& evaluated = evaluated_[c];
+  evaluated.matches = run.matcher.match(a.features.descriptors, a.ids, b.features.descriptors, b.ids);
+  homography_of(a.features, b.features, evaluated.matches, sweep_.ransac, run.src, run.dst, evaluated.homography);
+}
+
+// Estimated work of each distinct threshold matched first in a run (every distance) or after the
+// one before it (the distances of the features new to it), in distances, plus a fixed part per
+// threshold for RANSAC and the matcher's bookkeeping: about 80 distances per feature (leuven
+// 1->2, thread CPU time per threshold: 1 M distances 2.6-2.9 ms, a threshold with almost no new
+// feature 0.13-0.39 ms). With it, leuven's two runs take 8.1 and 6.5 ms instead of about 5-6
+// and 9-12 ms for an even count of thresholds.
+std::vector<int> SweepPipeline::cut_into_runs(int runs) {
+  const int count = static_cast<int>(distinct_.size());
+  std::vector<double> fresh(static_cast<std::size_t>(count)), incremental(static_cast<std::size_t>(count));
+  const auto new_features = [&](const std::vector<ThresholdFeatures>& all, std::vector<int>& new_counts) {
+    const auto ids_at = [&](int k) -> const std::vector<std::int32_t>& {
+      return all[static_cast<std::size_t>(distinct_[static_cast<std::size_t>(k)])].resolved(all).ids;
+    };
+    new_counts.assign(static_cast<std::size_t>(count), 0);
+    std::int32_t max_id = -1;
+    for (int k = 0; k < count; ++k)
+      for (std::int32_t id : ids_at(k)) max_id = std::max(max_id, id);
+    present_at_.assign(static_cast<std::size_t>(max_id) + 1, -1);  // the last distinct threshold holding each id
+    for (int k = 0; k < count; ++k) {
+      for (std::int32_t id : ids_at(k)) {
+        int& present = present_at_[static_cast<std::size_t>(id)];
+        if (present != k - 1) ++new_counts[static_cast<std::size_t>(k)];
+        present = k;
+      }
+    }
+  };
+  new_features(features_.a, new_a_);
+  new_features(features_.b, new_b_);
+  for (int k = 0; k < count; ++k) {
+    const std::size_t c = static_cast<std::size_t>(distinct_[static_cast<std::size_t>(k)]);
+    const double size_a = static_cast<double>(features_.a[c].resolved(features_.a).ids.size());
+    const double size_b = static_cast<double>(features_.b[c].resolved(features_.b).ids.size());
+    const double new_a = new_a_[static_cast<std::size_t>(k)], new_b = new_b_[static_cast<std::size_t>(k)];
+    const double fixed = 80.0 * (size_a + size_b) / 2;
+    fresh[static_cast<std::size_t>(k)] = size_a * size_b + fixed;
+    incremental[static_cast<std::size_t>(k)] = new_b * size_a + new_a * (size_b - new_b) + fixed;
+  }
+  return balanced_runs(fresh, incremental, runs);
+}
+
+void SweepPipeline::run(ImageView a, ImageView b, AdaptResult& result) {
   // Repeated thresholds are not copied: each one's features are those of the first of its run.
-  SweepFeatures features = sweep_features(a, b, options, sweep, kernels, Repeats::referenced);  // validates the inputs first
-  std::vector<ThresholdFeatures>& features_a = features.a;
-  std::vector<ThresholdFeatures>& features_b = features.b;
+  features(a, b, Repeats::referenced);
+  std::vector<ThresholdFeatures>& features_a = features_.a;
+  std::vector<ThresholdFeatures>& features_b = features_.b;
   const int cycles = static_cast<int>(features_a.size());
   const auto at_a = [&](std::size_t c) -> const ThresholdFeatures& { return features_a[c].resolved(features_a); };
   const auto at_b = [&](std::size_t c) -> const ThresholdFeatures& { return features_b[c].resolved(features_b); };
 
-  AdaptResult result;
-  result.image_entropy_bits = features.image_entropy_bits;
+  result.image_entropy_bits = features_.image_entropy_bits;
   // Low thresholds often keep every block: a threshold whose two feature sets equal the previous
   // one's has the same matches and model, so only the first of such a run is evaluated.
-  std::vector<int> source(static_cast<std::size_t>(cycles));
-  std::vector<int> distinct;
+  std::vector<int>& source = source_;
+  std::vector<int>& distinct = distinct_;
+  source.resize(static_cast<std::size_t>(cycles));
+  distinct.clear();
   for (int c = 0; c < cycles; ++c) {
     const std::size_t i = static_cast<std::size_t>(c);
     const auto same_as_previous = [&](const auto& at) {
@@ -205,37 +276,35 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
   // Matching walks the distinct thresholds in order, each reusing the distances of the ones
   // before (SweepMatcher: match_descriptors' result, not a brute force per threshold), then fits
   // the threshold's model. With several threads the walk is cut into one run of consecutive
-  // thresholds per thread, each with its own matcher (whose first threshold is matched in full):
-  // the same answers, each slot written by one run.
-  std::vector<Evaluated> evaluated(static_cast<std::size_t>(cycles));
-  const parallel::Scheduler scheduler(options.threads);
+  // thresholds per thread, each with its own matcher (whose first threshold is matched in full),
+  // cut where the estimated work is even: the same answers, each slot written by one run.
+  evaluated_.resize(static_cast<std::size_t>(cycles));
   const int distinct_count = static_cast<int>(distinct.size());
-  const int runs = std::min(scheduler.concurrency(), distinct_count);
-  scheduler.for_each(runs, [&](int run) {
-    SweepMatcher matcher(sweep.match, kernels);
-    for (int k = distinct_count * run / runs; k < distinct_count * (run + 1) / runs; ++k) {
-      const std::size_t i = static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]);
-      evaluated[i].matches = matcher.match(at_a(i).features.descriptors, at_a(i).ids, at_b(i).features.descriptors, at_b(i).ids);
-      evaluated[i].homography = homography_of(at_a(i).features, at_b(i).features, evaluated[i].matches,
-                                              sweep.ransac);
-    }
+  const int runs = std::min(scheduler_.concurrency(), distinct_count);
+  while (static_cast<int>(runs_.size()) < runs) runs_.push_back({SweepMatcher(sweep_.match, *kernels_), {}, {}});
+  const std::vector<int> run_begin = runs > 1 ? cut_into_runs(runs) : std::vector<int>{0, distinct_count};
+  scheduler_.for_each(runs, [&](int r) {
+    MatchRun& run = runs_[static_cast<std::size_t>(r)];
+    run.matcher.reset();
+    for (int k = run_begin[static_cast<std::size_t>(r)]; k < run_begin[static_cast<std::size_t>(r) + 1]; ++k)
+      evaluate(run, static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]));
   });
-  for (int c = 0; c < cycles; ++c)
-    if (source[static_cast<std::size_t>(c)] != c) evaluated[static_cast<std::size_t>(c)] = evaluated[static_cast<std::size_t>(source[static_cast<std::size_t>(c)])];
 
   result.curve.resize(static_cast<std::size_t>(cycles));
+  result.chosen_index = -1;
   for (int c = 0; c < cycles; ++c) {
     const std::size_t i = static_cast<std::size_t>(c);
+    const Evaluated& evaluated = evaluated_[static_cast<std::size_t>(source[i])];
     SweepPoint& point = result.curve[i];
-    point.threshold = sweep.first_threshold + sweep.step * c;
+    point.threshold = sweep_.first_threshold + sweep_.step * c;
     point.kept_blocks = features_a[i].features.info.blocks_kept;
     point.kept_blocks_b = features_b[i].features.info.blocks_kept;
     point.keypoints_a = static_cast<int>(at_a(i).features.keypoints.size());
     point.keypoints_b = static_cast<int>(at_b(i).features.keypoints.size());
-    point.putative = static_cast<int>(evaluated[i].matches.size());
-    point.inliers = evaluated[i].homography.found ? evaluated[i].homography.inliers : 0;
+    point.putative = static_cast<int>(evaluated.matches.size());
+    point.inliers = evaluated.homography.found ? evaluated.homography.inliers : 0;
     point.cmr = point.putative > 0 ? static_cast<double>(point.inliers) / point.putative : 0.0;
-    point.eligible = point.inliers >= sweep.min_inliers;
+    point.eligible = point.inliers >= sweep_.min_inliers;
     // Highest CMR among eligible thresholds; ties: more inliers, then the lower F (seen first).
     if (!point.eligible) continue;
     if (result.chosen_index >= 0) {
@@ -245,24 +314,55 @@ AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions&
     result.chosen_index = c;
   }
 
-  const int chosen_index = result.chosen_index >= 0 ? result.chosen_index : 0;
+  const std::size_t chosen = static_cast<std::size_t>(result.chosen_index >= 0 ? result.chosen_index : 0);
   result.found = result.chosen_index >= 0;
-  result.threshold = result.curve[static_cast<std::size_t>(chosen_index)].threshold;
-  // The chosen threshold's features, wherever they are held, with its own info (thresholds).
-  for (std::vector<ThresholdFeatures>* image : {&features_a, &features_b}) {
-    ThresholdFeatures& chosen = (*image)[static_cast<std::size_t>(chosen_index)];
-    const ExtractionInfo info = chosen.features.info;
-    Features& out = image == &features_a ? result.features_a : result.features_b;
-    out = std::move(chosen.repeat_of >= 0 ? (*image)[static_cast<std::size_t>(chosen.repeat_of)].features : chosen.features);
-    out.info = info;
-  }
-  result.matches = std::move(evaluated[static_cast<std::size_t>(chosen_index)].matches);
-  result.homography = std::move(evaluated[static_cast<std::size_t>(chosen_index)].homography);
+  result.threshold = result.curve[chosen].threshold;
+  // The chosen threshold's features, wherever they are held, with its own info (thresholds);
+  // copied, so the sweep's storage stays for the next pair.
+  result.features_a = at_a(chosen).features;
+  result.features_a.info = features_a[chosen].features.info;
+  result.features_b = at_b(chosen).features;
+  result.features_b.info = features_b[chosen].features.info;
+  const Evaluated& evaluated = evaluated_[static_cast<std::size_t>(source[chosen])];
+  result.matches = evaluated.matches;
+  result.homography = evaluated.homography;
+}
+
+SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
+                             const KernelTable& kernels, Repeats repeats) {
+  SweepPipeline pipeline(options, sweep, kernels);
+  return pipeline.features(a, b, repeats);
+}
+
+AdaptResult adapt_with_kernels(ImageView a, ImageView b, const ExtractorOptions& options,
+                               const SweepOptions& sweep, const KernelTable& kernels) {
+  SweepPipeline pipeline(options, sweep, kernels);
+  AdaptResult result;
+  pipeline.run(a, b, result);
   return result;
 }
 
+struct AdaptiveSweep::State {
+  SweepPipeline pipeline;
+};
+
+AdaptiveSweep::AdaptiveSweep(const ExtractorOptions& options, const SweepOptions& sweep)
+    : state_(std::make_unique<State>(State{SweepPipeline(options, sweep, kernel_table(options.kernels))})) {}
+
+AdaptiveSweep::~AdaptiveSweep() = default;
+AdaptiveSweep::AdaptiveSweep(AdaptiveSweep&&) noexcept = default;
+AdaptiveSweep& AdaptiveSweep::operator=(AdaptiveSweep&&) noexcept = default;
+
+AdaptResult AdaptiveSweep::run(ImageView a, ImageView b) {
+  AdaptResult result;
+  run(a, b, result);
+  return result;
+}
+
+void AdaptiveSweep::run(ImageView a, ImageView b, AdaptResult& out) { state_->pipeline.run(a, b, out); }
+
 AdaptResult adapt(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep) {
-  return adapt_with_kernels(a, b, options, sweep, kernel_table(options.kernels));
+  return AdaptiveSweep(options, sweep).run(a, b);
 }
 
 }  // namespace aief

@@ -5,7 +5,10 @@
 #include <vector>
 
 #include "aief/adapt.hpp"
+#include "core/frame_analysis.hpp"
 #include "core/kernel_table.hpp"
+#include "core/sweep_matcher.hpp"
+#include "parallel/scheduler.hpp"
 
 namespace aief {
 
@@ -38,5 +41,45 @@ struct SweepFeatures {
 
 SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
                              const KernelTable& kernels, Repeats repeats = Repeats::copied);
+
+// The sweep with everything it keeps between pairs (AdaptiveSweep's state): both analyses, every
+// threshold's features and matches, one matcher per thread.
+class SweepPipeline {
+ public:
+  // Validates the options (throws aief::Error).
+  SweepPipeline(const ExtractorOptions& options, const SweepOptions& sweep, const KernelTable& kernels);
+
+  void run(ImageView a, ImageView b, AdaptResult& out);
+  // Analyses both images and extracts them at every threshold; valid until the next call.
+  const SweepFeatures& features(ImageView a, ImageView b, Repeats repeats);
+
+ private:
+  // The matches of one threshold and the model fitted to them.
+  struct Evaluated {
+    std::vector<Match> matches;
+    HomographyResult homography;
+  };
+  // What one thread of the matching reuses.
+  struct MatchRun {
+    SweepMatcher matcher;
+    std::vector<Point2> src, dst;
+  };
+
+  void evaluate(MatchRun& run, std::size_t c);
+  // Where the distinct thresholds are cut into `runs` runs (core/sweep_runs.hpp).
+  std::vector<int> cut_into_runs(int runs);
+
+  ExtractorOptions options_;
+  SweepOptions sweep_;
+  const KernelTable* kernels_;
+  parallel::Scheduler scheduler_;
+  FrameAnalysis analysis_a_, analysis_b_;
+  SweepFeatures features_;
+  std::vector<std::vector<std::int32_t>> chosen_a_, chosen_b_;
+  std::vector<int> source_, distinct_;
+  std::vector<Evaluated> evaluated_;
+  std::vector<MatchRun> runs_;
+  std::vector<int> present_at_, new_a_, new_b_;  // cut_into_runs' counts of new features
+};
 
 }  // namespace aief

@@ -96,6 +96,7 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
     level.block_candidates.assign(static_cast<std::size_t>(blocks), BlockRange{});
     level.candidates.clear();
     level.candidate_memo_slot.clear();
+    level.raster_rank.clear();
     level.memo_angle_deg.clear();
     level.memo_descriptor.clear();
   }
@@ -323,11 +324,62 @@ void FrameAnalysis::select(int n, double threshold, int budget, std::vector<std:
                         level.scratch_distribution);
     for (std::int32_t& index : selected) index = pool_index[static_cast<std::size_t>(index)];
   }
-  std::sort(selected.begin(), selected.end(), [&](std::int32_t a, std::int32_t b) {
-    return raster_before(level.candidates[static_cast<std::size_t>(a)], level.candidates[static_cast<std::size_t>(b)]);
-  });
+  if (selections_ == Selections::many) {
+    sort_by_raster_rank(level, selected);
+  } else {
+    std::sort(selected.begin(), selected.end(), [&](std::int32_t a, std::int32_t b) {
+      return raster_before(level.candidates[static_cast<std::size_t>(a)], level.candidates[static_cast<std::size_t>(b)]);
+    });
+  }
   describe(level, selected);
   chosen.assign(selected.begin(), selected.end());
+}
+
+namespace {
+
+// Candidate indices in raster order (y, then x; positions are distinct): a counting sort by x,
+// then a stable one by y, linear in the candidates and the level's size.
+void build_raster_ranks(LevelState& level) {
+  const std::vector<Candidate>& candidates = level.candidates;
+  const std::size_t count = candidates.size();
+  std::vector<std::int32_t>& by_x = level.raster_rank;  // scratch until the end
+  std::vector<std::int32_t>& order = level.raster_order;
+  by_x.resize(count);
+  order.resize(count);
+  std::vector<std::int32_t>& starts = level.scratch_xs;
+  const auto counting_pass = [&](const std::vector<std::int32_t>* input, std::vector<std::int32_t>& output, int extent,
+                                 auto key) {
+    starts.assign(static_cast<std::size_t>(extent) + 1, 0);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = input ? static_cast<std::size_t>((*input)[k]) : k;
+      ++starts[static_cast<std::size_t>(key(candidates[i])) + 1];
+    }
+    for (int v = 0; v < extent; ++v) starts[static_cast<std::size_t>(v) + 1] += starts[static_cast<std::size_t>(v)];
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::int32_t i = input ? (*input)[k] : static_cast<std::int32_t>(k);
+      output[static_cast<std::size_t>(starts[static_cast<std::size_t>(key(candidates[static_cast<std::size_t>(i)]))]++)] = i;
+    }
+  };
+  counting_pass(nullptr, by_x, level.geometry.width, [](const Candidate& c) { return c.x; });
+  counting_pass(&by_x, order, level.geometry.height, [](const Candidate& c) { return c.y; });
+  std::vector<std::int32_t>& rank = level.raster_rank;
+  for (std::size_t r = 0; r < count; ++r) rank[static_cast<std::size_t>(order[r])] = static_cast<std::int32_t>(r);
+}
+
+}  // namespace
+
+void FrameAnalysis::sort_by_raster_rank(LevelState& level, std::vector<std::int32_t>& indices) {
+  if (level.raster_rank.size() != level.candidates.size()) build_raster_ranks(level);
+  std::vector<std::uint64_t>& bits = level.scratch_rank_bits;
+  bits.assign((level.candidates.size() + 63) / 64, 0);
+  for (std::int32_t i : indices) {
+    const std::int32_t rank = level.raster_rank[static_cast<std::size_t>(i)];
+    bits[static_cast<std::size_t>(rank) / 64] |= std::uint64_t{1} << (rank % 64);
+  }
+  indices.clear();
+  for (std::size_t w = 0; w < bits.size(); ++w)
+    for (std::uint64_t word = bits[w]; word != 0; word &= word - 1)
+      indices.push_back(level.raster_order[w * 64 + static_cast<std::size_t>(std::countr_zero(word))]);
 }
 
 void FrameAnalysis::describe(LevelState& level, const std::vector<std::int32_t>& indices) {

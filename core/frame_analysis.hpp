@@ -52,6 +52,11 @@ struct LevelState {
   std::vector<std::int32_t> candidate_memo_slot;
   std::vector<float> memo_angle_deg;
   std::vector<Descriptor> memo_descriptor;
+  // Selections::many: the candidates in raster order and each one's place in it (built by the
+  // first select after detection), so that every threshold's selection is put in raster order by
+  // a bit per place instead of a sort.
+  std::vector<std::int32_t> raster_order, raster_rank;
+  std::vector<std::uint64_t> scratch_rank_bits;
 
   // Per-level scratch, so levels can run on different threads.
   std::vector<std::int32_t> scratch_xs;
@@ -62,7 +67,7 @@ struct LevelState {
   std::vector<Candidate> scratch_candidates;
   std::vector<PixelPoint> scratch_points;
   std::vector<PixelPoint> scratch_band_points;
-  std::vector<int> scratch_blur_columns;
+  std::vector<std::uint64_t> scratch_blur_columns;
   std::vector<std::int32_t> scratch_m10, scratch_m01;
   std::vector<float> scratch_angles;
   std::vector<std::uint8_t> scratch_descriptors;
@@ -121,6 +126,7 @@ class FrameAnalysis {
   void compute_score_rows(LevelState& level, int score_top, int y_begin, int y_end, int x_begin, int x_end);
   void detect_run(LevelState& level, int r, int c_begin, int c_end, int score_top);
   void describe(LevelState& level, const std::vector<std::int32_t>& indices);
+  static void sort_by_raster_rank(LevelState& level, std::vector<std::int32_t>& indices);
   void describe_through_band(LevelState& level, int count);
 
   ExtractorOptions options_;

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -163,18 +164,48 @@ void smallest_eigenvector(double a[9][9], double out[9]) {
   for (int k = 0; k < 9; ++k) out[k] = v[k][smallest];
 }
 
+// A^T A of the DLT rows of the correspondences, summed point by point, each point's first row
+// before its second, as the plain sum over all 81 entries of both rows, to the bit: the 3 zeros of
+// each row (dlt_rows) make products +-0, which leave every partial sum as it is (a sum that
+// starts at +0 never becomes -0), and A^T A is symmetric (x * y == y * x), so only the 21 + 21
+// nonzero products of the upper triangle are summed and the lower one is mirrored. Returns false,
+// leaving a partial sum, when a normalised coordinate is not finite (0 * inf would be NaN there).
+bool accumulate_normal_equations(const std::vector<Point2>& src, const std::vector<Point2>& dst, const std::vector<int>& indices,
+                                 const Normaliser& ns, const Normaliser& nd, double ata[9][9]) {
+  static constexpr int kFirstRowNonzero[6] = {0, 1, 2, 6, 7, 8};
+  static constexpr int kSecondRowNonzero[6] = {3, 4, 5, 6, 7, 8};
+  for (int i : indices) {
+    const Point2 p = ns.apply(src[static_cast<std::size_t>(i)]), q = nd.apply(dst[static_cast<std::size_t>(i)]);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(q.x) || !std::isfinite(q.y)) return false;
+    double r0[9], r1[9];
+    dlt_rows(p, q, r0, r1);
+    for (int a = 0; a < 6; ++a)
+      for (int b = a; b < 6; ++b) ata[kFirstRowNonzero[a]][kFirstRowNonzero[b]] += r0[kFirstRowNonzero[a]] * r0[kFirstRowNonzero[b]];
+    for (int a = 0; a < 6; ++a)
+      for (int b = a; b < 6; ++b)
+        ata[kSecondRowNonzero[a]][kSecondRowNonzero[b]] += r1[kSecondRowNonzero[a]] * r1[kSecondRowNonzero[b]];
+  }
+  for (int p = 0; p < 9; ++p)
+    for (int q = p + 1; q < 9; ++q) ata[q][p] = ata[p][q];
+  return true;
+}
+
 // Least-squares normalised DLT over the given correspondences (>= 4).
 bool fit_least_squares(const std::vector<Point2>& src, const std::vector<Point2>& dst, const std::vector<int>& indices,
                        Homography& H) {
   const Normaliser ns = normaliser_of(indices, [&](int i) { return src[static_cast<std::size_t>(i)]; });
   const Normaliser nd = normaliser_of(indices, [&](int i) { return dst[static_cast<std::size_t>(i)]; });
   double ata[9][9] = {};
-  for (int i : indices) {
-    double r[2][9];
-    dlt_rows(ns.apply(src[static_cast<std::size_t>(i)]), nd.apply(dst[static_cast<std::size_t>(i)]), r[0], r[1]);
-    for (const auto& row : r)
-      for (int p = 0; p < 9; ++p)
-        for (int q = 0; q < 9; ++q) ata[p][q] += row[p] * row[q];
+  if (!accumulate_normal_equations(src, dst, indices, ns, nd, ata)) {
+    // A coordinate overflowed in normalisation: the plain sum, products with the zeros included.
+    for (auto& row : ata) std::fill(std::begin(row), std::end(row), 0.0);
+    for (int i : indices) {
+      double r[2][9];
+      dlt_rows(ns.apply(src[static_cast<std::size_t>(i)]), nd.apply(dst[static_cast<std::size_t>(i)]), r[0], r[1]);
+      for (const auto& row : r)
+        for (int p = 0; p < 9; ++p)
+          for (int q = 0; q < 9; ++q) ata[p][q] += row[p] * row[q];
+    }
   }
   double h[9];
   smallest_eigenvector(ata, h);
@@ -221,6 +252,28 @@ int count_inliers(const Homography& H, const std::vector<Point2>& src, const std
     }
   }
   if (error_sum) *error_sum = sum;
+  return count;
+}
+
+// The inlier count of a hypothesis, or -1 once the points left cannot bring it to `needed`
+// (it would be refused anyway); the squared error sum of the inliers when counted to the end.
+int count_inliers_reaching(const Homography& H, const std::vector<Point2>& src, const std::vector<Point2>& dst,
+                           const std::vector<int>& order, double threshold_sq, int needed, double* error_sum) {
+  int count = 0;
+  double sum = 0;
+  int left = static_cast<int>(order.size());
+  for (int i : order) {
+    if (count + left < needed) return -1;
+    --left;
+    const Point2 p = project(H, src[static_cast<std::size_t>(i)]);
+    const double dx = p.x - dst[static_cast<std::size_t>(i)].x, dy = p.y - dst[static_cast<std::size_t>(i)].y;
+    const double e = dx * dx + dy * dy;
+    if (e <= threshold_sq) {
+      ++count;
+      sum += e;
+    }
+  }
+  *error_sum = sum;
   return count;
 }
 
@@ -302,7 +355,7 @@ HomographyResult find_homography_ransac(const std::vector<Point2>& src, const st
     if (!sample_is_sound(p, q)) continue;
     ++sound_samples;
     // Normalise the sample, solve, map back.
-    const std::vector<int> four = {pick[0], pick[1], pick[2], pick[3]};
+    const std::array<int, 4> four = {pick[0], pick[1], pick[2], pick[3]};
     const Normaliser ns = normaliser_of(four, [&](int i) { return src[static_cast<std::size_t>(i)]; });
     const Normaliser nd = normaliser_of(four, [&](int i) { return dst[static_cast<std::size_t>(i)]; });
     Point2 pn[4], qn[4];
@@ -314,7 +367,8 @@ HomographyResult find_homography_ransac(const std::vector<Point2>& src, const st
     if (!solve_four_points(pn, qn, h)) continue;
     const Homography H = denormalise(h, ns, nd);
     double error = 0;
-    const int count = count_inliers(H, src, dst, order, threshold_sq, nullptr, &error);
+    // A hypothesis with fewer inliers than the best is never kept: its count may stop early.
+    const int count = count_inliers_reaching(H, src, dst, order, threshold_sq, best_count, &error);
     if (count > best_count || (count == best_count && count > 0 && error < best_error)) {
       best_count = count;
       best_error = error;

@@ -4,6 +4,7 @@
 // [x - kEdgeBorder, x + kEdgeBorder] of the points with |y - point.y| <= kEdgeBorder: on graf
 // the union of those patches is 55-58% of the pyramid's pixels, where a blur of whole rows
 // covers nearly all of them.
+#include <cstdint>
 #include <vector>
 
 #include "aief/image.hpp"
@@ -19,8 +20,8 @@ constexpr int kPatchBlurStripRows = 8;
 // Blurs rows [y_begin, y_end) of `level` into `dst` (dst row i is level row y_begin + i, as
 // KernelTable::gaussian7_rows), at least at every column an rBRIEF sample of one of the points
 // reads; other columns of dst are left as they are. points are in raster order (y ascending);
-// columns_scratch is reused storage.
+// columns_scratch is reused storage (a bit per column).
 void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageView dst, int y_begin, int y_end,
-                     const PixelPoint* points, int count, std::vector<int>& columns_scratch);
+                     const PixelPoint* points, int count, std::vector<std::uint64_t>& columns_scratch);
 
 }  // namespace aief

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <utility>
 
 namespace aief {
 
@@ -58,6 +59,37 @@ void x_groups_plan(ResizePlan& plan) {
   }
 }
 
+// The wide x groups of the 512-bit kernel (see ResizePlan).
+void x_wide_groups_plan(ResizePlan& plan) {
+  constexpr int kGroup = 16, kWindow = 32;
+  const int src = plan.src_width, dst = plan.dst_width;
+  if (src < kWindow || dst < kGroup) return;
+  const int groups = (dst + kGroup - 1) / kGroup;
+  std::vector<std::int32_t> first(static_cast<std::size_t>(groups)), start(static_cast<std::size_t>(groups));
+  for (int g = 0; g < groups; ++g) {
+    const int x0 = std::min(g * kGroup, dst - kGroup);
+    const int s = std::min(plan.x_index[static_cast<std::size_t>(x0)], src - kWindow);
+    if (plan.x_index[static_cast<std::size_t>(x0 + kGroup - 1)] + 1 >= s + kWindow) return;  // a tap outside the window
+    first[static_cast<std::size_t>(g)] = x0;
+    start[static_cast<std::size_t>(g)] = s;
+  }
+  plan.x_wide_groups = groups;
+  plan.x_wide_first = std::move(first);
+  plan.x_wide_start = std::move(start);
+  plan.x_wide_index.resize(static_cast<std::size_t>(groups) * kWindow);
+  plan.x_wide_weight.resize(static_cast<std::size_t>(groups) * kWindow);
+  for (int g = 0; g < groups; ++g)
+    for (int k = 0; k < kGroup; ++k) {
+      const std::size_t x = static_cast<std::size_t>(plan.x_wide_first[static_cast<std::size_t>(g)] + k);
+      const std::size_t at = static_cast<std::size_t>(g * kWindow + 2 * k);
+      const int sx = plan.x_index[x] - plan.x_wide_start[static_cast<std::size_t>(g)];
+      plan.x_wide_index[at] = static_cast<std::int16_t>(sx);
+      plan.x_wide_index[at + 1] = static_cast<std::int16_t>(sx + 1);
+      plan.x_wide_weight[at] = static_cast<std::int16_t>(256 - plan.x_weight[x]);
+      plan.x_wide_weight[at + 1] = static_cast<std::int16_t>(plan.x_weight[x]);
+    }
+}
+
 }  // namespace
 
 ResizePlan make_resize_plan(int src_width, int src_height, int dst_width, int dst_height) {
@@ -70,6 +102,7 @@ ResizePlan make_resize_plan(int src_width, int src_height, int dst_width, int ds
   axis_plan(src_width, dst_width, plan.x_index, plan.x_weight);
   axis_plan(src_height, dst_height, plan.y_index, plan.y_weight);
   x_groups_plan(plan);
+  x_wide_groups_plan(plan);
   return plan;
 }
 

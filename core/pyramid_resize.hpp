@@ -35,6 +35,19 @@ struct ResizePlan {
   std::vector<std::int32_t> x_group_start;
   std::vector<std::uint8_t> x_group_shuffle;
   std::vector<std::int16_t> x_group_weight;
+
+  // The x taps for 512-bit kernels (simd/pyramid_resize_avx512.hpp): wide group g = the 16
+  // outputs from x_wide_first[g], whose taps all lie in the 32 source pixels from
+  // x_wide_start[g]. Groups start every 16 outputs, the last one at dst_width - 16 (overlapping
+  // its neighbour), so they cover the whole row. For output k of group g, the 32 int16 at
+  // x_wide_index[g * 32] hold sx - start, sx + 1 - start at 2k, 2k + 1 (a vpermw index) and
+  // x_wide_weight[g * 32] the pmaddwd weights (256 - wx, wx). x_wide_groups is 0 when any group
+  // does not fit (dst_width < 16, src_width < 32, or more than about 2x downscaling).
+  int x_wide_groups = 0;
+  std::vector<std::int32_t> x_wide_first;
+  std::vector<std::int32_t> x_wide_start;
+  std::vector<std::int16_t> x_wide_index;
+  std::vector<std::int16_t> x_wide_weight;
 };
 
 ResizePlan make_resize_plan(int src_width, int src_height, int dst_width, int dst_height);

@@ -27,6 +27,14 @@ SweepMatcher::SweepMatcher(const MatchOptions& options, const KernelTable& kerne
   options_.validate();
 }
 
+void SweepMatcher::reset() {
+  for (Side* side : {&a_, &b_}) {
+    for (std::int32_t id : side->ids) side->index_of_id[static_cast<std::size_t>(id)] = -1;
+    side->ids.clear();
+    side->lists.clear();
+  }
+}
+
 // Maps the previous set onto the new one. Returns false when two features present at both calls
 // swapped order (the lists' tie-breaking would no longer follow the indices).
 bool SweepMatcher::renumber(Side& side, const std::vector<std::int32_t>& ids) {
@@ -67,6 +75,12 @@ void SweepMatcher::forget_previous(Side& side) {
 
 namespace {
 
+// A row goes through the bound filter a chunk at a time. The first chunk is short: a new query's
+// list accepts everything until it fills. Its bound then shrinks slowly, so the chunks double
+// (fewer filter calls for a few more refused offers; graf 1->2: the matcher's instructions
+// 88.2 M -> 80.8 M against fixed chunks of 32).
+constexpr int kFirstChunk = 32, kLastChunk = 512;
+
 // The lists of the features that stayed move to their new index and forget the neighbours that
 // left; a new feature starts with the empty, complete list of an empty set, to be offered the
 // whole other set.
@@ -90,11 +104,11 @@ void carry_lists(std::vector<NeighbourList>& lists, const std::vector<std::int32
 // row goes through the filter a chunk at a time, with the query's bound of the moment (bounds
 // only shrink: a stale one lets a few more through, which offer() refuses).
 void SweepMatcher::offer_row(Side& query_side, std::int32_t query, Side& train_side, int n_train) {
-  constexpr int kChunk = 32;  // short: a new query's list accepts everything until it fills
   NeighbourList* query_list = keeps_lists(query_side) ? &query_side.lists[static_cast<std::size_t>(query)] : nullptr;
-  positions_.resize(kChunk);
-  for (int begin = 0; begin < n_train; begin += kChunk) {
-    const int length = std::min(kChunk, n_train - begin);
+  positions_.resize(kLastChunk);
+  int chunk = kFirstChunk;
+  for (int begin = 0; begin < n_train; begin += chunk, chunk = std::min(2 * chunk, kLastChunk)) {
+    const int length = std::min(chunk, n_train - begin);
     const int query_bound = query_list != nullptr ? query_list->bound() : -1;
     const int worth = kernels_->positions_within_bounds(row_.data() + begin, train_side.bounds.data() + begin, length,
                                                         query_bound, positions_.data());
@@ -153,7 +167,18 @@ void SweepMatcher::recompute(NeighbourList& list, const Descriptor& query, const
   row_.resize(std::max(row_.size(), others.size()));
   kernels_->hamming_256_many(query.data(), others.front().data(), n, row_.data());
   distances_computed_ += n;
-  for (int k = 0; k < n; ++k) list.offer({row_[static_cast<std::size_t>(k)], k});
+  // Only the list's own bound filters: the chunks of offer_row against bounds that take nothing.
+  if (no_bounds_.size() < others.size()) no_bounds_.resize(others.size(), -1);
+  positions_.resize(kLastChunk);
+  int chunk = kFirstChunk;
+  for (int begin = 0; begin < n; begin += chunk, chunk = std::min(2 * chunk, kLastChunk)) {
+    const int worth = kernels_->positions_within_bounds(row_.data() + begin, no_bounds_.data() + begin,
+                                                        std::min(chunk, n - begin), list.bound(), positions_.data());
+    for (int w = 0; w < worth; ++w) {
+      const std::int32_t k = begin + positions_[static_cast<std::size_t>(w)];
+      list.offer({row_[static_cast<std::size_t>(k)], k});
+    }
+  }
 }
 
 const NeighbourList& SweepMatcher::list_knowing(Side& side, int index, int wanted, const std::vector<Descriptor>& own,

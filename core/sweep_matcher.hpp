@@ -88,6 +88,9 @@ class SweepMatcher {
   std::vector<Match> match(const std::vector<Descriptor>& a, const std::vector<std::int32_t>& ids_a,
                            const std::vector<Descriptor>& b, const std::vector<std::int32_t>& ids_b);
 
+  // Forgets the previous calls (a new pair of images), keeping the buffers.
+  void reset();
+
   // Descriptor distances computed by the calls so far (for tests and benchmarks).
   long long distances_computed() const { return distances_computed_; }
 
@@ -120,6 +123,7 @@ class SweepMatcher {
   Side a_, b_;
   std::vector<std::uint16_t> row_;         // one query's distances to the other set
   std::vector<std::int32_t> positions_;    // the filter's output for one chunk of row_
+  std::vector<std::int16_t> no_bounds_;    // -1s: train bounds that take nothing (recompute)
   long long distances_computed_ = 0;
 };
 

@@ -3,14 +3,15 @@
 //
 // The filter is separable and exact in integers, so the passes may run in either order.
 // Vertical first, per column: v = sum_k w_k src[y + k - 3][x] <= 65280, in u16 lanes, stored
-// biased as the int16 v - 32768 (an xor of the top bit). Horizontal: pmaddwd multiplies pairs of
-// int16 and adds each pair into an int32 lane, so with the pairs (v[x-3], v[x-2]), (v[x-1],
-// v[x]), (v[x+1], v[x+2]), (v[x+3], -) against (w0, w1), (w2, w3), (w4, w5), (w6, 0):
-//   P = sum_t w_t (v_t - 32768) = S - 2^23   (the taps sum to 256),   |P| <= 2^23,
-//   dst = (S + 32768) >> 16 = (P + 2^23 + 2^15) >> 16,
-// every step an exact integer operation. A 32-bit lane loaded at v + x - 3 holds exactly the
-// pair (v[x-3], v[x-2]), so a register loaded there serves the even outputs x, x + 2, ... and
-// one loaded at v + x - 2 the odd ones; the two results interleave back into bytes.
+// biased as the int16 v - kBias, kBias = 32640 (|v - kBias| <= 32640). Horizontal: pmaddwd
+// multiplies pairs of int16 and adds each pair into an int32 lane, so with the pairs (v[x-3],
+// v[x-2]), (v[x-1], v[x]), (v[x+1], v[x+2]), (v[x+3], -) against (w0, w1), (w2, w3), (w4, w5), (w6, 0):
+//   P = sum_t w_t (v_t - kBias) = S - 256 kBias = S + 2^15 - 2^23   (the taps sum to 256),
+//   dst = (S + 32768) >> 16 = (P + 2^23) >> 16,  i.e. P >> 16 (arithmetic) is dst - 128,
+// every step an exact integer operation (the rounding term is folded into the bias). A 32-bit
+// lane loaded at v + x - 3 holds exactly the pair (v[x-3], v[x-2]), so a register loaded there
+// serves the even outputs x, x + 2, ... and one loaded at v + x - 2 the odd ones; the two results
+// interleave back into bytes.
 //
 // The mirror border: a column's vertical sum is the same wherever the column is used, so the
 // few columns left and right of the row are copies of the mirrored ones (BORDER_REFLECT_101).
@@ -37,78 +38,100 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   constexpr int L = Ops::kColumns;
   constexpr int kChunk = 512;  // output pixels per chunk: its columns stay in L1
   const int width = src.width, height = src.height;
+  const std::ptrdiff_t stride = src.stride;
   const auto& w = kGaussian7Q8;
   const auto mirror = [](int i, int size) { return i < 0 ? -i : (i >= size ? 2 * size - 2 - i : i); };
-  // Biased vertical sums of a chunk's columns x0 - 4 .. x1 + 3.
-  alignas(64) std::int16_t column[kChunk + 8];
+  // Biased vertical sums of a chunk's columns x0 - 3 .. x1 + 3 at column[kSlack + q - (x0 - 3)];
+  // the slack on both sides takes the vector loop's batches that start left of x0 - 3 or end
+  // right of x1 + 3 (still inside the row).
+  constexpr int kSlack = L;
+  constexpr int kBandRows = 8;  // rows whose vertical sums are kept at once (kPatchBlurStripRows)
+  alignas(64) std::int16_t column_buffer[kBandRows][kSlack + kChunk + 7 + kSlack];
 
-  const V w0 = Ops::set16(w[0]), w1 = Ops::set16(w[1]), w2 = Ops::set16(w[2]), w3 = Ops::set16(w[3]);
-  const V pair01 = Ops::set32(w[0] | w[1] << 16), pair23 = Ops::set32(w[2] | w[3] << 16);
-  const V pair45 = Ops::set32(w[4] | w[5] << 16), pair6 = Ops::set32(w[6]);
-  const V rounding = Ops::set32((1 << 23) + (1 << 15));
+  // opaque: multiplied by constants, the compiler would rewrite each pmullw as 3-4 shifts and adds.
+  const V w0 = Ops::opaque(Ops::set16(w[0])), w1 = Ops::opaque(Ops::set16(w[1]));
+  const V w2 = Ops::opaque(Ops::set16(w[2])), w3 = Ops::opaque(Ops::set16(w[3]));
+  // (and constant pairs would become memory operands, the columns then needing loads of their own).
+  const V pair01 = Ops::opaque(Ops::set32(w[0] | w[1] << 16)), pair23 = Ops::opaque(Ops::set32(w[2] | w[3] << 16));
+  const V pair45 = Ops::opaque(Ops::set32(w[4] | w[5] << 16)), pair6 = Ops::opaque(Ops::set32(w[6]));
 
-  for (int y = y_begin; y < y_end; ++y) {
-    const std::uint8_t* rows[7];
-    for (int k = 0; k < 7; ++k) rows[k] = src.row(mirror(y + k - 3, height));
-    std::uint8_t* out = dst.row(y - y_begin);
-    const auto vertical_scalar = [&](int x) {
-      std::uint32_t v = 0;
-      for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][x];
-      return static_cast<std::int16_t>(v ^ 0x8000u);
-    };
-    for (int x0 = x_begin; x0 < x_end; x0 += kChunk) {
-      const int x1 = x0 < x_end - kChunk ? x0 + kChunk : x_end;
-      const int origin = x0 - 4;  // column[i] is the vertical sum of column origin + i
+  // Chunks outside, rows inside: a chunk's bounds and edge handling are worked out once for all
+  // rows. Rows go in bands of kBandRows: the vertical pass of the whole band first, then the
+  // horizontal one, so the horizontal loads (unaligned, each spanning two of the vertical pass's
+  // stores) find those stores long written to L1 instead of waiting on store forwarding.
+  for (int x0 = x_begin; x0 < x_end; x0 += kChunk) {
+    const int x1 = x0 < x_end - kChunk ? x0 + kChunk : x_end;
+    // The columns the horizontal pass reads that lie inside the row, [c0, c1); x1 + 3 is read
+    // only under a zero weight.
+    const int c0 = x0 > 3 ? x0 - 3 : 0, c1 = x1 + 4 < width ? x1 + 4 : width;
+    const bool vector_columns = width >= L;
+    const bool vector_outputs = x1 - x0 >= L;
+    const auto column_row = [&](int band_row) { return column_buffer[band_row] + kSlack - (x0 - 3); };  // [q]: column q
 
-      // Vertical pass over the columns inside the row, [c0, c1); symmetric taps: rows k and
-      // 6 - k share a weight, added first (<= 510).
-      const int c0 = x0 > 3 ? x0 - 3 : 0, c1 = x1 + 3 < width ? x1 + 3 : width;
-      const auto vertical = [&](int c) {
-        const V sum = Ops::add16(
-            Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[0] + c), Ops::columns(rows[6] + c)), w0),
-                       Ops::mul16(Ops::add16(Ops::columns(rows[1] + c), Ops::columns(rows[5] + c)), w1)),
-            Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[2] + c), Ops::columns(rows[4] + c)), w2),
-                       Ops::mul16(Ops::columns(rows[3] + c), w3)));
-        Ops::store(column + (c - origin), Ops::bias(sum));
-      };
-      int c = c0;
-      for (; c + L <= c1; c += L) vertical(c);
-      if (c < c1) {
-        if (c1 - c0 >= L) vertical(c1 - L);  // one overlapping last batch
-        else for (; c < c1; ++c) column[c - origin] = vertical_scalar(c);
-      }
-      // The other columns the horizontal loads read, x0 - 4 .. x1 + 3 (x0 - 4 and x1 + 3 only
-      // under a zero weight, but defined all the same): mirror images outside the row.
-      const auto other_column = [&](int q) -> std::int16_t {
-        if (q >= 0 && q < width) return vertical_scalar(q);
-        if (q >= -3 && q < width + 3) return column[mirror(q, width) - origin];
-        return 0;
-      };
-      for (int q = origin; q < c0; ++q) column[q - origin] = other_column(q);
-      for (int q = c1; q < x1 + 4; ++q) column[q - origin] = other_column(q);
-
-      // Horizontal pass, L outputs a step: L / 2 even ones and L / 2 odd ones.
-      const auto horizontal = [&](const std::int16_t* v) {  // v = column of the output's tap 0
-        return Ops::shift_down16(Ops::add32(
-            Ops::add32(Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
-                       Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6))),
-            rounding));
-      };
-      const auto step = [&](int x) {
-        const std::int16_t* v = column + (x - 3 - origin);
-        Ops::store_outputs(out + x, horizontal(v), horizontal(v + 1));
-      };
-      int x = x0;
-      for (; x + L <= x1; x += L) step(x);
-      if (x < x1) {
-        if (x1 - x0 >= L) {
-          step(x1 - L);  // one overlapping last step: the same bytes rewritten
+    for (int y0 = y_begin; y0 < y_end; y0 += kBandRows) {
+      const int y1 = y0 < y_end - kBandRows ? y0 + kBandRows : y_end;
+      for (int y = y0; y < y1; ++y) {
+        const std::uint8_t* rows[7];
+        if (y >= 3 && y + 3 < height) {
+          rows[0] = src.row(y - 3);
+          for (int k = 1; k < 7; ++k) rows[k] = rows[k - 1] + stride;
         } else {
-          for (; x < x1; ++x) {
-            const std::int16_t* v = column + (x - 3 - origin);
+          for (int k = 0; k < 7; ++k) rows[k] = src.row(mirror(y + k - 3, height));
+        }
+        std::int16_t* const column = column_row(y - y0);
+
+        // Vertical pass, symmetric taps: rows k and 6 - k share a weight, added first (<= 510).
+        const auto vertical = [&](int c) {
+          const V sum = Ops::add16(
+              Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[0] + c), Ops::columns(rows[6] + c)), w0),
+                         Ops::mul16(Ops::add16(Ops::columns(rows[1] + c), Ops::columns(rows[5] + c)), w1)),
+              Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[2] + c), Ops::columns(rows[4] + c)), w2),
+                         Ops::mul16(Ops::columns(rows[3] + c), w3)));
+          Ops::store(column + c, Ops::bias(sum));
+        };
+        if (vector_columns) {
+          // Batches from c0 on; one that would pass the row's end starts at width - L instead
+          // (within the slack, and the columns it recomputes get the same sums).
+          int c = c0;
+          for (; c < c1 && c <= width - L; c += L) vertical(c);
+          if (c < c1) vertical(width - L);
+        } else {
+          for (int c = c0; c < c1; ++c) {
+            std::uint32_t v = 0;
+            for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[k][c];
+            column[c] = static_cast<std::int16_t>(static_cast<int>(v) - blur_detail::kBias);
+          }
+        }
+        // Columns outside the row: mirror images (BORDER_REFLECT_101); width + 3 is read only
+        // under a zero weight, and its mirror image may lie left of the row, so it is set to 0.
+        for (int q = x0 - 3; q < c0; ++q) column[q] = column[-q];
+        for (int q = c1; q < x1 + 4; ++q) column[q] = q < width + 3 ? column[2 * width - 2 - q] : std::int16_t{0};
+      }
+
+      for (int y = y0; y < y1; ++y) {
+        const std::int16_t* const column = column_row(y - y0);
+        std::uint8_t* out = dst.row(y - y_begin);
+        // Horizontal pass, L outputs a step: L / 2 even ones and L / 2 odd ones, as P (above).
+        const auto horizontal = [&](const std::int16_t* v) {  // v = column of the output's tap 0
+          return Ops::add32(Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
+                            Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6)));
+        };
+        if constexpr (Ops::kMaskedTail) {
+          int x = x0;
+          for (; x <= x1 - L; x += L) Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
+          if (x < x1) Ops::store_outputs_masked(out + x, horizontal(column + x - 3), horizontal(column + x - 2), x1 - x);
+        } else if (vector_outputs) {
+          // The last step overlaps the one before when the chunk is not a multiple of L: the
+          // same bytes rewritten, and no column outside [x0, x1) is written.
+          const auto step = [&](int x) { Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2)); };
+          int x = x0;
+          for (; x <= x1 - L; x += L) step(x);
+          if (x < x1) step(x1 - L);
+        } else {
+          for (int x = x0; x < x1; ++x) {
             std::int32_t p = 0;
-            for (int t = 0; t < 7; ++t) p += w[static_cast<std::size_t>(t)] * v[t];
-            out[x] = static_cast<std::uint8_t>((p + (1 << 23) + (1 << 15)) >> 16);
+            for (int t = 0; t < 7; ++t) p += w[static_cast<std::size_t>(t)] * column[x - 3 + t];
+            out[x] = static_cast<std::uint8_t>((p + (1 << 23)) >> 16);
           }
         }
       }

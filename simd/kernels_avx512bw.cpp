@@ -1,11 +1,13 @@
 // The avx512 kernel table. Compiled with only the AVX-512 (F, CD, DQ, BW) flags
 // (simd/CMakeLists.txt). FAST-9 scores and local maxima run 64 pixels per vector (one bit word
-// per vector for the maxima); the other kernels are
-// instantiated at 256-bit width (still EVEX-encoded, 32 registers): on this project's 2-core
+// per vector for the maxima); the pyramid resize uses vpermw on 512-bit rows and the 7x7 blur
+// runs 32 columns a step (both measured faster in CPU samples of an extract); the other kernels
+// are instantiated at 256-bit width (still EVEX-encoded, 32 registers): on this project's 2-core
 // EPYC their 512-bit forms measured no faster, and 512-bit code around scalar code can cost a
 // frequency licence on Intel parts. Measured end to end on graf: entropy + FAST stage 3.08 ms
 // with this table vs 3.17 ms with avx2 (median of 31, same run). See bench/RESULTS.md.
 #include "simd/kernel_table_simd.hpp"
+#include "simd/pyramid_resize_avx512.hpp"
 
 namespace aief::simd_avx512bw {
 
@@ -15,6 +17,8 @@ KernelTable kernel_table() {
   table.fast9_local_maxima_bits = &simd::fast9_local_maxima_bits<xsimd::avx512bw>;
   table.positions_within_bounds = &simd::positions_within_bounds<xsimd::avx512bw>;  // one mask compare per 32
   table.rbrief_describe = &simd::rbrief_describe<xsimd::avx512bw>;  // 16 offsets a step
+  table.resize_bilinear_rows = &simd::resize_bilinear_rows_avx512<xsimd::avx512bw>;
+  table.gaussian7_rows = &simd::gaussian7_rows<xsimd::avx512bw>;  // 32 columns a step, masked last step  // vpermw: ~15 instructions per 16 outputs
   return table;
 }
 

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,8 @@
 #include "core/adaptive_sweep.hpp"
 #include "core/kernel_table.hpp"
 #include "core/level_geometry.hpp"
+#include "core/sweep_runs.hpp"
+#include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -162,6 +165,109 @@ TEST(AdaptiveSweep, ReadsEveryPixelOnceWhateverTheNumberOfThresholds) {
   long long distinct_upper_bound = 0;
   for (const SweepPoint& point : fine.curve) distinct_upper_bound = std::max<long long>(distinct_upper_bound, point.keypoints_a + point.keypoints_b);
   EXPECT_LE(counts.described, 4 * distinct_upper_bound) << "descriptors recomputed per threshold";
+}
+
+bool same_result(const AdaptResult& x, const AdaptResult& y) {
+  if (x.found != y.found || x.threshold != y.threshold || x.chosen_index != y.chosen_index || x.curve.size() != y.curve.size())
+    return false;
+  for (std::size_t i = 0; i < x.curve.size(); ++i) {
+    const SweepPoint &p = x.curve[i], &q = y.curve[i];
+    if (p.threshold != q.threshold || p.kept_blocks != q.kept_blocks || p.kept_blocks_b != q.kept_blocks_b ||
+        p.keypoints_a != q.keypoints_a || p.keypoints_b != q.keypoints_b || p.putative != q.putative ||
+        p.inliers != q.inliers || p.cmr != q.cmr || p.eligible != q.eligible)
+      return false;
+  }
+  if (!same_bytes(x.features_a, y.features_a) || !same_bytes(x.features_b, y.features_b)) return false;
+  if (x.matches.size() != y.matches.size()) return false;
+  for (std::size_t k = 0; k < x.matches.size(); ++k)
+    if (x.matches[k].query != y.matches[k].query || x.matches[k].train != y.matches[k].train ||
+        x.matches[k].distance != y.matches[k].distance)
+      return false;
+  return x.homography.found == y.homography.found && x.homography.H == y.homography.H &&
+         x.homography.inlier_mask == y.homography.inlier_mask && x.homography.inliers == y.homography.inliers;
+}
+
+// One AdaptiveSweep run on pair after pair (two sizes, back and forth) answers each pair as a
+// fresh sweep does, under every kernel set and at one and two threads: nothing of one pair
+// leaks into the next, and the thread count changes nothing.
+TEST(AdaptiveSweep, ReusedOverPairsEqualsAFreshSweepAtEveryKernelSetAndThreadCount) {
+  const cv::Mat graf1 = load_sample_gray("graf", "img1.png"), graf2 = load_sample_gray("graf", "img2.png");
+  const cv::Mat boat1 = load_sample_gray("boat", "img1.png"), boat2 = load_sample_gray("boat", "img2.png");
+  SweepOptions sweep;
+  sweep.step = 0.8;  // a quarter of the thresholds (10 on graf), same code paths
+  ExtractorOptions reference;
+  reference.kernels = KernelSet::scalar;
+  reference.threads = 1;
+  const AdaptResult graf = adapt(view_of(graf1), view_of(graf2), reference, sweep);
+  const AdaptResult boat = adapt(view_of(boat1), view_of(boat2), reference, sweep);
+  ASSERT_TRUE(graf.found);
+  ASSERT_TRUE(boat.found);
+  for (KernelSet set : available_kernel_sets()) {
+    for (int threads : {1, 2}) {
+      ExtractorOptions options;
+      options.kernels = set;
+      options.threads = threads;
+      AdaptiveSweep reused(options, sweep);
+      AdaptResult result;
+      const std::string where = std::string(to_string(set)) + " threads " + std::to_string(threads);
+      reused.run(view_of(graf1), view_of(graf2), result);
+      EXPECT_TRUE(same_result(graf, result)) << where << " graf, first pair";
+      reused.run(view_of(boat1), view_of(boat2), result);
+      EXPECT_TRUE(same_result(boat, result)) << where << " boat after graf";
+      reused.run(view_of(graf1), view_of(graf2), result);
+      EXPECT_TRUE(same_result(graf, result)) << where << " graf after boat";
+    }
+  }
+}
+
+double largest_run_cost(const std::vector<double>& fresh, const std::vector<double>& incremental, const std::vector<int>& begin) {
+  double largest = 0;
+  for (std::size_t r = 0; r + 1 < begin.size(); ++r) {
+    double cost = fresh[static_cast<std::size_t>(begin[r])];
+    for (int k = begin[r] + 1; k < begin[r + 1]; ++k) cost += incremental[static_cast<std::size_t>(k)];
+    largest = std::max(largest, cost);
+  }
+  return largest;
+}
+
+TEST(BalancedRuns, CutsWhereTheWorkIsEvenNotTheCount) {
+  // Thresholds 0-1 are expensive to reach, 2-5 cheap: an even count would give run 0 the bulk.
+  const std::vector<double> fresh = {100, 100, 100, 100, 100, 100};
+  const std::vector<double> incremental = {0, 90, 5, 5, 5, 5};
+  const std::vector<int> begin = balanced_runs(fresh, incremental, 2);
+  EXPECT_EQ(begin, (std::vector<int>{0, 1, 6}));
+  EXPECT_EQ(largest_run_cost(fresh, incremental, begin), 120);
+}
+
+TEST(BalancedRuns, EqualsTheBestOfEveryCutOnRandomCosts) {
+  std::uint64_t state = 7;
+  const auto next = [&] { return static_cast<double>((state = state * 6364136223846793005ull + 1442695040888963407ull) >> 54); };
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % 9;
+    std::vector<double> fresh(static_cast<std::size_t>(n)), incremental(static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) {
+      incremental[static_cast<std::size_t>(k)] = next();
+      fresh[static_cast<std::size_t>(k)] = incremental[static_cast<std::size_t>(k)] + next();
+    }
+    for (int runs = 1; runs <= std::min(n, 3); ++runs) {
+      const std::vector<int> begin = balanced_runs(fresh, incremental, runs);
+      ASSERT_EQ(begin.size(), static_cast<std::size_t>(runs) + 1);
+      EXPECT_EQ(begin.front(), 0);
+      EXPECT_EQ(begin.back(), n);
+      for (int r = 0; r < runs; ++r) EXPECT_LT(begin[static_cast<std::size_t>(r)], begin[static_cast<std::size_t>(r) + 1]);
+      // Every cut into `runs` non-empty runs, by bit mask of run starts.
+      double best = std::numeric_limits<double>::infinity();
+      for (unsigned mask = 0; mask < (1u << n); ++mask) {
+        if (!(mask & 1u) || __builtin_popcount(mask) != runs) continue;
+        std::vector<int> cut;
+        for (int k = 0; k < n; ++k)
+          if (mask & (1u << k)) cut.push_back(k);
+        cut.push_back(n);
+        best = std::min(best, largest_run_cost(fresh, incremental, cut));
+      }
+      EXPECT_EQ(largest_run_cost(fresh, incremental, begin), best) << "n " << n << " runs " << runs;
+    }
+  }
 }
 
 TEST(AdaptiveSweep, RejectsEntropyOffAndBadSweepOptions) {

@@ -3,7 +3,9 @@
 // and the whole pipeline at 1 and 2 threads under each set (simd/kernel_validation.hpp).
 // Needs no OpenCV: the OpenCV-free and aarch64 builds run it on the bundled PGM crop, and a
 // build with OpenCV adds the full-size PNG samples.
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -62,6 +64,33 @@ INSTANTIATE_TEST_SUITE_P(Sets, SimdKernels, testing::ValuesIn(cases()),
                              if (c == '.') c = '_';
                            return set + "_" + std::get<1>(info.param);
                          });
+
+// Histogram kernels may count in narrow (16-bit) banks and fold them before they overflow: one
+// gray level over many more pixels than 65535, in blocks, tall images and rows longer than a
+// fold, counted exactly by every set. The expected counts are known without any kernel.
+TEST(HistogramKernels, ExactPastSixteenBitCounters) {
+  struct Case {
+    int width, height;
+  };
+  for (const Case size : {Case{256, 256}, Case{600, 600}, Case{300001, 1}, Case{65535 * 4 + 3, 2}, Case{17, 20000}}) {
+    const std::ptrdiff_t stride = size.width + 5;
+    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(stride) * static_cast<std::size_t>(size.height), 200);
+    // Every pixel is 200 except one column of 7s and the padding past each row, which is 0.
+    for (int y = 0; y < size.height; ++y) {
+      pixels[static_cast<std::size_t>(y * stride + size.width / 2)] = 7;
+      for (std::ptrdiff_t x = size.width; x < stride; ++x) pixels[static_cast<std::size_t>(y * stride + x)] = 0;
+    }
+    const std::uint32_t area = static_cast<std::uint32_t>(size.width) * static_cast<std::uint32_t>(size.height);
+    for (KernelSet set : available_kernel_sets()) {
+      std::vector<std::uint32_t> hist(256, 1);  // accumulates onto what is there
+      kernel_table(set).accumulate_histogram(pixels.data(), stride, size.width, size.height, hist.data());
+      std::vector<std::uint32_t> expected(256, 1);
+      expected[200] += area - static_cast<std::uint32_t>(size.height);
+      expected[7] += static_cast<std::uint32_t>(size.height);
+      EXPECT_EQ(hist, expected) << to_string(set) << " " << size.width << "x" << size.height;
+    }
+  }
+}
 
 TEST(KernelDispatch, NoCaseComparesTheScalarKernelsWithThemselves) {
   for (const auto& [set, kernel] : cases())

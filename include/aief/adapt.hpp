@@ -6,6 +6,7 @@
 // The sweep reads every pixel once: pyramids, block entropies, FAST candidates, orientations and
 // descriptors are computed at most once per image; a threshold costs a block mask, the
 // distribution, matching and RANSAC on the selected points.
+#include <memory>
 #include <vector>
 
 #include "aief/features.hpp"
@@ -52,8 +53,29 @@ struct AdaptResult {
   HomographyResult homography;
 };
 
-// The sweep over the pair (a, b). `options` gives everything but F (its distribution is used as
-// is, and an entropy measure is required: EntropyMeasure::off is an error).
+// The sweep, built once and run on pair after pair (as Extractor on frame after frame): the
+// pyramids, descriptor memos, every threshold's features, the matchers' lists and the threads are
+// kept between pairs, so pairs of one size allocate almost nothing after the first.
+class AdaptiveSweep {
+ public:
+  // Validates both option sets (throws aief::Error). `options` gives everything but F (its
+  // distribution is used as is, and an entropy measure is required: EntropyMeasure::off is an error).
+  explicit AdaptiveSweep(const ExtractorOptions& options = {}, const SweepOptions& sweep = {});
+  ~AdaptiveSweep();
+  AdaptiveSweep(AdaptiveSweep&&) noexcept;
+  AdaptiveSweep& operator=(AdaptiveSweep&&) noexcept;
+
+  // The sweep over the pair (a, b).
+  AdaptResult run(ImageView a, ImageView b);
+  // Same, into `out`, reusing its vectors' storage.
+  void run(ImageView a, ImageView b, AdaptResult& out);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// One-shot convenience: AdaptiveSweep(options, sweep).run(a, b).
 AdaptResult adapt(ImageView a, ImageView b, const ExtractorOptions& options = {},
                   const SweepOptions& sweep = {});
 
