@@ -1,18 +1,16 @@
 #include "io/pairs_file.hpp"
 
-#include <fstream>
 #include <sstream>
 
 #include "aief/error.hpp"
+#include "io/text_list.hpp"
 
 namespace aief::io {
 
 std::vector<ImagePair> read_pairs(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error("cannot read pairs file '" + path + "'");
   std::vector<ImagePair> pairs;
   int number = 0;
-  for (std::string line; std::getline(in, line);) {
+  for (const std::string& line : read_text_list(path, "pairs file", 2)) {  // a folder, a binary file: refused
     ++number;
     std::istringstream fields(line);
     std::string first, second, extra;

@@ -4,11 +4,9 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <mutex>
-#include <set>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
@@ -17,6 +15,7 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "io/batch_output_names.hpp"
 #include "io/features_files.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_features.hpp"
@@ -41,47 +40,6 @@ struct HandoffOnExit {
   const char* tag;
   ~HandoffOnExit() { parallel::handoff_release(tag); }
 };
-
-bool is_image_name(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  static const char* const kExtensions[] = {".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pbm", ".bmp", ".tif", ".tiff", ".webp"};
-  return std::any_of(std::begin(kExtensions), std::end(kExtensions), [&](const char* e) { return ext == e; });
-}
-
-// The images below `folder`, named by their path as listed below the batch root (`prefix`).
-// Directory symlinks are followed, except one leading back to a folder being listed (a cycle).
-// A broken link with an image name is listed too, so it is reported, not lost.
-void list_folder(const fs::path& folder, const std::string& prefix, std::vector<fs::path>& open_folders,
-                 std::vector<BatchInput>& out) {
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    const std::string name = prefix + entry.path().filename().string();
-    std::error_code ec;
-    if (entry.is_directory(ec)) {
-      const fs::path real = fs::canonical(entry.path(), ec);
-      if (ec || std::find(open_folders.begin(), open_folders.end(), real) != open_folders.end()) continue;
-      open_folders.push_back(real);
-      list_folder(entry.path(), name + "/", open_folders, out);
-      open_folders.pop_back();
-    } else if (is_image_name(entry.path())) {
-      out.push_back({entry.path().string(), name});
-    }
-  }
-}
-
-// A list line as a name: "." parts and empty parts (doubled '/') dropped, nothing else changed.
-std::string name_of_listed_path(const std::string& line) {
-  std::string name = !line.empty() && line[0] == '/' ? "/" : "";
-  std::size_t begin = 0;
-  while (begin <= line.size()) {
-    std::size_t end = line.find('/', begin);
-    if (end == std::string::npos) end = line.size();
-    const std::string part = line.substr(begin, end - begin);
-    if (!part.empty() && part != ".") name += (name.empty() || name == "/" ? "" : "/") + part;
-    begin = end + 1;
-  }
-  return name;
-}
 
 // One image on its way through the pipeline.
 struct Item {
@@ -115,66 +73,10 @@ Shard parse_shard(const std::string& text) {
   return {static_cast<int>(index), static_cast<int>(count)};
 }
 
-std::string batch_output_path(const std::string& output_dir, const std::string& name, const std::string& format) {
-  std::string relative;
-  std::size_t begin = 0;
-  if (!name.empty() && name[0] == '/') {
-    relative = "%2F";
-    begin = 1;
-  }
-  while (begin < name.size()) {
-    std::size_t end = name.find('/', begin);
-    if (end == std::string::npos) end = name.size();
-    std::string part = name.substr(begin, end - begin);
-    if (part == "..") {
-      part = "%2E%2E";
-    } else {
-      for (std::size_t at = 0; (at = part.find('%', at)) != std::string::npos; at += 3) part.replace(at, 1, "%25");
-    }
-    if (!part.empty()) relative += (relative.empty() ? "" : "/") + part;
-    begin = end + 1;
-  }
-  return (fs::path(output_dir) / (relative + "." + format)).string();
-}
-
 std::vector<BatchInput> batch_inputs(const BatchSettings& settings) {
-  std::vector<BatchInput> all;
-  std::error_code ec;
-  if (fs::is_directory(settings.input, ec)) {
-    std::vector<fs::path> open_folders = {fs::canonical(settings.input, ec)};
-    try {
-      list_folder(settings.input, "", open_folders, all);
-    } catch (const fs::filesystem_error& e) {
-      throw Error("cannot list '" + settings.input + "': " + e.code().message());
-    }
-  } else {
-    std::ifstream list(settings.input);
-    if (!list) throw Error("batch input '" + settings.input + "' is neither a folder nor a readable list file");
-    for (std::string line; std::getline(list, line);) {
-      line.erase(line.find_last_not_of(" \t\r") + 1);
-      if (!line.empty() && line[0] != '#') all.push_back({line, name_of_listed_path(line)});
-    }
-  }
-  std::sort(all.begin(), all.end(), [](const BatchInput& a, const BatchInput& b) { return a.name < b.name; });
-  all.erase(std::unique(all.begin(), all.end(), [](const BatchInput& a, const BatchInput& b) { return a.name == b.name; }),
-            all.end());
-
-  // Distinct names give distinct output files; one can still be the folder of another (an image
-  // `a.png` beside a folder `a.png.json/`): refuse that before any work rather than fail later.
-  std::set<std::string> files;
-  for (const BatchInput& input : all) files.insert(batch_output_path("", input.name, settings.format));
-  for (const BatchInput& input : all)
-    for (fs::path folder = fs::path(batch_output_path("", input.name, settings.format)).parent_path(); !folder.empty();
-         folder = folder.parent_path())
-      if (files.count(folder.string()))
-        throw Error("batch input '" + input.path + "' needs the folder '" + folder.string() + "' in '" + settings.output_dir +
-                    "', which is another input's output file");
-
-  std::vector<BatchInput> mine;
-  for (std::size_t i = 0; i < all.size(); ++i)
-    if (i % static_cast<std::size_t>(settings.shard_count) == static_cast<std::size_t>(settings.shard_index))
-      mine.push_back(all[i]);
-  return mine;
+  const std::vector<BatchInput> all = io::list_batch_inputs(settings.input);
+  io::check_batch_outputs_do_not_nest(all, settings.output_dir, settings.format);
+  return io::shard_of(all, settings.shard_index, settings.shard_count);
 }
 
 bool batch_output_is_current(const std::string& output, const io::SourceRecord& source) {
@@ -256,7 +158,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
             return item;
           }
 #endif
-          item->output = batch_output_path(settings.output_dir, item->input.name, settings.format);
+          item->output = io::batch_output_path(settings.output_dir, item->input.name, settings.format);
           return item;
         }) &
             // Is the output current? If not: read (decoding dominates) and extract. Parallel.

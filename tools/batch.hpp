@@ -2,12 +2,8 @@
 // `aief extract --batch LIST|DIR -o OUTDIR`: many images through a TBB pipeline (read, extract,
 // write overlap), resumable, shardable.
 //
-// Names. Each input has a name, its key (hloc's and COLMAP's convention): its path below DIR as
-// listed, or the line of LIST, with "." parts and doubled '/' dropped. Symlinks are never
-// resolved: two links to one file are two inputs with two outputs. Its output is
-// OUTDIR/<name>.<format> with the name's folders mirrored (`sub/x.png` -> `OUTDIR/sub/x.png.json`);
-// the only rewrites keep the name inside OUTDIR and stay one-to-one: '%' -> "%25", a ".." part ->
-// "%2E%2E", a leading '/' -> a first folder "%2F". So no two inputs share an output.
+// Which images, their names and their output files: io/batch_inputs.hpp and
+// io/batch_output_names.hpp (one rule for the CLI, the Python module and the Dask recipe).
 //
 // HDF5 (--format h5): one file, a group per input named by the same name (hloc's features.h5).
 //
@@ -23,6 +19,7 @@
 #include <vector>
 
 #include "aief/options.hpp"
+#include "io/batch_inputs.hpp"
 #include "io/features_files.hpp"
 
 namespace aief::cli {
@@ -45,11 +42,7 @@ struct BatchSummary {
   std::vector<std::string> failures;  // "path: reason"
 };
 
-// One image of a batch.
-struct BatchInput {
-  std::string path;  // where it is read: DIR/name, or the list line as written
-  std::string name;  // its key (see above)
-};
+using io::BatchInput;
 
 // "i/n" -> {i, n}; throws aief::Error naming the rule (0 <= i < n <= 2^31 - 1) and the 1-based recipe.
 struct Shard {
@@ -58,12 +51,8 @@ struct Shard {
 Shard parse_shard(const std::string& text);
 
 // The images of a folder or list file, sorted by name, this shard's only. Throws aief::Error,
-// also when two inputs' outputs would clash (a file output where another needs a folder).
+// also when two inputs' outputs would clash (io::check_batch_outputs_do_not_nest).
 std::vector<BatchInput> batch_inputs(const BatchSettings& settings);
-
-// The output file of the input named `name` (see above). One function for every format: a new
-// writer reuses the naming, the record check and the temporary-file rule.
-std::string batch_output_path(const std::string& output_dir, const std::string& name, const std::string& format);
 
 // Whether an existing output can be kept for this input: it exists and records exactly `source`.
 bool batch_output_is_current(const std::string& output, const io::SourceRecord& source);

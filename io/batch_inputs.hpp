@@ -1,0 +1,43 @@
+#pragma once
+// Which images a batch takes, and the name each one gets: one rule for `aief extract --batch`,
+// the Python module's `aief.batch_inputs` and the Dask recipe (python/aief/dask_batch.py), so
+// every way of running a batch makes the same groups.
+//
+// A folder: its files with an image extension (is_image_file_name), recursively. Folder symlinks
+// are followed, except one leading back to a folder being listed (a cycle). Symlinks are never
+// resolved for the name: two links to one file are two inputs. A broken link or a FIFO with an
+// image name is listed too, so that reading it reports it (io/image_io.hpp refuses anything that
+// is not a regular file before opening it), never dropped without a word.
+//
+// A list file (io/text_list.hpp: a folder, a binary file or a line longer than a path is
+// refused): one path per line, trailing blanks and '\r' dropped, blank lines and lines starting
+// with '#' skipped.
+//
+// Names: an input's name is its key (hloc's and COLMAP's convention): its path below the folder
+// as listed, or its list line with "." parts and doubled '/' dropped (name_of_listed_path).
+// Inputs are sorted by name; a name listed twice is taken once.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace aief::io {
+
+struct BatchInput {
+  std::string path;  // where it is read: FOLDER/name, or the list line as written
+  std::string name;  // its key (see above)
+};
+
+// Whether a file name has an extension a folder batch takes (.png, .jpg, .jpeg, .pgm, .ppm,
+// .pbm, .bmp, .tif, .tiff, .webp, any case).
+bool is_image_file_name(const std::string& path);
+
+// A list line as a name: "." parts and empty parts (doubled '/') dropped, nothing else changed.
+std::string name_of_listed_path(const std::string& line);
+
+// The inputs of a folder or a list file, sorted by name. Throws aief::Error.
+std::vector<BatchInput> list_batch_inputs(const std::string& folder_or_list);
+
+// Shard `index` of `count`: inputs index, index + count, index + 2 count, ... (0 <= index < count).
+std::vector<BatchInput> shard_of(const std::vector<BatchInput>& inputs, int index, int count);
+
+}  // namespace aief::io
