@@ -23,7 +23,7 @@ void write_png(const std::string& path, const cv::Mat& picture) {
   try {
     ok = cv::imwrite(path, picture);
   } catch (const cv::Exception& e) {
-    throw Error("cannot write picture '" + path + "': " + e.what());
+    throw Error("cannot write picture '" + path + "': " + e.err);
   }
   if (!ok) throw Error("cannot write picture '" + path + "' (is the extension .png and the folder writable?)");
 }
@@ -35,6 +35,14 @@ cv::Scalar octave_color(int octave) {
 }
 
 }  // namespace
+
+bool is_picture_file_name(const std::string& path) {
+  try {
+    return cv::haveImageWriter(path);
+  } catch (const cv::Exception&) {  // no extension at all
+    return false;
+  }
+}
 
 void draw_keypoints_png(const std::string& path, ImageView image, const Features& features) {
   cv::Mat picture = color_copy(image);

@@ -9,6 +9,10 @@
 
 namespace aief::io {
 
+// Whether OpenCV writes a picture of this name: an extension it encodes (.png, .jpg, .bmp, .tif,
+// .webp, ...), any case. The commands ask before any work.
+bool is_picture_file_name(const std::string& path);
+
 // Each keypoint a circle of its scale (colour by octave) with a line along its angle.
 void draw_keypoints_png(const std::string& path, ImageView image, const Features& features);
 

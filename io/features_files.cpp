@@ -1,5 +1,6 @@
 #include "io/features_files.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -81,6 +82,39 @@ bool json_file_belongs_to(const std::string& path, const SourceRecord& source) {
   return read_bytes(path, 0, kHeadBytes).find(source_json_fragment(source)) != std::string::npos;
 }
 
+// A string value for OpenCV's YAML writer, quoted and escaped here. The writer takes a string
+// beginning with '{' or '[' for the start of a map or a list (`image: !!b}.png`) and leaves one
+// that begins and ends with the same quote unquoted (its reader then strips them); a string it is
+// given already in double quotes is written as it is. Its reader (4.6) decodes \\ \" \n \r \t but
+// not \x escapes, and holds at most 4095 bytes a string: a name with another control character,
+// or longer, is refused here rather than written in a form that reads back as another name.
+std::string yaml_quoted(const std::string& value, const char* key) {
+  constexpr std::size_t kLongestString = 4094;  // OpenCV's CV_FS_MAX_LEN, less the two quotes
+  std::string quoted = "\"";
+  for (const char c : value) {
+    const unsigned char byte = static_cast<unsigned char>(c);
+    switch (c) {
+      case '\\': quoted += "\\\\"; break;
+      case '"': quoted += "\\\""; break;
+      case '\n': quoted += "\\n"; break;
+      case '\r': quoted += "\\r"; break;
+      case '\t': quoted += "\\t"; break;
+      default:
+        if (byte < 0x20) {
+          char hex[8];
+          std::snprintf(hex, sizeof hex, "0x%02X", byte);
+          throw Error(std::string("YAML cannot hold the ") + key + " '" + value + "': OpenCV's FileStorage reads no control character " +
+                      hex + " back (write .json or .npz for such names)");
+        }
+        quoted += c;
+    }
+  }
+  if (quoted.size() - 1 > kLongestString)
+    throw Error(std::string("YAML cannot hold the ") + key + " '" + value + "': OpenCV's FileStorage reads strings of at most " +
+                std::to_string(kLongestString) + " bytes, escapes counted (write .json or .npz for such names)");
+  return quoted + "\"";
+}
+
 bool yaml_file_belongs_to(const std::string& path, const SourceRecord& source) {
   try {
     const cv::FileStorage fs(path, cv::FileStorage::READ);
@@ -158,10 +192,13 @@ void write_features_yaml(const std::string& path, const std::string& image_path,
   std::string text;
   try {
     cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
-    fs << "image" << image_path;
-    if (source)
-      fs << "source_name" << source->name << "source_bytes" << std::to_string(source->bytes) << "source_mtime_ns"
-         << std::to_string(source->mtime_ns);
+    // Strings through cv::write, never operator<< (which reads "{..." and "[..." as structure).
+    cv::write(fs, "image", yaml_quoted(image_path, "image name"));
+    if (source) {
+      cv::write(fs, "source_name", yaml_quoted(source->name, "image name"));
+      cv::write(fs, "source_bytes", std::to_string(source->bytes));
+      cv::write(fs, "source_mtime_ns", std::to_string(source->mtime_ns));
+    }
     fs << "width" << features.image_width << "height" << features.image_height;
     cv::write(fs, "keypoints", keypoints);
     fs << "descriptors" << descriptors;

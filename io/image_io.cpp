@@ -15,13 +15,25 @@ namespace aief::io {
 
 namespace {
 
+std::string depth_name(int depth) {
+  switch (depth) {
+    case CV_8S: return "8-bit signed";
+    case CV_16S: return "16-bit signed";
+    case CV_32S: return "32-bit signed integer";
+    case CV_16F: return "16-bit float";
+    case CV_32F: return "32-bit float";
+    case CV_64F: return "64-bit float";
+    default: return "depth " + std::to_string(depth);
+  }
+}
+
 // 8-bit gray from whatever OpenCV decoded (see the header for the conversions).
 GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
   if (image.depth() == CV_16U) {
     image.convertTo(image, CV_8U, 1.0 / 256.0);
   } else if (image.depth() != CV_8U) {
-    throw Error("cannot use image '" + path + "': pixel depth " + std::to_string(image.depth()) +
-                " is not 8- or 16-bit unsigned");
+    throw Error("cannot use image '" + path + "': its pixels are " + depth_name(image.depth()) +
+                ", not 8- or 16-bit unsigned (no conversion is right for every use: convert it first)");
   }
   // The conversion writes straight into the result: no second full-size gray copy at the peak.
   GrayImage out(image.cols, image.rows);
@@ -37,18 +49,25 @@ GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
   return out;
 }
 
-// Refuses what cannot be decoded safely: an unknown format, or more pixels than allowed.
-void check_declared_size(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels) {
+// Refuses what cannot be decoded safely or used: an unknown format, more pixels than allowed, a
+// format of float pixels.
+void check_header_before_decoding(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels) {
   const std::optional<ImageHeader> header = read_image_header(bytes.data(), bytes.size());
   if (!header)
     throw Error("cannot read image '" + name +
-                "': not an image aief can read (PNG, JPEG, TIFF, WebP, BMP, PNM/PAM/PFM, Sun raster, Radiance HDR, "
-                "JPEG 2000), or its header is damaged");
+                "': not an image aief can read (PNG, JPEG, TIFF, WebP, BMP, PNM/PAM, Sun raster, JPEG 2000; 8- or "
+                "16-bit), or its header is damaged");
   // Compared by division: width x height may not fit in 64 bits.
   if (header->width > 0 && header->height > max_pixels / header->width)
     throw Error("image '" + name + "' declares " + std::to_string(header->width) + "x" + std::to_string(header->height) +
                 " pixels in its " + header->format + " header, more than max_image_pixels = " +
                 std::to_string(max_pixels) + " (refused before decoding)");
+  // Formats of floating-point pixels only (their size is still read, so the limit holds): refused
+  // by name before decoding.
+  if (header->format == "HDR" || header->format == "PFM")
+    throw Error("cannot use image '" + name + "': a " + (header->format == "HDR" ? "Radiance HDR" : "PFM") +
+                " file holds floating-point pixels, which aief does not read (no conversion to 8 bits is right for "
+                "every use: tone-map it first)");
 }
 
 // A JPEG whose last scan (SOS, FF DA) is not followed by the end-of-image marker (FF D9) was cut
@@ -65,12 +84,27 @@ bool jpeg_is_cut_short(const std::vector<std::uint8_t>& bytes) {
   return true;
 }
 
+std::string kind_of(std::filesystem::file_type type) {
+  switch (type) {
+    case std::filesystem::file_type::fifo: return "a FIFO";
+    case std::filesystem::file_type::socket: return "a socket";
+    case std::filesystem::file_type::character: return "a character device";
+    case std::filesystem::file_type::block: return "a block device";
+    default: return "unknown kind";
+  }
+}
+
 }  // namespace
 
 GrayImage read_gray_image(const std::string& path, long long max_pixels, std::vector<std::string>* warnings) {
+  // Asked before opening: opening a FIFO blocks until a writer comes, maybe forever.
+  namespace fs = std::filesystem;
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error("cannot open image '" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec)) throw Error("cannot open image '" + path + "': it is a directory");
+  const fs::file_type type = fs::status(path, ec).type();
+  if (type == fs::file_type::not_found) throw Error("cannot open image '" + path + "': no such file");
+  if (ec) throw Error("cannot open image '" + path + "': " + ec.message());
+  if (type == fs::file_type::directory) throw Error("cannot open image '" + path + "': it is a directory");
+  if (type != fs::file_type::regular) throw Error("cannot open image '" + path + "': not a regular file (" + kind_of(type) + "), not opened");
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw Error("cannot open image '" + path + "': permission denied");
   // The encoded bytes in memory (a fraction of the decoded size): the header is checked first.
@@ -83,7 +117,7 @@ GrayImage read_gray_image(const std::string& path, long long max_pixels, std::ve
 
 GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels,
                             std::vector<std::string>* warnings) {
-  check_declared_size(bytes, name, max_pixels);
+  check_header_before_decoding(bytes, name, max_pixels);
   cv::Mat image;
   try {
     image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);

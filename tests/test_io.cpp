@@ -1,8 +1,11 @@
 // Image reading (conversions, clear errors) and result files (JSON, OpenCV YAML read back).
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <future>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -12,6 +15,8 @@
 #include "io/features_files.hpp"
 #include "io/image_header.hpp"
 #include "io/image_io.hpp"
+#include "io/npz_writer.hpp"
+#include "tests/odd_names.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -49,12 +54,38 @@ TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
 
   cv::Mat real(8, 9, CV_32FC1, cv::Scalar(0.5));  // float images are refused with the depth named
   cv::imwrite(dir.file("f.tiff"), real);
-  EXPECT_NE(error_of(dir.file("f.tiff")).find("not 8- or 16-bit unsigned"), std::string::npos);
+  EXPECT_NE(error_of(dir.file("f.tiff")).find("its pixels are 32-bit float, not 8- or 16-bit unsigned"), std::string::npos)
+      << error_of(dir.file("f.tiff"));
+  // Formats of float pixels only: refused by name, before decoding, never listed as readable.
+  cv::Mat radiance(8, 9, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
+  cv::imwrite(dir.file("r.hdr"), radiance);
+  EXPECT_NE(error_of(dir.file("r.hdr")).find("a Radiance HDR file holds floating-point pixels"), std::string::npos)
+      << error_of(dir.file("r.hdr"));
+  std::ofstream(dir.file("p.pfm"), std::ios::binary) << "Pf\n9 8\n-1.0\n" << std::string(9 * 8 * 4, '\0');
+  EXPECT_NE(error_of(dir.file("p.pfm")).find("a PFM file holds floating-point pixels"), std::string::npos)
+      << error_of(dir.file("p.pfm"));
+  std::ofstream(dir.file("unknown.png")) << "GIF89a";
+  EXPECT_EQ(error_of(dir.file("unknown.png")).find("HDR"), std::string::npos) << "listed as readable";
+  EXPECT_EQ(error_of(dir.file("unknown.png")).find("PFM"), std::string::npos) << "listed as readable";
 
   cv::Mat deep(8, 9, CV_16UC1, cv::Scalar(51200));  // 200 * 256
   cv::imwrite(dir.file("d.png"), deep);
   const GrayImage eight = io::read_gray_image(dir.file("d.png"));
   EXPECT_EQ(eight.data()[0], 200);
+}
+
+TEST(ImageIo, AFifoIsRefusedWithoutOpeningIt) {
+  TempDir dir;
+  const std::string fifo = dir.file("fifo.png");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  // Opening it would wait for a writer: if the read has not answered in a minute, a writer ends
+  // the wait so that the test fails instead of hanging.
+  std::future<std::string> refusal = std::async(std::launch::async, [&] { return error_of(fifo); });
+  if (refusal.wait_for(std::chrono::seconds(60)) != std::future_status::ready) {
+    ADD_FAILURE() << "reading a FIFO blocked";
+    std::ofstream(fifo) << "x";
+  }
+  EXPECT_NE(refusal.get().find("not a regular file (a FIFO), not opened"), std::string::npos);
 }
 
 TEST(ImageIo, ClearErrorsForBadFiles) {
@@ -220,6 +251,50 @@ TEST(FeatureFiles, JsonAndYamlCarryEveryKeypointAndDescriptor) {
     EXPECT_EQ(0, std::memcmp(descriptors.ptr(static_cast<int>(i)), features.descriptors[i].data(), 32));
   }
   EXPECT_THROW(io::write_features(dir.file("f.txt"), "x", features, options), Error);
+}
+
+TEST(FeatureFiles, YamlRoundTripsEveryOddNameAndRefusesControlCharactersClearly) {
+  TempDir dir;
+  const GrayImage image = io::read_gray_image(test::sample_path("boat", "img1.png"));
+  ExtractorOptions options;
+  options.n_features = 50;
+  const Features features = extract(image.view(), options);
+  int file = 0;
+  for (const std::string& name : test::odd_image_names()) {
+    io::SourceRecord source{name, 1234, 5678, {}};
+    for (const char* extension : {".yml", ".json", ".npz"}) {
+      const std::string path = dir.file(std::to_string(file++) + extension);
+      ASSERT_NO_THROW(io::write_features(path, name, features, options, source)) << name;
+      EXPECT_TRUE(io::features_file_belongs_to(path, source)) << extension << " '" << name << "' read back as another name";
+      source.bytes += 1;
+      EXPECT_FALSE(io::features_file_belongs_to(path, source)) << name;
+      source.bytes -= 1;
+      if (std::string(extension) != ".yml") continue;
+      cv::FileStorage fs(path, cv::FileStorage::READ);
+      ASSERT_TRUE(fs.isOpened()) << name;
+      EXPECT_EQ(static_cast<std::string>(fs["image"]), name);
+      EXPECT_EQ(static_cast<std::string>(fs["source_name"]), name);
+      cv::Mat descriptors;
+      fs["descriptors"] >> descriptors;
+      EXPECT_EQ(descriptors.rows, static_cast<int>(features.descriptors.size())) << name;
+    }
+  }
+  for (const std::string& name : test::control_character_names()) {
+    const io::SourceRecord source{name, 1, 2, {}};
+    try {
+      io::write_features(dir.file("control.yml"), name, features, options, source);
+      ADD_FAILURE() << "YAML accepted a name it cannot read back";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("YAML cannot hold the image name"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("control.yml")));
+    io::write_features(dir.file("control.json"), name, features, options, source);
+    EXPECT_TRUE(io::features_file_belongs_to(dir.file("control.json"), source));
+  }
+  // Longer than OpenCV's YAML strings (4094 bytes), escapes counted: refused, not cut.
+  const std::string long_name = std::string(2100, 'a') + std::string(1000, '"') + ".png";
+  EXPECT_THROW(io::write_features(dir.file("long.yml"), long_name, features, options, io::SourceRecord{long_name, 1, 2, {}}),
+               Error);
 }
 
 }  // namespace

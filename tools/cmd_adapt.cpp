@@ -10,6 +10,7 @@
 #include "io/plot.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
 
 namespace aief::cli {
@@ -47,6 +48,7 @@ int run_adapt(const Arguments& arguments) {
     return 0;
   }
   if (args.positionals().size() != 2) throw UsageError("adapt expects two images A B (aief adapt --help)");
+  check_picture_flag(args, "--plot");
   const ExtractorOptions options = extractor_options(args);
   if (options.entropy == EntropyMeasure::off) throw UsageError("adapt needs an entropy mode (aief or quadtree-entropy)");
   SweepOptions sweep;

@@ -13,6 +13,7 @@
 #include "io/json_writer.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
 
 namespace aief::cli {
@@ -71,6 +72,7 @@ int run_match(const Arguments& arguments) {
   match_options.ratio = args.get_double("--ratio", match_options.ratio, 0.0, 1.0, /*min_is_exclusive=*/true);
   if (args.has("--pairs")) return run_match_pairs(args, match_options);
   if (args.positionals().size() != 2) throw UsageError("match expects two images A B (aief match --help)");
+  check_picture_flag(args, "--draw");
   const ExtractorOptions options = extractor_options(args);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];

@@ -1,0 +1,110 @@
+// The aief command line given inputs of the wrong kind: a FIFO named like an image, an image or
+// a folder or /dev/zero given as a list, a picture path OpenCV cannot write, a float image.
+// Each gets its reason and a non-zero exit, before any work where the flag can be checked first.
+// Every command runs under `timeout`: what used to hang fails the test instead of blocking it.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "tests/test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliResult {
+  int status = -1;  // 124: killed by the timeout (it hung)
+  std::string output;  // stdout and stderr
+};
+
+CliResult run(const std::string& arguments) {
+  CliResult result;
+  const std::string command = "timeout 120 " + std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1 </dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 512> buffer{};
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+bool says(const CliResult& result, const std::string& text) { return result.output.find(text) != std::string::npos; }
+
+TEST(CliBadInputs, AFifoNamedLikeAnImageIsRefusedWithoutOpeningIt) {
+  const aief::test::TempFolder folder("aief_cli_fifo");
+  const fs::path images = folder.path() / "images";
+  fs::create_directories(images);
+  ASSERT_EQ(mkfifo((images / "fifo.png").c_str(), 0600), 0);
+  fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / "boat.png");
+
+  const CliResult single = run("extract " + (images / "fifo.png").string());
+  EXPECT_EQ(single.status, 1) << single.output;
+  EXPECT_TRUE(says(single, "not a regular file (a FIFO)")) << single.output;
+
+  const CliResult batch = run("extract --batch " + images.string() + " -o " + (folder.path() / "out").string());
+  EXPECT_EQ(batch.status, 1) << batch.output;
+  EXPECT_TRUE(says(batch, "1 extracted") && says(batch, "1 failed")) << batch.output;
+  EXPECT_TRUE(says(batch, "fifo.png: cannot open image") && says(batch, "not a regular file (a FIFO)")) << batch.output;
+  EXPECT_TRUE(fs::exists(folder.path() / "out" / "boat.png.json"));
+}
+
+TEST(CliBadInputs, ListsThatAreNotTextFilesAreRefused) {
+  const aief::test::TempFolder folder("aief_cli_lists");
+  const fs::path& dir = folder.path();
+  const std::string image = aief::test::sample_path("boat", "img1.png");
+  const std::string out = (dir / "out").string();
+
+  const CliResult image_as_list = run("extract --batch " + image + " -o " + out);
+  EXPECT_EQ(image_as_list.status, 1) << image_as_list.output;
+  EXPECT_TRUE(says(image_as_list, "is a PNG image, not a text file of names")) << image_as_list.output;
+  EXPECT_FALSE(says(image_as_list, "failed:")) << "the PNG's bytes were taken for paths";
+
+  const CliResult endless = run("extract --batch /dev/zero -o " + out);
+  EXPECT_EQ(endless.status, 1) << endless.output;
+  EXPECT_TRUE(says(endless, "binary file")) << endless.output;
+
+  std::ofstream(dir / "long.txt") << std::string(70000, 'x');
+  const CliResult long_line = run("extract --batch " + (dir / "long.txt").string() + " -o " + out);
+  EXPECT_EQ(long_line.status, 1) << long_line.output;
+  EXPECT_TRUE(says(long_line, "line 1 is longer than")) << long_line.output;
+
+#ifdef AIEF_HAVE_HDF5
+  const std::string features = (dir / "features.h5").string();
+  ASSERT_EQ(run("extract --batch " + fs::path(image).parent_path().string() + " -o " + features + " --format h5").status, 0);
+  for (const std::string& pairs : {dir.string(), std::string("/dev/zero"), image}) {
+    const CliResult match = run("match --pairs " + pairs + " --features " + features + " -o " + (dir / "m.h5").string());
+    EXPECT_EQ(match.status, 1) << pairs << ": " << match.output;
+    EXPECT_TRUE(says(match, "pairs file '" + pairs + "'")) << match.output;
+    EXPECT_FALSE(says(match, "0 pairs matched")) << match.output;
+  }
+#endif
+}
+
+TEST(CliBadInputs, PicturePathsAreCheckedBeforeAnyWork) {
+  const aief::test::TempFolder folder("aief_cli_pictures");
+  const std::string a = aief::test::sample_path("graf", "img1.png"), b = aief::test::sample_path("graf", "img2.png");
+  const std::string text = (folder.path() / "x.txt").string(), nowhere = (folder.path() / "missing" / "x.png").string();
+  for (const std::string& command : {"extract " + a + " --draw " + text, "match " + a + " " + b + " --draw " + text,
+                                     "adapt " + a + " " + b + " --plot " + text}) {
+    const CliResult result = run(command);
+    EXPECT_EQ(result.status, 2) << command << "\n" << result.output;
+    EXPECT_TRUE(says(result, "x.txt: a picture must end in .png")) << result.output;
+    EXPECT_FALSE(says(result, "keypoints") || says(result, "inliers") || says(result, "chosen")) << "worked first: " << result.output;
+    EXPECT_FALSE(says(result, ".cpp:")) << "OpenCV's source location: " << result.output;
+  }
+  const CliResult missing_folder = run("extract " + a + " --draw " + nowhere);
+  EXPECT_EQ(missing_folder.status, 1) << missing_folder.output;
+  EXPECT_TRUE(says(missing_folder, "does not exist") && !says(missing_folder, "keypoints")) << missing_folder.output;
+  EXPECT_EQ(run("extract " + a + " --draw " + (folder.path() / "x.JPG").string()).status, 0) << "any extension OpenCV writes";
+}
+
+}  // namespace
