@@ -11,6 +11,7 @@
 #include "aief/error.hpp"
 #include "io/hdf5_features.hpp"
 #include "io/pairs_file.hpp"
+#include "io/utf8.hpp"
 
 namespace aief::io {
 
@@ -84,6 +85,7 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     const Features f = features.read_features(name);
     const long long id = static_cast<long long>(images.size()) + 1;
     images[name] = {id, static_cast<int>(f.keypoints.size())};
+    if (!is_valid_utf8(name)) summary.names_not_utf8.push_back(name);
     const std::vector<double> params = {kFocalGuess * std::max(f.image_width, f.image_height), f.image_width / 2.0,
                                         f.image_height / 2.0, 0.0};
     db.run("INSERT INTO cameras VALUES (?, ?, ?, ?, ?, 0)", [&](sqlite3_stmt* s) {
@@ -95,7 +97,7 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     });
     db.run("INSERT INTO images (image_id, name, camera_id) VALUES (?, ?, ?)", [&](sqlite3_stmt* s) {
       sqlite3_bind_int64(s, 1, id);
-      sqlite3_bind_text(s, 2, name.c_str(), -1, SQLITE_TRANSIENT);
+      sqlite3_bind_text(s, 2, name.data(), static_cast<int>(name.size()), SQLITE_TRANSIENT);  // the bytes, as COLMAP
       sqlite3_bind_int64(s, 3, id);
     });
     std::vector<float> xy;

@@ -15,6 +15,7 @@
 #endif
 #ifdef AIEF_HAVE_COLMAP_EXPORT
 #include "io/colmap_database.hpp"
+#include "io/utf8.hpp"
 #endif
 
 namespace aief::cli {
@@ -95,6 +96,10 @@ int run_colmap(const Arguments& arguments) {
 #ifdef AIEF_HAVE_COLMAP_EXPORT
   const io::ColmapExport done = io::export_colmap_database(*output, *features, *matches, *pairs);
   std::printf("COLMAP database %s: %d images, %d pairs, %lld matches\n", output->c_str(), done.images, done.pairs, done.matches);
+  if (!done.names_not_utf8.empty())
+    std::cerr << "aief: note: " << done.names_not_utf8.size() << " image name(s) are not UTF-8 (the first: '"
+              << io::escape_non_utf8(done.names_not_utf8.front()) << "'): stored as their bytes, as COLMAP stores them; Python's sqlite3 "
+              << "reads them with connection.text_factory = bytes\n";
   return 0;
 #else
   throw Error("this aief was built without SQLite or HDF5 (install libsqlite3-dev libhdf5-dev and rebuild)");
