@@ -11,6 +11,7 @@ PYBIND11_MODULE(_aief, m) {
   py::register_exception<aief::Error>(m, "Error", PyExc_ValueError);
   aief::python::bind_extractor(m);
   aief::python::bind_matching(m);
+  aief::python::bind_batch(m);
   aief::python::bind_testing(m);
   m.attr("__version__") = aief::kVersionString;
 }

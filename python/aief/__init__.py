@@ -7,11 +7,11 @@ RANSAC homography and the adaptive threshold sweep, on numpy arrays.
     features.keypoints    # N x 2 float32, pixel centres at integers (OpenCV's convention)
     features.descriptors  # N x 32 uint8
 """
-from aief._aief import (AdaptResult, Error, Extractor, Features, __version__, adapt, default_options,
+from aief._aief import (AdaptResult, Error, Extractor, Features, __version__, adapt, batch_inputs, default_options,
                         find_homography, match, read_image)
 
-__all__ = ["AdaptResult", "Error", "Extractor", "Features", "adapt", "default_options", "find_homography", "match",
-           "read_image"]
+__all__ = ["AdaptResult", "Error", "Extractor", "Features", "adapt", "batch_inputs", "default_options",
+           "find_homography", "match", "read_image"]
 
 
 def _detect_and_compute(self, image, mask=None):

@@ -1,10 +1,11 @@
 """Batch extraction over a Dask cluster: one task per shard, each writing its own HDF5 feature
 file in hloc's layout (the layout of `aief extract --batch --format h5`, io/hdf5_features.hpp).
 
-Shard i of n takes images i, i+n, i+2n ... of the sorted list, as `aief extract --shard i/n`
-does, so `aief merge -o features.h5 OUTDIR/features.*-of-n.h5` gives the single-process file's
+The images and their group names are the CLI's (aief.batch_inputs). Shard i of n takes images
+i, i+n, i+2n ... of the sorted list, as `aief extract --shard i/n` does, so `aief merge -o features.h5 OUTDIR/features.*-of-n.h5` gives the single-process file's
 groups, byte for byte in every dataset. A shard file resumes: a complete group whose `source`
-(the image file's size and modification time) is the file as it is now is skipped.
+(the image file's size and modification time) is the file as it is now is skipped. An image that
+cannot be read (a broken link, a damaged file) is reported with its reason, as the CLI reports it.
 
     python3 -m aief.dask_batch IMAGES OUTDIR --shards 8 --scheduler tcp://host:8786
     python3 -m aief.dask_batch IMAGES OUTDIR --shards 4 --local-workers 2   # a LocalCluster here
@@ -14,20 +15,17 @@ CLI batch runs it): give workers threads_per_worker = cores for a machine's wort
 """
 import argparse
 import os
-import pathlib
 
 import numpy
 
 import aief
 
-# The extensions `aief extract --batch` takes from a folder (tools/batch.cpp).
-IMAGE_EXTENSIONS = {".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pbm", ".bmp", ".tif", ".tiff", ".webp"}
 
-
-def list_images(folder):
-    """Image paths below `folder`, relative with '/': the names the CLI batch gives them, sorted as it sorts them."""
-    root = pathlib.Path(folder)
-    return sorted(p.relative_to(root).as_posix() for p in root.rglob("*") if p.is_file() and p.suffix.lower() in IMAGE_EXTENSIONS)
+def list_images(images):
+    """(path, name) of every image `aief extract --batch IMAGES` takes from the folder or list
+    file `images`, sorted by name: the engine's own rule (aief.batch_inputs), so the groups are
+    the CLI's, symlinked folders and broken links included."""
+    return aief.batch_inputs(str(images))
 
 
 def shard_path(output_dir, index, count):
@@ -61,42 +59,50 @@ def write_group(file, name, features, source):
     file.flush()
 
 
-def extract_shard(folder, names, output, options):
-    """Runs on a worker: extracts `names` into the HDF5 file `output`. Returns (extracted, skipped, keypoints)."""
+def extract_shard(inputs, output, options):
+    """Runs on a worker: extracts the (path, name) `inputs` into the HDF5 file `output`.
+    Returns (extracted, skipped, keypoints, failures), failures as "path: reason" lines."""
     import h5py  # on the worker
 
     extractor = aief.Extractor(**dict(options, threads=1))
     extracted = skipped = keypoints = 0
+    failures = []
     with h5py.File(output, "a") as file:
-        for name in names:
-            path = os.path.join(folder, name)
-            source = source_of(path)
-            if is_current(file, name, source):
-                skipped += 1
+        for path, name in inputs:
+            try:
+                source = source_of(path)
+                if is_current(file, name, source):
+                    skipped += 1
+                    continue
+                features = extractor.extract(aief.read_image(path))
+            except (OSError, aief.Error) as error:
+                failures.append(f"{path}: {error}")
+                if name in file:  # an output of another or older file must not stay beside a failure
+                    del file[name]
                 continue
-            features = extractor.extract(aief.read_image(path))
             write_group(file, name, features, source)
             extracted += 1
             keypoints += len(features)
-    return extracted, skipped, keypoints
+    return extracted, skipped, keypoints, failures
 
 
-def run(client, folder, output_dir, shards, **options):
-    """Extracts every image of `folder` on the cluster of `client` into `shards` files in
-    `output_dir`; `options` are aief.Extractor's keyword arguments. Returns the shard files and
-    the totals (extracted, skipped, keypoints)."""
+def run(client, images, output_dir, shards, **options):
+    """Extracts every image of the folder or list file `images` on the cluster of `client` into
+    `shards` files in `output_dir`; `options` are aief.Extractor's keyword arguments. Returns
+    the shard files, the totals (extracted, skipped, keypoints) and the failures ("path: reason")."""
     os.makedirs(output_dir, exist_ok=True)
-    names = list_images(folder)
+    inputs = list_images(images)
     outputs = [shard_path(output_dir, i, shards) for i in range(shards)]
-    futures = [client.submit(extract_shard, str(folder), names[i::shards], outputs[i], options, pure=False)
-               for i in range(shards)]
-    totals = numpy.sum(client.gather(futures), axis=0) if futures else numpy.zeros(3, int)
-    return outputs, tuple(int(t) for t in totals)
+    futures = [client.submit(extract_shard, inputs[i::shards], outputs[i], options, pure=False) for i in range(shards)]
+    results = client.gather(futures)
+    totals = tuple(sum(result[k] for result in results) for k in range(3))
+    failures = sorted(failure for result in results for failure in result[3])
+    return outputs, totals, failures
 
 
 def main():
     parser = argparse.ArgumentParser(description="aief batch extraction on a Dask cluster (hloc HDF5 shard files)")
-    parser.add_argument("images", help="folder of images (recursively)")
+    parser.add_argument("images", help="folder of images (recursively) or a text file of paths, as aief extract --batch")
     parser.add_argument("output_dir", help="folder for features.<i>-of-<n>.h5")
     parser.add_argument("--shards", type=int, default=8, help="number of shard files / tasks (default 8)")
     where = parser.add_mutually_exclusive_group(required=True)
@@ -111,10 +117,14 @@ def main():
     else:
         client = Client(LocalCluster(n_workers=args.local_workers, threads_per_worker=1, processes=True))
     with client:
-        outputs, (extracted, skipped, keypoints) = run(client, args.images, args.output_dir, args.shards,
-                                                       n_features=args.features)
-    print(f"dask batch: {extracted} extracted, {skipped} already done, {keypoints} keypoints in {len(outputs)} shard files")
+        outputs, (extracted, skipped, keypoints), failures = run(client, args.images, args.output_dir, args.shards,
+                                                                 n_features=args.features)
+    print(f"dask batch: {extracted} extracted, {skipped} already done, {len(failures)} failed; {keypoints} keypoints "
+          f"in {len(outputs)} shard files")
+    for failure in failures:
+        print(f"  failed: {failure}")
+    return 1 if failures else 0
 
 
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())

@@ -1,5 +1,7 @@
 """The Dask recipe on a LocalCluster of two worker processes equals the single-process CLI batch."""
+import os
 import shutil
+import subprocess
 
 import h5py
 import numpy
@@ -22,18 +24,54 @@ def test_two_worker_processes_give_the_single_process_bytes(cli, tmp_path):
 
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                                   local_directory=tmp_path / "dask") as cluster, distributed.Client(cluster) as client:
-        outputs, totals = dask_batch.run(client, images, tmp_path / "shards", shards=4)
-        assert totals[:2] == (6, 0)
-        _, again = dask_batch.run(client, images, tmp_path / "shards", shards=4)  # resumes: nothing left to do
+        outputs, totals, failures = dask_batch.run(client, images, tmp_path / "shards", shards=4)
+        assert totals[:2] == (6, 0) and failures == []
+        _, again, _ = dask_batch.run(client, images, tmp_path / "shards", shards=4)  # resumes: nothing left to do
         assert again == (0, 6, 0)
     merged = tmp_path / "merged.h5"
     run_cli(cli, "merge", "-o", merged, *outputs)
 
     with h5py.File(single, "r") as s, h5py.File(merged, "r") as m:
-        names = dask_batch.list_images(images)
+        names = [name for _, name in dask_batch.list_images(images)]
         assert len(names) == 6 and all(name in s and name in m for name in names)
         for name in names:
             assert sorted(m[name]) == sorted(s[name])
             for dataset in s[name]:
                 a, b = s[name][dataset][()], m[name][dataset][()]
                 assert a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes(), f"{name}/{dataset}"
+
+
+def group_names(file):
+    """The image groups of an hloc features file: the groups holding a "descriptors" dataset."""
+    names = []
+    file.visititems(lambda name, item: names.append(name) if isinstance(item, h5py.Group) and "descriptors" in item else None)
+    return sorted(names)
+
+
+def test_takes_the_clis_images_symlinked_folders_and_broken_links_included(cli, tmp_path):
+    images, elsewhere = tmp_path / "images", tmp_path / "elsewhere"
+    images.mkdir()
+    (elsewhere / "deeper").mkdir(parents=True)
+    shutil.copy(sample_path("graf", 1), images / "graf1.png")
+    shutil.copy(sample_path("boat", 1), elsewhere / "boat1.png")
+    shutil.copy(sample_path("leuven", 1), elsewhere / "deeper" / "leuven1.png")
+    os.symlink(elsewhere, images / "linked")                     # a symlinked folder: taken
+    os.symlink(tmp_path / "missing.png", images / "gone.png")    # a broken link: reported
+    os.symlink(images, images / "linked_back")                   # a cycle: not followed
+
+    single = tmp_path / "single.h5"
+    cli_run = subprocess.run([cli, "extract", "--batch", str(images), "-o", str(single), "--format", "h5", "--threads", "1"],
+                             capture_output=True, text=True)
+    assert cli_run.returncode == 1 and "failed: " + str(images / "gone.png") in cli_run.stdout, cli_run.stdout
+
+    assert [name for _, name in dask_batch.list_images(images)] == [
+        "gone.png", "graf1.png", "linked/boat1.png", "linked/deeper/leuven1.png"]
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  local_directory=tmp_path / "dask") as cluster, distributed.Client(cluster) as client:
+        outputs, totals, failures = dask_batch.run(client, images, tmp_path / "shards", shards=2)
+    assert totals[:2] == (3, 0)
+    assert [failure.split(": ")[0] for failure in failures] == [str(images / "gone.png")]
+    merged = tmp_path / "merged.h5"
+    run_cli(cli, "merge", "-o", merged, *outputs)
+    with h5py.File(single, "r") as s, h5py.File(merged, "r") as m:
+        assert group_names(m) == group_names(s) == ["graf1.png", "linked/boat1.png", "linked/deeper/leuven1.png"]
