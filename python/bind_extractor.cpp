@@ -16,7 +16,7 @@
 namespace aief::python {
 
 PyFeatures PyExtractor::extract(const py::object& image) {
-  const ImageInput input(image);
+  const ImageInput input(image, extractor_.options().max_image_pixels);
   Features features;
   {
     py::gil_scoped_release no_gil;

@@ -144,7 +144,7 @@ void bind_matching(py::module_& m) {
         sweep.match.kind = parse_matcher_kind(matcher);
         sweep.validate();
         const ExtractorOptions options = extractor ? extractor->options() : ExtractorOptions{};
-        const ImageInput a(image_a), b(image_b);
+        const ImageInput a(image_a, options.max_image_pixels), b(image_b, options.max_image_pixels);
         AdaptResult result;
         {
           py::gil_scoped_release no_gil;

@@ -8,6 +8,7 @@
 
 #include "aief/features.hpp"
 #include "aief/image.hpp"
+#include "aief/options.hpp"
 
 namespace aief::python {
 
@@ -18,8 +19,10 @@ namespace py = pybind11;
 class ImageInput {
  public:
   // uint8 arrays only: 2-D (gray, any strides), or 3-D H x W x C with C = 1, 3 (BGR) or 4
-  // (BGRA). Throws aief::Error naming what is wrong.
-  explicit ImageInput(const py::object& image);
+  // (BGRA), of at most `max_pixels` pixels (ExtractorOptions::max_image_pixels, checked on the
+  // shape before anything is copied); not a numpy.ma.MaskedArray that masks pixels. Throws
+  // aief::Error naming what is wrong.
+  explicit ImageInput(const py::object& image, long long max_pixels = ExtractorOptions{}.max_image_pixels);
   // The gray plane to extract from: the caller's own memory when its rows are contiguous (no
   // copy), else `buffer` filled by a strided copy; colour is converted into `buffer` exactly as
   // the CLI converts a decoded file (io/image_io.hpp). Needs no GIL.

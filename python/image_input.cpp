@@ -17,9 +17,14 @@ std::string shape_text(const py::array& array) {
 
 }  // namespace
 
-ImageInput::ImageInput(const py::object& image) {
+ImageInput::ImageInput(const py::object& image, long long max_pixels) {
   if (!py::isinstance<py::array>(image))
     throw Error("image must be a numpy array of uint8, got " + std::string(py::str(py::type::of(image).attr("__name__"))));
+  // A masked array is an ndarray whose mask the engine would not see: refused while it masks any
+  // pixel, rather than extracting from the pixels it hides.
+  if (py::module_::import("numpy.ma").attr("is_masked")(image).cast<bool>())
+    throw Error("image is a numpy.ma.MaskedArray with masked pixels, which extract would read as they are: pass "
+                "image.data to use them, or image.filled(value) to replace them");
   array_ = py::reinterpret_borrow<py::array>(image);
   const py::dtype dtype = array_.dtype();
   if (dtype.kind() != 'u' || dtype.itemsize() != 1)
@@ -30,7 +35,11 @@ ImageInput::ImageInput(const py::object& image) {
   if (channels_ != 1 && channels_ != 3 && channels_ != 4)
     throw Error("image has " + std::to_string(channels_) + " channels, shape " + shape_text(array_) + " (expected 1, 3 BGR or 4 BGRA)");
   if (array_.shape(0) <= 0 || array_.shape(1) <= 0) throw Error("image is empty, shape " + shape_text(array_));
-  if (array_.shape(0) > (1LL << 30) || array_.shape(1) > (1LL << 30)) throw Error("image is too large, shape " + shape_text(array_));
+  // Checked on the shape, before any copy (a broadcast array of a few bytes may describe gigabytes);
+  // compared by division: height x width may not fit in 64 bits.
+  if (array_.shape(1) > max_pixels / array_.shape(0))
+    throw Error("image of shape " + shape_text(array_) + " has more pixels than max_image_pixels = " + std::to_string(max_pixels) +
+                " (refused before any copy)");
   height_ = static_cast<int>(array_.shape(0));
   width_ = static_cast<int>(array_.shape(1));
   row_stride_ = array_.strides(0);
