@@ -1,0 +1,196 @@
+// Pickling of aief.Extractor, aief.Features and aief.AdaptResult, so that they go to and come
+// back from worker processes (multiprocessing, concurrent.futures, Dask). Features pickle as
+// their numpy arrays. Extractor and AdaptResult pickle as the engine's own structs in bytes,
+// after a tag of the module version and the structs' sizes: a pickle of another build is refused
+// with a clear error, never misread. An Extractor is rebuilt from its options (fresh buffers).
+#include <cstring>
+#include <type_traits>
+
+#include "aief/adapt.hpp"
+#include "aief/error.hpp"
+#include "aief/version.hpp"
+#include "python/bindings.hpp"
+#include "python/py_extractor.hpp"
+
+namespace aief::python {
+
+namespace {
+
+// The build a state comes from: the version and the layout of every struct written as bytes.
+std::string layout_tag() {
+  return std::string("aief ") + kVersionString + " " + std::to_string(sizeof(ExtractorOptions)) + "." +
+         std::to_string(sizeof(Keypoint)) + "." + std::to_string(sizeof(ExtractionInfo)) + "." +
+         std::to_string(sizeof(SweepPoint)) + "." + std::to_string(sizeof(Match)) + "." + std::to_string(sizeof(Homography));
+}
+
+class StateWriter {
+ public:
+  StateWriter() { put_string(layout_tag()); }
+  template <typename T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  template <typename T>
+  void put_vector(const std::vector<T>& values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put(static_cast<std::uint64_t>(values.size()));
+    bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  }
+  void put_string(const std::string& text) {
+    put(static_cast<std::uint64_t>(text.size()));
+    bytes_ += text;
+  }
+  py::bytes bytes() const { return py::bytes(bytes_); }
+
+ private:
+  std::string bytes_;
+};
+
+class StateReader {
+ public:
+  StateReader(const py::bytes& state, const char* what) : bytes_(state), what_(what) {
+    const std::string tag = get_string();
+    if (tag != layout_tag())
+      throw Error(std::string("cannot unpickle aief.") + what_ + ": it was pickled by '" + tag + "', this is '" + layout_tag() +
+                  "' (pickles go between processes of one aief build)");
+  }
+  template <typename T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    T value;
+    std::memcpy(&value, take(sizeof(T)), sizeof(T));
+    return value;
+  }
+  template <typename T>
+  std::vector<T> get_vector() {
+    const auto count = get<std::uint64_t>();
+    if (count > (bytes_.size() - at_) / sizeof(T)) cut_short();
+    std::vector<T> values(count);
+    std::memcpy(values.data(), take(count * sizeof(T)), count * sizeof(T));
+    return values;
+  }
+  std::string get_string() {
+    const auto size = get<std::uint64_t>();
+    if (size > bytes_.size() - at_) cut_short();
+    return std::string(take(size), size);
+  }
+  void expect_end() const {
+    if (at_ != bytes_.size()) throw Error(std::string("cannot unpickle aief.") + what_ + ": trailing bytes");
+  }
+
+ private:
+  const char* take(std::size_t size) {
+    if (size > bytes_.size() - at_) cut_short();
+    const char* data = bytes_.data() + at_;
+    at_ += size;
+    return data;
+  }
+  [[noreturn]] void cut_short() const { throw Error(std::string("cannot unpickle aief.") + what_ + ": the state is cut short"); }
+
+  std::string bytes_;
+  const char* what_;
+  std::size_t at_ = 0;
+};
+
+void put_features(StateWriter& out, const Features& features) {
+  out.put(features.image_width);
+  out.put(features.image_height);
+  out.put_vector(features.keypoints);
+  out.put_vector(features.descriptors);
+  out.put(features.info);
+}
+
+Features get_features(StateReader& in) {
+  Features features;
+  features.image_width = in.get<int>();
+  features.image_height = in.get<int>();
+  features.keypoints = in.get_vector<Keypoint>();
+  features.descriptors = in.get_vector<Descriptor>();
+  features.info = in.get<ExtractionInfo>();
+  if (features.descriptors.size() != features.keypoints.size())
+    throw Error("cannot unpickle aief.AdaptResult: keypoints and descriptors differ in number");
+  return features;
+}
+
+py::bytes adapt_result_state(const AdaptResult& r) {
+  StateWriter out;
+  out.put(r.found);
+  out.put(r.threshold);
+  out.put(r.chosen_index);
+  out.put(r.image_entropy_bits);
+  out.put_vector(r.curve);
+  put_features(out, r.features_a);
+  put_features(out, r.features_b);
+  out.put_vector(r.matches);
+  out.put(r.homography.found);
+  out.put(r.homography.H);
+  out.put_vector(r.homography.inlier_mask);
+  out.put(r.homography.inliers);
+  out.put_string(r.homography.failure);
+  return out.bytes();
+}
+
+AdaptResult adapt_result_from(const py::bytes& state) {
+  StateReader in(state, "AdaptResult");
+  AdaptResult r;
+  r.found = in.get<bool>();
+  r.threshold = in.get<double>();
+  r.chosen_index = in.get<int>();
+  r.image_entropy_bits = in.get<double>();
+  r.curve = in.get_vector<SweepPoint>();
+  r.features_a = get_features(in);
+  r.features_b = get_features(in);
+  r.matches = in.get_vector<Match>();
+  r.homography.found = in.get<bool>();
+  r.homography.H = in.get<Homography>();
+  r.homography.inlier_mask = in.get_vector<std::uint8_t>();
+  r.homography.inliers = in.get<int>();
+  r.homography.failure = in.get_string();
+  in.expect_end();
+  return r;
+}
+
+}  // namespace
+
+void bind_pickling(py::module_& m) {
+  auto extractor = py::reinterpret_borrow<py::class_<PyExtractor>>(m.attr("Extractor"));
+  extractor.def(py::pickle(
+      [](const PyExtractor& e) {
+        StateWriter out;
+        out.put(e.options());
+        return out.bytes();
+      },
+      [](const py::bytes& state) {
+        StateReader in(state, "Extractor");
+        const auto options = in.get<ExtractorOptions>();
+        in.expect_end();
+        return std::make_unique<PyExtractor>(options);  // validates the options
+      }));
+
+  auto features = py::reinterpret_borrow<py::class_<PyFeatures>>(m.attr("Features"));
+  features.def(py::pickle(
+      [](const PyFeatures& f) {
+        return py::make_tuple(f.keypoints, f.size, f.angle, f.response, f.octave, f.descriptors, f.info, f.image_width,
+                              f.image_height);
+      },
+      [](const py::tuple& t) {
+        if (t.size() != 9) throw Error("cannot unpickle aief.Features: expected 9 fields, got " + std::to_string(t.size()));
+        PyFeatures f;
+        f.keypoints = t[0].cast<py::array_t<float>>();
+        f.size = t[1].cast<py::array_t<float>>();
+        f.angle = t[2].cast<py::array_t<float>>();
+        f.response = t[3].cast<py::array_t<float>>();
+        f.octave = t[4].cast<py::array_t<std::int32_t>>();
+        f.descriptors = t[5].cast<py::array_t<std::uint8_t>>();
+        f.info = t[6].cast<py::dict>();
+        f.image_width = t[7].cast<int>();
+        f.image_height = t[8].cast<int>();
+        return f;
+      }));
+
+  auto adapt_result = py::reinterpret_borrow<py::class_<AdaptResult>>(m.attr("AdaptResult"));
+  adapt_result.def(py::pickle(&adapt_result_state, &adapt_result_from));
+}
+
+}  // namespace aief::python
