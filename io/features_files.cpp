@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include <opencv2/core.hpp>
@@ -116,8 +117,12 @@ std::string yaml_quoted(const std::string& value, const char* key) {
 }
 
 bool yaml_file_belongs_to(const std::string& path, const SourceRecord& source) {
+  // Read here and parsed from memory: OpenCV cannot open a file whose path holds a newline.
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   try {
-    const cv::FileStorage fs(path, cv::FileStorage::READ);
+    const cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     if (!fs.isOpened() || fs["descriptors"].empty()) return false;
     return static_cast<std::string>(fs["source_name"]) == source.name &&
            static_cast<std::string>(fs["source_bytes"]) == std::to_string(source.bytes) &&

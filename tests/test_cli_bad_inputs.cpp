@@ -89,6 +89,24 @@ TEST(CliBadInputs, ListsThatAreNotTextFilesAreRefused) {
 #endif
 }
 
+TEST(CliBadInputs, AYamlBatchOfOddNamesResumesInsteadOfRedoingThem) {
+  const aief::test::TempFolder folder("aief_cli_yaml");
+  const fs::path images = folder.path() / "images";
+  fs::create_directories(images);
+  for (const char* name : {"{b}.png", "[a].png", "new\nline.png", "\"quoted\".png", "- dash.png"})
+    fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / name);
+  const std::string batch = "extract --batch '" + images.string() + "' -o '" + (folder.path() / "out").string() +
+                            "' --format yml --features 100";
+  const CliResult first = run(batch);
+  EXPECT_EQ(first.status, 0) << first.output;
+  EXPECT_TRUE(says(first, "5 extracted")) << first.output;
+  const CliResult second = run(batch);
+  EXPECT_EQ(second.status, 0) << second.output;
+  EXPECT_TRUE(says(second, "0 extracted, 5 already done")) << "outputs not read back as their own: " << second.output;
+  cv::FileStorage yaml((folder.path() / "out" / "{b}.png.yml").string(), cv::FileStorage::READ);
+  EXPECT_EQ(static_cast<std::string>(yaml["source_name"]), "{b}.png");
+}
+
 TEST(CliBadInputs, PicturePathsAreCheckedBeforeAnyWork) {
   const aief::test::TempFolder folder("aief_cli_pictures");
   const std::string a = aief::test::sample_path("graf", "img1.png"), b = aief::test::sample_path("graf", "img2.png");
