@@ -1,6 +1,7 @@
 // Per-kernel benchmarks: every kernel set the CPU runs, on the standard images, beside OpenCV's
-// kernel for the same job. Names read kernel/variant/image; items are pixels (or keypoints,
-// descriptor pairs) so rates compare across sizes.
+// kernel for the same job. Names read kernel/variant/image, the kernel named as in the kernel
+// list (core/kernel_table.hpp); fast9_detect is both FAST kernels and the corner walk, the job
+// cv::FAST with suppression does. Items are pixels so rates compare across sizes.
 #include <benchmark/benchmark.h>
 
 #include <opencv2/features2d.hpp>
@@ -44,6 +45,15 @@ cv::Mat as_mat(const GrayImage& image) {
   return cv::Mat(image.height(), image.width(), CV_8UC1, const_cast<std::uint8_t*>(image.data()));
 }
 
+constexpr const char* kResize = listed_kernel("resize_bilinear_rows");
+constexpr const char* kGaussian = listed_kernel("gaussian7_rows");
+constexpr const char* kHistogram = listed_kernel("accumulate_histogram");
+constexpr const char* kFast = "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (core/fast9_detect.hpp)
+
+std::string benchmark_name(const char* kernel, const std::string& variant, const std::string& image) {
+  return std::string(kernel) + "/" + variant + "/" + image;
+}
+
 void register_kernel_benchmarks() {
   for (const NamedImage& image : benchmark_images()) {
     const auto pyramid = std::make_shared<Pyramid>(make_pyramid(image.gray));
@@ -51,7 +61,7 @@ void register_kernel_benchmarks() {
       const KernelTable* kernels = &kernel_table(set);
       const std::string variant = std::string(to_string(set));
 
-      benchmark::RegisterBenchmark(("pyramid/" + variant + "/" + image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
+      benchmark::RegisterBenchmark(benchmark_name(kResize, variant, image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
         std::vector<GrayImage> out;
         for (std::size_t n = 0; n < pyramid->levels.size(); ++n) out.emplace_back(pyramid->levels[n].width(), pyramid->levels[n].height());
         for (auto _ : state)
@@ -59,7 +69,7 @@ void register_kernel_benchmarks() {
             kernels->resize_bilinear_rows(pyramid->levels[n - 1].view(), pyramid->plans[n], out[n].mutable_view(), 0, out[n].height());
         state.SetItemsProcessed(state.iterations() * (pyramid->pixels - pyramid->levels[0].width() * pyramid->levels[0].height()));
       });
-      benchmark::RegisterBenchmark(("gaussian7/" + variant + "/" + image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
+      benchmark::RegisterBenchmark(benchmark_name(kGaussian, variant, image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
         std::vector<GrayImage> out;
         for (const GrayImage& level : pyramid->levels) out.emplace_back(level.width(), level.height());
         for (auto _ : state)
@@ -67,7 +77,7 @@ void register_kernel_benchmarks() {
             kernels->gaussian7_rows(pyramid->levels[n].view(), out[n].mutable_view(), 0, out[n].height(), 0, out[n].width());
         state.SetItemsProcessed(state.iterations() * pyramid->pixels);
       });
-      benchmark::RegisterBenchmark(("fast9/" + variant + "/" + image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
+      benchmark::RegisterBenchmark(benchmark_name(kFast, variant, image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
         std::vector<std::uint8_t> scores;
         std::vector<std::uint64_t> maxima_bits;
         std::vector<FastCorner> corners;
@@ -80,7 +90,7 @@ void register_kernel_benchmarks() {
         benchmark::DoNotOptimize(found);
         state.SetItemsProcessed(state.iterations() * pyramid->pixels);
       });
-      benchmark::RegisterBenchmark(("histogram/" + variant + "/" + image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
+      benchmark::RegisterBenchmark(benchmark_name(kHistogram, variant, image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
         std::uint32_t hist[256];
         for (auto _ : state)
           for (const GrayImage& level : pyramid->levels) {
@@ -93,27 +103,27 @@ void register_kernel_benchmarks() {
     }
 
     // OpenCV's kernels for the same jobs, same levels.
-    benchmark::RegisterBenchmark(("pyramid/opencv/" + image.name).c_str(), [pyramid](benchmark::State& state) {
+    benchmark::RegisterBenchmark(benchmark_name(kResize, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
       std::vector<cv::Mat> out(pyramid->levels.size());
       for (auto _ : state)
         for (std::size_t n = 1; n < pyramid->levels.size(); ++n)
           cv::resize(as_mat(pyramid->levels[n - 1]), out[n], cv::Size(pyramid->levels[n].width(), pyramid->levels[n].height()), 0, 0, cv::INTER_LINEAR);
       state.SetItemsProcessed(state.iterations() * (pyramid->pixels - pyramid->levels[0].width() * pyramid->levels[0].height()));
     });
-    benchmark::RegisterBenchmark(("gaussian7/opencv/" + image.name).c_str(), [pyramid](benchmark::State& state) {
+    benchmark::RegisterBenchmark(benchmark_name(kGaussian, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
       std::vector<cv::Mat> out(pyramid->levels.size());
       for (auto _ : state)
         for (std::size_t n = 0; n < pyramid->levels.size(); ++n)
           cv::GaussianBlur(as_mat(pyramid->levels[n]), out[n], cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
       state.SetItemsProcessed(state.iterations() * pyramid->pixels);
     });
-    benchmark::RegisterBenchmark(("fast9/opencv/" + image.name).c_str(), [pyramid](benchmark::State& state) {
+    benchmark::RegisterBenchmark(benchmark_name(kFast, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
       std::vector<cv::KeyPoint> keypoints;
       for (auto _ : state)
         for (const GrayImage& level : pyramid->levels) cv::FAST(as_mat(level), keypoints, 20, true);
       state.SetItemsProcessed(state.iterations() * pyramid->pixels);
     });
-    benchmark::RegisterBenchmark(("histogram/opencv/" + image.name).c_str(), [pyramid](benchmark::State& state) {
+    benchmark::RegisterBenchmark(benchmark_name(kHistogram, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
       cv::Mat hist;
       const int channels[] = {0};
       const int bins[] = {256};

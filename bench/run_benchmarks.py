@@ -173,8 +173,9 @@ def main():
                 lines.append(f"| {image} | {threads} | {row.get('sweep_ms', 0):.1f} | {row.get('pair_ms', 0):.1f} |"
                              f" {row['sweep_over_pair']:.2f}x |")
     lines += ["", "## Kernels over a whole pyramid (8 levels) vs OpenCV's kernel for the same job", "",
-              "fast9: scores + 3x3 suppression at t = 20 vs `cv::FAST(level, 20, true)`; gaussian7 vs"
-              " `cv::GaussianBlur` 7x7 sigma 2; pyramid vs `cv::resize` INTER_LINEAR; histogram vs `cv::calcHist`.", "",
+              "fast9_detect: scores + 3x3 suppression at t = 20 vs `cv::FAST(level, 20, true)`; gaussian7_rows vs"
+              " `cv::GaussianBlur` 7x7 sigma 2; resize_bilinear_rows vs `cv::resize` INTER_LINEAR;"
+              " accumulate_histogram vs `cv::calcHist`.", "",
               "| kernel | image | variant | ms | speed-up vs OpenCV |", "|---|---|---|---|---|"]
     for (kernel, image) in sorted(kernels):
         row = kernels[(kernel, image)]

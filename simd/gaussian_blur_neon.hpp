@@ -1,5 +1,5 @@
 #pragma once
-// The register operations of the 7x7 Gaussian (simd/gaussian_blur_simd.hpp) on AArch64 NEON,
+// The register operations of the 7x7 Gaussian (simd/gaussian_blur_portable.hpp) on AArch64 NEON,
 // one 128-bit register, 8 columns a step; pmaddwd is multiply_add_pairs (simd_support_neon.hpp).
 #include <cstdint>
 

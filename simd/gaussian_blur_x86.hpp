@@ -1,5 +1,5 @@
 #pragma once
-// The register operations of the 7x7 Gaussian (simd/gaussian_blur_simd.hpp) on SSE4.1 / AVX2.
+// The register operations of the 7x7 Gaussian (simd/gaussian_blur_portable.hpp) on SSE4.1 / AVX2.
 #include <cstdint>
 #include <type_traits>
 

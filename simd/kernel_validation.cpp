@@ -53,7 +53,7 @@ GrayImage random_gray(int width, int height, std::uint32_t seed, bool smooth) {
   return image;
 }
 
-std::string check_resize(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_resize_bilinear_rows(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   if (src.width() < 2 || src.height() < 2) return "";
   // Every pyramid ratio the options allow, from just above 1 to 4 (scale_factor is in (1, 4]).
   for (double ratio : {1.01, 1.2, 1.5, 2.0, 2.7, 4.0}) {
@@ -73,7 +73,7 @@ std::string check_resize(const KernelTable& scalar, const KernelTable& other, co
   return "";
 }
 
-std::string check_gaussian(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_gaussian7_rows(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   if (src.width() < 4 || src.height() < 4) return "";
   GrayImage a(src.width(), src.height()), b(src.width(), src.height());
   scalar.gaussian7_rows(src.view(), a.mutable_view(), 0, src.height(), 0, src.width());
@@ -96,7 +96,7 @@ std::string check_gaussian(const KernelTable& scalar, const KernelTable& other, 
   return "";
 }
 
-std::string check_histogram(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_accumulate_histogram(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   // The whole image and an inner rectangle with the full stride.
   for (int inset : {0, 1}) {
     const int w = src.width() - 2 * inset, h = src.height() - 2 * inset;
@@ -111,7 +111,7 @@ std::string check_histogram(const KernelTable& scalar, const KernelTable& other,
   return "";
 }
 
-std::string check_fast_scores(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_fast9_scores_row(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   if (src.width() < 7 || src.height() < 7) return "";
   std::vector<std::uint8_t> a(static_cast<std::size_t>(src.width())), b(a.size());
   for (int t : {1, 7, 20}) {
@@ -144,7 +144,7 @@ std::string check_fast_scores(const KernelTable& scalar, const KernelTable& othe
   return "";
 }
 
-std::string check_fast_maxima(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_fast9_local_maxima_bits(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   if (src.width() < 3 || src.height() < 3) return "";
   // Score-like rows: small values, many ties and zeros, so every comparison matters. Runs that
   // start at x = 1 and at odd offsets (the blocks of a level start anywhere), strong thresholds
@@ -183,7 +183,7 @@ std::vector<PixelPoint> inner_points(const GrayImage& src, int border, int step)
   return points;
 }
 
-std::string check_moments(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_ic_moments(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   const std::vector<PixelPoint> points = inner_points(src, kPatchRadius, 3);
   if (points.empty()) return "";
   const int n = static_cast<int>(points.size());
@@ -195,7 +195,7 @@ std::string check_moments(const KernelTable& scalar, const KernelTable& other, c
   return diff.empty() ? "" : where(src, diff);
 }
 
-std::string check_rbrief(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_rbrief_describe(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   const std::vector<PixelPoint> points = inner_points(src, kEdgeBorder, 5);
   if (points.empty()) return "";
   std::vector<float> angles(points.size());
@@ -207,7 +207,7 @@ std::string check_rbrief(const KernelTable& scalar, const KernelTable& other, co
   return diff.empty() ? "" : where(src, diff);
 }
 
-std::string check_hamming(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_hamming_256_many(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   const int n = std::min(src.width() * src.height() / 32, 300);
   if (n < 1) return "";
   const std::uint8_t* train = src.data();
@@ -226,7 +226,7 @@ std::string check_hamming(const KernelTable& scalar, const KernelTable& other, c
 }
 
 // The image's bytes as descriptors, blocked; the query is each of the first few descriptors.
-std::string check_hamming_blocked(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_hamming_256_blocked(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   const int n = std::min(src.width() * src.height() / 32, 300);
   if (n < 1) return "";
   std::vector<std::uint32_t> blocked;
@@ -249,7 +249,7 @@ std::string check_hamming_blocked(const KernelTable& scalar, const KernelTable& 
 
 // Distances and bounds made from the image's bytes: distances in 0..256 plus the excluded value
 // 0x7fff, bounds in -1..256, at every query bound the matcher uses (-1 none, 256 all).
-std::string check_bound_filter(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
+std::string check_positions_within_bounds(const KernelTable& scalar, const KernelTable& other, const GrayImage& src) {
   const int n = src.width() * src.height();
   if (n < 1) return "";
   std::vector<std::uint16_t> distances(static_cast<std::size_t>(n));
@@ -307,13 +307,29 @@ std::string check_extract(KernelSet set, const GrayImage& src) {
   return "";
 }
 
+// One check per kernel of the list (core/kernel_table.hpp), each named check_<kernel>: a kernel
+// added to the list without a check here does not compile.
+using KernelCheck = std::string (*)(const KernelTable& scalar, const KernelTable& other, const GrayImage& src);
+struct NamedCheck {
+  const char* kernel;
+  KernelCheck check;
+};
+constexpr NamedCheck kKernelChecks[] = {
+#define AIEF_KERNEL_CHECK(kernel) {#kernel, &check_##kernel},
+    AIEF_FOR_EACH_KERNEL(AIEF_KERNEL_CHECK)
+#undef AIEF_KERNEL_CHECK
+};
+constexpr const char* kWholePipeline = "extract";
+
 }  // namespace
 
 const std::vector<std::string>& validated_kernel_names() {
-  static const std::vector<std::string> names = {"resize_bilinear_rows", "gaussian7_rows", "accumulate_histogram",
-                                                 "fast9_scores_row",     "fast9_local_maxima_bits", "ic_moments",
-                                                 "rbrief_describe",      "hamming_256_many", "hamming_256_blocked",
-                                                 "positions_within_bounds", "extract"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const NamedCheck& entry : kKernelChecks) out.emplace_back(entry.kernel);
+    out.emplace_back(kWholePipeline);
+    return out;
+  }();
   return names;
 }
 
@@ -334,20 +350,12 @@ std::vector<GrayImage> validation_images() {
 std::string validate_kernel(const std::string& kernel, KernelSet set, const std::vector<GrayImage>& images) {
   const KernelTable& scalar = kernel_table(KernelSet::scalar);
   const KernelTable& other = kernel_table(set);
+  KernelCheck check = nullptr;
+  for (const NamedCheck& entry : kKernelChecks)
+    if (kernel == entry.kernel) check = entry.check;
+  if (check == nullptr && kernel != kWholePipeline) return "unknown kernel '" + kernel + "'";
   for (const GrayImage& image : images) {
-    std::string diff;
-    if (kernel == "resize_bilinear_rows") diff = check_resize(scalar, other, image);
-    else if (kernel == "gaussian7_rows") diff = check_gaussian(scalar, other, image);
-    else if (kernel == "accumulate_histogram") diff = check_histogram(scalar, other, image);
-    else if (kernel == "fast9_scores_row") diff = check_fast_scores(scalar, other, image);
-    else if (kernel == "fast9_local_maxima_bits") diff = check_fast_maxima(scalar, other, image);
-    else if (kernel == "ic_moments") diff = check_moments(scalar, other, image);
-    else if (kernel == "rbrief_describe") diff = check_rbrief(scalar, other, image);
-    else if (kernel == "hamming_256_many") diff = check_hamming(scalar, other, image);
-    else if (kernel == "hamming_256_blocked") diff = check_hamming_blocked(scalar, other, image);
-    else if (kernel == "positions_within_bounds") diff = check_bound_filter(scalar, other, image);
-    else if (kernel == "extract") diff = check_extract(set, image);
-    else return "unknown kernel '" + kernel + "'";
+    const std::string diff = check != nullptr ? check(scalar, other, image) : check_extract(set, image);
     if (!diff.empty()) return diff;
   }
   return "";

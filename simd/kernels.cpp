@@ -1,5 +1,6 @@
 #include "simd/kernels.hpp"
 
+#include <cstdlib>
 #include <string>
 
 #include "aief/error.hpp"
@@ -8,7 +9,7 @@
 namespace aief::simd_sse4_2 { KernelTable kernel_table(); }
 namespace aief::simd_avx2 { KernelTable kernel_table(); }
 namespace aief::simd_avx512bw { KernelTable kernel_table(); }
-namespace aief::simd_avx512vpopcntdq { decltype(&aief::hamming_256_blocked_scalar) hamming_256_blocked(); }
+namespace aief::simd_avx512vpopcntdq { KernelEntry<decltype(&aief::hamming_256_blocked_scalar)> hamming_256_blocked(); }
 #endif
 #if AIEF_HAVE_NEON64
 namespace aief::simd_neon64 { KernelTable kernel_table(); }
@@ -67,8 +68,31 @@ std::vector<KernelSet> available_kernel_sets() {
 
 KernelSet best_kernel_set() { return available_kernel_sets().back(); }
 
+std::string available_kernel_set_names() {
+  std::string names;
+  for (KernelSet set : available_kernel_sets()) names += (names.empty() ? "" : ", ") + std::string(to_string(set));
+  return names;
+}
+
+KernelSet default_kernel_set() {
+  const char* forced = std::getenv(kKernelsEnvironmentVariable);
+  if (forced == nullptr || *forced == '\0') return best_kernel_set();
+  const std::string where = std::string(kKernelsEnvironmentVariable) + "=" + forced + ": ";
+  KernelSet set;
+  try {
+    set = parse_kernel_set(forced);
+  } catch (const Error& e) {
+    throw Error(where + e.what());
+  }
+  if (set == KernelSet::auto_select) return best_kernel_set();
+  for (KernelSet available : available_kernel_sets())
+    if (available == set) return set;
+  throw Error(where + "this CPU or build cannot run kernel set " + std::string(to_string(set)) + " (it runs " +
+              available_kernel_set_names() + ")");
+}
+
 const KernelTable& kernel_table(KernelSet set) {
-  if (set == KernelSet::auto_select) set = best_kernel_set();
+  if (set == KernelSet::auto_select) set = default_kernel_set();
   const CpuKernels& cpu = cpu_kernels();
   if (set == KernelSet::scalar) return cpu.scalar;
 #if AIEF_HAVE_X86_SIMD
@@ -79,7 +103,8 @@ const KernelTable& kernel_table(KernelSet set) {
 #if AIEF_HAVE_NEON64
   if (set == KernelSet::neon64) return cpu.neon64;
 #endif
-  throw Error("kernel set " + std::string(to_string(set)) + " is not available on this CPU or build");
+  throw Error("kernel set " + std::string(to_string(set)) + " is not available on this CPU or build (it runs " +
+              available_kernel_set_names() + ")");
 }
 
 }  // namespace aief

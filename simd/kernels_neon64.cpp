@@ -1,9 +1,9 @@
 // The neon64 kernel table (AArch64 Advanced SIMD, 128-bit). NEON is part of the AArch64 base
 // architecture, so this unit needs no extra flags and the table runs on every aarch64 CPU.
-#include "simd/kernel_table_simd.hpp"
+#include "simd/make_kernel_table.hpp"
 
 namespace aief::simd_neon64 {
 
-KernelTable kernel_table() { return simd::make_kernel_table<xsimd::neon64>(KernelSet::neon64, "neon64"); }
+KernelTable kernel_table() { return simd::make_kernel_table<xsimd::neon64>(KernelSet::neon64, "neon64", "neon64 128-bit"); }
 
 }  // namespace aief::simd_neon64

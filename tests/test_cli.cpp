@@ -1,6 +1,7 @@
 // The aief command line as a user meets it: help, every error path's message and exit status,
 // and the files it writes.
 #include <array>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -44,6 +45,28 @@ TEST(Cli, HelpAndVersion) {
   const CliResult kernels = run("--print-kernels");
   EXPECT_EQ(kernels.status, 0);
   EXPECT_NE(kernels.output.find("scalar"), std::string::npos);
+}
+
+// --print-kernels names every kernel and the code each set runs for it, and says what AIEF_KERNELS
+// made the default; a value of AIEF_KERNELS that cannot apply is an error before any work.
+TEST(Cli, KernelsListedAndForcedByTheEnvironment) {
+  struct Environment {
+    ~Environment() { unsetenv("AIEF_KERNELS"); }
+  } restore;
+  const CliResult listing = run("--print-kernels");
+  ASSERT_EQ(listing.status, 0) << listing.output;
+  for (const char* kernel : {"resize_bilinear_rows", "fast9_scores_row", "hamming_256_blocked", "positions_within_bounds"})
+    EXPECT_NE(listing.output.find(kernel), std::string::npos) << kernel << " missing from\n" << listing.output;
+
+  setenv("AIEF_KERNELS", "scalar", 1);
+  const CliResult forced = run("--print-kernels");
+  EXPECT_EQ(forced.status, 0);
+  EXPECT_NE(forced.output.find("default: scalar (AIEF_KERNELS=scalar)"), std::string::npos) << forced.output;
+
+  setenv("AIEF_KERNELS", "fastest", 1);
+  const CliResult refused = run("extract " + aief::test::sample_path("graf", "img1.png"));
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.output.find("aief: error: AIEF_KERNELS=fastest: unknown kernel set"), std::string::npos) << refused.output;
 }
 
 TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {

@@ -153,7 +153,7 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
         widest = std::max({widest, std::abs(cvRound(fx * a - fy * b)), std::abs(cvRound(fx * b + fy * a))});
       }
   }
-  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_simd.hpp) stores each sample as an
+  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_portable.hpp) stores each sample as an
   // unsigned offset from the patch corner 18 rows and columns up-left of the point.
   EXPECT_LT(widest, kEdgeBorder);
   EXPECT_LE(widest, 18);

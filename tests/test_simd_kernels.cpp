@@ -4,11 +4,16 @@
 // Needs no OpenCV: the OpenCV-free and aarch64 builds run it on the bundled PGM crop, and a
 // build with OpenCV adds the full-size PNG samples.
 #include <cstdint>
+#include <cstdlib>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "aief/error.hpp"
+#include "aief/extractor.hpp"
+#include "core/kernel_table.hpp"
 #include "simd/kernel_validation.hpp"
 #include "simd/kernels.hpp"
 #include "tests/pgm_image.hpp"
@@ -103,7 +108,111 @@ TEST(KernelDispatch, ScalarAlwaysAvailableAndUnknownSetsRefused) {
   EXPECT_EQ(sets.front(), KernelSet::scalar);
   EXPECT_EQ(best_kernel_set(), sets.back());
   EXPECT_STREQ(kernel_table(KernelSet::scalar).name, "scalar");
-  EXPECT_EQ(kernel_table(KernelSet::auto_select).set, best_kernel_set());
+  EXPECT_EQ(kernel_table(KernelSet::auto_select).set, default_kernel_set());
+}
+
+// Validation and benchmarks are made from the one kernel list: every listed kernel is validated,
+// in table order, and the whole pipeline after them.
+TEST(KernelDispatch, ValidationCoversTheKernelList) {
+  std::vector<std::string> expected(std::begin(kKernelNames), std::end(kKernelNames));
+  expected.emplace_back("extract");
+  EXPECT_EQ(validated_kernel_names(), expected);
+}
+
+// What --print-kernels shows: scalar everywhere in the scalar table, each SIMD table's own code,
+// and in the AVX-512 table the six 512-bit kernels beside the 256-bit ones it shares with AVX2
+// (plus the VPOPCNTDQ Hamming kernel where the CPU has it).
+TEST(KernelDispatch, EveryEntryNamesItsCode) {
+  for (KernelSet set : available_kernel_sets()) {
+    const KernelTable& table = kernel_table(set);
+    int wide = 0;
+    for (int k = 0; k < kKernelCount; ++k) {
+      const std::string variant = kernel_variant(table, k);
+      const std::string kernel = kKernelNames[k];
+      SCOPED_TRACE(std::string(to_string(set)) + " " + kernel + ": " + variant);
+      switch (set) {
+        case KernelSet::scalar: EXPECT_EQ(variant, "scalar"); break;
+        case KernelSet::sse4_2: EXPECT_EQ(variant, "sse4.2 128-bit"); break;
+        case KernelSet::avx2: EXPECT_EQ(variant, "avx2 256-bit"); break;
+        case KernelSet::neon64:
+          EXPECT_EQ(variant, kernel == "positions_within_bounds" ? "scalar" : "neon64 128-bit");
+          break;
+        case KernelSet::avx512bw:
+          if (kernel == "hamming_256_blocked") {
+            EXPECT_TRUE(variant == "avx512vpopcntdq 512-bit" || variant == "avx512bw 256-bit");
+          } else if (variant == "avx512bw 512-bit") {
+            ++wide;
+          } else {
+            EXPECT_EQ(variant, "avx512bw 256-bit");
+          }
+          break;
+        default: ADD_FAILURE() << "unexpected set";
+      }
+    }
+    if (set == KernelSet::avx512bw) {
+      EXPECT_EQ(wide, 6);
+    }
+  }
+}
+
+// AIEF_KERNELS decides what `auto` stands for, for the whole process, without code; it is read
+// whenever a table for `auto` is asked for (an extractor is built).
+class ForcedKernels : public testing::Test {
+ protected:
+  void TearDown() override { unsetenv(kKernelsEnvironmentVariable); }
+  static void force(const char* value) { setenv(kKernelsEnvironmentVariable, value, 1); }
+};
+
+TEST_F(ForcedKernels, ScalarForcesTheScalarTableOnEveryDefaultExtractor) {
+  force("scalar");
+  EXPECT_EQ(default_kernel_set(), KernelSet::scalar);
+  EXPECT_EQ(Extractor(ExtractorOptions{}).kernel_name(), "scalar");
+}
+
+TEST_F(ForcedKernels, EveryAvailableSetCanBeForced) {
+  for (KernelSet set : available_kernel_sets()) {
+    force(std::string(to_string(set)).c_str());
+    EXPECT_EQ(kernel_table(KernelSet::auto_select).set, set) << to_string(set);
+  }
+}
+
+TEST_F(ForcedKernels, AutoAndEmptyMeanTheBestSet) {
+  force("auto");
+  EXPECT_EQ(default_kernel_set(), best_kernel_set());
+  force("");
+  EXPECT_EQ(default_kernel_set(), best_kernel_set());
+}
+
+TEST_F(ForcedKernels, AnExplicitSetIsNotOverridden) {
+  force(std::string(to_string(best_kernel_set())).c_str());
+  ExtractorOptions options;
+  options.kernels = KernelSet::scalar;
+  EXPECT_EQ(Extractor(options).kernel_name(), "scalar");
+}
+
+void expect_refused(const char* value, const std::string& reason) {
+  try {
+    (void)Extractor(ExtractorOptions{});
+    ADD_FAILURE() << "AIEF_KERNELS=" << value << " was accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(std::string("AIEF_KERNELS=") + value), std::string::npos) << message;
+    EXPECT_NE(message.find(reason), std::string::npos) << message;
+  }
+}
+
+// A forced set that silently did not apply would defeat the purpose: an unknown name or a set
+// this CPU or build cannot run is an error naming the variable, not a quiet fallback.
+TEST_F(ForcedKernels, UnknownOrUnavailableSetsAreRefused) {
+  force("avx3");
+  expect_refused("avx3", "unknown kernel set");
+#if defined(__aarch64__)
+  const char* foreign = "avx2";
+#else
+  const char* foreign = "neon64";
+#endif
+  force(foreign);
+  expect_refused(foreign, "cannot run kernel set");
 }
 
 }  // namespace

@@ -1,8 +1,11 @@
 // aief: the command line. One subcommand per file (tools/cmd_*.cpp).
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <iomanip>
 #include <iostream>
 #include <string_view>
+#include <vector>
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
@@ -32,14 +35,34 @@ constexpr Command kCommands[] = {
 void print_usage(std::ostream& out) {
   out << "usage: aief <command> [options]   (aief <command> --help for its options)\n\ncommands:\n";
   for (const Command& c : kCommands) out << "  " << c.name << std::string(10 - c.name.size(), ' ') << c.summary << "\n";
-  out << "\n  --print-kernels  the kernel sets this CPU runs, and the one chosen by default\n"
-      << "  --version        the version\n";
+  out << "\n  --print-kernels  the kernel sets this CPU runs, the one chosen by default, each kernel's code\n"
+      << "  --version        the version\n"
+      << "\nenvironment:\n  AIEF_KERNELS     the kernel set `auto` stands for: scalar, sse4.2, avx2, avx512, neon64 or auto\n";
 }
 
+// The sets this CPU runs, the one `auto` picks (and why), and which code each kernel of each set
+// runs: the AVX-512 table mixes 512-bit kernels with 256-bit ones, and VPOPCNTDQ swaps one in.
 int print_kernels() {
+  const std::vector<aief::KernelSet> sets = aief::available_kernel_sets();
+  const aief::KernelSet chosen = aief::default_kernel_set();  // throws on a bad AIEF_KERNELS
+  const char* forced = std::getenv(aief::kKernelsEnvironmentVariable);
+  const std::string why = forced != nullptr && *forced != '\0'
+                              ? std::string(aief::kKernelsEnvironmentVariable) + "=" + forced
+                              : std::string("the best this CPU runs; ") + aief::kKernelsEnvironmentVariable + " forces another";
   std::cout << "available:";
-  for (aief::KernelSet set : aief::available_kernel_sets()) std::cout << ' ' << aief::to_string(set);
-  std::cout << "\ndefault: " << aief::to_string(aief::best_kernel_set()) << "\n";
+  for (aief::KernelSet set : sets) std::cout << ' ' << aief::to_string(set);
+  std::cout << "\ndefault: " << aief::to_string(chosen) << " (" << why << ")\n\nthe code each set runs:\n";
+  constexpr int kNameWidth = 25, kColumnWidth = 25;
+  std::cout << std::left << std::setw(kNameWidth) << "kernel";
+  for (std::size_t i = 0; i < sets.size(); ++i)
+    std::cout << std::setw(i + 1 < sets.size() ? kColumnWidth : 0) << aief::to_string(sets[i]);
+  std::cout << "\n";
+  for (int k = 0; k < aief::kKernelCount; ++k) {
+    std::cout << std::setw(kNameWidth) << aief::kKernelNames[k];
+    for (std::size_t i = 0; i < sets.size(); ++i)
+      std::cout << std::setw(i + 1 < sets.size() ? kColumnWidth : 0) << aief::kernel_variant(aief::kernel_table(sets[i]), k);
+    std::cout << "\n";
+  }
   return 0;
 }
 

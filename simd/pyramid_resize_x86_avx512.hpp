@@ -9,7 +9,7 @@
 // v(sx), v(sx + 1) of each output into a 32-bit lane, and pmaddwd with (256 - wx, wx) gives
 // P = S - 2^23 (the weights sum to 256), so dst = (S + 32768) >> 16 = (P + 2^23 + 2^15) >> 16,
 // 0..255, narrowed by vpmovdb. About 15 instructions per 16 outputs, where the 128-bit-lane
-// kernel (simd/pyramid_resize_simd.hpp) runs the horizontal taps on both rows (~36).
+// kernel (simd/pyramid_resize_x86.hpp) runs the horizontal taps on both rows (~36).
 // Rows whose plan has no wide groups (more than about 2x downscaling, narrow levels) take that
 // kernel.
 #include <cstdint>
@@ -17,7 +17,7 @@
 #include <immintrin.h>
 
 #include "core/pyramid_resize.hpp"
-#include "simd/pyramid_resize_simd.hpp"
+#include "simd/pyramid_resize_x86.hpp"
 
 namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {

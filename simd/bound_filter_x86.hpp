@@ -1,10 +1,12 @@
 #pragma once
 // positions_within_bounds (core/bound_filter.hpp) 32 distances per step: a signed 16-bit max of
 // the bounds, one compare, a lane mask, then only the (few) set bits are walked. The tail runs
-// the scalar loop (all of it on NEON, where the filter is not vectorised).
+// the scalar loop. x86 only: the NEON table keeps the scalar filter.
 #include <algorithm>
 #include <cstdint>
 #include <type_traits>
+
+#include <immintrin.h>
 
 #include "simd/simd_support.hpp"
 
@@ -19,7 +21,6 @@ int positions_within_bounds(const std::uint16_t* distances, const std::int16_t* 
   const auto walk = [&](std::uint32_t within, int base) {
     for (; within != 0; within &= within - 1) positions[count++] = base + __builtin_ctz(within);
   };
-#if !defined(__aarch64__)
   if constexpr (std::is_base_of_v<xsimd::avx512bw, Arch>) {
     const __m512i query = _mm512_set1_epi16(static_cast<short>(query_bound));
     for (; k + 32 <= n; k += 32) {
@@ -38,7 +39,6 @@ int positions_within_bounds(const std::uint16_t* distances, const std::int16_t* 
       walk(~static_cast<std::uint32_t>(_mm256_movemask_epi8(packed)), k);
     }
   }
-#endif
   for (; k < n; ++k) {
     positions[count] = k;
     count += static_cast<std::int16_t>(distances[k]) <= std::max<int>(query_bound, train_bounds[k]);
