@@ -20,7 +20,7 @@
 // The camera threads live across frames: ORB-SLAM starts two std::threads per frame, which costs
 // a few tens of microseconds on a quiet board, but on a shared machine a newly started thread
 // gets a small CPU share at first and would measure the machine, not the extractor.
-// Run with repetitions and read medians (README, "Threads on a 2-core board").
+// Run with repetitions and read medians (docs/speed.md, "Threads on a 2-core board").
 #include <algorithm>
 #include <atomic>
 #include <chrono>

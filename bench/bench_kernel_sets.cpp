@@ -2,7 +2,7 @@
 // does, the aarch64 cross build included (aief_bench_kernel_sets). Names read kernel/set/image;
 // items are pixels (keypoints, descriptor pairs) so rates compare. Input: the bundled PGM crop
 // of graf, read without OpenCV. bench/kernel_instructions.py counts, under qemu-aarch64, the
-// instructions one iteration of each executes (README, "ARM").
+// instructions one iteration of each executes (docs/arm.md).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

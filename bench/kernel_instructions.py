@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Instructions each kernel executes under qemu-aarch64, neon64 against scalar: the one speed
-figure for ARM this project can measure without ARM hardware (README, "ARM").
+figure for ARM this project can measure without ARM hardware (docs/arm.md).
 
 Debian's qemu-user ships no TCG plugins (no libinsn.so) and valgrind is x86-only, so this counts
 from qemu's own logs: `-d in_asm` gives each translated block's instructions and `-d

@@ -44,7 +44,7 @@ TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
   ASSERT_EQ(gray.width(), 30);
   ASSERT_EQ(gray.height(), 20);
   EXPECT_EQ(0, std::memcmp(gray.data(), expected.data, 600));
-  // Not what the decoder's own gray conversion gives (README, "Colour to gray"): libpng truncates.
+  // Not what the decoder's own gray conversion gives (docs/command_line.md, "Colour to gray"): libpng truncates.
   const cv::Mat decoder_gray = cv::imread(dir.file("c.png"), cv::IMREAD_GRAYSCALE);
   EXPECT_NE(0, std::memcmp(gray.data(), decoder_gray.data, 600));
 
