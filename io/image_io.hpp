@@ -3,7 +3,10 @@
 //
 // Conversion: 3- and 4-channel images -> gray by OpenCV's cvtColor (ITU-R BT.601 luma,
 // 0.299 R + 0.587 G + 0.114 B, OpenCV's fixed point); 16-bit images -> 8 bits, divided by 256
-// and rounded; other depths (float, signed) are refused. Errors are aief::Error naming the path.
+// and rounded; other depths (float, signed) are refused naming the depth in words ("32-bit
+// float"), and Radiance HDR and PFM, formats of float pixels only, by name before decoding. A
+// path that is not a regular file (a FIFO, a device) is refused before it is opened (opening a
+// FIFO waits for a writer). Errors are aief::Error naming the path.
 //
 // Size first: the width and height the file declares are read from its header (io/image_header.hpp)
 // and a file above `max_pixels` (ExtractorOptions::max_image_pixels) is refused before anything
