@@ -22,7 +22,10 @@ ImageInput::ImageInput(const py::object& image, long long max_pixels) {
     throw Error("image must be a numpy array of uint8, got " + std::string(py::str(py::type::of(image).attr("__name__"))));
   // A masked array is an ndarray whose mask the engine would not see: refused while it masks any
   // pixel, rather than extracting from the pixels it hides.
-  if (py::module_::import("numpy.ma").attr("is_masked")(image).cast<bool>())
+  // numpy.ma.MaskedArray, looked up once and kept for the process's life: a plain array costs one
+  // isinstance test.
+  static PyObject* const masked_array = py::object(py::module_::import("numpy.ma").attr("MaskedArray")).release().ptr();
+  if (PyObject_IsInstance(image.ptr(), masked_array) == 1 && py::module_::import("numpy.ma").attr("is_masked")(image).cast<bool>())
     throw Error("image is a numpy.ma.MaskedArray with masked pixels, which extract would read as they are: pass "
                 "image.data to use them, or image.filled(value) to replace them");
   array_ = py::reinterpret_borrow<py::array>(image);
