@@ -24,8 +24,9 @@ import aief
 def list_images(images):
     """(path, name) of every image `aief extract --batch IMAGES` takes from the folder or list
     file `images`, sorted by name: the engine's own rule (aief.batch_inputs), so the groups are
-    the CLI's, symlinked folders and broken links included."""
-    return aief.batch_inputs(str(images))
+    the CLI's, symlinked folders and broken links included. Paths are made absolute here (a
+    worker may run in another folder); names stay as the CLI gives them."""
+    return [(os.path.abspath(path), name) for path, name in aief.batch_inputs(str(images))]
 
 
 def shard_path(output_dir, index, count):
