@@ -153,6 +153,14 @@ bool is_features_file_name(const std::string& path) {
   return ext == ".json" || ext == ".yml" || ext == ".yaml" || ext == ".npz";
 }
 
+void check_features_file_can_hold(const std::string& output_path, const std::string& image_path,
+                                  const std::string& source_name) {
+  const std::string ext = extension_of(output_path);
+  if (ext != ".yml" && ext != ".yaml") return;
+  yaml_quoted(image_path, "image name");
+  yaml_quoted(source_name, "image name");
+}
+
 std::string features_json(const std::string& image_path, const Features& features, const ExtractorOptions& options,
                           const std::optional<SourceRecord>& source) {
   std::ostringstream out;

@@ -20,6 +20,12 @@ bool features_file_belongs_to(const std::string& output_path, const SourceRecord
 // True when write_features accepts the path's extension: the CLI asks before any work.
 bool is_features_file_name(const std::string& path);
 
+// Throws aief::Error when the format of `output_path` cannot hold these names and read them back
+// (YAML: no control character but tab, LF and CR, at most 4094 bytes escaped; JSON and npz hold
+// any). Commands ask before any work, so that such an image is not extracted for nothing.
+void check_features_file_can_hold(const std::string& output_path, const std::string& image_path,
+                                  const std::string& source_name);
+
 // JSON: {"image", "source": {"name", "bytes", "mtime_ns"} (when given), "width", "height", "options": {...}, "info": {...},
 //        "keypoints": [{"x", "y", "size", "angle", "response", "octave"}],
 //        "descriptors_hex": ["64 hex chars", ...]}

@@ -95,14 +95,19 @@ TEST(CliBadInputs, AYamlBatchOfOddNamesResumesInsteadOfRedoingThem) {
   fs::create_directories(images);
   for (const char* name : {"{b}.png", "[a].png", "new\nline.png", "\"quoted\".png", "- dash.png"})
     fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / name);
+  // A name YAML cannot hold is refused before its file is read (this one is no image at all).
+  std::ofstream(images / "ctl\x01.png") << "not read";
   const std::string batch = "extract --batch '" + images.string() + "' -o '" + (folder.path() / "out").string() +
                             "' --format yml --features 100";
   const CliResult first = run(batch);
-  EXPECT_EQ(first.status, 0) << first.output;
-  EXPECT_TRUE(says(first, "5 extracted")) << first.output;
+  EXPECT_EQ(first.status, 1) << first.output;
+  EXPECT_TRUE(says(first, "5 extracted") && says(first, "1 failed")) << first.output;
+  EXPECT_TRUE(says(first, "YAML cannot hold the image name")) << first.output;
   const CliResult second = run(batch);
-  EXPECT_EQ(second.status, 0) << second.output;
-  EXPECT_TRUE(says(second, "0 extracted, 5 already done")) << "outputs not read back as their own: " << second.output;
+  EXPECT_TRUE(says(second, "0 extracted, 5 already done, 1 failed")) << "outputs not read back as their own: " << second.output;
+  const CliResult single = run("extract '" + (images / "missing\x02.png").string() + "' -o '" + (folder.path() / "x.yml").string() + "'");
+  EXPECT_EQ(single.status, 1) << single.output;
+  EXPECT_TRUE(says(single, "YAML cannot hold the image name") && !says(single, "no such file")) << single.output;
   cv::FileStorage yaml((folder.path() / "out" / "{b}.png.yml").string(), cv::FileStorage::READ);
   EXPECT_EQ(static_cast<std::string>(yaml["source_name"]), "{b}.png");
 }

@@ -175,6 +175,8 @@ BatchSummary run_batch(const BatchSettings& settings) {
                     item->skip = batch_output_is_current(item->output, item->source);
                     item->replacing = !item->skip;
                   }
+                  // Before the work: a name the format cannot hold (YAML: control characters).
+                  io::check_features_file_can_hold(item->output, item->input.path, item->input.name);
                 }
                 if (item->skip) return item;
                 std::unique_ptr<Extractor>& extractor = extractors.local();

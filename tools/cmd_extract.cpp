@@ -93,6 +93,7 @@ int run_extract(const Arguments& arguments) {
   if (args.positionals().size() != 1) throw UsageError("extract expects one IMAGE (aief extract --help)");
   if (const auto output = args.get("--output"); output && !io::is_features_file_name(*output))
     throw UsageError("-o " + *output + ": the output must end in .json, .yml, .yaml or .npz");
+  if (const auto output = args.get("--output")) io::check_features_file_can_hold(*output, args.positionals()[0], args.positionals()[0]);
   check_picture_flag(args, "--draw");
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
