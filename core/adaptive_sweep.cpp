@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "aief/error.hpp"
-#include "core/frame_analysis.hpp"
+#include "core/frame_pipeline.hpp"
 #include "core/matcher.hpp"
 #include "core/sweep_runs.hpp"
 #include "core/sweep_matcher.hpp"
@@ -31,7 +31,7 @@ void SweepOptions::validate() const {
 namespace {
 
 // Identity of candidate i of level n: candidate indices numbered on through the levels. The
-// candidates are all detected by analyse(), so the numbering holds for every threshold.
+// candidates are all detected by FramePipeline::analyse, so the numbering holds for every threshold.
 std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
   std::vector<std::int32_t> offsets(static_cast<std::size_t>(analysis.level_count()));
   std::size_t next = 0;
@@ -82,19 +82,20 @@ class SortedBlockEntropies {
   std::vector<std::vector<double>> levels_;
 };
 
-// Extracts the features of one image at threshold F from its analysis (no starvation rule:
+// Extracts the features of one image at threshold F from its analysis (no threshold fallback:
 // the sweep measures each F as it is), with the identity of each feature. `chosen` holds each
 // level's selection at `previous` (when there is one, i.e. previous >= 0); a level whose kept
 // blocks did not change since keeps it.
-void features_at(FrameAnalysis& analysis, const SortedBlockEntropies& entropies, double threshold, double previous,
+void features_at(FramePipeline& frame, const SortedBlockEntropies& entropies, double threshold, double previous,
                  const std::vector<std::int32_t>& id_offsets, std::vector<std::vector<std::int32_t>>& chosen,
                  ThresholdFeatures& result) {
+  const FrameAnalysis& analysis = frame.analysis();
   const int levels = analysis.level_count();
   chosen.resize(static_cast<std::size_t>(levels));
   result.ids.clear();
   for (int n = 0; n < levels; ++n) {
     std::vector<std::int32_t>& level_chosen = chosen[static_cast<std::size_t>(n)];
-    if (previous < 0 || !entropies.same_level_blocks_kept(n, previous, threshold)) analysis.select(n, threshold, level_chosen);
+    if (previous < 0 || !entropies.same_level_blocks_kept(n, previous, threshold)) frame.select(n, threshold, level_chosen);
     for (std::int32_t i : level_chosen) result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
   }
   Features& out = result.features;
@@ -105,16 +106,6 @@ void features_at(FrameAnalysis& analysis, const SortedBlockEntropies& entropies,
   out.info.image_entropy_bits = analysis.image_entropy_bits();
   out.info.blocks_total = analysis.blocks_total();
   out.info.blocks_kept = entropies.blocks_kept(threshold);
-}
-
-void analyse(FrameAnalysis& analysis, ImageView image, const ExtractorOptions& options,
-             const KernelTable& kernels, double lowest_threshold) {
-  analysis.start(image, options, kernels, Selections::many);
-  for (int n = 0; n < analysis.level_count(); ++n) analysis.build_level(n);
-  for (int n = 0; n < analysis.level_count(); ++n) {
-    analysis.compute_entropies(n);
-    analysis.detect(n, lowest_threshold);  // every block any threshold of the sweep keeps
-  }
 }
 
 bool same_features(const Features& x, const Features& y) {
@@ -148,21 +139,25 @@ void check_sweep_inputs(const ExtractorOptions& options, const SweepOptions& swe
 }  // namespace
 
 SweepPipeline::SweepPipeline(const ExtractorOptions& options, const SweepOptions& sweep, const KernelTable& kernels)
-    : options_(options), sweep_(sweep), kernels_(&kernels) {
+    : options_(options),
+      sweep_(sweep),
+      kernels_(&kernels),
+      frame_a_(options, kernels, 1),
+      frame_b_(options, kernels, 1) {
   check_sweep_inputs(options_, sweep_);
   scheduler_ = parallel::Scheduler(options_.threads);
 }
 
 const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats repeats) {
-  // The two images are independent until matching: each is analysed, and later selected at every
-  // threshold, on its own thread.
+  // The two images are independent until matching: each is analysed by its frame pipeline (at
+  // the sweep's lowest F), and later selected at every threshold, on its own thread.
   scheduler_.for_each(2, [&](int image) {
-    if (image == 0) analyse(analysis_a_, a, options_, *kernels_, sweep_.first_threshold);
-    else analyse(analysis_b_, b, options_, *kernels_, sweep_.first_threshold);
+    if (image == 0) frame_a_.analyse(a, sweep_.first_threshold);
+    else frame_b_.analyse(b, sweep_.first_threshold);
   });
 
   SweepFeatures& result = features_;
-  result.image_entropy_bits = analysis_a_.image_entropy_bits();
+  result.image_entropy_bits = frame_a_.analysis().image_entropy_bits();
   // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
   const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep_.step)));
 
@@ -171,11 +166,11 @@ const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats r
   result.a.resize(static_cast<std::size_t>(cycles));
   result.b.resize(static_cast<std::size_t>(cycles));
   scheduler_.for_each(2, [&](int image) {
-    FrameAnalysis& analysis = image == 0 ? analysis_a_ : analysis_b_;
+    FramePipeline& frame = image == 0 ? frame_a_ : frame_b_;
     std::vector<ThresholdFeatures>& features = image == 0 ? result.a : result.b;
     std::vector<std::vector<std::int32_t>>& chosen = image == 0 ? chosen_a_ : chosen_b_;
-    const std::vector<std::int32_t> id_offsets = level_id_offsets(analysis);
-    const SortedBlockEntropies entropies(analysis);
+    const std::vector<std::int32_t> id_offsets = level_id_offsets(frame.analysis());
+    const SortedBlockEntropies entropies(frame.analysis());
     for (int c = 0; c < cycles; ++c) {
       const double threshold = sweep_.first_threshold + sweep_.step * c;
       const double previous = sweep_.first_threshold + sweep_.step * (c - 1);
@@ -193,7 +188,7 @@ const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats r
         here.features.info.entropy_threshold_requested = threshold;
         here.features.info.entropy_threshold_used = threshold;
       } else {
-        features_at(analysis, entropies, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
+        features_at(frame, entropies, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
       }
     }
   });

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "aief/adapt.hpp"
-#include "core/frame_analysis.hpp"
+#include "core/frame_pipeline.hpp"
 #include "core/kernel_table.hpp"
 #include "core/sweep_matcher.hpp"
 #include "parallel/scheduler.hpp"
@@ -73,7 +73,7 @@ class SweepPipeline {
   SweepOptions sweep_;
   const KernelTable* kernels_;
   parallel::Scheduler scheduler_;
-  FrameAnalysis analysis_a_, analysis_b_;
+  FramePipeline frame_a_, frame_b_;  // each image's analysis, serial (the images run side by side)
   SweepFeatures features_;
   std::vector<std::vector<std::int32_t>> chosen_a_, chosen_b_;
   std::vector<int> source_, distinct_;

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "core/frame_analysis.hpp"
+
 namespace aief {
 
 namespace {
@@ -69,6 +71,16 @@ AutoThreshold auto_entropy_threshold(std::vector<double>& entropies, bool requir
   threshold = std::min(threshold, std::max(cap, 0.0));
   split.threshold_bits = std::max(threshold, 0.0);
   return split;
+}
+
+void auto_threshold_entropies(const FrameAnalysis& analysis, std::vector<double>& entropies) {
+  entropies.clear();
+  const bool skip_uniform = analysis.options().auto_skips_uniform_blocks;
+  for (int n = 0; n < analysis.level_count(); ++n) {
+    const LevelState& level = analysis.level(n);
+    for (std::size_t b = 0; b < level.block_entropy.size(); ++b)
+      if (!skip_uniform || !level.block_uniform[b]) entropies.push_back(level.block_entropy[b]);
+  }
 }
 
 }  // namespace aief

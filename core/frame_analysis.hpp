@@ -102,7 +102,7 @@ class FrameAnalysis {
   // Stage 4: the keypoints of level n at threshold F: distribution, orientation, descriptors.
   // Appends the chosen candidate indices (raster order) to `chosen`.
   void select(int n, double threshold, std::vector<std::int32_t>& chosen);
-  // The same with a budget other than N_n (the shortfall rule, core/level_shortfall.hpp).
+  // The same with a budget other than N_n (the shortfall rule, core/threshold_fallback.hpp).
   void select(int n, double threshold, int budget, std::vector<std::int32_t>& chosen);
 
   // Whether block b of level n is kept at threshold F (always, with entropy off).

@@ -1,4 +1,4 @@
-// The shortfall rule of the aief mode (core/level_shortfall.hpp, issue 8 item 8): the budget a
+// The shortfall rule of the aief mode (core/threshold_fallback.hpp): the budget a
 // level short of candidates leaves undelivered goes to the levels with candidates to spare, so the
 // frame delivers min(N, candidates in the kept blocks) at every kernel set and thread count.
 #include <cstring>
@@ -10,7 +10,7 @@
 
 #include "aief/extractor.hpp"
 #include "core/level_geometry.hpp"
-#include "core/level_shortfall.hpp"
+#include "core/threshold_fallback.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 

@@ -15,8 +15,8 @@
 #include "aief/adapt.hpp"
 #include "aief/extractor.hpp"
 #include "aief/match.hpp"
-#include "core/fast9_detect.hpp"
-#include "core/frame_analysis.hpp"
+#include "core/frame_pipeline.hpp"
+#include "core/stage_times.hpp"
 #include "io/image_io.hpp"
 #include "io/json_writer.hpp"
 #include "simd/kernels.hpp"
@@ -49,9 +49,11 @@ int run_bench(const Arguments& arguments) {
   const Args args(arguments, spec);
   if (args.has("--help")) {
     std::cout << "usage: aief bench IMAGE [--pair IMAGE2] [--repeat N] [--threads T] [--kernels K] [options]\n\n"
-              << "Prints one JSON line: median milliseconds over N runs of each stage (pyramid, block\n"
-              << "entropies + FAST, distribution + description) and of the whole extract, and of\n"
-              << "cv::ORB(1000, 1.2, 8).detectAndCompute on the same gray image, with their ratio.\n"
+              << "Prints one JSON line: median milliseconds over N runs of the whole extract and of\n"
+              << "each of its stages, timed inside the same pipeline (pyramid_ms, entropy_ms, fast_ms,\n"
+              << "select_ms: distribution + description, frame_ms: automatic F, fallback, output; each\n"
+              << "summed over levels and threads), and of cv::ORB(1000, 1.2, 8).detectAndCompute on\n"
+              << "the same gray image, with their ratio.\n"
               << "cv::ORB runs on one OpenCV thread, as in bench/RESULTS.md.\n"
               << "With --pair: sweep_ms (the adaptive sweep on IMAGE, IMAGE2), pair_ms (extract both\n"
               << "and one match) and sweep_ratio = sweep_ms / pair_ms.\n\n"
@@ -81,31 +83,20 @@ int run_bench(const Arguments& arguments) {
     total.push_back(ms_since(start));
   }
 
-  // Stages, single-threaded on the same kernels: where the time goes.
-  const KernelTable& kernels = kernel_table(options.kernels);
-  FrameAnalysis analysis;
-  std::vector<double> pyramid, detect, select;
-  std::vector<std::int32_t> chosen;
-  const double threshold = options.entropy != EntropyMeasure::off ? options.entropy_threshold : 0.0;
-  for (int i = 0; i < repeat + 1; ++i) {
-    analysis.start(image.view(), options, kernels);
-    auto start = Clock::now();
-    for (int n = 0; n < analysis.level_count(); ++n) analysis.build_level(n);
-    const double t_pyramid = ms_since(start);
-    start = Clock::now();
-    for (int n = 0; n < analysis.level_count(); ++n) {
-      analysis.compute_entropies(n);
-      analysis.detect(n, threshold);
-    }
-    const double t_detect = ms_since(start);
-    start = Clock::now();
-    for (int n = 0; n < analysis.level_count(); ++n) analysis.select(n, threshold, chosen);
-    const double t_select = ms_since(start);
-    if (i == 0) continue;  // the first run sizes the buffers
-    pyramid.push_back(t_pyramid);
-    detect.push_back(t_detect);
-    select.push_back(t_select);
+  // Stages: the same pipeline extract() runs (core/frame_pipeline.hpp), with a stage clock, in
+  // runs of their own so the totals above read no clock. A stage's milliseconds are summed over
+  // the levels, and so over the threads that ran them side by side.
+  FramePipeline pipeline(options, kernel_table(options.kernels), options.threads);
+  StageTimes times;
+  std::vector<std::vector<double>> stage_ms(kStageCount);
+  Features staged;
+  pipeline.extract(image.view(), staged);  // warm: buffers sized
+  for (int i = 0; i < repeat; ++i) {
+    times.clear();
+    pipeline.extract(image.view(), staged, &times);
+    for (std::size_t k = 0; k < kStageCount; ++k) stage_ms[k].push_back(times.total_ms(static_cast<Stage>(k)));
   }
+  const auto stage_median = [&](Stage stage) { return median(stage_ms[static_cast<std::size_t>(stage)]); };
 
   // cv::ORB on the same gray image, same process, on one OpenCV thread like bench/RESULTS.md
   // (OpenCV's own worker threads would otherwise share the cores with the timing).
@@ -151,8 +142,9 @@ int run_bench(const Arguments& arguments) {
   json.field("image", path).field("width", image.width()).field("height", image.height());
   json.field("kernels", std::string(extractor.kernel_name())).field("threads", options.threads).field("repeat", repeat);
   json.field("keypoints", static_cast<int>(features.keypoints.size()));
-  json.field("pyramid_ms", median(pyramid)).field("entropy_and_fast_ms", median(detect));
-  json.field("distribute_and_describe_ms", median(select));
+  json.field("pyramid_ms", stage_median(Stage::pyramid)).field("entropy_ms", stage_median(Stage::entropy));
+  json.field("fast_ms", stage_median(Stage::detect)).field("select_ms", stage_median(Stage::select));
+  json.field("frame_ms", stage_median(Stage::frame));
   json.field("aief_ms", median(total)).field("opencv_orb_ms", median(orb_ms));
   json.field("opencv_orb_keypoints", static_cast<int>(keypoints.size()));
   json.field("speedup_vs_opencv_orb", median(orb_ms) / median(total));
