@@ -37,7 +37,7 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
   std::size_t next = 0;
   for (int n = 0; n < analysis.level_count(); ++n) {
     offsets[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(next);
-    next += analysis.level(n).candidates.size();
+    next += analysis.blocks(n).candidates.size();
   }
   if (next > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) throw Error("adapt: too many candidates");
   return offsets;
@@ -51,7 +51,7 @@ class SortedBlockEntropies {
   explicit SortedBlockEntropies(const FrameAnalysis& analysis) : levels_(static_cast<std::size_t>(analysis.level_count())) {
     for (int n = 0; n < analysis.level_count(); ++n) {
       std::vector<double>& sorted = levels_[static_cast<std::size_t>(n)];
-      sorted = analysis.level(n).block_entropy;  // every block of a usable level (the sweep needs an entropy measure)
+      sorted = analysis.blocks(n).entropy_bits;  // every block of a usable level (the sweep needs an entropy measure)
       std::sort(sorted.begin(), sorted.end());
     }
   }

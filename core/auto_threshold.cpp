@@ -77,9 +77,9 @@ void auto_threshold_entropies(const FrameAnalysis& analysis, std::vector<double>
   entropies.clear();
   const bool skip_uniform = analysis.options().auto_skips_uniform_blocks;
   for (int n = 0; n < analysis.level_count(); ++n) {
-    const LevelState& level = analysis.level(n);
-    for (std::size_t b = 0; b < level.block_entropy.size(); ++b)
-      if (!skip_uniform || !level.block_uniform[b]) entropies.push_back(level.block_entropy[b]);
+    const LevelBlocks& blocks = analysis.blocks(n);
+    for (std::size_t b = 0; b < blocks.entropy_bits.size(); ++b)
+      if (!skip_uniform || !blocks.uniform[b]) entropies.push_back(blocks.entropy_bits[b]);
   }
 }
 

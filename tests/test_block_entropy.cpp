@@ -147,7 +147,7 @@ TEST(BlockEntropy, ImageEntropyExactAtTheLargestAcceptedSizeUnderEveryKernelSet)
       analysis.compute_entropies(0);
       EXPECT_NEAR(analysis.image_entropy_bits(), static_cast<double>(expected), 1e-6)
           << to_string(measure) << " under " << to_string(set);
-      for (double block_bits : analysis.level(0).block_entropy) {
+      for (double block_bits : analysis.blocks(0).entropy_bits) {
         EXPECT_GE(block_bits, 0.0);
         EXPECT_LE(block_bits, measure == EntropyMeasure::histogram ? 8.0 : std::log2(1535.0 * 1535.0));
       }

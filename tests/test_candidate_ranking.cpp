@@ -92,7 +92,7 @@ TEST(CandidateRanking, DetectionCarriesTheCrossSum) {
     for (int n = 0; n < analysis.level_count(); ++n) {
       analysis.build_level(n);
       analysis.detect(n, 0.0);
-      for (const Candidate& c : analysis.level(n).candidates) {
+      for (const Candidate& c : analysis.blocks(n).candidates) {
         const int sum = c.score_left + c.score_right + c.score_up + c.score_down;
         EXPECT_EQ(c.rank_extra, ranking == CandidateRanking::cross_score ? sum : 0);
         with_neighbours += sum > 0 ? 1 : 0;
@@ -130,7 +130,7 @@ TEST(CandidateRanking, LevelKeepsItsStrongestByTheChosenRanking) {
     analysis.start(test::view_of(gray), options, kernel_table(KernelSet::scalar));
     analysis.build_level(0);
     analysis.detect(0, 0.0);
-    std::vector<Candidate> candidates = analysis.level(0).candidates;
+    std::vector<Candidate> candidates = analysis.blocks(0).candidates;
     const int budget = analysis.level(0).geometry.n_features;
     ASSERT_GT(static_cast<int>(candidates.size()), budget);
     std::sort(candidates.begin(), candidates.end(), stronger);

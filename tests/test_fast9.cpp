@@ -145,7 +145,8 @@ TEST(Fast9, PipelineBlockCandidatesEqualOpenCvWithTheRetryRule) {
         for (int n = 0; n < analysis.level_count(); ++n) analysis.build_level(n);
         for (int n = 0; n < analysis.level_count(); ++n) {
           analysis.detect(n, 0.0);
-          const LevelState& level = analysis.level(n);
+          const PyramidLevel& level = analysis.level(n);
+          const LevelBlocks& found = analysis.blocks(n);
           const cv::Mat pixels(level.pixels.height, level.pixels.width, CV_8UC1, const_cast<std::uint8_t*>(level.pixels.data),
                                static_cast<std::size_t>(level.pixels.stride));
           const std::vector<FastCorner> strong = opencv(pixels, setting.threshold), weak = opencv(pixels, setting.min_threshold);
@@ -172,9 +173,9 @@ TEST(Fast9, PipelineBlockCandidatesEqualOpenCvWithTheRetryRule) {
               empty_blocks += expected.empty();
             }
             std::vector<FastCorner> actual;
-            const BlockRange range = level.block_candidates[static_cast<std::size_t>(b)];
+            const BlockRange range = found.candidate_range[static_cast<std::size_t>(b)];
             for (std::int32_t i = range.begin; i < range.end; ++i) {
-              const Candidate& c = level.candidates[static_cast<std::size_t>(i)];
+              const Candidate& c = found.candidates[static_cast<std::size_t>(i)];
               actual.push_back({c.x, c.y, c.score});
             }
             const auto same = [](const FastCorner& a, const FastCorner& c) { return a.x == c.x && a.y == c.y && a.score == c.score; };

@@ -1,0 +1,123 @@
+#include "core/level_detection.hpp"
+
+#include <algorithm>
+#include <bit>
+
+#include "core/fast9.hpp"
+#include "core/score_band.hpp"
+
+namespace aief {
+
+namespace {
+
+// The candidates of blocks [c_begin, c_end) of block row r, whose scores (with the ring) are in
+// the score band from level row score_top.
+void detect_run(const PyramidLevel& level, const ExtractorOptions& options, const KernelTable& kernels, int r,
+                int c_begin, int c_end, int score_top, LevelBlocks& blocks, DetectionScratch& scratch) {
+  const BlockGrid& grid = level.geometry.grid;
+  const int x_begin = grid.col_edges[static_cast<std::size_t>(c_begin)], x_end = grid.col_edges[static_cast<std::size_t>(c_end)];
+  const int y0 = grid.row_edges[static_cast<std::size_t>(r)], y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
+  const MutableImageView scores = scratch.score_band.mutable_view();
+
+  // Local maxima of the score map (threshold-free, see core/fast9.hpp) over the whole run, one
+  // bit row per level row, and the strong ones (score >= fast_threshold) likewise, also OR-ed
+  // over the rows, which is what the retry rule asks.
+  const int words = fast9_maxima_words(x_end - x_begin);
+  std::vector<std::uint64_t>& bits = scratch.maxima_bits;
+  bits.resize(static_cast<std::size_t>(words) * static_cast<std::size_t>(2 * (y1 - y0) + 1));
+  std::uint64_t* strong_any = bits.data();
+  std::uint64_t* strong_rows = strong_any + words;
+  std::uint64_t* maxima_rows = strong_rows + static_cast<std::ptrdiff_t>(y1 - y0) * words;
+  std::fill(strong_any, strong_any + words, std::uint64_t{0});
+  for (int y = y0; y < y1; ++y) {
+    const std::uint8_t* row = scores.row(y - score_top);
+    std::uint64_t* strong_row = strong_rows + static_cast<std::ptrdiff_t>(y - y0) * words;
+    kernels.fast9_local_maxima_bits(row - scores.stride, row, row + scores.stride, x_begin, x_end,
+                                    options.fast_threshold, maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words,
+                                    strong_row);
+    for (int k = 0; k < words; ++k) strong_any[k] |= strong_row[k];
+  }
+
+  // Each block takes its bit range, in raster order: the strong maxima, or all of them when it
+  // has no strong one (ORB-SLAM2's retry rule: fast_threshold, else fast_min_threshold). Reading
+  // the strong bit rows skips the weak maxima of a strong block without a compare per maximum.
+  std::vector<Candidate>& candidates = blocks.candidates;
+  for (int c = c_begin; c < c_end; ++c) {
+    const int block = r * grid.cols() + c;
+    const int begin = grid.col_edges[static_cast<std::size_t>(c)] - x_begin;
+    const int end = grid.col_edges[static_cast<std::size_t>(c) + 1] - x_begin;
+    const int k_first = begin / 64, k_last = (end - 1) / 64;
+    const std::uint64_t first_mask = ~std::uint64_t{0} << (begin % 64);
+    const std::uint64_t last_mask = ~std::uint64_t{0} >> (63 - (end - 1) % 64);
+    const auto block_bits = [&](const std::uint64_t* words_of_row, int k) {
+      std::uint64_t word = words_of_row[k];
+      if (k == k_first) word &= first_mask;
+      if (k == k_last) word &= last_mask;
+      return word;
+    };
+    bool any_strong = false;
+    for (int k = k_first; k <= k_last; ++k) any_strong = any_strong || block_bits(strong_any, k) != 0;
+    const std::uint64_t* taken_rows = any_strong ? strong_rows : maxima_rows;
+    const bool rank_by_cross = options.candidate_ranking == CandidateRanking::cross_score;
+    const std::size_t first = candidates.size();
+    const std::ptrdiff_t stride = scores.stride;
+    // The cross sum is taken from the scores just read, not reloaded from the stored candidate.
+    const auto take = [&](std::uint64_t word, int y, int k) {
+      const std::uint8_t* row = scores.row(y - score_top);
+      for (; word != 0; word &= word - 1) {
+        const int x = x_begin + 64 * k + std::countr_zero(word);
+        const std::uint8_t left = row[x - 1], right = row[x + 1], up = row[x - stride], down = row[x + stride];
+        candidates.push_back(Candidate{x, y, row[x], left, right, up, down, rank_by_cross ? left + right + up + down : 0});
+      }
+    };
+    if (k_first == k_last) {  // the usual block, inside one word: one masked word per row
+      const std::uint64_t mask = first_mask & last_mask;
+      const std::uint64_t* taken = taken_rows + k_first;
+      for (int y = y0; y < y1; ++y, taken += words)
+        if (const std::uint64_t word = *taken & mask) take(word, y, k_first);
+    } else {
+      for (int y = y0; y < y1; ++y)
+        for (int k = k_first; k <= k_last; ++k)
+          take(block_bits(taken_rows + static_cast<std::ptrdiff_t>(y - y0) * words, k), y, k);
+    }
+    blocks.detected[static_cast<std::size_t>(block)] = 1;
+    blocks.candidate_range[static_cast<std::size_t>(block)] = {static_cast<std::int32_t>(first),
+                                                               static_cast<std::int32_t>(candidates.size())};
+  }
+}
+
+}  // namespace
+
+void size_detection_scratch(const LevelGeometry& geometry, DetectionScratch& scratch) {
+  size_score_band(geometry, scratch.score_band);
+}
+
+void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const ExtractorOptions& options,
+                        const KernelTable& kernels, LevelBlocks& blocks, DetectionScratch& scratch) {
+  if (!level.usable()) return;
+  const BlockGrid& grid = level.geometry.grid;
+  const auto needs = [&](int b) { return !blocks.detected[static_cast<std::size_t>(b)] && mask.kept(b); };
+
+  // Scores of each run of adjacent new blocks in a block row, with the one-pixel ring that
+  // suppression reads, go to the score band: one call per row of the run instead of a call per
+  // ring segment, then the run's blocks.
+  for (int r = 0; r < grid.rows(); ++r) {
+    const int score_top = grid.row_edges[static_cast<std::size_t>(r)] - 1;
+    int c = 0;
+    while (c < grid.cols()) {
+      if (!needs(r * grid.cols() + c)) {
+        ++c;
+        continue;
+      }
+      int end = c;
+      while (end < grid.cols() && needs(r * grid.cols() + end)) ++end;
+      compute_score_rows(level.pixels, kernels, options.fast_min_threshold, scratch.score_band, score_top, score_top,
+                         grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
+                         grid.col_edges[static_cast<std::size_t>(c)] - 1, grid.col_edges[static_cast<std::size_t>(end)] + 1);
+      detect_run(level, options, kernels, r, c, end, score_top, blocks, scratch);
+      c = end;
+    }
+  }
+}
+
+}  // namespace aief

@@ -1,0 +1,52 @@
+#include "core/level_selection.hpp"
+
+#include "core/level_geometry.hpp"
+
+namespace aief {
+
+void select_candidates(const PyramidLevel& level, const LevelBlocks& blocks, BlockMask mask,
+                       const ExtractorOptions& options, int budget, SelectionScratch& scratch,
+                       std::vector<std::int32_t>& selected) {
+  const BlockGrid& grid = level.geometry.grid;
+  selected.clear();
+  if (options.distribution == Distribution::proportional) {
+    std::vector<BlockRange>& kept = scratch.kept_blocks;
+    kept.clear();
+    std::int64_t total = 0;
+    for (int b = 0; b < grid.count(); ++b)
+      if (mask.kept(b)) {
+        kept.push_back(blocks.candidate_range[static_cast<std::size_t>(b)]);
+        total += kept.back().size();
+      }
+    const std::int64_t pool_size = candidate_pool_size(options.candidate_pool, budget);
+    if (pool_size < 0 || total <= pool_size) {
+      distribute_proportional(blocks.candidates, kept, budget, selected, scratch.distribution);
+    } else {
+      // The level's strongest candidates first (core/candidate_pool.hpp), then the same water level.
+      pool_candidates(blocks.candidates, kept, pool_size, scratch.pooled, scratch.pooled_index, scratch.pooled_blocks,
+                      scratch.pool);
+      distribute_proportional(scratch.pooled, scratch.pooled_blocks, budget, selected, scratch.distribution);
+      for (std::int32_t& index : selected) index = scratch.pooled_index[static_cast<std::size_t>(index)];
+    }
+  } else {
+    // The quadtree sees the kept blocks' candidates as one set, over ORB-SLAM2's rectangle.
+    std::vector<Candidate>& set = scratch.quadtree_set;
+    std::vector<std::int32_t>& set_index = scratch.quadtree_index;
+    set.clear();
+    set_index.clear();
+    for (int b = 0; b < grid.count(); ++b) {
+      if (!mask.kept(b)) continue;
+      const BlockRange range = blocks.candidate_range[static_cast<std::size_t>(b)];
+      for (std::int32_t i = range.begin; i < range.end; ++i) {
+        set.push_back(blocks.candidates[static_cast<std::size_t>(i)]);
+        set_index.push_back(i);
+      }
+    }
+    constexpr int kQuadtreeMargin = kEdgeBorder - 3;  // ORB-SLAM2's minBorderX
+    distribute_quadtree(set, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin, kQuadtreeMargin,
+                        level.geometry.height - kQuadtreeMargin, budget, selected, scratch.distribution);
+    for (std::int32_t& index : selected) index = set_index[static_cast<std::size_t>(index)];
+  }
+}
+
+}  // namespace aief

@@ -1,0 +1,19 @@
+#pragma once
+// One pyramid level's pixels: its geometry, how it is made from the level above, and the pixels.
+#include "aief/image.hpp"
+#include "core/level_geometry.hpp"
+#include "core/pyramid_resize.hpp"
+
+namespace aief {
+
+struct PyramidLevel {
+  LevelGeometry geometry;
+  ResizePlan resize_plan;  // from the previous level (empty for level 0)
+  ImageView pixels;        // the level: the caller's image for level 0, else `image`
+  GrayImage image;         // pixels of levels >= 1 (unused for level 0)
+
+  // Whether the level can hold keypoints (and is built): both sides >= 2 * kEdgeBorder + 1.
+  bool usable() const { return geometry.grid.count() > 0; }
+};
+
+}  // namespace aief
