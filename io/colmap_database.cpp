@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <map>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <sqlite3.h>
 
 #include "aief/error.hpp"
 #include "io/hdf5_features.hpp"
+#include "io/json_writer.hpp"
 #include "io/pairs_file.hpp"
 #include "io/utf8.hpp"
 
@@ -80,7 +82,7 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
                     const std::vector<ImagePair>& pairs, ColmapExport& summary) {
   db.exec(kSchema);
   db.exec("BEGIN TRANSACTION");
-  std::map<std::string, std::pair<long long, int>> images;  // name -> (image id, keypoints)
+  std::unordered_map<std::string, std::pair<long long, int>> images;  // name -> (image id, keypoints)
   for (const std::string& name : features.feature_names()) {
     const Features f = features.read_features(name);
     const long long id = static_cast<long long>(images.size()) + 1;
@@ -120,7 +122,7 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     });
     ++summary.images;
   }
-  std::vector<long long> written;
+  std::unordered_set<long long> written;
   for (const auto& [name0, name1] : pairs) {
     const auto a = images.find(name0), b = images.find(name1);
     if (a == images.end() || b == images.end())
@@ -128,20 +130,28 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
                   features.path() + "'");
     std::vector<Match> matches;
     bool swapped = false;
-    if (matches_file.has_matches(hloc_pair_name(name0, name1))) {
-      matches = matches_file.read_matches(hloc_pair_name(name0, name1));
-    } else if (matches_file.has_matches(hloc_pair_name(name1, name0))) {
-      matches = matches_file.read_matches(hloc_pair_name(name1, name0));
+    if (matches_file.has_matches(name0, name1)) {
+      matches = matches_file.read_matches(name0, name1);
+    } else if (matches_file.has_matches(name1, name0)) {
+      matches = matches_file.read_matches(name1, name0);
       swapped = true;
     } else {
       throw Error("pair '" + name0 + " " + name1 + "' has no matches in '" + matches_file.path() + "'");
     }
-    long long id0 = a->second.first, id1 = b->second.first;
-    if (swapped) std::swap(id0, id1);  // id0 is now the queries' image
+    const auto& query = swapped ? b : a;  // the image whose keypoints the matches' queries index
+    const auto& train = swapped ? a : b;
+    for (const Match& m : matches)
+      if (m.query < 0 || m.query >= query->second.second || m.train < 0 || m.train >= train->second.second) {
+        const bool bad_query = m.query < 0 || m.query >= query->second.second;
+        const auto& image = bad_query ? query : train;
+        throw Error("pair '" + name0 + " " + name1 + "': a match names keypoint " + std::to_string(bad_query ? m.query : m.train) +
+                    " of '" + image->first + "', which has " + std::to_string(image->second.second) + " in '" +
+                    features.path() + "' (features and matches from different runs?)");
+      }
+    long long id0 = query->second.first, id1 = train->second.first;  // id0: the queries' image
     const bool flip = id0 > id1;       // COLMAP keys a pair by (smaller id, larger id)
     const long long pair_id = std::min(id0, id1) * kMaxImageId + std::max(id0, id1);
-    if (std::find(written.begin(), written.end(), pair_id) != written.end()) continue;  // listed twice
-    written.push_back(pair_id);
+    if (!written.insert(pair_id).second) continue;  // listed twice, or both ways
     std::vector<std::uint32_t> rows;
     for (const Match& m : matches) {
       rows.push_back(static_cast<std::uint32_t>(flip ? m.train : m.query));
@@ -166,19 +176,28 @@ ColmapExport export_colmap_database(const std::string& database, const std::stri
   if (std::filesystem::exists(database, ec)) throw Error("COLMAP database '" + database + "' exists already (remove it first)");
   const Hdf5File features(features_h5, Hdf5File::Mode::read);
   const Hdf5File matches(matches_h5, Hdf5File::Mode::read);
-  const std::vector<ImagePair> pairs = read_pairs(pairs_txt);
-  const std::string temporary = database + ".tmp";
-  std::filesystem::remove(temporary, ec);
+  PairsList pairs = read_pairs(pairs_txt);
+  const std::string temporary = temporary_path_of(database), journal = temporary + "-journal";
+  const auto remove_temporaries = [&] {
+    std::filesystem::remove(temporary, ec);
+    std::filesystem::remove(journal, ec);
+  };
+  remove_temporaries();
   ColmapExport summary;
+  summary.notes = std::move(pairs.notes);
   try {
     Database db(temporary);
-    write_database(db, features, matches, pairs, summary);
+    write_database(db, features, matches, pairs.pairs, summary);
   } catch (...) {
-    std::filesystem::remove(temporary, ec);
+    remove_temporaries();
     throw;
   }
   std::filesystem::rename(temporary, database, ec);
-  if (ec) throw Error("cannot write COLMAP database '" + database + "': " + ec.message());
+  if (ec) {
+    const std::string reason = ec.message();
+    remove_temporaries();
+    throw Error("cannot write COLMAP database '" + database + "': " + reason);
+  }
   return summary;
 }
 

@@ -14,7 +14,8 @@
 //   aief's (OpenCV's) the top-left pixel's centre (hloc shifts the same way);
 // - descriptors: N x 32 uint8 (COLMAP's own SIFT matchers expect 128 columns: match with aief);
 // - matches: per pair of pairs.txt, pair_id = id1 * 2147483647 + id2 with id1 < id2, N x 2 uint32;
-//   two_view_geometries is left to colmap's verification.
+//   two_view_geometries is left to colmap's verification. Every match's two keypoint indices are
+//   checked against the images' keypoint counts (matches from another run are refused).
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct ColmapExport {
   int pairs = 0;             // pairs written (pairs.txt lines with matches in matches.h5)
   long long matches = 0;
   std::vector<std::string> names_not_utf8;  // stored as their bytes (see above)
+  std::vector<std::string> notes;  // pairs.txt lines left out, and why (io/pairs_file.hpp)
 };
 
 // Creates `database` (it must not exist; written to a temporary name, then renamed). Throws

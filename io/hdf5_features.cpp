@@ -1,13 +1,22 @@
 #include "io/hdf5_features.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
+#include <fcntl.h>
 #include <hdf5.h>
+#include <sys/file.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "aief/error.hpp"
+#include "io/json_writer.hpp"
 
 namespace aief::io {
 
@@ -31,14 +40,36 @@ class Handle {
   herr_t (*close_)(hid_t);
 };
 
-// Errors are reported by aief::Error; libhdf5's own stack printing would only repeat them.
+// Errors are reported by aief::Error; libhdf5's own stack printing would only repeat them. The
+// setting is per thread in a thread-safe libhdf5 (a batch writes from a TBB worker), so every
+// entry point calls this on its own thread.
 void silence_hdf5() {
-  static const bool silenced = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();
+  thread_local const bool silenced = H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
   (void)silenced;
+}
+
+// The reason libhdf5 gives for the last failure on this thread: the system's message when a
+// read or write of the file failed ("No space left on device"), else its innermost description.
+std::string hdf5_reason() {
+  std::string innermost;
+  const auto visit = [](unsigned, const H5E_error2_t* error, void* data) -> herr_t {
+    if (error->desc) *static_cast<std::string*>(data) = error->desc;
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, visit, &innermost);
+  H5Eclear2(H5E_DEFAULT);
+  const std::string marker = "error message = '";
+  const std::size_t at = innermost.find(marker);
+  if (at != std::string::npos) {
+    const std::size_t begin = at + marker.size();
+    return innermost.substr(begin, innermost.find('\'', begin) - begin);
+  }
+  return innermost;
 }
 
 // Whether every component of `path` exists (H5Lexists fails when a parent is missing).
 bool exists(hid_t file, const std::string& path) {
+  silence_hdf5();
   std::size_t at = 0;
   while (true) {
     at = path.find('/', at + 1);
@@ -59,19 +90,24 @@ hid_t native_type<std::int32_t>() { return H5T_NATIVE_INT32; }
 template <>
 hid_t native_type<std::int64_t>() { return H5T_NATIVE_INT64; }
 
+// Creates and writes one dataset, closed here so that a failure of its last write (libhdf5 may
+// keep small data in its sieve buffer until the close) is an error, not a silent loss.
 template <class T>
 void write_dataset(hid_t group, const char* name, const std::vector<hsize_t>& dims, const std::vector<T>& values,
                    const std::string& where) {
   const Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
-  const Handle set(H5Dcreate2(group, name, native_type<T>(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-  if (!set.ok()) throw Error("cannot create dataset '" + where + "/" + name + "'");
-  if (!values.empty() && H5Dwrite(set.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-    throw Error("cannot write dataset '" + where + "/" + name + "' (disk full?)");
+  const hid_t set = H5Dcreate2(group, name, native_type<T>(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (set < 0) throw Error(hdf5_reason() + " (creating '" + where + "/" + name + "')");
+  const bool written =
+      values.empty() || H5Dwrite(set, native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
+  const bool closed = H5Dclose(set) >= 0;
+  if (!written || !closed) throw Error(hdf5_reason() + " (writing '" + where + "/" + name + "')");
 }
 
 // The dataset's dimensions and values, converted to T by libhdf5.
 template <class T>
 std::vector<T> read_dataset(hid_t group, const char* name, std::vector<hsize_t>& dims, const std::string& where) {
+  silence_hdf5();
   const Handle set(H5Dopen2(group, name, H5P_DEFAULT), H5Dclose);
   if (!set.ok()) throw Error("no dataset '" + where + "/" + name + "'");
   const Handle space(H5Dget_space(set.get()), H5Sclose);
@@ -90,7 +126,7 @@ Handle create_group(hid_t file, const std::string& name, const std::string& path
   const Handle intermediate(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
   H5Pset_create_intermediate_group(intermediate.get(), 1);
   Handle group(H5Gcreate2(file, name.c_str(), intermediate.get(), H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  if (!group.ok()) throw Error("cannot create group '" + name + "' in '" + path + "'");
+  if (!group.ok()) throw Error(hdf5_reason() + " (creating group '" + name + "' in '" + path + "')");
   return group;
 }
 
@@ -101,9 +137,80 @@ void remove_group(hid_t file, const std::string& name) {
 
 }  // namespace
 
+namespace {
+
+// Why `path` cannot be opened or created as an HDF5 file, in the words a user acts on: a missing
+// folder, a directory, a file another process holds locked, a file that is not HDF5 or is damaged.
+std::string open_failure(const std::string& path, bool creating, const std::string& hdf5_said) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path folder = fs::path(path).parent_path();
+  if (creating && !folder.empty() && !fs::is_directory(folder, ec))
+    return "cannot create '" + path + "': the folder '" + folder.string() + "' does not exist";
+  if (fs::is_directory(path, ec)) return "cannot open '" + path + "' as an HDF5 file: it is a directory";
+  if (hdf5_said.find("unable to lock file") != std::string::npos || hdf5_said == "Resource temporarily unavailable")
+    return "cannot open '" + path + "': another process holds it locked (another aief writing it? wait until it ends)";
+  if (!creating && H5Fis_hdf5(path.c_str()) == 0) return "cannot open '" + path + "': it is not an HDF5 file";
+  const int fd = ::open(path.c_str(), creating ? O_RDWR | O_CREAT | O_EXCL : O_RDONLY, 0644);
+  if (fd < 0) return std::string("cannot ") + (creating ? "create '" : "open '") + path + "': " + std::strerror(errno);
+  ::close(fd);
+  if (creating) fs::remove(path, ec);
+  return "cannot open '" + path + "' as an HDF5 file: it is damaged (libhdf5: " + hdf5_said + ")";
+}
+
+// The bytes the datasets of group `name` hold (what a copy of it writes besides metadata).
+std::uint64_t group_storage_bytes(hid_t file, const std::string& name) {
+  const Handle group(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!group.ok()) throw Error("'" + name + "' is not a group");
+  const auto visit = [](hid_t parent, const char* link, const H5L_info_t*, void* data) -> herr_t {
+    const Handle set(H5Dopen2(parent, link, H5P_DEFAULT), H5Dclose);
+    if (set.ok()) *static_cast<std::uint64_t*>(data) += H5Dget_storage_size(set.get());
+    return 0;
+  };
+  std::uint64_t bytes = 0;
+  H5Literate(group.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, visit, &bytes);
+  return bytes;
+}
+
+// Copies the file `from` to `to` (created), throwing the system's reason (std::filesystem's
+// copy reports a full disk as "Input/output error").
+void copy_file(const std::string& from, const std::string& to) {
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) throw Error("cannot read '" + from + "': " + std::strerror(errno));
+  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (out < 0) {
+    const int code = errno;
+    ::close(in);
+    throw Error("cannot create '" + to + "': " + std::strerror(code));
+  }
+  std::vector<char> buffer(1 << 20);
+  int code = 0;
+  for (ssize_t n; code == 0 && (n = ::read(in, buffer.data(), buffer.size())) != 0;) {
+    if (n < 0) {
+      if (errno != EINTR) code = errno;
+      continue;
+    }
+    for (ssize_t done = 0; done < n;) {
+      const ssize_t w = ::write(out, buffer.data() + done, static_cast<std::size_t>(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w < 0) {
+        code = errno;
+        break;
+      }
+      done += w;
+    }
+  }
+  ::close(in);
+  if (::close(out) != 0 && code == 0) code = errno;
+  if (code != 0) throw Error(std::strerror(code) + std::string(" (copying '") + from + "')");
+}
+
+}  // namespace
+
 Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   silence_hdf5();
   std::error_code ec;
+  bool creating = false;
   if (mode == Mode::read) {
     if (!std::filesystem::exists(path, ec)) throw Error("cannot open '" + path + "': no such file");
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -111,17 +218,161 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   } else {
     file_ = H5Fcreate(path.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
+    creating = true;
   }
-  if (file_ < 0) throw Error("cannot open '" + path + "' as an HDF5 file (damaged, or not HDF5?)");
+  if (file_ < 0) throw Error(open_failure(path, creating, hdf5_reason()));
+  if (mode == Mode::read_write) {
+    void* handle = nullptr;
+    const Handle access(H5Fget_access_plist(file_), H5Pclose);
+    if (H5Pget_driver(access.get()) == H5FD_SEC2 && H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) >= 0 && handle)
+      descriptor_ = *static_cast<int*>(handle);
+    reserved_until_ = static_cast<std::uint64_t>(std::filesystem::file_size(path, ec));
+  }
 }
 
 Hdf5File::~Hdf5File() {
-  if (file_ >= 0) H5Fclose(file_);
+  silence_hdf5();
+  // A close whose last writes fail leaves the file open in libhdf5, which would try again (and
+  // crash) at exit: the writes go to the scratch file instead, and the file is closed.
+  if (file_ >= 0 && H5Fclose(file_) < 0) {
+    fence();
+    H5Fclose(file_);
+  }
+  // Give back the blocks reserved past the end that the file did not grow into.
+  std::error_code ec;
+  const std::uint64_t size = failure_.empty() ? std::filesystem::file_size(path_, ec) : 0;
+  if (!ec && reserved_until_ > size && size > 0) {
+    const int fd = ::open(path_.c_str(), O_WRONLY);
+    if (fd >= 0) {
+      ::fallocate(fd, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, static_cast<off_t>(size),
+                  static_cast<off_t>(reserved_until_ - size));
+      ::close(fd);
+    }
+  }
+}
+
+void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& name) {
+  silence_hdf5();
+  const std::uint64_t bytes = group_storage_bytes(source.file_, name);
+  write_guarded(bytes, "'" + name + "' from '" + source.path_ + "'", [&] {
+    remove_group(file_, name);  // an incomplete group of the same name
+    const Handle intermediate(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+    H5Pset_create_intermediate_group(intermediate.get(), 1);
+    if (H5Ocopy(source.file_, name.c_str(), file_, name.c_str(), H5P_DEFAULT, intermediate.get()) < 0)
+      throw Error(hdf5_reason());
+  }, /*flush=*/false);
+}
+
+void Hdf5File::close() {
+  silence_hdf5();
+  if (file_ < 0) return;
+  try {
+    reserve(0);
+  } catch (const Error& e) {
+    fence();
+    H5Fclose(std::exchange(file_, -1));
+    throw Error("cannot close '" + path_ + "': " + e.what());
+  }
+  if (H5Fclose(file_) >= 0) {
+    file_ = -1;
+    return;
+  }
+  const std::string reason = hdf5_reason();
+  fence();
+  H5Fclose(std::exchange(file_, -1));
+  throw Error("cannot close '" + path_ + "': " + reason);
+}
+
+void Hdf5File::reserve(std::uint64_t extra) {
+  haddr_t end_of_allocation = 0;
+  if (descriptor_ < 0 || H5Fget_eoa(file_, &end_of_allocation) < 0) return;
+  const std::uint64_t until = static_cast<std::uint64_t>(end_of_allocation) + extra;
+  if (until <= reserved_until_) return;
+  // FALLOC_FL_KEEP_SIZE: blocks past the end, the file's size unchanged (libhdf5 checks it).
+  if (::fallocate(descriptor_, FALLOC_FL_KEEP_SIZE, static_cast<off_t>(reserved_until_),
+                  static_cast<off_t>(until - reserved_until_)) == 0) {
+    reserved_until_ = until;
+  } else if (errno != EOPNOTSUPP && errno != ENOSYS) {
+    throw Error(std::strerror(errno));
+  }
+}
+
+void Hdf5File::fence() {
+  if (descriptor_ < 0) return;
+  const int scratch = ::memfd_create("aief-hdf5-after-a-failed-write", 0);
+  if (scratch >= 0) {
+    ::dup2(scratch, descriptor_);
+    ::close(scratch);
+  }
+}
+
+template <class Write>
+void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write&& write, bool flush) {
+  silence_hdf5();
+  const std::lock_guard<std::mutex> lock(failure_mutex_);
+  if (!failure_.empty())
+    throw Error("cannot write " + what + " to '" + path_ + "': an earlier write failed (" + failure_ + ")");
+  try {
+    reserve(bytes + kMetadataAllowance);
+    write();
+    if (flush) {
+      reserve(0);  // everything the flush writes lies below the end of allocation
+      if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error(hdf5_reason());
+    }
+  } catch (const std::exception& e) {
+    failure_ = e.what();
+    fence();
+    throw Error("cannot write " + what + " to '" + path_ + "': " + failure_ + " (what was complete before is kept)");
+  }
 }
 
 bool Hdf5File::has_features(const std::string& name) const { return exists(file_, name + "/image_size"); }
 
-bool Hdf5File::has_matches(const std::string& pair_name) const { return exists(file_, pair_name + "/matching_scores0"); }
+namespace {
+
+// A string attribute of an object, or "" when it has none.
+std::string string_attribute(hid_t object, const char* name) {
+  if (H5Aexists(object, name) <= 0) return "";
+  const Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+  const Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), H5T_VARIABLE);
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  char* text = nullptr;
+  if (H5Aread(attribute.get(), type.get(), &text) < 0 || !text) return "";
+  std::string value(text);
+  H5free_memory(text);
+  return value;
+}
+
+void write_string_attribute(hid_t object, const char* name, const std::string& value) {
+  const Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), H5T_VARIABLE);
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  const Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  const Handle attribute(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  const char* text = value.c_str();
+  if (!attribute.ok() || H5Awrite(attribute.get(), type.get(), &text) < 0)
+    throw Error(hdf5_reason() + " (attribute '" + name + "')");
+}
+
+}  // namespace
+
+void Hdf5File::check_pair_owner(const std::string& group_name, const std::string& name0, const std::string& name1) const {
+  const Handle group(H5Gopen2(file_, group_name.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!group.ok()) return;
+  const std::string stored0 = string_attribute(group.get(), "name0"), stored1 = string_attribute(group.get(), "name1");
+  if (stored0.empty() && stored1.empty()) return;  // written before names were recorded
+  if (stored0 != name0 || stored1 != name1)
+    throw Error("pair '" + name0 + " " + name1 + "' and pair '" + stored0 + " " + stored1 + "' share the group '" +
+                group_name + "' in '" + path_ + "' (hloc's names: '/' becomes '-'), which holds the second's matches");
+}
+
+bool Hdf5File::has_matches(const std::string& name0, const std::string& name1) const {
+  const std::string group = hloc_pair_name(name0, name1);
+  if (!exists(file_, group + "/matching_scores0")) return false;
+  check_pair_owner(group, name0, name1);
+  return true;
+}
 
 bool Hdf5File::features_belong_to(const std::string& name, const SourceRecord& source) const {
   if (!has_features(name) || !exists(file_, name + "/source")) return false;
@@ -132,13 +383,14 @@ bool Hdf5File::features_belong_to(const std::string& name, const SourceRecord& s
 }
 
 void Hdf5File::remove_features(const std::string& name) {
-  remove_group(file_, name);
-  if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error("cannot flush '" + path_ + "' (disk full?)");
+  write_guarded(0, "the removal of '" + name + "'", [&] { remove_group(file_, name); });
 }
 
 void Hdf5File::write_features(const std::string& name, const Features& features, const SourceRecord* source) {
-  remove_group(file_, name);
-  const Handle group = create_group(file_, name, path_);
+  silence_hdf5();
+  // A group being replaced goes first, flushed, so that no new data lands in its space while the
+  // file on disk still holds it.
+  if (exists(file_, name)) remove_features(name);
   const std::size_t n = features.keypoints.size();
   std::vector<float> xy(2 * n), size(n), angle(n), response(n);
   std::vector<std::int32_t> octave(n);
@@ -154,6 +406,9 @@ void Hdf5File::write_features(const std::string& name, const Features& features,
     for (std::size_t b = 0; b < kDescriptorBytes; ++b) descriptors[b * n + i] = features.descriptors[i][b];  // 32 x N
   }
   const hsize_t count = n;
+  const std::uint64_t bytes = n * (2 * sizeof(float) + kDescriptorBytes + 3 * sizeof(float) + sizeof(std::int32_t));
+  write_guarded(bytes, "image '" + name + "'", [&] {
+  const Handle group = create_group(file_, name, path_);
   write_dataset(group.get(), "keypoints", {count, 2}, xy, name);
   write_dataset(group.get(), "descriptors", {kDescriptorBytes, count}, descriptors, name);
   write_dataset(group.get(), "scores", {count}, response, name);
@@ -165,7 +420,21 @@ void Hdf5File::write_features(const std::string& name, const Features& features,
                   std::vector<std::int64_t>{static_cast<std::int64_t>(source->bytes), source->mtime_ns}, name);
   // Last: its presence marks the group complete (has_features).
   write_dataset(group.get(), "image_size", {2}, std::vector<std::int64_t>{features.image_width, features.image_height}, name);
-  if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error("cannot flush '" + path_ + "' (disk full?)");
+  });
+}
+
+std::vector<Descriptor> Hdf5File::read_descriptors(const std::string& name) const {
+  if (!exists(file_, name + "/descriptors")) throw Error("no image '" + name + "' in '" + path_ + "'");
+  const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
+  std::vector<hsize_t> dims;
+  const std::vector<std::uint8_t> bytes = read_dataset<std::uint8_t>(group.get(), "descriptors", dims, name);
+  if (dims.size() != 2 || dims[0] != kDescriptorBytes)
+    throw Error("'" + name + "/descriptors' in '" + path_ + "' is not 32 x N (aief's binary descriptors)");
+  const std::size_t n = dims[1];
+  std::vector<Descriptor> descriptors(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t b = 0; b < kDescriptorBytes; ++b) descriptors[i][b] = bytes[b * n + i];
+  return descriptors;
 }
 
 Features Hdf5File::read_features(const std::string& name) const {
@@ -206,9 +475,12 @@ Features Hdf5File::read_features(const std::string& name) const {
   return features;
 }
 
-void Hdf5File::write_matches(const std::string& pair_name, int keypoints0, const std::vector<Match>& matches) {
-  remove_group(file_, pair_name);
-  const Handle group = create_group(file_, pair_name, path_);
+void Hdf5File::write_matches(const std::string& name0, const std::string& name1, int keypoints0,
+                             const std::vector<Match>& matches) {
+  silence_hdf5();
+  const std::string pair_name = hloc_pair_name(name0, name1);
+  if (exists(file_, pair_name)) check_pair_owner(pair_name, name0, name1);
+  if (exists(file_, pair_name)) write_guarded(0, "the removal of '" + pair_name + "'", [&] { remove_group(file_, pair_name); });
   std::vector<std::int32_t> matches0(static_cast<std::size_t>(keypoints0), -1);
   std::vector<float> scores0(static_cast<std::size_t>(keypoints0), 0.0f);
   for (const Match& m : matches) {
@@ -216,13 +488,19 @@ void Hdf5File::write_matches(const std::string& pair_name, int keypoints0, const
     scores0[static_cast<std::size_t>(m.query)] = 1.0f - static_cast<float>(m.distance) / 256.0f;
   }
   const hsize_t n = matches0.size();
-  write_dataset(group.get(), "matches0", {n}, matches0, pair_name);
-  write_dataset(group.get(), "matching_scores0", {n}, scores0, pair_name);  // last: marks the pair complete
-  if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error("cannot flush '" + path_ + "' (disk full?)");
+  write_guarded(n * (sizeof(std::int32_t) + sizeof(float)), "pair '" + pair_name + "'", [&] {
+    const Handle group = create_group(file_, pair_name, path_);
+    write_string_attribute(group.get(), "name0", name0);
+    write_string_attribute(group.get(), "name1", name1);
+    write_dataset(group.get(), "matches0", {n}, matches0, pair_name);
+    write_dataset(group.get(), "matching_scores0", {n}, scores0, pair_name);  // last: marks the pair complete
+  });
 }
 
-std::vector<Match> Hdf5File::read_matches(const std::string& pair_name) const {
-  if (!exists(file_, pair_name)) throw Error("no pair '" + pair_name + "' in '" + path_ + "'");
+std::vector<Match> Hdf5File::read_matches(const std::string& name0, const std::string& name1) const {
+  const std::string pair_name = hloc_pair_name(name0, name1);
+  if (!exists(file_, pair_name)) throw Error("no pair '" + name0 + " " + name1 + "' in '" + path_ + "'");
+  check_pair_owner(pair_name, name0, name1);
   const Handle group(H5Gopen2(file_, pair_name.c_str(), H5P_DEFAULT), H5Gclose);
   std::vector<hsize_t> dims;
   const std::vector<std::int32_t> matches0 = read_dataset<std::int32_t>(group.get(), "matches0", dims, pair_name);
@@ -237,6 +515,7 @@ std::vector<Match> Hdf5File::read_matches(const std::string& pair_name) const {
 }
 
 std::vector<std::string> Hdf5File::feature_names() const {
+  silence_hdf5();
   std::vector<std::string> names;
   const auto visit = [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
     const std::string path(name);
@@ -250,35 +529,59 @@ std::vector<std::string> Hdf5File::feature_names() const {
   return names;
 }
 
-std::string hloc_pair_name(const std::string& name0, const std::string& name1) {
-  std::string a = name0, b = name1;
-  std::replace(a.begin(), a.end(), '/', '-');
-  std::replace(b.begin(), b.end(), '/', '-');
-  return a + "/" + b;
-}
-
 int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs) {
-  Hdf5File out(output, Hdf5File::Mode::read_write);
-  std::vector<std::string> taken = out.feature_names();
-  const std::size_t already = taken.size();
-  int copied = 0;
-  const Handle intermediate(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
-  H5Pset_create_intermediate_group(intermediate.get(), 1);
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  // Every input checked first: each opens, and no image is in two of them (a hash set: linear).
+  std::vector<std::unique_ptr<Hdf5File>> shards;
+  std::vector<std::vector<std::string>> names;
+  std::unordered_map<std::string, std::size_t> first_shard;
   for (const std::string& input : inputs) {
-    const Hdf5File in(input, Hdf5File::Mode::read);
-    for (const std::string& name : in.feature_names()) {
-      const auto end = taken.begin() + static_cast<std::ptrdiff_t>(already);
-      if (std::find(taken.begin(), end, name) != end) continue;  // from an earlier merge into this output
-      if (std::find(end, taken.end(), name) != taken.end())
-        throw Error("image '" + name + "' is in two of the files merged (the second: '" + input + "')");
-      remove_group(out.id(), name);
-      if (H5Ocopy(in.id(), name.c_str(), out.id(), name.c_str(), H5P_DEFAULT, intermediate.get()) < 0)
-        throw Error("cannot copy '" + name + "' from '" + input + "' into '" + output + "'");
-      taken.push_back(name);
-      ++copied;
+    shards.push_back(std::make_unique<Hdf5File>(input, Hdf5File::Mode::read));
+    names.push_back(shards.back()->feature_names());
+    for (const std::string& name : names.back()) {
+      const auto [at, inserted] = first_shard.emplace(name, shards.size() - 1);
+      if (!inserted)
+        throw Error("image '" + name + "' is in two of the files merged, '" + inputs[at->second] + "' and '" + input +
+                    "'; nothing was written");
     }
   }
-  if (H5Fflush(out.id(), H5F_SCOPE_LOCAL) < 0) throw Error("cannot flush '" + output + "' (disk full?)");
+  std::unordered_set<std::string> kept;  // images already in the output, from an earlier merge
+  const bool extending = fs::exists(output, ec);
+  if (extending) {
+    const Hdf5File previous(output, Hdf5File::Mode::read);
+    for (std::string& name : previous.feature_names()) kept.insert(std::move(name));
+  } else if (const fs::path folder = fs::path(output).parent_path(); !folder.empty() && !fs::is_directory(folder, ec)) {
+    throw Error("cannot create '" + output + "': the folder '" + folder.string() + "' does not exist");
+  }
+
+  // Then written to a temporary beside the output (a copy of it when extending), renamed over it
+  // only when complete: a failed merge leaves the output as it was.
+  const std::string temporary = temporary_path_of(output);
+  fs::remove(temporary, ec);
+  int copied = 0;
+  try {
+    if (extending) copy_file(output, temporary);
+    Hdf5File out(temporary, Hdf5File::Mode::read_write);
+    for (std::size_t s = 0; s < shards.size(); ++s)
+      for (const std::string& name : names[s]) {
+        if (kept.count(name)) continue;
+        out.copy_group_from(*shards[s], name);
+        ++copied;
+      }
+    out.close();
+  } catch (const fs::filesystem_error& e) {
+    fs::remove(temporary, ec);
+    throw Error("cannot merge into '" + output + "' (left as it was): " + e.code().message());
+  } catch (const std::exception& e) {
+    fs::remove(temporary, ec);
+    throw Error("cannot merge into '" + output + "' (left as it was): " + e.what());
+  }
+  fs::rename(temporary, output, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    throw Error("cannot merge into '" + output + "' (left as it was): " + ec.message());
+  }
   return copied;
 }
 

@@ -13,16 +13,21 @@
 //   and, for aief's own readers, size, angle (degrees) and octave, N each, and source: 2 int64,
 //   the image file's size in bytes and its modification time in nanoseconds (a batch resume
 //   re-extracts an image whose file changed).
-//   matches.h5: one group per pair, hloc's names_to_pair: name0 and name1 with '/' replaced by '-',
-//   joined by '/', holding matches0 (N0 int32, the index in image 1 or -1) and matching_scores0
-//   (N0 float32, 1 - distance / 256, 0 when unmatched). hloc writes int16 / float16; its readers
-//   take any width, and int32 holds more than 32767 keypoints.
+//   matches.h5: one group per pair, hloc's names_to_pair (io/pairs_file.hpp: name0 and name1 with
+//   '/' replaced by '-', joined by '/'), holding matches0 (N0 int32, the index in image 1 or -1)
+//   and matching_scores0 (N0 float32, 1 - distance / 256, 0 when unmatched); hloc writes int16 /
+//   float16, its readers take any width, and int32 holds more than 32767 keypoints. The group's
+//   string attributes name0 and name1 record the pair's own names, since two pairs can share a
+//   group name ("a/b.png c.png" and "a-b.png c.png"): a pair never reads or keeps another's.
+#include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "aief/features.hpp"
 #include "aief/match.hpp"
+#include "io/pairs_file.hpp"
 #include "io/source_record.hpp"
 
 namespace aief::io {
@@ -30,6 +35,14 @@ namespace aief::io {
 // An HDF5 file opened for reading and writing (created when missing). Every write ends with a
 // flush, and a group counts as complete only once its last dataset exists, so a killed batch
 // resumes at the first incomplete image. Throws aief::Error naming the file.
+//
+// A failed write (a full disk, an I/O error) never damages what was complete before: the disk
+// space a write needs is reserved (fallocate) before libhdf5 touches the file, and everything
+// below libhdf5's end of allocation is reserved before a flush, so a full disk fails the
+// reservation with nothing written. Should a write fail anyway, the file's descriptor is
+// diverted to a scratch file in memory: nothing more reaches the file, which stays as of its last
+// flush, libhdf5 closes it cleanly, and every later write is refused with the first reason.
+// (File systems without fallocate, and copy-on-write ones such as btrfs, get the diversion only.)
 class Hdf5File {
  public:
   enum class Mode { read, read_write };
@@ -42,7 +55,9 @@ class Hdf5File {
   long long id() const { return file_; }
   // Whether `name` is a complete image group (features) or pair group (matches).
   bool has_features(const std::string& name) const;
-  bool has_matches(const std::string& pair_name) const;
+  // Whether the pair has a complete group. Throws aief::Error naming both pairs when its group
+  // holds another pair's matches (recorded names differ; a group without names is taken as its).
+  bool has_matches(const std::string& name0, const std::string& name1) const;
   // Whether `name` is a complete image group written from the file `source` describes (same
   // size and modification time; a group written without a source never is).
   bool features_belong_to(const std::string& name, const SourceRecord& source) const;
@@ -53,22 +68,50 @@ class Hdf5File {
   // Reads back what write_features wrote (keypoints, size, angle, octave, response, descriptors,
   // image size; info is not stored).
   Features read_features(const std::string& name) const;
-  void write_matches(const std::string& pair_name, int keypoints0, const std::vector<Match>& matches);
-  // The matches of a pair group (query = index in image 0); distance from matching_scores0.
-  std::vector<Match> read_matches(const std::string& pair_name) const;
+  // Only the descriptors of an image (what matching needs).
+  std::vector<Descriptor> read_descriptors(const std::string& name) const;
+  void write_matches(const std::string& name0, const std::string& name1, int keypoints0,
+                     const std::vector<Match>& matches);
+  // The matches of a pair (query = index in image 0); distance from matching_scores0. Throws as
+  // has_matches does for another pair's group.
+  std::vector<Match> read_matches(const std::string& name0, const std::string& name1) const;
   // The image names of a features file: every group holding an image_size dataset, sorted.
   std::vector<std::string> feature_names() const;
+  // Copies the group `name` of `source` here (replacing an incomplete one), not flushed: for a
+  // file written whole and then renamed (merge_feature_files).
+  void copy_group_from(const Hdf5File& source, const std::string& name);
+  // Closes the file now, throwing when libhdf5 cannot (its last writes failed); the destructor
+  // closes a file still open and ignores a failure.
+  void close();
 
  private:
+  // Throws when the group of (name0, name1) records other names.
+  void check_pair_owner(const std::string& group, const std::string& name0, const std::string& name1) const;
+  // Room for a group's object headers and index entries beside its data; a flush's own growth is
+  // reserved separately before it.
+  static constexpr std::uint64_t kMetadataAllowance = 64 * 1024;
+  // Reserves disk blocks up to libhdf5's end of allocation plus `extra` bytes; throws on ENOSPC.
+  void reserve(std::uint64_t extra);
+  // Diverts the file's descriptor to a scratch file: nothing more reaches the file.
+  void fence();
+  // Runs `write` (about `bytes` of data) and flushes (unless told not to), reserved before and
+  // fenced on failure.
+  template <class Write>
+  void write_guarded(std::uint64_t bytes, const std::string& what, Write&& write, bool flush = true);
+
   std::string path_;
   long long file_ = -1;  // hid_t
+  int descriptor_ = -1;  // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
+  std::uint64_t reserved_until_ = 0;
+  std::mutex failure_mutex_;  // writes come from one thread at a time; the lock orders the record
+  std::string failure_;       // the first failed write's reason; later writes are refused
 };
 
-// hloc's names_to_pair(name0, name1): "a/b.png", "c.png" -> "a-b.png/c.png".
-std::string hloc_pair_name(const std::string& name0, const std::string& name1);
-
 // Copies every image group of `inputs` (shard files) into `output` (created or extended); an
-// image already in `output` is kept, an image in two inputs is an error. Returns the images copied.
+// image already in `output` is kept, an image in two inputs is an error. Atomic: every input is
+// checked before anything is written, the result is written to a temporary and renamed over
+// `output`, so a failed merge (a bad input, a full disk) leaves `output` as it was (or absent).
+// Linear in the images (hash sets). Returns the images copied.
 int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs);
 
 }  // namespace aief::io

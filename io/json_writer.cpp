@@ -1,9 +1,14 @@
 #include "io/json_writer.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "aief/error.hpp"
 
@@ -131,23 +136,41 @@ std::string hex_of(const std::uint8_t* bytes, std::size_t count) {
   return out;
 }
 
-std::string temporary_path_of(const std::string& path) { return path + ".tmp"; }
+std::string temporary_path_of(const std::string& path) {
+  const std::filesystem::path file(path);
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits: stable across runs and builds
+  for (const char c : file.filename().string()) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  char name[32];
+  std::snprintf(name, sizeof name, ".%016llx.tmp", static_cast<unsigned long long>(hash));
+  return (file.parent_path() / name).string();
+}
+
+bool is_disk_failure(int code) { return code == ENOSPC || code == EDQUOT || code == EROFS || code == EIO; }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
   const std::string temporary = temporary_path_of(path);
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("cannot write '" + path + "': cannot create " + temporary);
-    out << content;
-    out.flush();
-    if (!out) throw Error("cannot write '" + path + "': write failed (disk full?)");
+  const auto fail = [&](int code, const std::string& what) {
+    ::unlink(temporary.c_str());
+    throw WriteError("cannot write '" + path + "': " + what + std::strerror(code), is_disk_failure(code));
+  };
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int code = errno;
+    throw WriteError("cannot write '" + path + "': cannot create its temporary '" + temporary + "': " + std::strerror(code),
+                     is_disk_failure(code));
   }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    throw Error("cannot write '" + path + "': " + ec.message());
+  for (std::size_t done = 0; done < content.size();) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int code = errno;
+      ::close(fd);
+      fail(code, "");
+    }
+    done += static_cast<std::size_t>(n);
   }
+  if (::close(fd) != 0) fail(errno, "");
+  if (::rename(temporary.c_str(), path.c_str()) != 0) fail(errno, "");
 }
 
 }  // namespace aief::io

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "aief/error.hpp"
+
 namespace aief::io {
 
 class JsonWriter {
@@ -47,12 +49,30 @@ class JsonWriter {
 
 std::string hex_of(const std::uint8_t* bytes, std::size_t count);
 
+// A file that could not be written. `of_the_disk`: the cause is the file system, not this one
+// file (no space, quota, read-only, I/O error): a batch stops rather than fail every image.
+class WriteError : public Error {
+ public:
+  WriteError(const std::string& message, bool of_the_disk) : Error(message), of_the_disk_(of_the_disk) {}
+  bool of_the_disk() const { return of_the_disk_; }
+
+ private:
+  bool of_the_disk_;
+};
+
+// Whether the system error `code` (errno) is the file system's rather than one file's.
+bool is_disk_failure(int code);
+
 // Writes `content` to `path` atomically: a temporary file beside it, then rename, so an
-// interrupted run never leaves a half-written result. Throws aief::Error on failure.
+// interrupted run never leaves a half-written result, and a failed one leaves no temporary.
+// Throws WriteError with the system's reason.
 void write_file_atomically(const std::string& path, const std::string& content);
 
-// The temporary file write_file_atomically uses for `path` (path + ".tmp"): a batch removes the
-// stale one a killed run left. It never ends in an output extension, so it is no output's name.
+// The temporary file beside `path` that write_file_atomically (and the writers of HDF5 and
+// COLMAP files) use: "." + 16 hex digits of a hash of the file name + ".tmp", the same for the
+// same path, so a batch removes the stale one a killed run left. Short, so any legal file name
+// has one (name + ".tmp" would pass NAME_MAX for a name of 252 bytes or more); hidden, and never
+// ending in an output extension, so it is no output's name and no image's.
 std::string temporary_path_of(const std::string& path);
 
 }  // namespace aief::io

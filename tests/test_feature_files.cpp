@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include "aief/extractor.hpp"
 #include "aief/match.hpp"
 #include "io/image_io.hpp"
+#include "io/json_writer.hpp"
 #include "io/npz_writer.hpp"
 #include "io/pairs_file.hpp"
 #include "tests/test_support.hpp"
@@ -69,7 +71,7 @@ TEST(NpzWriter, ArchiveOfNpyArraysWithNumpyHeaders) {
 TEST(PairsFile, ReadsNamesSkipsCommentsAndNamesBadLines) {
   OwnTempDir dir;
   std::ofstream(dir.file("pairs.txt")) << "# comment\na.png b.png\n\n  c/d.png e.png  \n";
-  const std::vector<io::ImagePair> pairs = io::read_pairs(dir.file("pairs.txt"));
+  const std::vector<io::ImagePair> pairs = io::read_pairs(dir.file("pairs.txt")).pairs;
   ASSERT_EQ(pairs.size(), 2u);
   EXPECT_EQ(pairs[1], io::ImagePair("c/d.png", "e.png"));
   std::ofstream(dir.file("bad.txt")) << "a.png b.png\na.png b.png c.png\n";
@@ -80,6 +82,25 @@ TEST(PairsFile, ReadsNamesSkipsCommentsAndNamesBadLines) {
     EXPECT_NE(std::string(e.what()).find("line 2: expected two image names"), std::string::npos) << e.what();
   }
   EXPECT_THROW(io::read_pairs(dir.file("missing.txt")), Error);
+}
+
+// hloc's pairs files have no comments, so what is skipped is said; a self-pair is no pair.
+TEST(PairsFile, SaysWhatItSkipsAndRefusesPairsSharingAGroup) {
+  OwnTempDir dir;
+  std::ofstream(dir.file("pairs.txt")) << "#a.png b.png\na.png a.png\na.png b.png\na.png b.png\n";
+  const io::PairsList list = io::read_pairs(dir.file("pairs.txt"));
+  ASSERT_EQ(list.pairs.size(), 1u);
+  ASSERT_EQ(list.notes.size(), 2u);
+  EXPECT_NE(list.notes[0].find("line 1 skipped: it begins with '#'"), std::string::npos) << list.notes[0];
+  EXPECT_NE(list.notes[1].find("line 2 skipped: 'a.png' paired with itself"), std::string::npos) << list.notes[1];
+  std::ofstream(dir.file("collide.txt")) << "a/b.png c.png\na-b.png c.png\n";
+  try {
+    io::read_pairs(dir.file("collide.txt"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("line 2 ('a-b.png c.png') and line 1 ('a/b.png c.png')"), std::string::npos) << message;
+  }
 }
 
 #ifdef AIEF_HAVE_HDF5
@@ -108,12 +129,23 @@ TEST(Hdf5Features, MatchesInHlocPairGroups) {
   const std::vector<Match> matches = {{0, 5, 10}, {3, 1, 0}, {4, 2, 256}};
   {
     io::Hdf5File file(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
-    file.write_matches(io::hloc_pair_name("a/b.png", "c.png"), 6, matches);
+    file.write_matches("a/b.png", "c.png", 6, matches);
   }
   const io::Hdf5File file(dir.file("m.h5"), io::Hdf5File::Mode::read);
-  EXPECT_TRUE(file.has_matches("a-b.png/c.png"));
-  EXPECT_FALSE(file.has_matches("c.png/a-b.png"));
-  const std::vector<Match> back = file.read_matches("a-b.png/c.png");
+  EXPECT_TRUE(file.has_matches("a/b.png", "c.png"));
+  EXPECT_FALSE(file.has_matches("c.png", "a/b.png"));
+  // Another pair of the same hloc group is refused, both pairs named, never given these matches.
+  for (const auto& ask : {std::function<void()>([&] { (void)file.has_matches("a-b.png", "c.png"); }),
+                          std::function<void()>([&] { (void)file.read_matches("a-b.png", "c.png"); })}) {
+    try {
+      ask();
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("pair 'a-b.png c.png' and pair 'a/b.png c.png' share the group 'a-b.png/c.png'"),
+                std::string::npos) << e.what();
+    }
+  }
+  const std::vector<Match> back = file.read_matches("a/b.png", "c.png");
   ASSERT_EQ(back.size(), matches.size());
   for (std::size_t i = 0; i < matches.size(); ++i) {
     EXPECT_EQ(back[i].query, matches[i].query);
@@ -150,7 +182,7 @@ TEST(ColmapDatabase, WritesOnceAndNamesWhatIsMissing) {
     features.write_features("a.png", a);
     features.write_features("b.png", b);
     io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
-    matches.write_matches(io::hloc_pair_name("b.png", "a.png"), static_cast<int>(b.keypoints.size()),
+    matches.write_matches("b.png", "a.png", static_cast<int>(b.keypoints.size()),
                           match_descriptors(b.descriptors, a.descriptors));
   }
   std::ofstream(dir.file("pairs.txt")) << "a.png b.png\n";  // stored the other way round
@@ -162,7 +194,39 @@ TEST(ColmapDatabase, WritesOnceAndNamesWhatIsMissing) {
   std::ofstream(dir.file("unknown.txt")) << "a.png c.png\n";
   EXPECT_THROW(io::export_colmap_database(dir.file("db2.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("unknown.txt")), Error);
   EXPECT_FALSE(std::filesystem::exists(dir.file("db2.db")));
-  EXPECT_FALSE(std::filesystem::exists(dir.file("db2.db.tmp")));
+  EXPECT_FALSE(std::filesystem::exists(io::temporary_path_of(dir.file("db2.db"))));
+}
+
+// Matches from another run (more keypoints than the features file holds) are refused, the pair
+// and the image named; a self-pair is left out with a note.
+TEST(ColmapDatabase, RefusesMatchIndicesPastAnImagesKeypoints) {
+  OwnTempDir dir;
+  const Features a = sample_features("graf", 1), b = sample_features("graf", 2);
+  Features few_b = b;
+  few_b.keypoints.resize(100);
+  few_b.descriptors.resize(100);
+  {
+    io::Hdf5File features(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
+    features.write_features("a.png", a);
+    features.write_features("b.png", few_b);
+    io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
+    matches.write_matches("a.png", "b.png", static_cast<int>(a.keypoints.size()), match_descriptors(a.descriptors, b.descriptors));
+  }
+  std::ofstream(dir.file("pairs.txt")) << "a.png a.png\na.png b.png\n";
+  try {
+    io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("pairs.txt"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("pair 'a.png b.png': a match names keypoint "), std::string::npos) << message;
+    EXPECT_NE(message.find("of 'b.png', which has 100 in"), std::string::npos) << message;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("db.db")));
+  std::ofstream(dir.file("self.txt")) << "a.png a.png\n";
+  const io::ColmapExport done = io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("self.txt"));
+  EXPECT_EQ(done.pairs, 0);
+  ASSERT_EQ(done.notes.size(), 1u);
+  EXPECT_NE(done.notes[0].find("paired with itself"), std::string::npos);
 }
 #endif
 

@@ -17,12 +17,9 @@
 #include "aief/extractor.hpp"
 #include "io/batch_output_names.hpp"
 #include "io/features_files.hpp"
-#ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
-#endif
 #include "io/image_io.hpp"
 #include "parallel/tsan_handoff.hpp"
-#include "io/json_writer.hpp"
+#include "tools/batch_sink.hpp"
 #include "tools/progress.hpp"
 
 namespace aief::cli {
@@ -45,14 +42,64 @@ struct HandoffOnExit {
 struct Item {
   BatchInput input;
   std::size_t position = 0;  // in the batch's inputs
-  std::string output;  // the file of a file-per-image format; empty for h5
   io::SourceRecord source;
-  GrayImage image;
   Features features;
   std::string error;
   bool skip = false;       // its output is current
   bool replacing = false;  // an output was there, from another or a changed input
 };
+
+// Stage 2, parallel: is the output current? If not: read (decoding dominates) and extract.
+void extract_unless_current(Item& item, BatchSink& sink, const ExtractorOptions& options,
+                            tbb::enumerable_thread_specific<std::unique_ptr<Extractor>>& extractors) {
+  try {
+    item.source = io::source_record_of(item.input.path, item.input.name);
+    const BatchSink::Existing existing = sink.existing(item.input, item.source);
+    item.skip = existing.current;
+    item.replacing = existing.present && !existing.current;
+    if (item.skip) return;
+    std::unique_ptr<Extractor>& extractor = extractors.local();
+    if (!extractor) {
+      ExtractorOptions per_thread = options;  // frames are independent: one thread each
+      per_thread.threads = 1;
+      extractor = std::make_unique<Extractor>(per_thread);
+    }
+    const GrayImage image = io::read_gray_image(item.input.path, options.max_image_pixels, &item.source.warnings);
+    extractor->extract(image.view(), item.features);
+  } catch (const std::exception& e) {
+    item.error = e.what();
+  }
+}
+
+// Stage 3, serial: write, or count the skip or the failure (an output of another or an older
+// input must not stay beside a failure). A failure of the sink itself stops the batch.
+void write_and_tally(Item& item, BatchSink& sink, BatchSummary& summary) {
+  for (const std::string& warning : item.source.warnings) std::cerr << "aief: warning: " << warning << "\n";
+  if (item.skip) {
+    ++summary.skipped;
+    return;
+  }
+  if (item.error.empty()) {
+    try {
+      sink.write(item.input, item.features, item.source);
+      ++summary.extracted;
+      summary.replaced += item.replacing ? 1 : 0;
+      summary.keypoints += static_cast<long long>(item.features.keypoints.size());
+      return;
+    } catch (const SinkFailure& e) {
+      summary.stopped = e.what();
+      return;
+    } catch (const std::exception& e) {
+      item.error = e.what();
+    }
+  }
+  if (item.replacing) {
+    const std::string not_removed = sink.remove(item.input);
+    if (!not_removed.empty()) item.error += "; its old output could not be removed: " + not_removed;
+  }
+  ++summary.failed;
+  summary.failures.push_back(item.input.path + ": " + item.error);
+}
 
 }  // namespace
 
@@ -86,27 +133,13 @@ bool batch_output_is_current(const std::string& output, const io::SourceRecord& 
 
 BatchSummary run_batch(const BatchSettings& settings) {
   const std::vector<BatchInput> inputs = batch_inputs(settings);
-  std::error_code ec;
-  // h5: every image a group of one file, named by the input's name, complete groups skipped on
-  // resume; else a file per image (batch_output_path) holding its source record.
-#ifdef AIEF_HAVE_HDF5
-  std::unique_ptr<io::Hdf5File> h5;
-  if (settings.format == "h5") h5 = std::make_unique<io::Hdf5File>(settings.output_dir, io::Hdf5File::Mode::read_write);
-#else
-  if (settings.format == "h5") throw Error("this aief was built without HDF5 (install libhdf5-dev and rebuild)");
-  const void* h5 = nullptr;
-#endif
-  if (!h5) fs::create_directories(settings.output_dir, ec);
-  if (ec) throw Error("cannot create output folder '" + settings.output_dir + "': " + ec.message());
+  const std::unique_ptr<BatchSink> sink = make_batch_sink(settings);
 
   BatchSummary summary;
   summary.images = static_cast<int>(inputs.size());
   Progress progress("batch", summary.images);
   const int threads = settings.options.threads > 0 ? settings.options.threads : tbb::this_task_arena::max_concurrency();
-  // Each worker thread keeps its own Extractor: buffers reused from image to image. Frames of
-  // a batch are independent, so the extractor itself runs single-threaded.
-  ExtractorOptions per_thread = settings.options;
-  per_thread.threads = 1;
+  // Each worker thread keeps its own Extractor: buffers reused from image to image.
   tbb::enumerable_thread_specific<std::unique_ptr<Extractor>> extractors;
 
   // The pipeline's tokens are plain pointers to items owned here: TBB moves a token between
@@ -114,113 +147,42 @@ BatchSummary run_batch(const BatchSettings& settings) {
   // object with its own synchronisation (a shared_ptr's count) or TSan sees the move as a race.
   // An item lives from the stage that lists it to the stage that writes it.
   std::vector<std::unique_ptr<Item>> items(inputs.size());
-  // An output from another or older input must not stay beside a failure.
-  const auto remove_output = [&](Item& item) {
-#ifdef AIEF_HAVE_HDF5
-    if (h5) {
-      try {
-        h5->remove_features(item.input.name);
-      } catch (const std::exception& e) {
-        item.error += std::string("; its old group could not be removed: ") + e.what();
-      }
-      return;
-    }
-#endif
-    std::error_code ignored;
-    fs::remove(item.output, ignored);
-  };
   std::size_t next = 0;
+  std::atomic<bool> stop{false};  // the sink failed: list no more
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_pipeline(
         static_cast<std::size_t>(2 * threads),
-        // Next image: serial, in order (the HDF5 file is asked here: one thread at a time).
-        tbb::make_filter<void, Item*>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) -> Item* {
-          parallel::handoff_acquire(&kListStage);
-          const HandoffOnExit release_listed{&kListStage};
-          if (next >= inputs.size()) {
-            control.stop();
-            return nullptr;
-          }
-          items[next] = std::make_unique<Item>();
-          Item* item = items[next].get();
-          item->position = next;
-          item->input = inputs[next++];
-#ifdef AIEF_HAVE_HDF5
-          if (h5) {  // current: a complete group written from this very file (size and mtime)
-            try {
-              item->source = io::source_record_of(item->input.path, item->input.name);
-              item->skip = h5->features_belong_to(item->input.name, item->source);
-              item->replacing = !item->skip && h5->has_features(item->input.name);
-            } catch (const std::exception& e) {
-              item->error = e.what();
-            }
-            return item;
-          }
-#endif
-          item->output = io::batch_output_path(settings.output_dir, item->input.name, settings.format);
-          return item;
-        }) &
-            // Is the output current? If not: read (decoding dominates) and extract. Parallel.
-            tbb::make_filter<Item*, Item*>(tbb::filter_mode::parallel, [&](Item* item) {
-              parallel::handoff_acquire(&kListStage);
-              const HandoffOnExit release_extracted{&kExtractStage};
-              if (item->skip || !item->error.empty()) return item;
-              try {
-                if (!item->output.empty()) {  // a file per image (h5: asked by the listing stage)
-                  item->source = io::source_record_of(item->input.path, item->input.name);
-                  std::error_code ignored;
-                  fs::remove(io::temporary_path_of(item->output), ignored);  // a killed run's
-                  if (fs::exists(item->output, ignored)) {
-                    item->skip = batch_output_is_current(item->output, item->source);
-                    item->replacing = !item->skip;
-                  }
-                  // Before the work: a name the format cannot hold (YAML: control characters).
-                  io::check_features_file_can_hold(item->output, item->input.path, item->input.name);
-                }
-                if (item->skip) return item;
-                std::unique_ptr<Extractor>& extractor = extractors.local();
-                if (!extractor) extractor = std::make_unique<Extractor>(per_thread);
-                item->image = io::read_gray_image(item->input.path, settings.options.max_image_pixels, &item->source.warnings);
-                extractor->extract(item->image.view(), item->features);
-              } catch (const std::exception& e) {
-                item->error = e.what();
-              }
-              item->image = GrayImage();
-              return item;
-            }) &
-            // Write: serial (atomic rename), tally, progress.
+        tbb::make_filter<void, Item*>(tbb::filter_mode::serial_in_order,
+                                      [&](tbb::flow_control& control) -> Item* {
+                                        parallel::handoff_acquire(&kListStage);
+                                        const HandoffOnExit release_listed{&kListStage};
+                                        if (next >= inputs.size() || stop.load()) {
+                                          control.stop();
+                                          return nullptr;
+                                        }
+                                        items[next] = std::make_unique<Item>();
+                                        Item* item = items[next].get();
+                                        item->position = next;
+                                        item->input = inputs[next++];
+                                        return item;
+                                      }) &
+            tbb::make_filter<Item*, Item*>(tbb::filter_mode::parallel,
+                                           [&](Item* item) {
+                                             parallel::handoff_acquire(&kListStage);
+                                             const HandoffOnExit release_extracted{&kExtractStage};
+                                             if (!stop.load()) extract_unless_current(*item, *sink, settings.options, extractors);
+                                             return item;
+                                           }) &
             tbb::make_filter<Item*, void>(tbb::filter_mode::serial_out_of_order, [&](Item* item) {
               parallel::handoff_acquire(&kExtractStage);
               parallel::handoff_acquire(&kWriteStage);
               const HandoffOnExit release_written{&kWriteStage};
-              for (const std::string& warning : item->source.warnings) std::cerr << "aief: warning: " << warning << "\n";
-              if (item->skip) {
-                ++summary.skipped;
-              } else if (item->error.empty()) {
-                try {
-#ifdef AIEF_HAVE_HDF5
-                  if (h5) {
-                    h5->write_features(item->input.name, item->features, &item->source);
-                  } else
-#endif
-                  {
-                    fs::create_directories(fs::path(item->output).parent_path());
-                    io::write_features(item->output, item->input.path, item->features, settings.options, item->source);
-                  }
-                  ++summary.extracted;
-                  summary.replaced += item->replacing ? 1 : 0;
-                  summary.keypoints += static_cast<long long>(item->features.keypoints.size());
-                } catch (const std::exception& e) {
-                  item->error = e.what();
-                }
+              if (summary.stopped.empty()) {
+                write_and_tally(*item, *sink, summary);
+                if (!summary.stopped.empty()) stop.store(true);
+                progress.step(item->input.name);
               }
-              if (!item->error.empty()) {
-                if (item->replacing) remove_output(*item);
-                ++summary.failed;
-                summary.failures.push_back(item->input.path + ": " + item->error);
-              }
-              progress.step(item->input.name);
               items[item->position].reset();
             }));
   });

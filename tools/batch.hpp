@@ -40,6 +40,9 @@ struct BatchSummary {
   int failed = 0;
   long long keypoints = 0;
   std::vector<std::string> failures;  // "path: reason"
+  // Why the batch stopped before its end: its output failed (a full disk, an I/O error; see
+  // tools/batch_sink.hpp). Outputs complete before are kept; empty when it ran through.
+  std::string stopped;
 };
 
 using io::BatchInput;

@@ -67,6 +67,9 @@ int run_extract_batch(const Args& args) {
   if (summary.replaced > 0) std::printf(" (%d replacing the output of another or a changed image)", summary.replaced);
   std::printf(", %d already done, %d failed; %lld keypoints\n", summary.skipped, summary.failed, summary.keypoints);
   for (const std::string& failure : summary.failures) std::printf("  failed: %s\n", failure.c_str());
+  if (!summary.stopped.empty())
+    throw Error(summary.stopped + "\nbatch stopped: " + std::to_string(summary.extracted + summary.skipped) + " of " +
+                std::to_string(summary.images) + " images are done; run the same command again to resume");
   return summary.failed > 0 ? 1 : 0;
 }
 

@@ -10,6 +10,7 @@
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
 #ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_descriptor_cache.hpp"
 #include "io/hdf5_features.hpp"
 #include "io/pairs_file.hpp"
 #endif
@@ -23,6 +24,8 @@ namespace aief::cli {
 namespace {
 
 [[maybe_unused]] const char* const kNoHdf5 = "this aief was built without HDF5 (install libhdf5-dev and rebuild)";
+// Descriptors kept in memory by match --pairs: about 16k images of 2000 features.
+[[maybe_unused]] constexpr std::size_t kDescriptorCacheBytes = std::size_t{1} << 30;
 
 }  // namespace
 
@@ -32,20 +35,21 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
   const auto output = args.get("--output");
   if (!features_path || !output) throw UsageError("--pairs needs --features FEATURES.h5 and -o MATCHES.h5");
   if (!args.positionals().empty()) throw UsageError("--pairs takes its images from the pairs file, not from positional arguments");
-  const std::vector<io::ImagePair> pairs = io::read_pairs(*args.get("--pairs"));
+  const io::PairsList pairs = io::read_pairs(*args.get("--pairs"));
+  for (const std::string& note : pairs.notes) std::cerr << "aief: note: " << note << "\n";
   const io::Hdf5File features(*features_path, io::Hdf5File::Mode::read);
   io::Hdf5File matches_file(*output, io::Hdf5File::Mode::read_write);
+  io::DescriptorCache descriptors(features, kDescriptorCacheBytes);
   int written = 0, skipped = 0;
   long long total = 0;
-  for (const auto& [name0, name1] : pairs) {
-    const std::string pair = io::hloc_pair_name(name0, name1);
-    if (matches_file.has_matches(pair)) {  // resumed run, or a pair listed twice
+  for (const auto& [name0, name1] : pairs.pairs) {
+    if (matches_file.has_matches(name0, name1)) {  // a resumed run
       ++skipped;
       continue;
     }
-    const Features a = features.read_features(name0), b = features.read_features(name1);
-    const std::vector<Match> matches = match_descriptors(a.descriptors, b.descriptors, match_options);
-    matches_file.write_matches(pair, static_cast<int>(a.keypoints.size()), matches);
+    const auto a = descriptors.get(name0), b = descriptors.get(name1);
+    const std::vector<Match> matches = match_descriptors(*a, *b, match_options);
+    matches_file.write_matches(name0, name1, static_cast<int>(a->size()), matches);
     ++written;
     total += static_cast<long long>(matches.size());
   }
@@ -95,6 +99,7 @@ int run_colmap(const Arguments& arguments) {
     throw UsageError("colmap expects --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o DATABASE.db");
 #ifdef AIEF_HAVE_COLMAP_EXPORT
   const io::ColmapExport done = io::export_colmap_database(*output, *features, *matches, *pairs);
+  for (const std::string& note : done.notes) std::cerr << "aief: note: " << note << "\n";
   std::printf("COLMAP database %s: %d images, %d pairs, %lld matches\n", output->c_str(), done.images, done.pairs, done.matches);
   if (!done.names_not_utf8.empty())
     std::cerr << "aief: note: " << done.names_not_utf8.size() << " image name(s) are not UTF-8 (the first: '"

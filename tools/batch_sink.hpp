@@ -1,0 +1,48 @@
+#pragma once
+// Where a batch's features go (tools/batch.hpp): a file per image (json, yml, npz) or one HDF5
+// file (h5). The batch pipeline knows nothing of formats; it asks its sink these three things.
+#include <memory>
+#include <string>
+
+#include "aief/error.hpp"
+#include "aief/features.hpp"
+#include "io/source_record.hpp"
+#include "tools/batch.hpp"
+
+namespace aief::cli {
+
+// A failure of the output itself (a full disk, an I/O error, an HDF5 file that refuses further
+// writes): the batch stops, keeping every output complete before, rather than fail each image.
+class SinkFailure : public Error {
+ public:
+  using Error::Error;
+};
+
+class BatchSink {
+ public:
+  virtual ~BatchSink() = default;
+
+  struct Existing {
+    bool present = false;  // an output of this name is there
+    bool current = false;  // ... and records exactly this input (name, size, modification time)
+  };
+  // What is there for `input`. Called from the pipeline's parallel stage, several at a time; may
+  // tidy what a killed run left (a stale temporary).
+  virtual Existing existing(const BatchInput& input, const io::SourceRecord& source) = 0;
+  // Writes one input's features. One call at a time. Throws SinkFailure when the output itself
+  // failed, aief::Error when only this input's output did.
+  virtual void write(const BatchInput& input, const Features& features, const io::SourceRecord& source) = 0;
+  // Removes `input`'s output (one from another or a changed input, beside a failure). One call
+  // at a time; best effort: returns what went wrong, empty when nothing did.
+  virtual std::string remove(const BatchInput& input) = 0;
+};
+
+// The sink of settings.format, its output created or opened. Throws aief::Error (a format this
+// build lacks, an output that cannot be created).
+std::unique_ptr<BatchSink> make_batch_sink(const BatchSettings& settings);
+
+// One file per image (io::batch_output_path) and one HDF5 file (io/hdf5_features.hpp).
+std::unique_ptr<BatchSink> make_file_per_image_sink(const BatchSettings& settings);
+std::unique_ptr<BatchSink> make_hdf5_sink(const BatchSettings& settings);
+
+}  // namespace aief::cli

@@ -1,0 +1,75 @@
+#include <filesystem>
+
+#include "io/batch_output_names.hpp"
+#include "io/features_files.hpp"
+#include "io/json_writer.hpp"
+#include "tools/batch_sink.hpp"
+
+namespace aief::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// OUTDIR/<name>.<format>, each written atomically (io::write_file_atomically).
+class FilePerImageSink : public BatchSink {
+ public:
+  explicit FilePerImageSink(const BatchSettings& settings) : settings_(settings) {
+    std::error_code ec;
+    fs::create_directories(settings.output_dir, ec);
+    if (ec) throw Error("cannot create output folder '" + settings.output_dir + "': " + ec.message());
+  }
+
+  Existing existing(const BatchInput& input, const io::SourceRecord& source) override {
+    const std::string output = output_of(input);
+    std::error_code ignored;
+    fs::remove(io::temporary_path_of(output), ignored);  // a killed run's
+    Existing found;
+    found.present = fs::exists(output, ignored);
+    found.current = found.present && batch_output_is_current(output, source);
+    // Before the work: a name the format cannot hold (YAML: control characters).
+    if (!found.current) io::check_features_file_can_hold(output, input.path, input.name);
+    return found;
+  }
+
+  void write(const BatchInput& input, const Features& features, const io::SourceRecord& source) override {
+    const std::string output = output_of(input);
+    std::error_code ec;
+    fs::create_directories(fs::path(output).parent_path(), ec);
+    if (ec) {
+      const std::string reason = "cannot create the folder of '" + output + "': " + ec.message();
+      if (io::is_disk_failure(ec.value())) throw SinkFailure(reason);
+      throw Error(reason);
+    }
+    try {
+      io::write_features(output, input.path, features, settings_.options, source);
+    } catch (const io::WriteError& e) {
+      if (e.of_the_disk()) throw SinkFailure(e.what());
+      throw;
+    }
+  }
+
+  std::string remove(const BatchInput& input) override {
+    std::error_code ec;
+    fs::remove(output_of(input), ec);
+    return ec ? ec.message() : "";
+  }
+
+ private:
+  std::string output_of(const BatchInput& input) const {
+    return io::batch_output_path(settings_.output_dir, input.name, settings_.format);
+  }
+  BatchSettings settings_;
+};
+
+}  // namespace
+
+std::unique_ptr<BatchSink> make_file_per_image_sink(const BatchSettings& settings) {
+  return std::make_unique<FilePerImageSink>(settings);
+}
+
+std::unique_ptr<BatchSink> make_batch_sink(const BatchSettings& settings) {
+  return settings.format == "h5" ? make_hdf5_sink(settings) : make_file_per_image_sink(settings);
+}
+
+}  // namespace aief::cli

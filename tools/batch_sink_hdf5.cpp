@@ -1,0 +1,66 @@
+// The HDF5 sink, or, in a build without libhdf5, the refusal of --format h5.
+#include <mutex>
+
+#include "tools/batch_sink.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_features.hpp"
+#endif
+
+namespace aief::cli {
+
+#ifdef AIEF_HAVE_HDF5
+
+namespace {
+
+// One hloc features file, a group per input named by its name (io/hdf5_features.hpp). Calls are
+// serialised here: the pipeline asks from several threads, and a libhdf5 built without its
+// thread-safe option allows one caller at a time.
+class Hdf5Sink : public BatchSink {
+ public:
+  explicit Hdf5Sink(const BatchSettings& settings) : file_(settings.output_dir, io::Hdf5File::Mode::read_write) {}
+
+  Existing existing(const BatchInput& input, const io::SourceRecord& source) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    Existing found;
+    found.current = file_.features_belong_to(input.name, source);
+    found.present = found.current || file_.has_features(input.name);
+    return found;
+  }
+
+  void write(const BatchInput& input, const Features& features, const io::SourceRecord& source) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    try {
+      file_.write_features(input.name, features, &source);
+    } catch (const Error& e) {
+      throw SinkFailure(e.what());  // the file refuses every later write (io::Hdf5File)
+    }
+  }
+
+  std::string remove(const BatchInput& input) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    try {
+      file_.remove_features(input.name);
+      return "";
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  io::Hdf5File file_;
+};
+
+}  // namespace
+
+std::unique_ptr<BatchSink> make_hdf5_sink(const BatchSettings& settings) { return std::make_unique<Hdf5Sink>(settings); }
+
+#else
+
+std::unique_ptr<BatchSink> make_hdf5_sink(const BatchSettings&) {
+  throw Error("this aief was built without HDF5 (install libhdf5-dev and rebuild)");
+}
+
+#endif
+
+}  // namespace aief::cli
