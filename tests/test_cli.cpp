@@ -158,6 +158,66 @@ TEST(Cli, FlagsGivenOverrideTheModeAndTakeEffect) {
   }
 }
 
+// A ground truth that is no homography is refused before any work, naming the file and the fault.
+TEST(Cli, EvalRefusesGroundTruthsThatAreNoHomography) {
+  const aief::test::TempFolder folder("aief_cli");
+  const std::filesystem::path sequence = folder.path() / "graf";
+  std::filesystem::create_directories(sequence);
+  for (const char* image : {"img1.png", "img2.png"})
+    std::filesystem::copy_file(aief::test::sample_path("graf", image), sequence / image);
+  struct Case { std::string numbers, mention; };
+  const Case cases[] = {
+      {"1 0 0 0 nan 0 0 0 1", "'nan' is not a finite number"},
+      {"1 0 0 0 1 0 0 0 inf", "'inf' is not a finite number"},
+      {"0 0 0 0 0 0 0 0 0", "is all zeros"},
+      {"1 2 3 2 4 6 0 0 1", "is singular"},
+      {"1 0 0 0 1 0 0 0 1 7", "holds more than 9 numbers"},
+      {"1 0 0 0 1 0 0 0", "fewer than 9 numbers"},
+      {"1 0 0 0 1 0 0 0 1x", "'1x' is not a number"},
+  };
+  for (const Case& c : cases) {
+    std::ofstream(sequence / "H1to2p") << c.numbers << "\n";
+    const CliResult r = run("eval --dataset " + folder.path().string() + " --pairs 1-2 --methods orbslam2 -o " +
+                            (folder.path() / "report.md").string());
+    EXPECT_EQ(r.status, 1) << c.numbers << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.numbers << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(folder.path() / "report.md")) << c.numbers;
+  }
+}
+
+#ifdef AIEF_HAVE_HDF5
+// hloc names a pair's group with '/' -> '-': "a/b.png c.png" and "a-b.png c.png" would share one.
+// Refused before any work, naming both lines; a self-pair and a '#' line are skipped and said.
+TEST(Cli, MatchPairsRefusesPairsSharingAGroupAndSaysWhatItSkips) {
+  const aief::test::TempFolder folder("aief_cli");
+  const std::filesystem::path images = folder.path() / "images";
+  std::filesystem::create_directories(images / "a");
+  std::filesystem::copy_file(aief::test::sample_path("boat", "img1.png"), images / "a" / "b.png");
+  std::filesystem::copy_file(aief::test::sample_path("boat", "img2.png"), images / "a-b.png");
+  std::filesystem::copy_file(aief::test::sample_path("graf", "img1.png"), images / "c.png");
+  const std::string features = (folder.path() / "f.h5").string(), matches = (folder.path() / "m.h5").string();
+  ASSERT_EQ(run("extract --batch " + images.string() + " -o " + features + " --format h5 --features 300").status, 0);
+  const std::string pairs = (folder.path() / "pairs.txt").string();
+  std::ofstream(pairs) << "a/b.png c.png\na-b.png c.png\n";
+  const CliResult collide = run("match --pairs " + pairs + " --features " + features + " -o " + matches);
+  EXPECT_EQ(collide.status, 1) << collide.output;
+  EXPECT_NE(collide.output.find("line 2 ('a-b.png c.png') and line 1 ('a/b.png c.png') name one pair group"), std::string::npos)
+      << collide.output;
+  EXPECT_FALSE(std::filesystem::exists(matches));
+  std::ofstream(pairs) << "#a.png c.png\nc.png c.png\na/b.png c.png\n";
+  const CliResult noted = run("match --pairs " + pairs + " --features " + features + " -o " + matches);
+  EXPECT_EQ(noted.status, 0) << noted.output;
+  EXPECT_NE(noted.output.find("line 1 skipped: it begins with '#'"), std::string::npos) << noted.output;
+  EXPECT_NE(noted.output.find("line 2 skipped: 'c.png' paired with itself"), std::string::npos) << noted.output;
+  EXPECT_NE(noted.output.find("1 pairs matched"), std::string::npos) << noted.output;
+  // A later run asking the other pair of that group is refused, never given the first's matches.
+  std::ofstream(pairs) << "a-b.png c.png\n";
+  const CliResult later = run("match --pairs " + pairs + " --features " + features + " -o " + matches);
+  EXPECT_EQ(later.status, 1) << later.output;
+  EXPECT_NE(later.output.find("pair 'a-b.png c.png' and pair 'a/b.png c.png' share the group"), std::string::npos) << later.output;
+}
+#endif
+
 TEST(Cli, InputErrorsExitOne) {
   const aief::test::TempFolder folder("aief_cli");
   const std::filesystem::path& dir = folder.path();

@@ -6,7 +6,10 @@
 #include <functional>
 #include <string>
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
@@ -103,7 +106,83 @@ TEST(PairsFile, SaysWhatItSkipsAndRefusesPairsSharingAGroup) {
   }
 }
 
+// A legal file name of 250 bytes has a temporary (name + ".tmp" would pass NAME_MAX), and a
+// failed write leaves none behind.
+TEST(AtomicWrite, LongNamesWorkAndAFailureLeavesNoTemporary) {
+  OwnTempDir dir;
+  const std::string long_name = dir.file(std::string(245, 'n') + ".json");  // 250 bytes
+  io::write_file_atomically(long_name, "{}\n");
+  EXPECT_TRUE(std::filesystem::exists(long_name));
+  EXPECT_EQ(std::filesystem::path(io::temporary_path_of(long_name)).parent_path(), dir.path());
+  EXPECT_EQ(io::temporary_path_of(long_name), io::temporary_path_of(long_name));  // a rerun finds it
+  EXPECT_NE(io::temporary_path_of(dir.file("a.json")), io::temporary_path_of(dir.file("b.json")));
+  std::filesystem::create_directories(dir.file("taken.json"));  // the rename onto a folder fails
+  EXPECT_THROW(io::write_file_atomically(dir.file("taken.json"), "{}\n"), io::WriteError);
+  std::size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) files += entry.is_regular_file() ? 1 : 0;
+  EXPECT_EQ(files, 1u);  // the long-named output only
+}
+
 #ifdef AIEF_HAVE_HDF5
+// Why an HDF5 file cannot be opened, in words a user acts on (not "damaged, or not HDF5?", which
+// invites deleting a good file that another process holds).
+TEST(Hdf5Features, OpenFailuresSayWhich) {
+  OwnTempDir dir;
+  const auto message = [](const std::function<void()>& open) {
+    try {
+      open();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  using Mode = io::Hdf5File::Mode;
+  EXPECT_NE(message([&] { io::Hdf5File(dir.file("none/f.h5"), Mode::read_write); }).find("the folder '" + dir.file("none") + "' does not exist"),
+            std::string::npos);
+  std::filesystem::create_directories(dir.file("folder.h5"));
+  EXPECT_NE(message([&] { io::Hdf5File(dir.file("folder.h5"), Mode::read_write); }).find("it is a directory"), std::string::npos);
+  std::ofstream(dir.file("text.h5")) << "text";
+  EXPECT_NE(message([&] { io::Hdf5File(dir.file("text.h5"), Mode::read_write); }).find("it is not an HDF5 file"), std::string::npos);
+  io::Hdf5File(dir.file("good.h5"), Mode::read_write).write_features("a.png", sample_features("boat", 1));
+  {
+    const int held = ::open(dir.file("good.h5").c_str(), O_RDONLY);  // as libhdf5 locks a file it writes
+    ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+    EXPECT_NE(message([&] { io::Hdf5File(dir.file("good.h5"), Mode::read_write); }).find("another process holds it locked"),
+              std::string::npos);
+    ::close(held);
+  }
+  std::filesystem::copy_file(dir.file("good.h5"), dir.file("cut.h5"));
+  std::filesystem::resize_file(dir.file("cut.h5"), std::filesystem::file_size(dir.file("cut.h5")) / 2);
+  EXPECT_NE(message([&] { io::Hdf5File(dir.file("cut.h5"), Mode::read); }).find("it is damaged"), std::string::npos);
+}
+
+// A failed merge (an image in two inputs, a missing, cut or non-HDF5 input) leaves the output
+// as it was, or absent, and no temporary.
+TEST(Hdf5Features, FailedMergeLeavesTheOutputAsItWas) {
+  OwnTempDir dir;
+  const Features a = sample_features("boat", 1), b = sample_features("boat", 2);
+  io::Hdf5File(dir.file("s0.h5"), io::Hdf5File::Mode::read_write).write_features("a.png", a);
+  io::Hdf5File(dir.file("s1.h5"), io::Hdf5File::Mode::read_write).write_features("b.png", b);
+  io::Hdf5File(dir.file("s2.h5"), io::Hdf5File::Mode::read_write).write_features("b.png", b);
+  std::filesystem::copy_file(dir.file("s1.h5"), dir.file("cut.h5"));
+  std::filesystem::resize_file(dir.file("cut.h5"), std::filesystem::file_size(dir.file("cut.h5")) / 2);
+  std::ofstream(dir.file("text.h5")) << "text";
+  ASSERT_EQ(io::merge_feature_files(dir.file("out.h5"), {dir.file("s0.h5")}), 1);
+  const auto bytes_of = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string before = bytes_of(dir.file("out.h5"));
+  for (const std::string& bad : {"s2.h5", "cut.h5", "text.h5", "missing.h5"}) {
+    EXPECT_THROW(io::merge_feature_files(dir.file("out.h5"), {dir.file("s1.h5"), dir.file(bad)}), Error) << bad;
+    EXPECT_EQ(bytes_of(dir.file("out.h5")), before) << bad;
+    EXPECT_THROW(io::merge_feature_files(dir.file("new.h5"), {dir.file("s1.h5"), dir.file(bad)}), Error) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("new.h5"))) << bad;
+  }
+  EXPECT_FALSE(std::filesystem::exists(io::temporary_path_of(dir.file("out.h5"))));
+  EXPECT_FALSE(std::filesystem::exists(io::temporary_path_of(dir.file("new.h5"))));
+}
+
 TEST(Hdf5Features, RoundTripInNestedGroupsAndResume) {
   OwnTempDir dir;
   const Features a = sample_features("graf", 1), empty{};

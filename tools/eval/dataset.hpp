@@ -18,7 +18,8 @@ struct PairInput {
   Homography truth{};
 };
 
-// Reads a 3x3 homography written as 9 numbers (any float syntax). Throws aief::Error.
+// Reads a 3x3 homography written as 9 numbers (any float syntax). Throws aief::Error for fewer or
+// more numbers, a NaN or infinity, and a singular or all-zero matrix (no ground truth).
 Homography read_homography_file(const std::string& path);
 
 // The pairs img1 -> img2 (all_pairs false) or img1 -> img2..6 of each sequence. Throws
