@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 
 #include "io/features_files.hpp"
+#include "io/json_writer.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_features.hpp"
 #endif
@@ -266,8 +267,9 @@ TEST(Batch, ResumeRedoesOutputsOfOtherInputsAndRemovesStaleTemporaries) {
   std::ofstream(out / "sub" / "cut.png.json") << cut.substr(0, cut.size() / 2);
   fs::copy_file(out / "kept.png.json", out / "planted.png.json", fs::copy_options::overwrite_existing);
   fs::copy_file(out / "kept.png.json", out / "broken.png.json");
-  for (const char* stale : {"sub/cut.png.json.tmp", "broken.png.json.tmp", "kept.png.json.tmp"})
-    std::ofstream(out / stale) << "half";
+  for (const char* stale : {"sub/cut.png.json", "broken.png.json", "kept.png.json"})
+    std::ofstream(aief::io::temporary_path_of((out / stale).string())) << "half";
+  std::ofstream(out / "kept.png.json.tmp") << "half";  // as an aief before the short names left it
 
   ASSERT_EQ(run_batch(args, temp.path(), &report), 1) << report;
   EXPECT_NE(report.find("3 extracted (3 replacing"), std::string::npos) << report;

@@ -24,6 +24,7 @@ class FilePerImageSink : public BatchSink {
     const std::string output = output_of(input);
     std::error_code ignored;
     fs::remove(io::temporary_path_of(output), ignored);  // a killed run's
+    fs::remove(output + ".tmp", ignored);                 // ... of an aief before the short names
     Existing found;
     found.present = fs::exists(output, ignored);
     found.current = found.present && batch_output_is_current(output, source);

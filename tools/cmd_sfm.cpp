@@ -53,8 +53,8 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
     ++written;
     total += static_cast<long long>(matches.size());
   }
-  std::printf("%d pairs matched (%s), %lld matches, %d already in %s\n", written, std::string(to_string(match_options.kind)).c_str(),
-              total, skipped, output->c_str());
+  std::printf("%d pairs matched (%s), %lld matches, %d already in %s; %zu images read\n", written,
+              std::string(to_string(match_options.kind)).c_str(), total, skipped, output->c_str(), descriptors.reads());
   return 0;
 #else
   (void)args;
