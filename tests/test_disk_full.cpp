@@ -41,6 +41,13 @@ CliResult run(const std::string& arguments) {
   return result;
 }
 
+// "i7.png": built by appending (GCC 12 warns falsely, -Wrestrict, on "i" + std::to_string(n)).
+std::string numbered(const char* prefix, int n, const char* suffix) {
+  std::string name(prefix);
+  name.append(std::to_string(n)).append(suffix);
+  return name;
+}
+
 // Exit 1 with aief's message for a full disk, and nothing from libhdf5.
 void expect_clean_stop(const CliResult& r, const std::string& what) {
   EXPECT_EQ(r.status, 1) << what << "\n" << r.output;
@@ -76,7 +83,7 @@ class DiskFull : public ::testing::Test {
     for (const char* sequence : {"graf", "boat", "leuven"})
       for (const char* file : {"img1.png", "img2.png"})
         for (int copy = 0; copy < 10; ++copy) {
-          const fs::path image = work_.path() / "images" / ("i" + std::to_string(n++) + ".png");
+          const fs::path image = work_.path() / "images" / numbered("i", n++, ".png");
           fs::copy_file(aief::test::sample_path(sequence, file), image);
           list << image.string() << "\n";
         }
@@ -140,8 +147,8 @@ TEST_F(DiskFull, MatchPairsStopsCleanlyAndResumes) {
   {
     std::ofstream out(pairs);
     for (int i = 0; i < 60; ++i)
-      for (int j = i + 1; j < 60; j += 17) out << (work_.path() / "images" / ("i" + std::to_string(i) + ".png")).string().substr(1) << " "
-                                               << (work_.path() / "images" / ("i" + std::to_string(j) + ".png")).string().substr(1) << "\n";
+      for (int j = i + 1; j < 60; j += 17) out << (work_.path() / "images" / numbered("i", i, ".png")).string().substr(1) << " "
+                                               << (work_.path() / "images" / numbered("i", j, ".png")).string().substr(1) << "\n";
   }
   const std::string matches = (disk_ / "matches.h5").string();
   const std::string match = "match --pairs " + pairs + " --features " + features + " -o " + matches;
@@ -158,8 +165,8 @@ TEST_F(DiskFull, MatchPairsStopsCleanlyAndResumes) {
 TEST_F(DiskFull, MergeLeavesTheOutputAsItWas) {
   const std::string list = (work_.path() / "images.txt").string();
   for (int shard = 0; shard < 2; ++shard)
-    ASSERT_EQ(run("extract --batch " + list + " -o " + (work_.path() / ("s" + std::to_string(shard) + ".h5")).string() +
-                  " --format h5 --features 2000 --shard " + std::to_string(shard) + "/2").status, 0);
+    ASSERT_EQ(run("extract --batch " + list + " -o " + (work_.path() / numbered("s", shard, ".h5")).string() +
+                  " --format h5 --features 2000 --shard " + numbered("", shard, "/2")).status, 0);
   const fs::path merged = disk_ / "features.h5";
   ASSERT_EQ(run("merge -o " + merged.string() + " " + (work_.path() / "s0.h5").string()).status, 0);
   const std::uintmax_t size = fs::file_size(merged);

@@ -173,7 +173,7 @@ TEST(Hdf5Features, FailedMergeLeavesTheOutputAsItWas) {
     return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   };
   const std::string before = bytes_of(dir.file("out.h5"));
-  for (const std::string& bad : {"s2.h5", "cut.h5", "text.h5", "missing.h5"}) {
+  for (const char* bad : {"s2.h5", "cut.h5", "text.h5", "missing.h5"}) {
     EXPECT_THROW(io::merge_feature_files(dir.file("out.h5"), {dir.file("s1.h5"), dir.file(bad)}), Error) << bad;
     EXPECT_EQ(bytes_of(dir.file("out.h5")), before) << bad;
     EXPECT_THROW(io::merge_feature_files(dir.file("new.h5"), {dir.file("s1.h5"), dir.file(bad)}), Error) << bad;
