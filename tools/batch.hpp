@@ -6,6 +6,11 @@
 // io/batch_output_names.hpp (one rule for the CLI, the Python module and the Dask recipe).
 //
 // HDF5 (--format h5): one file, a group per input named by the same name (hloc's features.h5).
+// The pipeline writes through an output sink (tools/batch_sink.hpp) and knows no format.
+//
+// Failures. An input that cannot be read or extracted fails alone (listed, exit 1, its stale
+// output removed); a failure of the output itself (a full disk, an I/O error) stops the batch:
+// every output complete before is kept, and the same command resumes once it is fixed.
 //
 // Resume. Every output records its input's name, size and modification time; a run skips an
 // input whose output holds exactly that record and extracts the others again (a changed image,
