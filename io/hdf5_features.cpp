@@ -11,7 +11,6 @@
 
 #include <fcntl.h>
 #include <hdf5.h>
-#include <sys/file.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
