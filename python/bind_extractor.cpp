@@ -123,13 +123,13 @@ void bind_extractor(py::module_& m) {
       .def_readonly("octave", &PyFeatures::octave, "N int32, pyramid level")
       .def_readonly("descriptors", &PyFeatures::descriptors, "N x 32 uint8, rBRIEF-256")
       .def_readonly("info", &PyFeatures::info, "how the entropy mask went (threshold used, blocks kept)")
-      .def_readonly("image_width", &PyFeatures::image_width)
-      .def_readonly("image_height", &PyFeatures::image_height)
-      .def("__len__", [](const PyFeatures& f) { return f.keypoints.shape(0); })
+      .def_readonly("image_width", &PyFeatures::image_width, "width of the image the features come from, pixels")
+      .def_readonly("image_height", &PyFeatures::image_height, "height of the image the features come from, pixels")
+      .def("__len__", [](const PyFeatures& f) { return f.keypoints.shape(0); }, "the number of keypoints N")
       .def("__repr__", [](const PyFeatures& f) {
         return "<aief.Features " + std::to_string(f.keypoints.shape(0)) + " keypoints, " + std::to_string(f.image_width) + "x" +
                std::to_string(f.image_height) + ">";
-      });
+      }, "keypoint count and image size");
 
   const ExtractorOptions d;
   py::class_<PyExtractor>(m, "Extractor",
@@ -163,8 +163,10 @@ void bind_extractor(py::module_& m) {
            "Features of a 2-D uint8 gray image (any strides; not copied when its rows are contiguous) or an "
            "H x W x 3 BGR / H x W x 4 BGRA uint8 image (converted to gray as the aief CLI converts files). "
            "The GIL is released meanwhile.")
-      .def_property_readonly("options", [](const PyExtractor& e) { return options_dict(e.options()); })
-      .def_property_readonly("kernel_name", &PyExtractor::kernel_name);
+      .def_property_readonly("options", [](const PyExtractor& e) { return options_dict(e.options()); },
+                             "every option in effect, as a dict (the mode's values filled in)")
+      .def_property_readonly("kernel_name", &PyExtractor::kernel_name,
+                             "the SIMD kernel set this extractor runs (e.g. avx2), picked for this CPU or by `kernels`");
   m.def(
       "read_image",
       [](const std::string& path) {

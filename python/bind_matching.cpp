@@ -108,7 +108,7 @@ void bind_matching(py::module_& m) {
       .def_readonly("found", &AdaptResult::found, "some threshold had enough inliers")
       .def_readonly("threshold", &AdaptResult::threshold, "the chosen F, bits")
       .def_readonly("chosen_index", &AdaptResult::chosen_index, "its row in curve, -1 when none")
-      .def_readonly("image_entropy_bits", &AdaptResult::image_entropy_bits)
+      .def_readonly("image_entropy_bits", &AdaptResult::image_entropy_bits, "E, the entropy of image_a (level 0), bits: it sets the number of thresholds tried")
       .def_property_readonly("curve",
                              [](const AdaptResult& r) {
                                py::list rows;
@@ -126,11 +126,17 @@ void bind_matching(py::module_& m) {
                                  rows.append(row);
                                }
                                return rows;
-                             })
-      .def_property_readonly("features_a", [](const AdaptResult& r) { return to_python(r.features_a); })
-      .def_property_readonly("features_b", [](const AdaptResult& r) { return to_python(r.features_b); })
-      .def_property_readonly("matches", [](const AdaptResult& r) { return matches_array(r.matches); })
-      .def_property_readonly("homography", [](const AdaptResult& r) { return homography_tuple(r.homography, r.matches.size()); });
+                             },
+                             "one dict per threshold tried: threshold, kept_blocks (a), kept_blocks_b, keypoints_a, "
+                             "keypoints_b, putative, inliers, cmr (inliers / putative), eligible")
+      .def_property_readonly("features_a", [](const AdaptResult& r) { return to_python(r.features_a); },
+                             "Features of image_a at the chosen threshold")
+      .def_property_readonly("features_b", [](const AdaptResult& r) { return to_python(r.features_b); },
+                             "Features of image_b at the chosen threshold")
+      .def_property_readonly("matches", [](const AdaptResult& r) { return matches_array(r.matches); },
+                             "M x 3 int32 (query, train, distance) at the chosen threshold, as match() returns")
+      .def_property_readonly("homography", [](const AdaptResult& r) { return homography_tuple(r.homography, r.matches.size()); },
+                             "(H 3 x 3 float64 or None, M uint8 inlier mask over matches), as find_homography() returns");
 
   const SweepOptions sd;
   m.def(

@@ -30,6 +30,7 @@ def list_images(images):
 
 
 def shard_path(output_dir, index, count):
+    """The file of shard `index` of `count` in `output_dir`: features.<index>-of-<count>.h5."""
     return os.path.join(output_dir, f"features.{index}-of-{count}.h5")
 
 
@@ -102,6 +103,7 @@ def run(client, images, output_dir, shards, **options):
 
 
 def main():
+    """The command line of `python3 -m aief.dask_batch` (the module's docstring shows it)."""
     parser = argparse.ArgumentParser(description="aief batch extraction on a Dask cluster (hloc HDF5 shard files)")
     parser.add_argument("images", help="folder of images (recursively) or a text file of paths, as aief extract --batch")
     parser.add_argument("output_dir", help="folder for features.<i>-of-<n>.h5")

@@ -1,0 +1,159 @@
+# Types of the compiled module aief._aief (python/*.cpp), for IDEs and mypy; python/aief/__init__.py
+# re-exports it. python/tests/test_api_docs.py checks that every public name of the module is here.
+from typing import Any, Literal, Optional, Sequence, TypedDict, Union
+
+import numpy
+import numpy.typing
+
+# A 2-D uint8 gray image, or H x W x 3 BGR / H x W x 4 BGRA uint8 (anything numpy.asarray takes).
+ImageLike = numpy.typing.ArrayLike
+# N x 2 points (x, y).
+PointsLike = numpy.typing.ArrayLike
+MatcherName = Literal["mutual", "ratio", "paper"]
+
+__version__: str
+
+class Error(ValueError):
+    """Bad input or options (a ValueError): the engine's message says what and where."""
+
+class ExtractionInfo(TypedDict):
+    entropy_threshold_requested: float
+    entropy_threshold_used: float
+    threshold_lowered: bool
+    image_entropy_bits: float
+    blocks_total: int
+    blocks_kept: int
+    auto_threshold_effectiveness: float
+
+class SweepPoint(TypedDict):
+    threshold: float
+    kept_blocks: int
+    kept_blocks_b: int
+    keypoints_a: int
+    keypoints_b: int
+    putative: int
+    inliers: int
+    cmr: float
+    eligible: bool
+
+class Features:
+    """Keypoints and descriptors of one image, as numpy arrays."""
+    @property
+    def keypoints(self) -> numpy.ndarray:
+        """N x 2 float32, (x, y) in level-0 pixels, pixel centres at integers."""
+    @property
+    def size(self) -> numpy.ndarray:
+        """N float32, patch diameter at the keypoint's level, level-0 pixels."""
+    @property
+    def angle(self) -> numpy.ndarray:
+        """N float32, orientation in degrees, [0, 360)."""
+    @property
+    def response(self) -> numpy.ndarray:
+        """N float32, FAST score."""
+    @property
+    def octave(self) -> numpy.ndarray:
+        """N int32, pyramid level."""
+    @property
+    def descriptors(self) -> numpy.ndarray:
+        """N x 32 uint8, rBRIEF-256."""
+    @property
+    def info(self) -> ExtractionInfo:
+        """How the entropy mask went (threshold used, blocks kept)."""
+    @property
+    def image_width(self) -> int: ...
+    @property
+    def image_height(self) -> int: ...
+    def __len__(self) -> int: ...
+
+class Extractor:
+    """ORB features with the AIEF entropy mask; invalid options raise aief.Error."""
+    def __init__(
+        self,
+        n_features: int = 1000,
+        mode: str = "aief",
+        threshold: Union[float, Literal["auto"]] = 4.0,
+        levels: int = 8,
+        scale: float = 1.2,
+        threads: int = 0,
+        kernels: str = "auto",
+        *,
+        fast_threshold: int = 20,
+        fast_min_threshold: int = 7,
+        block_size: int = 32,
+        entropy: Optional[str] = None,
+        max_image_pixels: int = 67108864,
+        pool: Optional[float] = None,
+        coordinates: Optional[str] = None,
+        subpixel: Optional[bool] = None,
+        starvation_guard: Optional[str] = None,
+        auto_skips_uniform_blocks: Optional[bool] = None,
+        ranking: Optional[str] = None,
+        auto_requires_two_classes: Optional[bool] = None,
+    ) -> None: ...
+    def extract(self, image: ImageLike) -> Features:
+        """Features of a gray, BGR or BGRA uint8 image; the GIL is released meanwhile."""
+    # Defined in python/aief/__init__.py (needs cv2): as cv2.Feature2D.detectAndCompute.
+    def detectAndCompute(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> tuple[list[Any], numpy.ndarray]: ...
+    @property
+    def options(self) -> dict[str, Any]:
+        """Every option in effect, as a dict."""
+    @property
+    def kernel_name(self) -> str:
+        """The SIMD kernel set this extractor runs."""
+
+class AdaptResult:
+    """The sweep of the entropy threshold F over a pair."""
+    @property
+    def found(self) -> bool: ...
+    @property
+    def threshold(self) -> float: ...
+    @property
+    def chosen_index(self) -> int: ...
+    @property
+    def image_entropy_bits(self) -> float: ...
+    @property
+    def curve(self) -> list[SweepPoint]: ...
+    @property
+    def features_a(self) -> Features: ...
+    @property
+    def features_b(self) -> Features: ...
+    @property
+    def matches(self) -> numpy.ndarray: ...
+    @property
+    def homography(self) -> tuple[Optional[numpy.ndarray], numpy.ndarray]: ...
+
+def match(
+    a: Union[numpy.typing.ArrayLike, Features],
+    b: Union[numpy.typing.ArrayLike, Features],
+    matcher: MatcherName = "mutual",
+    ratio: float = 0.8,
+    max_distance: int = 256,
+) -> numpy.ndarray:
+    """Hamming matches of a into b: M x 3 int32 (query, train, distance), sorted by query."""
+
+def find_homography(
+    src: PointsLike,
+    dst: PointsLike,
+    threshold_px: float = 3.0,
+    confidence: float = 0.995,
+    max_iterations: int = 10000,
+    seed: int = 24301,
+) -> tuple[Optional[numpy.ndarray], numpy.ndarray]:
+    """RANSAC homography src -> dst: (H 3 x 3 float64 or None, N uint8 inlier mask)."""
+
+def adapt(
+    image_a: ImageLike,
+    image_b: ImageLike,
+    extractor: Optional[Extractor] = None,
+    first_threshold: float = 0.0,
+    step: float = 0.2,
+    min_inliers: int = 20,
+    matcher: MatcherName = "mutual",
+) -> AdaptResult:
+    """The paper's sweep of F over a pair: the chosen threshold, the curve, features and matches at it."""
+
+def read_image(path: str) -> numpy.ndarray:
+    """An image file as the aief CLI reads it: 2-D uint8 gray."""
+
+def default_options() -> dict[str, Any]:
+    """The C++ ExtractorOptions defaults, as a dict."""
