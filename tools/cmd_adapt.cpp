@@ -98,7 +98,7 @@ int run_adapt(const Arguments& arguments) {
     io::Plot plot;
     plot.title = "aief adapt: " + path_a + " -> " + path_b;
     plot.x_label = "entropy threshold F (bits)";
-    io::PlotSeries cmr{"CMR %", {}, {}}, inliers{"inliers", {}, {}}, kps_a{"keypoints A", {}, {}}, kps_b{"keypoints B", {}, {}};
+    io::PlotSeries cmr{"CMR", {}, {}}, inliers{"inliers", {}, {}}, kps_a{"keypoints A", {}, {}}, kps_b{"keypoints B", {}, {}};
     for (const SweepPoint& p : result.curve) {
       for (io::PlotSeries* s : {&cmr, &inliers, &kps_a, &kps_b}) s->x.push_back(p.threshold);
       cmr.y.push_back(100.0 * p.cmr);
@@ -106,11 +106,11 @@ int run_adapt(const Arguments& arguments) {
       kps_a.y.push_back(p.keypoints_a);
       kps_b.y.push_back(p.keypoints_b);
     }
-    plot.panels = {{"CMR %", {cmr}}, {"count", {inliers, kps_a, kps_b}}};
+    plot.panels = {{"correct matching rate CMR (%)", {cmr}}, {"inliers and keypoints (count)", {inliers, kps_a, kps_b}}};
     if (result.found) {
       plot.marker_x = result.threshold;
       char label[32];
-      std::snprintf(label, sizeof label, "chosen F = %.1f", result.threshold);
+      std::snprintf(label, sizeof label, "chosen F = %.1f bits", result.threshold);
       plot.marker_label = label;
     }
     io::write_plot_png(*plot_path, plot);

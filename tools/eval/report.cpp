@@ -300,8 +300,9 @@ std::vector<std::string> write_plots(const EvalRun& run, const std::string& fold
   for (const std::string& s : sequences_of(run)) {
     io::Plot plot;
     plot.title = s + ": img1 -> imgN";
-    plot.x_label = "N (pair index: transformation grows)";
-    io::PlotPanel correct{"correct matches (3 px under the true homography)", {}}, accuracy{"matching accuracy %", {}};
+    plot.x_label = "N, the target image of img1 -> imgN (the transformation grows with N)";
+    io::PlotPanel correct{"correct matches (count; within 3 px of the true homography)", {}},
+        accuracy{"matching accuracy (% of putative matches)", {}};
     for (std::size_t m = 0; m < run.methods.size(); ++m) {
       io::PlotSeries c{method_name(run.methods[m]), {}, {}}, a{c.label, {}, {}};
       for (std::size_t p = 0; p < run.pairs.size(); ++p) {
