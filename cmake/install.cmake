@@ -1,25 +1,28 @@
 # cmake --install: headers, libraries, the aief tool, a CMake package (find_package(aief) ->
 # aief::aief, and aief::io, aief::opencv when built) and a pkg-config file for the engine.
 # Each component has its own export file, so the package config loads OpenCV only for the
-# components that link it (cmake/aiefConfig.cmake.in).
+# components that link it (cmake/aiefConfig.cmake.in). Every file belongs to one install component
+# (runtime: shared libraries; dev: headers, archives, .so links, CMake and pkg-config files; tool;
+# python), which cmake/packaging.cmake turns into one Debian package each.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 install(TARGETS aief EXPORT aiefTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 set(AIEF_INSTALLED_COMPONENTS "")
 foreach(component IN ITEMS io opencv)
   if(TARGET aief_${component})
     install(TARGETS aief_${component} EXPORT aief_${component}Targets
-            ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-    install(EXPORT aief_${component}Targets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
+            ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
+            LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev)
+    install(EXPORT aief_${component}Targets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief COMPONENT dev)
     list(APPEND AIEF_INSTALLED_COMPONENTS ${component})
   endif()
 endforeach()
 if(TARGET aief_cli)
-  install(TARGETS aief_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(TARGETS aief_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tool)
   get_target_property(aief_library_type aief TYPE)
   if(aief_library_type STREQUAL "SHARED_LIBRARY")  # the installed tool finds libaief.so wherever the prefix is moved
     set_target_properties(aief_cli PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
@@ -27,23 +30,23 @@ if(TARGET aief_cli)
 endif()
 # Every public header, present and future; the adapter's only when the adapter is built.
 if(TARGET aief_opencv)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
 else()
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev
           PATTERN opencv.hpp EXCLUDE PATTERN orbslam*_extractor*.hpp EXCLUDE)
 endif()
-install(FILES ${PROJECT_BINARY_DIR}/generated/aief/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief)
+install(FILES ${PROJECT_BINARY_DIR}/generated/aief/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief COMPONENT dev)
 # io headers say #include "io/...": they live under include/aief/io, with include/aief on the path.
 if(TARGET aief_io)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/io/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief/io FILES_MATCHING PATTERN "*.hpp")
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/io/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief/io COMPONENT dev FILES_MATCHING PATTERN "*.hpp")
 endif()
 
-install(EXPORT aiefTargets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
+install(EXPORT aiefTargets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief COMPONENT dev)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/aiefConfig.cmake.in ${PROJECT_BINARY_DIR}/aiefConfig.cmake
                               INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/aiefConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/aiefConfig.cmake ${PROJECT_BINARY_DIR}/aiefConfigVersion.cmake
-        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief COMPONENT dev)
 
 # pkg-config. A static libaief needs TBB and pthreads on the consumer's link line; putting them in
 # Libs (not Libs.private behind tbb.pc) makes plain `pkg-config --libs aief` link, and does not
@@ -59,7 +62,7 @@ else()
   set(AIEF_PC_LIBS_PRIVATE "-ltbb -lpthread")
 endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/aief.pc.in ${PROJECT_BINARY_DIR}/aief.pc @ONLY)
-install(FILES ${PROJECT_BINARY_DIR}/aief.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+install(FILES ${PROJECT_BINARY_DIR}/aief.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT dev)
 
 # tests/ builds every tests/test_*.cpp; without the adapter its tests have nothing to link.
 # (CTest then lists them as *_NOT_BUILT; skipping them belongs in tests/CMakeLists.txt.)

@@ -3,20 +3,33 @@
 # then builds against it: a CMake project (find_package(aief), aief::aief, and aief::opencv when
 # the build tree has the adapter) and a one-file program through `pkg-config --cflags --libs
 # aief`. Fails if any step cannot find, compile, link or run.
+#   run.sh BUILD_DIR          install BUILD_DIR, then the above
+#   run.sh --installed PREFIX the above against what is already installed in PREFIX (e.g. /usr from
+#                             the Debian packages, scripts/ci_packages)
 set -euo pipefail
-build_dir=$1
 source_dir=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "install test: $*" >&2; exit 1; }
 
-cmake --install "$build_dir" --prefix "$work/installed" > "$work/install.log" || fail "cmake --install failed"
-mv "$work/installed" "$work/prefix"
-prefix=$work/prefix
-# An OpenCV-free build (AIEF_WITH_OPENCV=OFF) installs the engine alone: no tool, no aief::io,
-# and its package must configure with OpenCV out of reach.
-with_opencv=ON
-if grep -q '^AIEF_WITH_OPENCV:BOOL=OFF' "$build_dir/CMakeCache.txt"; then with_opencv=OFF; fi
+if [ "${1:-}" = --installed ]; then
+  prefix=$2
+  # What was installed says what was built: the adapter's header, aief::io's headers.
+  with_opencv=OFF expect_opencv=OFF
+  [ -d "$prefix/include/aief/io" ] && with_opencv=ON
+  [ -e "$prefix/include/aief/opencv.hpp" ] && expect_opencv=ON
+else
+  build_dir=$1
+  cmake --install "$build_dir" --prefix "$work/installed" > "$work/install.log" || fail "cmake --install failed"
+  mv "$work/installed" "$work/prefix"
+  prefix=$work/prefix
+  # An OpenCV-free build (AIEF_WITH_OPENCV=OFF) installs the engine alone: no tool, no aief::io,
+  # and its package must configure with OpenCV out of reach.
+  with_opencv=ON
+  if grep -q '^AIEF_WITH_OPENCV:BOOL=OFF' "$build_dir/CMakeCache.txt"; then with_opencv=OFF; fi
+  expect_opencv=OFF
+  if [ "$with_opencv" = ON ] && grep -q '^AIEF_BUILD_OPENCV_ADAPTER:BOOL=ON' "$build_dir/CMakeCache.txt"; then expect_opencv=ON; fi
+fi
 for file in include/aief/aief.hpp include/aief/extractor.hpp include/aief/version.hpp; do
   test -e "$prefix/$file" || fail "missing $file in the install tree"
 done
@@ -25,13 +38,11 @@ if [ "$with_opencv" = ON ]; then
 else
   test ! -e "$prefix/include/aief/opencv.hpp" || fail "an OpenCV-free install has include/aief/opencv.hpp"
 fi
-config=$(find "$prefix" -name aiefConfig.cmake | head -n 1)
+config=$(find "$prefix"/lib* -maxdepth 4 -name aiefConfig.cmake | head -n 1)
 test -n "$config" || fail "no aiefConfig.cmake installed"
-pc_file=$(find "$prefix" -name aief.pc | head -n 1)
+pc_file=$(find "$prefix"/lib* -maxdepth 4 -name aief.pc | head -n 1)
 test -n "$pc_file" || fail "no aief.pc installed"
 
-expect_opencv=OFF
-if [ "$with_opencv" = ON ] && grep -q '^AIEF_BUILD_OPENCV_ADAPTER:BOOL=ON' "$build_dir/CMakeCache.txt"; then expect_opencv=ON; fi
 opencv_flags=()
 [ "$with_opencv" = ON ] || opencv_flags=(-DAIEF_EXPECT_IO=OFF -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON)
 cmake -S "$source_dir" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
@@ -49,4 +60,6 @@ flags=$(pkg-config --cflags --libs aief) || fail "pkg-config does not know aief"
 # shellcheck disable=SC2086  # the flags are a word list
 c++ -std=c++17 "$source_dir/main.cpp" -o "$work/pkgconfig_consumer" $flags || fail "pkg-config consumer did not build with: $flags"
 LD_LIBRARY_PATH="$(dirname "$(dirname "$pc_file")")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$work/pkgconfig_consumer" || fail "the pkg-config consumer failed"  # a shared build has no rpath here
-echo "install (relocated), find_package (OpenCV parts: $with_opencv, adapter: $expect_opencv) and pkg-config consumers: OK"
+where="install (relocated)"
+[ -n "${build_dir:-}" ] || where="install in $prefix"
+echo "$where, find_package (OpenCV parts: $with_opencv, adapter: $expect_opencv) and pkg-config consumers: OK"
