@@ -126,15 +126,15 @@ void write_plot_png(const std::string& path, const Plot& plot) {
       text(image, label, {px(x) - text_width(label, 0.4) / 2, bottom + 18}, 0.4);
     }
     cv::rectangle(image, {kLeft, top}, {kLeft + plot_w, bottom}, cv::Scalar::all(120));
-    text(image, panel.y_label, {kLeft, top - 8}, 0.45);
+    text(image, panel.y_label, {kLeft, top - 12}, 0.45);  // clear of a marker sitting on the top edge
     if (p + 1 == static_cast<int>(plot.panels.size()))
       text(image, plot.x_label, {kLeft + (plot_w - text_width(plot.x_label, 0.45)) / 2, bottom + 40}, 0.45);
 
-    // Series that coincide stay visible: on a category axis each series is moved sideways by a
-    // few pixels; every line is drawn before any marker, and a series drawn earlier has wider
+    // Series that coincide stay visible: every line is drawn before any marker; on a category axis
+    // each series is moved sideways by a few pixels, elsewhere a series drawn earlier has wider
     // lines and larger markers, so one drawn over it leaves its edges showing.
     const std::size_t n = panel.series.size();
-    const auto below = [&](std::size_t si) { return static_cast<int>(std::min<std::size_t>(n - 1 - si, 2)); };
+    const auto below = [&](std::size_t si) { return integer_axis ? 0 : static_cast<int>(std::min<std::size_t>(n - 1 - si, 2)); };
     const auto dodge = [&](std::size_t si) {
       return integer_axis && n > 1 ? static_cast<int>(std::lround((static_cast<double>(si) - (n - 1) / 2.0) * 3)) : 0;
     };
@@ -152,7 +152,7 @@ void write_plot_png(const std::string& path, const Plot& plot) {
     for (std::size_t si = 0; si < n; ++si) {
       const PlotSeries& s = panel.series[si];
       for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-        if (drawn(s, i)) draw_marker(image, point_of(si, i), series_style(si), 4 + below(si));
+        if (drawn(s, i)) draw_marker(image, point_of(si, i), series_style(si), 5 + below(si));
     }
 
     // The legend, in the right margin: line, marker and label per series, then the vertical marker.

@@ -37,7 +37,7 @@ void print_help() {
             << "  --pairs P             1-2 or all (1 -> 2..6; default all)\n"
             << "  -o, --output FILE     the markdown report (default evaluation.md)\n"
             << "  --matcher K           mutual (default) | ratio | paper\n"
-            << "  --repeat N            runs per timing, median (default 3)\n"
+            << "  --repeat N            interleaved timing rounds per pair, median (default 5)\n"
             << "  --methods LIST        comma-separated JSON keys of the rows to run (default all):\n"
             << "                        orbslam2, quadtree_entropy, aief_paper_adaptive, aief_paper_auto,\n"
             << "                        aief_adaptive, aief_auto, opencv_orb, opencv_sift\n"
@@ -131,6 +131,7 @@ int run_eval(const Arguments& arguments) {
   if (run.pairs.empty()) throw Error("no sequence found in '" + *dataset + "'");
   run.methods = methods;
   run.matcher = std::string(to_string(settings.match.kind));
+  run.timing_rounds = settings.timing_repeats;
   cv::setNumThreads(1);  // per-core times for every row
 
   const auto start = std::chrono::steady_clock::now();
@@ -148,6 +149,7 @@ int run_eval(const Arguments& arguments) {
       row.push_back(eval::run_method(method, as_mat(image_a), as_mat(image_b), pair.truth, settings));
       progress.step(pair.sequence + " 1-" + std::to_string(pair.target) + " " + eval::method_key(method));
     }
+    eval::time_extractions(run.methods, as_mat(image_a), settings, row, run.load);
     run.results.push_back(std::move(row));
   }
   progress.finish();

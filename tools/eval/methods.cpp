@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <memory>
 
 #include <opencv2/features2d.hpp>
 
@@ -48,20 +50,6 @@ Method parse_method_key(const std::string& key) {
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-template <class F>
-double median_ms(int repeats, F&& work) {
-  std::vector<double> times;
-  for (int i = 0; i < repeats; ++i) {
-    const auto start = Clock::now();
-    work();
-    times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
 
 ImageView view_of(const cv::Mat& gray) { return {gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}; }
 
@@ -112,8 +100,10 @@ void measure_features(const Features& a, const Features& b, const std::vector<Ma
   measure(pa, pb, truth, width, height, r);
 }
 
-PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth, const EvalSettings& s) {
-  PairResult r;
+bool is_adaptive(Method method) { return method == Method::aief_adaptive || method == Method::aief_paper_adaptive; }
+bool is_opencv(Method method) { return method == Method::opencv_orb || method == Method::opencv_sift; }
+
+ExtractorOptions options_of(Method method, const EvalSettings& s) {
   ExtractorOptions options;
   switch (method) {
     case Method::orbslam2: options = options_for_mode(Mode::orbslam2, options); break;
@@ -130,20 +120,30 @@ PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Hom
     default: options = s.aief; break;
   }
   options.threads = 1;  // per-core times, as the paper's and OpenCV's
-  const bool adaptive = method == Method::aief_adaptive || method == Method::aief_paper_adaptive;
-  if (adaptive) {
+  return options;
+}
+
+cv::Ptr<cv::Feature2D> opencv_detector(Method method) {
+  if (method == Method::opencv_orb) return cv::ORB::create(1000, 1.2f, 8);
+  return cv::SIFT::create(1000);
+}
+
+PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth, const EvalSettings& s) {
+  PairResult r;
+  const ExtractorOptions options = options_of(method, s);
+  if (is_adaptive(method)) {
     SweepOptions sweep;
     sweep.match = s.match;
-    AdaptResult adapted;
-    r.sweep_ms = median_ms(1, [&] { adapted = adapt(view_of(a), view_of(b), options, sweep); });
+    const auto start = std::chrono::steady_clock::now();
+    const AdaptResult adapted = adapt(view_of(a), view_of(b), options, sweep);
+    r.sweep_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     measure_features(adapted.features_a, adapted.features_b, adapted.matches, truth, a.cols, a.rows, r);
     r.threshold = adapted.threshold;
-    options.entropy_threshold = adapted.threshold;  // the time of one frame at the learned F
+    return r;
   }
   Extractor extractor(options);
   Features fa, fb;
-  r.extract_ms = median_ms(s.timing_repeats, [&] { extractor.extract(view_of(a), fa); });
-  if (adaptive) return r;
+  extractor.extract(view_of(a), fa);
   extractor.extract(view_of(b), fb);
   const std::vector<Match> matches = match_descriptors(fa.descriptors, fb.descriptors, s.match);
   measure_features(fa, fb, matches, truth, a.cols, a.rows, r);
@@ -153,12 +153,10 @@ PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Hom
 
 PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth, const EvalSettings& s) {
   PairResult r;
-  cv::Ptr<cv::Feature2D> detector;
-  if (method == Method::opencv_orb) detector = cv::ORB::create(1000, 1.2f, 8);
-  else detector = cv::SIFT::create(1000);
+  const cv::Ptr<cv::Feature2D> detector = opencv_detector(method);
   std::vector<cv::KeyPoint> ka, kb;
   cv::Mat da, db;
-  r.extract_ms = median_ms(s.timing_repeats, [&] { detector->detectAndCompute(a, cv::noArray(), ka, da); });
+  detector->detectAndCompute(a, cv::noArray(), ka, da);
   detector->detectAndCompute(b, cv::noArray(), kb, db);
   const auto points = [](const std::vector<cv::KeyPoint>& keypoints) {
     std::vector<Point2> out;
@@ -203,8 +201,37 @@ PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const H
 
 PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b, const Homography& truth,
                       const EvalSettings& settings) {
-  if (method == Method::opencv_orb || method == Method::opencv_sift) return run_opencv(method, gray_a, gray_b, truth, settings);
+  if (is_opencv(method)) return run_opencv(method, gray_a, gray_b, truth, settings);
   return run_ours(method, gray_a, gray_b, truth, settings);
+}
+
+void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a, const EvalSettings& settings,
+                      std::vector<PairResult>& row, MachineLoad& load) {
+  // Each method's extractor and outputs live as long as its rounds: only the extraction is timed.
+  std::vector<std::function<void()>> work;
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    if (is_opencv(methods[m])) {
+      auto detector = opencv_detector(methods[m]);
+      auto keypoints = std::make_shared<std::vector<cv::KeyPoint>>();
+      auto descriptors = std::make_shared<cv::Mat>();
+      work.push_back([=] { detector->detectAndCompute(gray_a, cv::noArray(), *keypoints, *descriptors); });
+    } else {
+      ExtractorOptions options = options_of(methods[m], settings);
+      if (is_adaptive(methods[m])) options.entropy_threshold = row[m].threshold;  // one frame at the learned F
+      auto extractor = std::make_shared<Extractor>(options);
+      auto features = std::make_shared<Features>();
+      work.push_back([=] { extractor->extract(view_of(gray_a), *features); });
+    }
+  }
+  load.sample();
+  const std::vector<MethodTimes> times = time_interleaved(work, settings.timing_repeats);
+  load.sample();
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    row[m].extract_ms = times[m].cpu.median_ms;
+    row[m].extract_min_ms = times[m].cpu.min_ms;
+    row[m].extract_max_ms = times[m].cpu.max_ms;
+    row[m].extract_wall_ms = times[m].wall.median_ms;
+  }
 }
 
 }  // namespace aief::eval

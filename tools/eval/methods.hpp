@@ -7,6 +7,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "tools/eval/timing.hpp"
+
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
 #include "aief/options.hpp"
@@ -42,7 +44,9 @@ struct PairResult {
   double accuracy = 0;     // correct / putative
   double corner_error = -1;  // mean corner error of the RANSAC homography vs the truth, px (-1: none)
   bool homography_ok = false;  // corner_error < 5 px
-  double extract_ms = 0;   // extraction + description of image A, median, one thread
+  double extract_ms = 0;   // extraction + description of image A, one thread: CPU time, median of interleaved rounds
+  double extract_min_ms = 0, extract_max_ms = 0;  // the fastest and slowest of those rounds
+  double extract_wall_ms = 0;  // the wall-clock median of the same rounds
   double sweep_ms = 0;     // the adaptive sweep over the pair (AIEF adaptive only)
   double threshold = -1;   // F used for image A (entropy methods)
   double repeatability = 0;  // keypoints of A repeated in B within 3 px (keypoint_metrics.hpp)
@@ -51,11 +55,17 @@ struct PairResult {
 
 struct EvalSettings {
   MatchOptions match;      // mutual by default
-  int timing_repeats = 3;  // runs per extraction time (median)
+  int timing_repeats = 5;  // interleaved timing rounds per pair (timing.hpp)
   ExtractorOptions aief;   // the AIEF rows' options (the paper rows use --mode aief-paper)
 };
 
+// Every measure of one method on one pair but the extraction time.
 PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b, const Homography& truth,
                       const EvalSettings& settings);
+// The extraction times of image A for every method of `row` (results of run_method, in the order of
+// `methods`; an adaptive method is timed at the F it chose), in interleaved rounds; `load` records
+// the machine's load meanwhile.
+void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a, const EvalSettings& settings,
+                      std::vector<PairResult>& row, MachineLoad& load);
 
 }  // namespace aief::eval

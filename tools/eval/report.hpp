@@ -15,6 +15,8 @@ struct EvalRun {
   std::vector<std::vector<PairResult>> results;  // [pair][method]
   std::string matcher;
   double seconds = 0;
+  int timing_rounds = 0;  // interleaved rounds per extraction time (timing.hpp)
+  MachineLoad load;       // while timing
 };
 
 std::string markdown_report(const EvalRun& run, const std::string& plot_folder_relative);
