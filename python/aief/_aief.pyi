@@ -155,5 +155,8 @@ def adapt(
 def read_image(path: str) -> numpy.ndarray:
     """An image file as the aief CLI reads it: 2-D uint8 gray."""
 
+def batch_inputs(folder_or_list: str) -> list[tuple[str, str]]:
+    """The images `aief extract --batch FOLDER_OR_LIST` takes, as (path, name) pairs sorted by name."""
+
 def default_options() -> dict[str, Any]:
     """The C++ ExtractorOptions defaults, as a dict."""

@@ -196,8 +196,8 @@ std::string markdown_report(const EvalRun& run, const std::string& plot_folder) 
      << "Correct: sum over img1 -> img2..4. Accuracy: mean over every pair. Homography accuracy as in HPatches: share of"
      << " pairs whose estimated homography has a mean corner error below 1, 3 and 5 px. Repeatability: keypoints of img1"
      << " found again in imgN within 3 px under the true homography, over the smaller visible count, mean over pairs."
-     << " Spread: share of img1's 32 px cells holding a keypoint. Time: extraction + description of img1, mean of the"
-     << " per-pair medians, ms.\n\n"
+     << " Spread: share of img1's 32 px cells holding a keypoint. Time: extraction + description of img1, CPU time, mean"
+     << " of the per-pair medians (as in Table 2), ms.\n\n"
      << "| method | correct (2..4) | accuracy | H < 1 px | H < 3 px | H < 5 px | repeatability | spread | time ms |\n"
      << "|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t m = 0; m < run.methods.size(); ++m) {
