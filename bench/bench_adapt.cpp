@@ -1,5 +1,5 @@
 // The adaptive sweep on a pair (all C thresholds) beside what it replaces: one plain extract of
-// both images and one match (the bar: the sweep costs at most 3x that). adapt/ratio
+// both images and one match (the bar: the sweep costs at most 3x that). adapt/ratio
 // times both alternately in one loop, so its sweep_over_pair counter is a same-run ratio (read
 // the median of --benchmark_repetitions on a busy machine).
 #include <chrono>

@@ -1,13 +1,13 @@
 #pragma once
 // A pair-free entropy threshold F for a single frame, from the distribution of its own block
-// entropies (`aief extract --threshold auto`, DESIGN.md section 3 extended).
+// entropies (`aief extract --threshold auto`, docs/design.md §4).
 //
 // Rule: Otsu's split of the block entropies (the F that best separates the image's low- and
 // high-information blocks, histogram of 0.05-bit bins), lowered when needed so that the mask
 // keeps at least kAutoMinKeptShare of the blocks: on a scene that is textured everywhere Otsu
 // would otherwise cut through the texture itself.
 //
-// With the two-class test (the aief mode, issue 9), the split is used only when the entropies
+// With the two-class test (the aief mode), the split is used only when the entropies
 // form two classes. Otsu's effectiveness eta = between-class variance at the split / total
 // variance says how well one threshold separates them: 2/pi = 0.64 for a normal distribution,
 // 0.75 for a uniform one, towards 1 for two distinct populations. Below kAutoMinEffectiveness the

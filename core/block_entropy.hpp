@@ -1,8 +1,8 @@
 #pragma once
-// Gray histograms of blocks and their entropy (DESIGN.md section 1, paper Eq. 5-9).
+// Gray histograms of blocks and their entropy (docs/design.md §3, paper Eq. 5-9).
 //
 // The histogram is the cached primitive: both entropy measures derive from it, so the adaptive
-// sweep (DESIGN.md section 3) never reads a pixel twice. Entropies are exact functions of the
+// sweep (docs/design.md §10) never reads a pixel twice. Entropies are exact functions of the
 // integer counts: the sums are fixed-point integers (a table of c * log2 c in Q32), so the
 // order of accumulation cannot change a bit in any build.
 #include <cstddef>

@@ -19,7 +19,7 @@ struct Candidate {
 // What candidates are ranked by: the score, or the cross sum (ExtractorOptions::candidate_ranking).
 inline std::int32_t rank_strength(const Candidate& c) { return c.score + c.rank_extra; }
 
-// The one ranking of candidates (DESIGN.md section 1): higher strength first, then higher score,
+// The one ranking of candidates (docs/design.md §6): higher strength first, then higher score,
 // then y, then x. With rank_extra = 0 (peak_score) that is score, then y, then x.
 inline bool stronger(const Candidate& a, const Candidate& b) {
   if (rank_strength(a) != rank_strength(b)) return rank_strength(a) > rank_strength(b);

@@ -1,5 +1,5 @@
 #pragma once
-// The per-level candidate pool (issue 9, DESIGN.md section 1): before the water-level
+// The per-level candidate pool (docs/design.md §6): before the water-level
 // distribution, a level keeps only its strongest P x N_n candidates over the kept blocks. Without
 // it a level with about one candidate per block fills its budget with the weak corners of the
 // fast_min_threshold retry, which match less often (Oxford: 54-68% correct below score 20, 82%

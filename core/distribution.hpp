@@ -1,5 +1,5 @@
 #pragma once
-// How many keypoints each block (or quadtree node) of a level keeps (DESIGN.md section 1).
+// How many keypoints each block (or quadtree node) of a level keeps (docs/design.md §6).
 // Both functions select among the candidates of one level and append the indices (into
 // `candidates`) of the chosen ones to `selected`, in no particular order.
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 // FAST-9 corner score and 3x3 non-maximum suppression, exactly as OpenCV's
-// cv::FAST(img, kps, t, /*nonmaxSuppression=*/true) (DESIGN.md section 1).
+// cv::FAST(img, kps, t, /*nonmaxSuppression=*/true) (docs/design.md §5).
 //
 // Score of a pixel p with ring pixels r_0..r_15 (Bresenham circle, radius 3, OpenCV's order):
 //   s = max over the 16 arcs of 9 contiguous ring pixels of

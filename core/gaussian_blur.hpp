@@ -1,5 +1,5 @@
 #pragma once
-// 7x7 Gaussian, sigma 2, separable, Q8 fixed point, BORDER_REFLECT_101 (DESIGN.md section 1).
+// 7x7 Gaussian, sigma 2, separable, Q8 fixed point, BORDER_REFLECT_101 (docs/design.md §7).
 //   taps kGaussian7Q8: OpenCV's 8-bit fixed-point kernel for 7x7 sigma 2, so the blur is
 //   cv::GaussianBlur(src, dst, {7, 7}, 2, 2, BORDER_REFLECT_101) to the byte (tested)
 //   h(x)  = sum_k taps[k] * src[y][reflect101(x + k - 3)]          <= 65280, fits uint16

@@ -1,5 +1,5 @@
 #pragma once
-// Hamming distance between 256-bit descriptors, for matching (DESIGN.md section 2).
+// Hamming distance between 256-bit descriptors, for matching (docs/design.md §9).
 #include <cstdint>
 
 namespace aief {

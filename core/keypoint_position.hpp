@@ -1,5 +1,5 @@
 #pragma once
-// Where a level's candidate lands in level-0 pixels (DESIGN.md section 1, issue 9).
+// Where a level's candidate lands in level-0 pixels (docs/design.md §8).
 //
 // The pyramid resamples pixel-centre aligned (core/pyramid_resize.hpp: level pixel x samples
 // level n - 1 at (x + 0.5) * W_{n-1} / W_n - 0.5), and those maps compose exactly, so level

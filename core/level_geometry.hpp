@@ -1,5 +1,6 @@
 #pragma once
-// Sizes, scales, feature budgets and block grids of the pyramid levels (DESIGN.md section 1).
+// Sizes, scales, feature budgets and block grids of the pyramid levels (docs/design.md §2, §3,
+// §6).
 // Depends only on the image size and the options, so an extractor computes it once per size.
 #include <vector>
 

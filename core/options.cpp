@@ -69,7 +69,7 @@ ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
   const EntropyMeasure measure =
       base.entropy == EntropyMeasure::off ? EntropyMeasure::histogram : base.entropy;
   const ExtractorOptions defaults;
-  // Every mode but aief keeps the conventions of the code it reproduces (issue 9).
+  // Every mode but aief keeps the conventions of the code it reproduces (docs/design.md §11).
   base.coordinates = CoordinateMap::scaled;
   base.subpixel = false;
   base.candidate_pool = std::numeric_limits<double>::infinity();

@@ -1,6 +1,6 @@
 #pragma once
 // Intensity-centroid orientation over the disc of radius kPatchRadius (ORB-SLAM2's umax bound,
-// DESIGN.md section 1): m10 = sum x I, m01 = sum y I as exact integers over the raw level.
+// docs/design.md §7): m10 = sum x I, m01 = sum y I as exact integers over the raw level.
 #include <cstdint>
 
 #include "aief/image.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Fixed-point bilinear downsampling, one pyramid level from the previous one (DESIGN.md section 1).
+// Fixed-point bilinear downsampling, one pyramid level from the previous one (docs/design.md §2).
 //
 // Geometry is cv::resize's INTER_LINEAR: destination pixel x samples the source at
 // fx = (x + 0.5) * src_w / dst_w - 0.5, clamped to the image. Weights are Q8 (0..256):

@@ -1,6 +1,6 @@
 #pragma once
 // rBRIEF-256 over the blurred level with the learned ORB pattern (data/orb_pattern_31.txt,
-// compiled in), as ORB-SLAM2 and OpenCV compute it (DESIGN.md section 1):
+// compiled in), as ORB-SLAM2 and OpenCV compute it (docs/design.md §7):
 //   a = (float)cos(angle), b = (float)sin(angle), angle = angle_deg * (float)(pi / 180)
 //   offset of pattern point (px, py):  dx = lrint(px * a - py * b), dy = lrint(px * b + py * a)
 //   (float arithmetic, no contraction, round half to even, as cvRound)

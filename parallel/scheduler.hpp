@@ -1,7 +1,7 @@
 #pragma once
 // TBB scheduling of the pipeline's independent pieces (pyramid levels, thresholds of a sweep,
 // rows of a match). Work is handed out largest first from a shared counter, each piece writes
-// only its own slot, so the result never depends on which thread ran what (DESIGN.md section 5).
+// only its own slot, so the result never depends on which thread ran what (docs/design.md §12).
 #include <memory>
 #include <type_traits>
 

@@ -33,7 +33,7 @@ namespace {
 
 // The CLI's order (tools/cli_args.cpp): entropy measure and kernels, then the mode's preset,
 // then F; validate() is the one authority on ranges.
-// The quality options of issue 9 refine the mode; None keeps the mode's value.
+// The matching-quality options (docs/design.md §11) refine the mode; None keeps the mode's value.
 struct QualityOverrides {
   py::object pool;  // a number >= 1, or "inf" / "off"
   std::optional<std::string> coordinates, starvation_guard, ranking;

@@ -3,7 +3,8 @@
 
 For every image given, writes OUT/<name>/img1.png (the image in gray) and img2..img6.png, each a
 known warp of img1 with a photometric change, and H1to2p..H1to6p (the homography from img1 to
-imgN, Oxford's text format). Warped-in areas are black, as in the pairs of issue 9.
+imgN, Oxford's text format). Warped-in areas are black, as in the warped Oxford pairs the default
+mode's options were chosen on (docs/evaluation.md).
 
   img2  rotation 15 deg                      + Gaussian noise, sigma 3 gray levels
   img3  scale 0.7                            + Gaussian blur, sigma 1 px

@@ -1,7 +1,7 @@
 #pragma once
 // Helpers shared by the xsimd kernels. Everything here is a template on the xsimd arch, so an
 // instantiation compiled with AVX2 flags is its own symbol and can never be linked into the
-// baseline path (STYLE.md "One kernel, three places, one signature").
+// baseline path (docs/design.md §13).
 //
 // The few operations xsimd 8.1 lacks are written per instruction-set family, each in its own
 // header with the same two functions:

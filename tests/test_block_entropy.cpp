@@ -1,4 +1,4 @@
-// Block histograms and their entropy (DESIGN.md section 1, paper Eq. 5-6): exact integer sums
+// Block histograms and their entropy (docs/design.md §3, paper Eq. 5-6): exact integer sums
 // against a direct double computation, and the values the definitions fix.
 #include <algorithm>
 #include <cmath>

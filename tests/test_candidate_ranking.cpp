@@ -1,6 +1,6 @@
-// What a level ranks its candidates by (ExtractorOptions::candidate_ranking, issue 9): the FAST
-// score of the corner pixel (the paper, ORB-SLAM2) or the score map summed over the corner and its
-// four neighbours (the aief mode), in the pool and the distribution alike.
+// What a level ranks its candidates by (ExtractorOptions::candidate_ranking, docs/design.md §6):
+// the FAST score of the corner pixel (the paper, ORB-SLAM2) or the score map summed over the
+// corner and its four neighbours (the aief mode), in the pool and the distribution alike.
 #include <algorithm>
 #include <random>
 #include <set>

@@ -1,5 +1,5 @@
 // FAST-9 scores and suppression against OpenCV's cv::FAST (nonmax on), the bit-exact oracle of
-// the detector (DESIGN.md section 1), and against the definition of the score.
+// the detector (docs/design.md §5), and against the definition of the score.
 #include <algorithm>
 
 #include <gtest/gtest.h>
@@ -122,7 +122,7 @@ TEST(Fast9, BelowTheMinimumThresholdScoresZero) {
   }
 }
 
-// The per-block path the pipeline runs (DESIGN.md section 1): the candidates of block b are the
+// The per-block path the pipeline runs (docs/design.md §5): the candidates of block b are the
 // corners of cv::FAST(level, t, true) inside b, or of cv::FAST(level, t_min, true) when t gives
 // none there (ORB-SLAM2's retry). On the real images, every level of a 3-level pyramid, several
 // block sizes and threshold pairs, under every kernel set.

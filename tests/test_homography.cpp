@@ -132,7 +132,7 @@ TEST(Homography, AtLeastAsGoodAsOpenCvOnTheSamplePairs) {
     ASSERT_FALSE(cv_h.empty()) << sequence;
     Homography theirs;
     for (int k = 0; k < 9; ++k) theirs[static_cast<std::size_t>(k)] = cv_h.at<double>(k / 3, k % 3);
-    // OpenCV's returned mask is not a stable reference (DESIGN.md section 2): recount its model.
+    // OpenCV's returned mask is not a stable reference (docs/design.md §9): recount its model.
     int theirs_inliers = 0;
     for (std::size_t i = 0; i < src.size(); ++i) {
       const Point2 p = apply_homography(theirs, src[i]);

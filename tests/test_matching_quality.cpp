@@ -1,6 +1,6 @@
-// The matching-quality parts of the default AIEF mode (issue 9): the pixel-centre coordinate
-// map, the sub-pixel peak, the candidate pool, the per-level starvation guard and the automatic
-// F's indifference to uniform blocks.
+// The matching-quality parts of the default AIEF mode (docs/design.md §11): the pixel-centre
+// coordinate map, the sub-pixel peak, the candidate pool, the per-level starvation guard and the
+// automatic F's indifference to uniform blocks.
 #include <algorithm>
 #include <cmath>
 #include <limits>

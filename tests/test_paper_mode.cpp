@@ -1,7 +1,7 @@
 // The paper's algorithm stays one flag away: `--mode aief-paper` (and the ORB-SLAM2 and
 // quadtree + entropy rows) give, to the byte, the output the project gave before the
-// matching-quality work (issue 9). The hashes below were recorded from that code on the bundled
-// samples; every kernel set and thread count must reproduce them.
+// matching-quality options (docs/design.md §11). The hashes below were recorded from that code on
+// the bundled samples; every kernel set and thread count must reproduce them.
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -38,7 +38,7 @@ struct Pinned {
   std::uint64_t hash;    // of img1's features
 };
 
-// Recorded from commit 3b6aab1 (before issue 9), default options otherwise.
+// Recorded from commit 3b6aab1 (before the matching-quality options), default options otherwise.
 constexpr Pinned kPinned[] = {
     {"graf", "aief-paper", false, 0x1cc9172ea1a7c734ull},
     {"graf", "aief-paper", true, 0x7df64bdbef7aea57ull},
@@ -61,7 +61,7 @@ ExtractorOptions pinned_options(const Pinned& pinned, KernelSet kernels, int thr
   return options;
 }
 
-TEST(PaperMode, ReproducesTheOutputOfBeforeIssue9ToTheByte) {
+TEST(PaperMode, ReproducesTheRecordedOutputToTheByte) {
   for (const Pinned& pinned : kPinned) {
     const cv::Mat gray = load_sample_gray(pinned.sequence, "img1.png");
     for (const KernelSet kernels : available_kernel_sets()) {

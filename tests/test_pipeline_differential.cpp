@@ -2,7 +2,7 @@
 // scale 1.01..4, blocks 8..1024, levels 1..14, every mode, both entropy measures, fixed and
 // automatic F) on textured random images and crops of the real samples; under every kernel set
 // this CPU runs at 1, 2 and 5 threads, the same bytes as the scalar reference at 1 thread
-// (DESIGN.md section 5). Each case is its own test, named by its index, and prints its options
+// (docs/design.md §12). Each case is its own test, named by its index, and prints its options
 // when it fails, so a failure reproduces alone: --gtest_filter='*/17'.
 //
 // Cost: about 12 extractions of an image of at most 539 x 539 per case; the case count is kept

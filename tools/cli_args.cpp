@@ -138,7 +138,7 @@ ExtractorOptions extractor_options(const Args& args) {
     if (const auto name = args.get("--mode")) mode = parse_mode(*name);
     options = options_for_mode(mode, options);
     if (entropy_flag) options.entropy = parse_entropy_measure(*entropy_flag);
-    // The quality options refine the mode (issue 9), so they apply after it.
+    // The quality options refine the mode (docs/design.md §11), so they apply after it.
     if (const auto pool = args.get("--pool")) options.candidate_pool = parse_candidate_pool(*pool);
     if (const auto map = args.get("--coordinates")) options.coordinates = parse_coordinate_map(*map);
     if (const auto subpixel = args.get("--subpixel")) options.subpixel = parse_on_off("--subpixel", *subpixel);

@@ -20,7 +20,7 @@ namespace {
 void print_help() {
   const SweepOptions d;
   std::cout << "usage: aief adapt A B [-o OUT.json] [--plot OUT.png] [options]\n\n"
-            << "Sweeps the entropy threshold F = 0, " << d.step << ", ... up to the entropy of A (DESIGN.md section 3)\n"
+            << "Sweeps the entropy threshold F = 0, " << d.step << ", ... up to the entropy of A (docs/design.md section 10)\n"
             << "and keeps the F with the highest correct matching rate among those with at least\n"
             << "--min-inliers RANSAC inliers.\n\n"
             << "  -o, --output FILE     {\"threshold\", \"curve\": [{threshold, kept_blocks, keypoints_a, keypoints_b,\n"

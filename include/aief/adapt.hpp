@@ -1,5 +1,5 @@
 #pragma once
-// The adaptive entropy threshold (DESIGN.md section 3, paper Eq. 7-11): sweep F over a pair of
+// The adaptive entropy threshold (docs/design.md §10, paper Eq. 7-11): sweep F over a pair of
 // images, keep the F whose matches have the highest correct matching rate (CMR = RANSAC inliers
 // / putative matches) among thresholds with at least min_inliers inliers.
 //
@@ -18,7 +18,7 @@
 namespace aief {
 
 struct SweepOptions {
-  double first_threshold = 0.0;  // F_0 (DESIGN.md section 3)
+  double first_threshold = 0.0;  // F_0 (docs/design.md §10)
   double step = 0.2;             // S_p; the sweep runs C = ceil(E / S_p) thresholds, E = entropy of A
   int min_inliers = 20;          // a threshold with fewer inliers cannot be chosen
   MatchOptions match;            // mutual nearest neighbours by default

@@ -1,5 +1,5 @@
 #pragma once
-// RANSAC homography, no OpenCV (DESIGN.md section 2): normalised 4-point DLT, a fixed-seed
+// RANSAC homography, no OpenCV (docs/design.md §9): normalised 4-point DLT, a fixed-seed
 // sampler over a canonical order of the matches (same input set, same answer, whatever its
 // order), least-squares refit on the inliers and inliers recounted against the final model.
 #include <array>
@@ -42,7 +42,7 @@ HomographyResult find_homography_ransac(const std::vector<Point2>& src, const st
 Point2 apply_homography(const Homography& H, Point2 p);
 
 // Mean distance between where `estimated` and `truth` send the four corners of a
-// width x height image: the homography accuracy of DESIGN.md section 4.
+// width x height image: the homography accuracy of docs/design.md §14.
 double mean_corner_error(const Homography& estimated, const Homography& truth, int width, int height);
 
 }  // namespace aief

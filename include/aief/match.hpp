@@ -1,5 +1,5 @@
 #pragma once
-// Brute-force Hamming matching of 256-bit descriptors (DESIGN.md section 2).
+// Brute-force Hamming matching of 256-bit descriptors (docs/design.md §9).
 #include <string_view>
 #include <vector>
 

@@ -1,12 +1,12 @@
 #pragma once
-// Options of the extractor. Defaults are DESIGN.md section 1 (ORB-SLAM2's settings); no other
+// Options of the extractor. Defaults are docs/design.md §1 (ORB-SLAM2's settings); no other
 // file repeats them: the CLI, the JSON writer and the tests read them from these structs.
 #include <string>
 #include <string_view>
 
 namespace aief {
 
-// How the keypoints of a level are spread over its blocks (DESIGN.md section 1).
+// How the keypoints of a level are spread over its blocks (docs/design.md §6).
 enum class Distribution {
   proportional,  // AIEF, Eq. 12-17: every block keeps min(R_i, k) for a water level k
   quadtree,      // ORB-SLAM2's DistributeOctTree with a full tie-break
@@ -19,7 +19,7 @@ enum class EntropyMeasure {
   intensity,  // the paper's literal Eq. 5-6: p_ij = f(i,j) / sum f
 };
 
-// Instruction set of the pixel kernels. Every set gives the same bytes (DESIGN.md section 5).
+// Instruction set of the pixel kernels. Every set gives the same bytes (docs/design.md §12).
 enum class KernelSet {
   auto_select,  // the best the CPU supports
   scalar,       // the reference in core/
@@ -44,12 +44,12 @@ enum class StarvationGuard {
 // What a level ranks its candidates by, in the candidate pool and the distribution.
 enum class CandidateRanking {
   peak_score,   // the FAST score of the corner pixel (ORB-SLAM2, the paper)
-  cross_score,  // the FAST score map summed over the corner and its four neighbours (issue 9)
+  cross_score,  // FAST scores summed over the corner and its 4 neighbours (docs/design.md §6)
 };
 
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
-  aief,              // AIEF with the matching-quality fixes of issue 9 (the defaults below)
+  aief,              // AIEF with six measured departures (docs/design.md §11; the defaults below)
   aief_paper,        // AIEF exactly as published: x * scale, no sub-pixel, no pool, frame guard
   orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
@@ -71,7 +71,7 @@ struct ExtractorOptions {
   // of the frame's own block entropies. `aief extract --threshold auto`.
   bool auto_threshold = false;
   // Level-0 position of a keypoint. The pyramid is pixel-centre aligned, so x * scale is off by
-  // 3-8 px at levels 6-7 (issue 9); the paper and ORB-SLAM2 modes keep it for fidelity.
+  // 3-8 px at levels 6-7 (docs/design.md §8); the paper and ORB-SLAM2 modes keep it for fidelity.
   CoordinateMap coordinates = CoordinateMap::pixel_centre;
   // Refine each keypoint to sub-pixel by a 3-point parabola per axis on the FAST score map.
   bool subpixel = true;
@@ -129,7 +129,7 @@ CandidateRanking parse_candidate_ranking(std::string_view name);
 // A candidate pool factor P: a number >= 1, or "inf" / "off" for no pool.
 double parse_candidate_pool(std::string_view text);
 
-// Fixed geometry of ORB (ORB-SLAM2 defaults, DESIGN.md section 1).
+// Fixed geometry of ORB (ORB-SLAM2 defaults, docs/design.md §7).
 constexpr int kPatchSize = 31;     // rBRIEF patch side
 constexpr int kPatchRadius = 15;   // half patch: orientation disc radius
 constexpr int kEdgeBorder = 19;    // keypoints lie at least this far from a level's edge

@@ -1,5 +1,6 @@
 #pragma once
-// Measures of the keypoints themselves, independent of descriptors (issue 9, `aief eval`).
+// Measures of the keypoints themselves, independent of descriptors (`aief eval`,
+// docs/design.md §14).
 #include <vector>
 
 #include "aief/homography.hpp"

@@ -14,7 +14,7 @@ namespace aief::eval {
 
 namespace {
 
-// The paper's figures (DESIGN.md section 4), by method and sequence; absent where it has none.
+// The paper's figures (docs/design.md §14), by method and sequence; absent where it has none.
 struct PaperFigures {
   std::map<std::string, double> cmr_percent, time_s;
 };
@@ -240,7 +240,7 @@ std::string markdown_report(const EvalRun& run, const std::string& plot_folder) 
          << fmt("%.2f", run.results[p][static_cast<std::size_t>(automatic)].threshold) << " |\n";
   }
 
-  // The matching-quality targets (issue 9), measured: both AIEF rows against cv::ORB.
+  // The matching-quality targets, measured: both AIEF rows against cv::ORB.
   const int orb = method_index(run, Method::opencv_orb), paper = method_index(run, Method::aief_paper_adaptive);
   if (orb >= 0) {
     md << "\n## Quality targets (AIEF against OpenCV ORB 1000, 1.2, 8)\n\n";
