@@ -11,8 +11,20 @@ namespace aief {
 
 namespace {
 
+// Where the drop-ins put a keypoint: ORB-SLAM's convention, level pixel x (an integer) at
+// x * scale_n in level 0. Frame::ComputeStereoMatches (ORB-SLAM2 and ORB-SLAM3) centres its SAD
+// window at round(x / scale_n) in mvImagePyramid and takes the disparity from x itself, so a
+// sub-pixel or pixel-centre x shifts that keypoint's disparity by x - scale_n * round(x / scale_n):
+// up to half a level pixel, times scale_n (docs/slam.md, "Stereo"). The engine's own defaults
+// (pixel-centre, sub-pixel) stay for everything else.
+ExtractorOptions with_orbslam_keypoint_convention(ExtractorOptions options) {
+  options.coordinates = CoordinateMap::scaled;
+  options.subpixel = false;
+  return options;
+}
+
 ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST) {
-  ExtractorOptions options;
+  ExtractorOptions options = with_orbslam_keypoint_convention({});
   options.n_features = nfeatures;
   options.scale_factor = scaleFactor;
   options.n_levels = nlevels;
@@ -68,7 +80,7 @@ void OrbSlamExtractorBase::compute_scales() {
 
 ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStorage& settings) {
   if (!settings.isOpened()) throw Error("settings file is not open");
-  ExtractorOptions options;
+  ExtractorOptions options = with_orbslam_keypoint_convention({});
   read_int(settings, "ORBextractor.nFeatures", options.n_features);
   read_int(settings, "ORBextractor.nLevels", options.n_levels);
   read_int(settings, "ORBextractor.iniThFAST", options.fast_threshold);
@@ -79,7 +91,21 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
     options.scale_factor = static_cast<float>(read_number(node, "ORBextractor.scaleFactor"));  // float, as Tracking.cc
   if (const cv::FileNode node = settings["ORBextractor.mode"]; !node.empty()) {
     if (!node.isString()) throw Error("ORBextractor.mode must be aief, orbslam2 or quadtree-entropy");
-    options = options_for_mode(parse_mode(static_cast<std::string>(node)), options);
+    options = with_orbslam_keypoint_convention(options_for_mode(parse_mode(static_cast<std::string>(node)), options));
+  }
+  if (const cv::FileNode node = settings["ORBextractor.coordinates"]; !node.empty()) {
+    if (!node.isString()) throw Error("ORBextractor.coordinates must be scaled or pixel-centre");
+    options.coordinates = parse_coordinate_map(static_cast<std::string>(node));
+  }
+  if (const cv::FileNode node = settings["ORBextractor.subpixel"]; !node.empty()) {
+    int subpixel = 0;
+    read_int(settings, "ORBextractor.subpixel", subpixel);
+    if (subpixel != 0 && subpixel != 1) throw Error("ORBextractor.subpixel must be 0 or 1, got " + std::to_string(subpixel));
+    options.subpixel = subpixel == 1;
+  }
+  if (const cv::FileNode node = settings["ORBextractor.candidatePool"]; !node.empty()) {
+    if (node.isString()) options.candidate_pool = parse_candidate_pool(static_cast<std::string>(node));
+    else options.candidate_pool = read_number(node, "ORBextractor.candidatePool");
   }
   if (const cv::FileNode node = settings["ORBextractor.entropyThreshold"]; !node.empty()) {
     if (node.isString() && static_cast<std::string>(node) == "auto") options.auto_threshold = true;

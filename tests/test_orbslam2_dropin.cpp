@@ -1,5 +1,6 @@
 // aief::ORBextractor behaves as ORB-SLAM2's ORBextractor where ORB-SLAM2 reads it (accessors,
 // call operator, settings keys) and computes exactly the engine's features.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -70,6 +71,8 @@ TEST(OrbSlam2DropIn, ConstructorArgumentsBecomeTheOptions) {
   EXPECT_EQ(o.fast_threshold, 25);
   EXPECT_EQ(o.fast_min_threshold, 9);
   EXPECT_EQ(o.distribution, ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
+  EXPECT_EQ(o.coordinates, CoordinateMap::scaled);  // ORB-SLAM's keypoint convention (docs/slam.md, "Stereo")
+  EXPECT_FALSE(o.subpixel);
   EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
 }
 
@@ -82,6 +85,8 @@ TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeaturesAndPyramid) {
   ExtractorOptions options;
   options.n_features = 800;
   options.scale_factor = 1.2f;  // the same options: ORB-SLAM2 passes a float
+  options.coordinates = CoordinateMap::scaled;  // and ORB-SLAM's keypoint convention (docs/slam.md)
+  options.subpixel = false;
   const Features features = extract(test::view_of(gray), options);
   ASSERT_GT(features.keypoints.size(), 700u);
   expect_same(features, keypoints, descriptors);
@@ -149,7 +154,7 @@ TEST(OrbSlam2DropIn, ReadsItsSettingsKeys) {
   const SettingsFile file(
       "ORBextractor.nFeatures: 1500\nORBextractor.scaleFactor: 1.3\nORBextractor.nLevels: 6\n"
       "ORBextractor.iniThFAST: 25\nORBextractor.minThFAST: 9\nORBextractor.mode: \"quadtree-entropy\"\n"
-      "ORBextractor.entropyThreshold: 3.5\nORBextractor.blockSize: 40\n");
+      "ORBextractor.entropyThreshold: 3.5\nORBextractor.blockSize: 40\nORBextractor.candidatePool: 1.5\n");
   const ORBextractor orb = ORBextractor::from_settings(file.open());
   const ExtractorOptions& o = orb.extractor().options();
   EXPECT_EQ(o.n_features, 1500);
@@ -162,6 +167,7 @@ TEST(OrbSlam2DropIn, ReadsItsSettingsKeys) {
   EXPECT_EQ(o.entropy_threshold, 3.5);
   EXPECT_FALSE(o.auto_threshold);
   EXPECT_EQ(o.block_size, 40);
+  EXPECT_EQ(o.candidate_pool, 1.5);
   EXPECT_EQ(orb.GetLevels(), 6);
   EXPECT_EQ(orb.GetScaleFactor(), 1.3f);
 }
@@ -199,6 +205,22 @@ TEST(OrbSlam2DropIn, SettingsModesAndAutoThreshold) {
     EXPECT_EQ(o.distribution, Distribution::proportional);
     EXPECT_TRUE(o.auto_threshold);
   }
+  {
+    const SettingsFile file("ORBextractor.mode: \"aief\"\n");  // the mode keeps ORB-SLAM's keypoint convention
+    const ExtractorOptions o = ORBextractor::options_from_settings(file.open());
+    EXPECT_EQ(o.coordinates, CoordinateMap::scaled);
+    EXPECT_FALSE(o.subpixel);
+  }
+  {
+    const SettingsFile file("ORBextractor.coordinates: \"pixel-centre\"\nORBextractor.subpixel: 1\n");
+    const ExtractorOptions o = ORBextractor::options_from_settings(file.open());
+    EXPECT_EQ(o.coordinates, CoordinateMap::pixel_centre);
+    EXPECT_TRUE(o.subpixel);
+  }
+  {
+    const SettingsFile file("ORBextractor.candidatePool: \"off\"\n");  // docs/slam.md: spread, as the quadtree
+    EXPECT_TRUE(std::isinf(ORBextractor::options_from_settings(file.open()).candidate_pool));
+  }
 }
 
 TEST(OrbSlam2DropIn, SettingsErrorsNameTheKey) {
@@ -216,6 +238,9 @@ TEST(OrbSlam2DropIn, SettingsErrorsNameTheKey) {
   EXPECT_NE(message_of("ORBextractor.scaleFactor: \"big\"\n").find("ORBextractor.scaleFactor"), std::string::npos);
   EXPECT_NE(message_of("ORBextractor.entropyThreshold: \"high\"\n").find("ORBextractor.entropyThreshold"), std::string::npos);
   EXPECT_NE(message_of("ORBextractor.mode: \"sift\"\n").find("sift"), std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.subpixel: 2\n").find("ORBextractor.subpixel"), std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.coordinates: \"centre\"\n").find("centre"), std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.candidatePool: 0.5\n").find("candidate_pool"), std::string::npos);  // from validate()
   EXPECT_NE(message_of("ORBextractor.scaleFactor: 0.5\n").find("scale_factor"), std::string::npos);  // from validate()
   EXPECT_THROW(ORBextractor::from_settings(cv::FileStorage()), Error);
 }

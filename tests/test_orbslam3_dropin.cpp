@@ -2,6 +2,7 @@
 // (accessors, the call operator with its lapping area and returned count, settings keys) and
 // computes exactly the engine's features. The settings parsing itself is shared with the
 // ORB-SLAM2 drop-in and tested in depth there.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,8 @@ ExtractorOptions options_of(int nfeatures, float scale_factor) {
   ExtractorOptions options;
   options.n_features = nfeatures;
   options.scale_factor = scale_factor;  // ORB-SLAM3 passes a float
+  options.coordinates = CoordinateMap::scaled;  // the drop-ins' keypoint convention (docs/slam.md, "Stereo")
+  options.subpixel = false;
   return options;
 }
 
@@ -99,6 +102,25 @@ TEST(OrbSlam3DropIn, ConstructorArgumentsBecomeTheOptions) {
   EXPECT_EQ(o.fast_min_threshold, 9);
   EXPECT_EQ(o.distribution, ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
   EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
+}
+
+// Frame::ComputeStereoMatches centres its SAD window at round(x / scale) in mvImagePyramid and
+// takes the disparity from x: every keypoint must sit at scale_n times a level pixel, or its
+// disparity is off by the difference (docs/slam.md, "Stereo").
+TEST(OrbSlam3DropIn, KeypointsSitOnTheLevelPixelsStereoMatchingReads) {
+  const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
+  ORBextractor orb(1000, 1.2f, 8, 20, 7);
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  std::vector<int> stereo = {0, 0};
+  orb(gray, cv::Mat(), keypoints, descriptors, stereo);
+  ASSERT_GT(keypoints.size(), 900u);
+  for (const cv::KeyPoint& kp : keypoints) {
+    const float scale = orb.GetScaleFactors()[static_cast<std::size_t>(kp.octave)];
+    const float inverse = orb.GetInverseScaleFactors()[static_cast<std::size_t>(kp.octave)];
+    ASSERT_NEAR(kp.pt.x, scale * std::round(kp.pt.x * inverse), 1e-3f) << "octave " << kp.octave;
+    ASSERT_NEAR(kp.pt.y, scale * std::round(kp.pt.y * inverse), 1e-3f) << "octave " << kp.octave;
+  }
 }
 
 // Frame.cc's calls: stereo pinhole and RGB-D pass {0, 0}, monocular {0, 1000}, stereo fisheye the

@@ -21,7 +21,8 @@ class OrbSlamExtractorBase {
   // The options from a settings file as ORB-SLAM2 and ORB-SLAM3 read it: ORBextractor.nFeatures,
   // .scaleFactor, .nLevels, .iniThFAST, .minThFAST, and ours: ORBextractor.mode (aief | orbslam2
   // | quadtree-entropy), ORBextractor.entropyThreshold (a number, or "auto"),
-  // ORBextractor.blockSize, ORBextractor.threads (0 = TBB's default). Missing keys keep ExtractorOptions' defaults; a value of the wrong
+  // ORBextractor.blockSize, ORBextractor.threads (0 = TBB's default), ORBextractor.candidatePool
+  // (a number >= 1, or "off"). Missing keys keep ExtractorOptions' defaults; a value of the wrong
   // kind (text for a number, 1.5 for an integer, an unknown mode) throws aief::Error naming the
   // key, out-of-range values throw from ExtractorOptions::validate. scaleFactor is rounded to
   // float, as both versions' Tracking reads it, so settings and the five-number constructor give
