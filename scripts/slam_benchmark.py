@@ -1,0 +1,120 @@
+#!/usr/bin/python3
+"""ORB-SLAM3 with its own extractor and with the aief drop-in, on scripts/make_sequences.py's
+sequences: ATE, frames tracked, losses, keyframes, tracking and extraction time (docs/slam.md).
+
+  slam_benchmark.py --stock ORB_SLAM3_STOCK --aief ORB_SLAM3_AIEF --vocabulary VOC.txt \
+                    --sequences SEQ_DIR --out OUT [--runs 5] [--families a,b] [--sensors mono,stereo]
+                    [--variant NAME=BUILD[:KEY=VALUE;KEY=VALUE]]...
+
+--stock / --aief: ORB-SLAM3 folders whose Examples/Monocular/mono_euroc and
+Examples/Stereo/stereo_euroc were built (stock, and with the drop-in; compile with
+-DREGISTER_TIMES for the timing columns). Variants default to "stock=stock" and
+"aief=aief:ORBextractor.threads=1"; extra keys go into a copy of the sequence's settings file.
+Runs of a cell are interleaved across variants (run 1 of each, then run 2...) so that the load of
+the machine falls on all of them alike; finished runs are kept and skipped when re-run.
+Writes OUT/results.json, OUT/table.md, OUT/plots/*.png.
+"""
+import argparse
+import json
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from slambench import evaluate, orbslam3, report  # noqa: E402
+
+
+def parse_variant(text):
+    name, _, rest = text.partition("=")
+    build, _, keys = rest.partition(":")
+    if not name or build not in ("stock", "aief"):
+        raise argparse.ArgumentTypeError(f"variant {text!r}: expected NAME=stock|aief[:KEY=VALUE;...]")
+    extra = {}
+    for item in filter(None, keys.split(";")):
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise argparse.ArgumentTypeError(f"variant {text!r}: {item!r} is not KEY=VALUE")
+        extra[key] = value
+    return name, build, extra
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--stock", required=True)
+    parser.add_argument("--aief", required=True)
+    parser.add_argument("--vocabulary", required=True)
+    parser.add_argument("--sequences", required=True)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--families", default=None, help="default: every folder of --sequences")
+    parser.add_argument("--sensors", default="mono,stereo")
+    parser.add_argument("--variant", action="append", type=parse_variant)
+    parser.add_argument("--timeout", type=float, default=600.0)
+    parser.add_argument("--report-only", action="store_true", help="summarise the runs already in OUT")
+    args = parser.parse_args()
+    variants = args.variant or [("stock", "stock", {}), ("aief", "aief", {"ORBextractor.threads": "1"})]
+    families = args.families.split(",") if args.families else sorted(
+        d for d in os.listdir(args.sequences) if os.path.exists(os.path.join(args.sequences, d, "times.txt")))
+    sensors = args.sensors.split(",")
+    if not os.path.exists(args.vocabulary):
+        parser.error(f"no vocabulary at {args.vocabulary}")
+    builds = {"stock": args.stock, "aief": args.aief}
+    programs = {}
+    if not args.report_only:
+        try:
+            programs = {(build, sensor): orbslam3.program_path(root, sensor) for build, root in builds.items() for sensor in sensors
+                        if any(v[1] == build for v in variants)}
+        except FileNotFoundError as error:
+            parser.error(str(error))
+
+    for family in families:
+        sequence = os.path.abspath(os.path.join(args.sequences, family))
+        for sensor in sensors:
+            for run in range(args.runs if not args.report_only else 0):
+                for name, build, extra in variants:
+                    workdir = os.path.join(args.out, "runs", family, sensor, name, f"{run:02d}")
+                    if os.path.exists(os.path.join(workdir, "result.json")):
+                        continue
+                    os.makedirs(workdir, exist_ok=True)
+                    settings = os.path.join(workdir, "settings.yaml")
+                    orbslam3.write_settings(os.path.join(sequence, f"{sensor}.yaml"), extra, settings)
+                    code, seconds = orbslam3.run(programs[(build, sensor)], os.path.abspath(args.vocabulary), settings, sequence, workdir, args.timeout)
+                    result = evaluate.evaluate_run(workdir, sequence, sensor, code, seconds)
+                    json.dump(result, open(os.path.join(workdir, "result.json"), "w"), indent=1)
+                    ate = "fail" if result["ate"] is None else f"{result['ate'] * 1000:.1f} mm"
+                    print(f"{family} {sensor} {name} run {run}: ATE {ate}, tracked {result['tracked_share']:.0%}, "
+                          f"keyframes {result['keyframes']}, {seconds:.0f} s", flush=True)
+    write_report(args.out, families, sensors, [v[0] for v in variants], args.sequences)
+
+
+def write_report(out, families, sensors, variant_names, sequences):
+    runs, summaries = {}, {}
+    for family in families:
+        for sensor in sensors:
+            for name in variant_names:
+                cell = evaluate.load_runs(os.path.join(out, "runs", family, sensor, name))
+                if cell:
+                    runs[(family, sensor, name)] = cell
+                    summaries[(family, sensor, name)] = evaluate.summarise([result for _, result in cell])
+    json.dump({"|".join(key): value for key, value in summaries.items()}, open(os.path.join(out, "results.json"), "w"), indent=1)
+    open(os.path.join(out, "table.md"), "w").write(report.table(summaries, variant_names))
+    plots = os.path.join(out, "plots")
+    os.makedirs(plots, exist_ok=True)
+    results_only = {key: [result for _, result in cell] for key, cell in runs.items()}
+    for sensor in sensors:
+        if any(key[1] == sensor for key in runs):
+            report.plot_ate(results_only, families, variant_names, sensor, os.path.join(plots, f"ate_{sensor}.png"))
+        for family in families:
+            aligned = {}
+            for name in variant_names:
+                workdir = evaluate.median_run(runs.get((family, sensor, name), []))
+                if workdir:
+                    aligned[name] = evaluate.save_aligned_trajectory(workdir, os.path.abspath(os.path.join(sequences, family)), sensor,
+                                                                      os.path.join(plots, f"aligned_{family}_{sensor}_{name}.npy"))
+            if aligned:
+                report.plot_trajectories(aligned, family, sensor, os.path.join(plots, f"trajectory_{family}_{sensor}.png"))
+    print(open(os.path.join(out, "table.md")).read())
+
+
+if __name__ == "__main__":
+    main()
