@@ -10,8 +10,9 @@ sequences: ATE, frames tracked, losses, keyframes, tracking and extraction time 
 Examples/Stereo/stereo_euroc were built (stock, and with the drop-in; compile with
 -DREGISTER_TIMES for the timing columns). Variants default to "stock=stock" and
 "aief=aief:ORBextractor.threads=1"; extra keys go into a copy of the sequence's settings file.
-Runs of a cell are interleaved across variants (run 1 of each, then run 2...) so that the load of
-the machine falls on all of them alike; finished runs are kept and skipped when re-run.
+Runs are interleaved across variants and cells (run 1 of every cell, then run 2...) so that the
+load of the machine falls on all of them alike and a stopped benchmark leaves every cell with as
+many runs as possible; finished runs are kept and skipped when re-run.
 Writes OUT/results.json, OUT/table.md, OUT/plots/*.png.
 """
 import argparse
@@ -67,10 +68,11 @@ def main():
         except FileNotFoundError as error:
             parser.error(str(error))
 
-    for family in families:
-        sequence = os.path.abspath(os.path.join(args.sequences, family))
-        for sensor in sensors:
-            for run in range(args.runs if not args.report_only else 0):
+    # Run k of every cell before run k + 1 of any: stopped early, every cell has as many runs as possible.
+    for run in range(args.runs if not args.report_only else 0):
+        for family in families:
+            sequence = os.path.abspath(os.path.join(args.sequences, family))
+            for sensor in sensors:
                 for name, build, extra in variants:
                     workdir = os.path.join(args.out, "runs", family, sensor, name, f"{run:02d}")
                     if os.path.exists(os.path.join(workdir, "result.json")):
