@@ -42,6 +42,18 @@ void MatchOptions::validate() const {
     throw Error("max_distance must be in [0, 256], got " + std::to_string(max_distance));
 }
 
+MatchOptions match_options_given(std::optional<std::string_view> matcher, std::optional<double> ratio,
+                                 std::string_view ratio_named, std::string_view matcher_named) {
+  MatchOptions options;
+  if (matcher) options.kind = parse_matcher_kind(*matcher);
+  if (ratio && options.kind != MatcherKind::ratio)
+    throw Error(std::string(ratio_named) + " applies to " + std::string(matcher_named) + " ratio only, not " +
+                std::string(to_string(options.kind)));
+  if (ratio) options.ratio = *ratio;
+  options.validate();
+  return options;
+}
+
 namespace {
 
 // Nearest and second nearest train of one query, and the nearest query of each train over a

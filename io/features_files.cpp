@@ -5,10 +5,12 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <variant>
 
 #include <opencv2/core.hpp>
 
 #include "aief/error.hpp"
+#include "core/option_table.hpp"
 #include "io/json_writer.hpp"
 #include "io/npz_writer.hpp"
 
@@ -16,13 +18,13 @@ namespace aief::io {
 
 namespace {
 
-void write_options(JsonWriter& json, const ExtractorOptions& o) {
+// Every field of the options, from the option table (core/option_table.hpp).
+void write_options(JsonWriter& json, const ExtractorOptions& options) {
   json.key("options").begin_object();
-  json.field("n_features", o.n_features).field("scale_factor", o.scale_factor).field("n_levels", o.n_levels);
-  json.field("fast_threshold", o.fast_threshold).field("fast_min_threshold", o.fast_min_threshold);
-  json.field("block_size", o.block_size).field("distribution", to_string(o.distribution));
-  json.field("entropy", to_string(o.entropy)).field("entropy_threshold", o.entropy_threshold);
-  json.field("auto_threshold", o.auto_threshold).field("kernels", to_string(o.kernels)).field("threads", o.threads);
+  for (const auto& [key, value] : option_table::record_of(options)) {
+    json.key(key);
+    std::visit([&](const auto& v) { json.value(v); }, value);
+  }
   json.end_object();
 }
 

@@ -1,10 +1,12 @@
 #include "aief/orbslam_extractor_base.hpp"
 
-#include <cmath>
-#include <limits>
+#include <algorithm>
+#include <charconv>
 #include <string>
+#include <vector>
 
 #include "aief/error.hpp"
+#include "core/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
 namespace aief {
@@ -33,20 +35,17 @@ ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, 
   return options;
 }
 
-double read_number(const cv::FileNode& node, const char* key) {
-  if (!node.isInt() && !node.isReal()) throw Error(std::string(key) + " must be a number");
-  return node.real();
-}
-
-// ORB-SLAM reads these with an int conversion that truncates; a fractional or huge value is a
-// typo we would rather name than silently change.
-void read_int(const cv::FileStorage& settings, const char* key, int& value) {
-  const cv::FileNode node = settings[key];
-  if (node.empty()) return;
-  const double number = read_number(node, key);
-  if (number != std::floor(number) || number < std::numeric_limits<int>::min() || number > std::numeric_limits<int>::max())
-    throw Error(std::string(key) + " must be an integer, got " + std::to_string(number));
-  value = static_cast<int>(number);
+// A settings value as the text the option table parses: FileStorage keeps numbers as int or
+// double (written back by their shortest round-trip text), names and words as strings.
+std::string text_of_node(const cv::FileNode& node, const std::string& key) {
+  if (node.isInt()) return std::to_string(static_cast<int>(node));
+  if (node.isReal()) {
+    char buffer[32];
+    const double value = node.real();
+    return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+  }
+  if (node.isString()) return static_cast<std::string>(node);
+  throw Error(key + " must be a number or a name, not a list or a map");
 }
 
 }  // namespace
@@ -80,38 +79,24 @@ void OrbSlamExtractorBase::compute_scales() {
 
 ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStorage& settings) {
   if (!settings.isOpened()) throw Error("settings file is not open");
-  ExtractorOptions options = with_orbslam_keypoint_convention({});
-  read_int(settings, "ORBextractor.nFeatures", options.n_features);
-  read_int(settings, "ORBextractor.nLevels", options.n_levels);
-  read_int(settings, "ORBextractor.iniThFAST", options.fast_threshold);
-  read_int(settings, "ORBextractor.minThFAST", options.fast_min_threshold);
-  read_int(settings, "ORBextractor.blockSize", options.block_size);
-  read_int(settings, "ORBextractor.threads", options.threads);
-  if (const cv::FileNode node = settings["ORBextractor.scaleFactor"]; !node.empty())
-    options.scale_factor = static_cast<float>(read_number(node, "ORBextractor.scaleFactor"));  // float, as Tracking.cc
-  if (const cv::FileNode node = settings["ORBextractor.mode"]; !node.empty()) {
-    if (!node.isString()) throw Error("ORBextractor.mode must be aief, orbslam2 or quadtree-entropy");
-    options = with_orbslam_keypoint_convention(options_for_mode(parse_mode(static_cast<std::string>(node)), options));
+  std::vector<option_table::GivenOption> given;
+  for (const option_table::OptionRow& row : option_table::rows()) {
+    if (!row.has_front_ends()) continue;
+    const std::string key(row.yaml_key);
+    if (const cv::FileNode node = settings[key]; !node.empty()) given.push_back({&row, text_of_node(node, key), key});
   }
-  if (const cv::FileNode node = settings["ORBextractor.coordinates"]; !node.empty()) {
-    if (!node.isString()) throw Error("ORBextractor.coordinates must be scaled or pixel-centre");
-    options.coordinates = parse_coordinate_map(static_cast<std::string>(node));
+  // The drop-ins' own defaults over the mode's: ORB-SLAM's keypoint convention, unless set.
+  const ExtractorOptions convention = with_orbslam_keypoint_convention({});
+  for (const char* key : {"coordinates", "subpixel"}) {
+    const option_table::OptionRow& row = option_table::row(key);
+    const bool set = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.row == &row; });
+    if (!set) given.push_back({&row, option_table::text_of(row, row.field.get(convention)), std::string(row.yaml_key)});
   }
-  if (const cv::FileNode node = settings["ORBextractor.subpixel"]; !node.empty()) {
-    int subpixel = 0;
-    read_int(settings, "ORBextractor.subpixel", subpixel);
-    if (subpixel != 0 && subpixel != 1) throw Error("ORBextractor.subpixel must be 0 or 1, got " + std::to_string(subpixel));
-    options.subpixel = subpixel == 1;
-  }
-  if (const cv::FileNode node = settings["ORBextractor.candidatePool"]; !node.empty()) {
-    if (node.isString()) options.candidate_pool = parse_candidate_pool(static_cast<std::string>(node));
-    else options.candidate_pool = read_number(node, "ORBextractor.candidatePool");
-  }
-  if (const cv::FileNode node = settings["ORBextractor.entropyThreshold"]; !node.empty()) {
-    if (node.isString() && static_cast<std::string>(node) == "auto") options.auto_threshold = true;
-    else if (node.isInt() || node.isReal()) options.entropy_threshold = node.real();
-    else throw Error("ORBextractor.entropyThreshold must be a number or \"auto\"");
-  }
+  ExtractorOptions options = option_table::resolve_options(given);
+  // Both versions' Tracking read scaleFactor into a float: so do we, so that settings and the
+  // five-number constructor give the same extractor.
+  options.scale_factor = static_cast<float>(options.scale_factor);
+  options.validate();
   return options;
 }
 

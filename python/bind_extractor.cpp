@@ -1,13 +1,16 @@
-// aief.Extractor: ExtractorOptions as keyword arguments (defaults read from the C++ struct),
-// extract() with the GIL released, and the options back as a dict.
+// aief.Extractor: ExtractorOptions as keyword arguments (the option table's Python keywords,
+// core/option_table.hpp), extract() with the GIL released, and the options back as a dict.
 #include <algorithm>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include <pybind11/stl.h>
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "core/option_table.hpp"
 #include "io/image_io.hpp"
 #include "python/bindings.hpp"
 #include "python/extraction_rendezvous.hpp"
@@ -31,85 +34,108 @@ PyFeatures PyExtractor::extract(const py::object& image) {
 
 namespace {
 
-// The CLI's order (tools/cli_args.cpp): entropy measure and kernels, then the mode's preset,
-// then F; validate() is the one authority on ranges.
-// The matching-quality options (docs/design.md §11) refine the mode; None keeps the mode's value.
-struct QualityOverrides {
-  py::object pool;  // a number >= 1, or "inf" / "off"
-  std::optional<std::string> coordinates, starvation_guard, ranking;
-  std::optional<bool> subpixel, auto_skips_uniform_blocks, auto_requires_two_classes;
-};
+namespace table = option_table;
 
-void apply(const QualityOverrides& q, ExtractorOptions& options) {
-  if (!q.pool.is_none()) {
-    if (py::isinstance<py::str>(q.pool))
-      options.candidate_pool = parse_candidate_pool(q.pool.cast<std::string>());
-    else if (!py::isinstance<py::bool_>(q.pool) && (py::isinstance<py::float_>(q.pool) || py::isinstance<py::int_>(q.pool)))
-      options.candidate_pool = q.pool.cast<double>();
-    else
-      throw Error("pool must be a number >= 1 or \"inf\", got " + std::string(py::repr(q.pool)));
-  }
-  if (q.coordinates) options.coordinates = parse_coordinate_map(*q.coordinates);
-  if (q.starvation_guard) options.starvation_guard = parse_starvation_guard(*q.starvation_guard);
-  if (q.subpixel) options.subpixel = *q.subpixel;
-  if (q.auto_skips_uniform_blocks) options.auto_skips_uniform_blocks = *q.auto_skips_uniform_blocks;
-  if (q.ranking) options.candidate_ranking = parse_candidate_ranking(*q.ranking);
-  if (q.auto_requires_two_classes) options.auto_requires_two_classes = *q.auto_requires_two_classes;
+bool is_bool(const py::handle& value) {
+  const std::string type = py::str(py::type::of(value).attr("__name__"));
+  return py::isinstance<py::bool_>(value) || type == "bool_" || type == "bool";  // numpy.bool_ too
 }
 
-ExtractorOptions options_from(int n_features, const std::string& mode, const py::object& threshold, int levels, double scale,
-                              int threads, const std::string& kernels, int fast_threshold, int fast_min_threshold,
-                              int block_size, const std::optional<std::string>& entropy, long long max_image_pixels,
-                              const QualityOverrides& quality) {
-  ExtractorOptions options;
-  options.n_features = n_features;
-  options.n_levels = levels;
-  options.scale_factor = scale;
-  options.threads = threads;
-  options.kernels = parse_kernel_set(kernels);
-  options.fast_threshold = fast_threshold;
-  options.fast_min_threshold = fast_min_threshold;
-  options.block_size = block_size;
-  options.max_image_pixels = max_image_pixels;
-  if (entropy) options.entropy = parse_entropy_measure(*entropy);
-  options = options_for_mode(parse_mode(mode), options);
-  apply(quality, options);
-  if (py::isinstance<py::str>(threshold)) {
-    const std::string text = threshold.cast<std::string>();
-    if (text != "auto") throw Error("threshold must be a number of bits or \"auto\", got \"" + text + "\"");
-    options.auto_threshold = true;
-  } else if (py::isinstance<py::bool_>(threshold) || !(py::isinstance<py::float_>(threshold) || py::isinstance<py::int_>(threshold))) {
-    throw Error("threshold must be a number of bits or \"auto\", got " + std::string(py::repr(threshold)));
-  } else {
-    options.entropy_threshold = threshold.cast<double>();
-  }
-  options.validate();
-  return options;
+[[noreturn]] void wrong_type(const table::OptionRow& row, const py::handle& value, const char* wanted) {
+  throw py::type_error(std::string(row.python_keyword) + " must be " + wanted + ", got " + std::string(py::repr(value)) +
+                       " (" + py::type::of(value).attr("__name__").cast<std::string>() + ")");
 }
 
-py::dict options_dict(const ExtractorOptions& o) {
+// A keyword's value as the text the option table parses: integers by their digits, numbers by
+// their shortest repr (which reads back as the same double), names and words as they are. numpy
+// scalars count as the numbers they are; a bool is no number. Wrong types raise TypeError; wrong
+// values raise aief.Error from the table's parser, as the CLI's do.
+std::string text_of_keyword(const table::OptionRow& row, const py::handle& value) {
+  const bool is_text = py::isinstance<py::str>(value);
+  switch (row.kind()) {
+    case table::ValueKind::integer:
+      if (is_bool(value) || !PyIndex_Check(value.ptr())) wrong_type(row, value, "an integer");
+      return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
+    case table::ValueKind::number:
+      if (is_text && !row.words.empty()) return value.cast<std::string>();
+      if (is_bool(value) || is_text || !PyNumber_Check(value.ptr()))
+        wrong_type(row, value, row.words.empty() ? "a number" : "a number or a word");
+      return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
+    case table::ValueKind::choice:
+      if (!is_text) wrong_type(row, value, "a name (str)");
+      return value.cast<std::string>();
+    case table::ValueKind::toggle:
+      if (is_text) return value.cast<std::string>();
+      if (!is_bool(value)) wrong_type(row, value, "a bool");
+      return table::text_of(row, value.cast<bool>());
+  }
+  return {};
+}
+
+// Extractor(*args, **kwargs): positional arguments in the table's python_position order, then the
+// keywords; None means not given (the mode's value). Resolved by the table, as the CLI is.
+ExtractorOptions options_from(const py::args& args, const py::kwargs& kwargs) {
+  std::vector<const table::OptionRow*> positional;
+  for (const table::OptionRow& row : table::rows())
+    if (row.python_position > 0) positional.push_back(&row);
+  std::sort(positional.begin(), positional.end(),
+            [](const table::OptionRow* a, const table::OptionRow* b) { return a->python_position < b->python_position; });
+  if (args.size() > positional.size())
+    throw py::type_error("Extractor() takes at most " + std::to_string(positional.size()) + " positional arguments (" +
+                         std::to_string(args.size()) + " given)");
+  std::vector<std::pair<const table::OptionRow*, py::handle>> values;
+  for (std::size_t i = 0; i < args.size(); ++i) values.emplace_back(positional[i], args[i]);
+  for (const auto& [key, value] : kwargs) {
+    const std::string keyword = py::str(key);
+    const table::OptionRow* row = nullptr;
+    for (const table::OptionRow& r : table::rows())
+      if (r.has_front_ends() && r.python_keyword == keyword) row = &r;
+    if (!row) throw py::type_error("Extractor() got an unexpected keyword argument '" + keyword + "'");
+    for (const auto& [given, unused] : values)
+      if (given == row) throw py::type_error("Extractor() got multiple values for argument '" + keyword + "'");
+    values.emplace_back(row, value);
+  }
+  std::vector<table::GivenOption> given;
+  for (const auto& [row, value] : values)
+    if (!value.is_none()) given.push_back({row, text_of_keyword(*row, value), std::string(row->python_keyword)});
+  return table::resolve_options(given);
+}
+
+// The record of the options, as Python values ("inf" as float('inf')).
+py::dict options_dict(const ExtractorOptions& options) {
   py::dict d;
-  d["n_features"] = o.n_features;
-  d["scale_factor"] = o.scale_factor;
-  d["n_levels"] = o.n_levels;
-  d["fast_threshold"] = o.fast_threshold;
-  d["fast_min_threshold"] = o.fast_min_threshold;
-  d["block_size"] = o.block_size;
-  d["distribution"] = std::string(to_string(o.distribution));
-  d["entropy"] = std::string(to_string(o.entropy));
-  d["entropy_threshold"] = o.entropy_threshold;
-  d["auto_threshold"] = o.auto_threshold;
-  d["coordinates"] = std::string(to_string(o.coordinates));
-  d["subpixel"] = o.subpixel;
-  d["candidate_pool"] = o.candidate_pool;
-  d["starvation_guard"] = std::string(to_string(o.starvation_guard));
-  d["auto_skips_uniform_blocks"] = o.auto_skips_uniform_blocks;
-  d["candidate_ranking"] = std::string(to_string(o.candidate_ranking));
-  d["auto_requires_two_classes"] = o.auto_requires_two_classes;
-  d["kernels"] = std::string(to_string(o.kernels));
-  d["threads"] = o.threads;
-  d["max_image_pixels"] = o.max_image_pixels;
+  for (const auto& [key, value] : table::record_of(options)) {
+    const std::string name(key);
+    std::visit(
+        [&](const auto& v) {
+          using T = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<T, std::string_view>) {
+            if (table::row(key).kind() == table::ValueKind::number) d[name.c_str()] = py::float_(std::stod(std::string(v)));
+            else d[name.c_str()] = std::string(v);
+          } else {
+            d[name.c_str()] = v;
+          }
+        },
+        value);
+  }
   return d;
+}
+
+// The constructor's docstring: every keyword with its default, from the table.
+std::string extractor_doc() {
+  std::string doc =
+      "ORB features with the AIEF entropy mask. Extractor(n_features, mode, threshold, levels, scale, threads, "
+      "kernels, **keywords): a mode sets its options first, the keywords given override them, and a keyword the "
+      "mode cannot honour is refused (as aief's CLI does). None keeps the mode's value. A wrong type raises "
+      "TypeError, a wrong value aief.Error.\n\nKeywords:\n";
+  for (const table::OptionRow& row : table::rows()) {
+    if (!row.has_front_ends()) continue;
+    doc += "  " + std::string(row.python_keyword) + ": " + std::string(row.help) + " (";
+    if (row.kind() == table::ValueKind::choice) doc += table::expected_values(row) + "; ";
+    else if (row.kind() == table::ValueKind::toggle) doc += "True / False; ";
+    doc += "default " + table::defaults_text(row) + ")\n";
+  }
+  return doc;
 }
 
 }  // namespace
@@ -131,34 +157,11 @@ void bind_extractor(py::module_& m) {
                std::to_string(f.image_height) + ">";
       }, "keypoint count and image size");
 
-  const ExtractorOptions d;
-  py::class_<PyExtractor>(m, "Extractor",
-                          "ORB features with the AIEF entropy mask. Defaults are the C++ ExtractorOptions'; "
-                          "pool, coordinates, subpixel, starvation_guard, auto_skips_uniform_blocks, ranking and "
-                          "auto_requires_two_classes left None "
-                          "keep the mode's values (as the CLI's flags). Invalid values raise aief.Error.")
-      .def(py::init([](int n_features, const std::string& mode, const py::object& threshold, int levels, double scale,
-                       int threads, const std::string& kernels, int fast_threshold, int fast_min_threshold, int block_size,
-                       const std::optional<std::string>& entropy, long long max_image_pixels, const py::object& pool,
-                       const std::optional<std::string>& coordinates, const std::optional<bool>& subpixel,
-                       const std::optional<std::string>& starvation_guard, const std::optional<bool>& auto_skips_uniform_blocks,
-                       const std::optional<std::string>& ranking, const std::optional<bool>& auto_requires_two_classes) {
-             const QualityOverrides quality{pool,     coordinates, starvation_guard,         ranking,
-                                            subpixel, auto_skips_uniform_blocks, auto_requires_two_classes};
-             return std::make_unique<PyExtractor>(options_from(n_features, mode, threshold, levels, scale, threads, kernels,
-                                                               fast_threshold, fast_min_threshold, block_size, entropy,
-                                                               max_image_pixels, quality));
-           }),
-           py::arg("n_features") = d.n_features, py::arg("mode") = std::string(to_string(Mode::aief)),
-           py::arg("threshold") = py::float_(d.entropy_threshold), py::arg("levels") = d.n_levels,
-           py::arg("scale") = d.scale_factor, py::arg("threads") = d.threads,
-           py::arg("kernels") = std::string(to_string(d.kernels)), py::kw_only(),
-           py::arg("fast_threshold") = d.fast_threshold, py::arg("fast_min_threshold") = d.fast_min_threshold,
-           py::arg("block_size") = d.block_size, py::arg("entropy") = py::none(),
-           py::arg("max_image_pixels") = d.max_image_pixels, py::arg("pool") = py::none(), py::arg("coordinates") = py::none(),
-           py::arg("subpixel") = py::none(), py::arg("starvation_guard") = py::none(),
-           py::arg("auto_skips_uniform_blocks") = py::none(), py::arg("ranking") = py::none(),
-           py::arg("auto_requires_two_classes") = py::none())
+  static const std::string doc = extractor_doc();
+  py::class_<PyExtractor>(m, "Extractor", doc.c_str())
+      .def(py::init([](const py::args& args, const py::kwargs& kwargs) {
+        return std::make_unique<PyExtractor>(options_from(args, kwargs));
+      }))
       .def("extract", &PyExtractor::extract, py::arg("image"),
            "Features of a 2-D uint8 gray image (any strides; not copied when its rows are contiguous) or an "
            "H x W x 3 BGR / H x W x 4 BGRA uint8 image (converted to gray as the aief CLI converts files). "
@@ -185,6 +188,27 @@ void bind_extractor(py::module_& m) {
 }
 
 void bind_testing(py::module_& m) {
+  m.def("_option_table", [] {
+    py::list rows;
+    for (const table::OptionRow& row : table::rows()) {
+      if (!row.has_front_ends()) continue;
+      py::dict r;
+      r["key"] = std::string(row.key);
+      r["keyword"] = std::string(row.python_keyword);
+      r["kind"] = std::string(row.kind() == table::ValueKind::integer  ? "integer"
+                              : row.kind() == table::ValueKind::number ? "number"
+                              : row.kind() == table::ValueKind::choice ? "choice"
+                                                                       : "toggle");
+      r["low"] = row.low;
+      r["high"] = row.high;
+      py::list names;
+      if (row.field.choices)
+        for (std::string_view name : row.field.choices()->names) names.append(std::string(name));
+      r["names"] = names;
+      rows.append(r);
+    }
+    return rows;
+  }, "Test hook: the option table's rows that have front ends (core/option_table.hpp)");
   m.def("_arm_extraction_rendezvous", &arm_extraction_rendezvous, py::arg("parties"), py::arg("timeout_s"),
         "Test hook: every extraction waits, GIL released, until `parties` are inside at once (0 disarms)");
   m.def("_image_data_address", [](const py::object& image) {

@@ -1,4 +1,6 @@
 // aief.match, aief.find_homography and aief.adapt on numpy arrays.
+#include <optional>
+#include <sstream>
 #include <string>
 
 #include <pybind11/stl.h>
@@ -7,6 +9,7 @@
 #include "aief/error.hpp"
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
+#include "core/matcher.hpp"
 #include "python/bindings.hpp"
 #include "python/py_extractor.hpp"
 
@@ -50,10 +53,9 @@ py::tuple homography_tuple(const HomographyResult& result, std::size_t n) {
   return py::make_tuple(H, mask);
 }
 
-MatchOptions match_options(const std::string& matcher, double ratio, int max_distance) {
-  MatchOptions options;
-  options.kind = parse_matcher_kind(matcher);
-  options.ratio = ratio;
+// The CLI's rule (core/matcher.hpp): ratio only with matcher="ratio".
+MatchOptions match_options(const std::string& matcher, const std::optional<double>& ratio, int max_distance) {
+  MatchOptions options = match_options_given(matcher, ratio, "ratio", "matcher");
   options.max_distance = max_distance;
   options.validate();
   return options;
@@ -63,9 +65,16 @@ MatchOptions match_options(const std::string& matcher, double ratio, int max_dis
 
 void bind_matching(py::module_& m) {
   const MatchOptions md;
+  std::ostringstream ratio_default;
+  ratio_default << md.ratio;
+  static const std::string match_doc =
+      "Hamming matches of descriptors a (N x 32 uint8, or Features) into b: an M x 3 int32 array of (query, train, "
+      "distance), sorted by query. matcher: mutual | ratio | paper; ratio (Lowe's, default " + ratio_default.str() +
+      ") goes with matcher='ratio' only, as aief match --ratio.";
   m.def(
       "match",
-      [](const py::object& a, const py::object& b, const std::string& matcher, double ratio, int max_distance) {
+      [](const py::object& a, const py::object& b, const std::string& matcher, const std::optional<double>& ratio,
+         int max_distance) {
         const MatchOptions options = match_options(matcher, ratio, max_distance);
         const std::vector<Descriptor> da = descriptors_from(a, "a"), db = descriptors_from(b, "b");
         std::vector<Match> matches;
@@ -75,10 +84,9 @@ void bind_matching(py::module_& m) {
         }
         return matches_array(matches);
       },
-      py::arg("a"), py::arg("b"), py::arg("matcher") = std::string(to_string(md.kind)), py::arg("ratio") = md.ratio,
+      py::arg("a"), py::arg("b"), py::arg("matcher") = std::string(to_string(md.kind)), py::arg("ratio") = py::none(),
       py::arg("max_distance") = md.max_distance,
-      "Hamming matches of descriptors a (N x 32 uint8, or Features) into b: an M x 3 int32 array of "
-      "(query, train, distance), sorted by query. matcher: mutual | ratio | paper.");
+      match_doc.c_str());
 
   const RansacOptions rd;
   m.def(

@@ -240,8 +240,14 @@ TEST(OrbSlam2DropIn, SettingsErrorsNameTheKey) {
   EXPECT_NE(message_of("ORBextractor.mode: \"sift\"\n").find("sift"), std::string::npos);
   EXPECT_NE(message_of("ORBextractor.subpixel: 2\n").find("ORBextractor.subpixel"), std::string::npos);
   EXPECT_NE(message_of("ORBextractor.coordinates: \"centre\"\n").find("centre"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.candidatePool: 0.5\n").find("candidate_pool"), std::string::npos);  // from validate()
-  EXPECT_NE(message_of("ORBextractor.scaleFactor: 0.5\n").find("scale_factor"), std::string::npos);  // from validate()
+  EXPECT_NE(message_of("ORBextractor.candidatePool: 0.5\n").find("ORBextractor.candidatePool expects"), std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.scaleFactor: 0.5\n").find("ORBextractor.scaleFactor expects a number in (1, 4]"),
+            std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.scaleFactor: 1.00000001\n").find("scale_factor"), std::string::npos);  // validate()
+  // A mode's conflicts are refused as in the CLI, named by the keys.
+  EXPECT_NE(message_of("ORBextractor.mode: \"orbslam2\"\nORBextractor.entropyThreshold: 5\n")
+                .find("ORBextractor.entropyThreshold sets F of the entropy mask, which ORBextractor.mode orbslam2 turns off"),
+            std::string::npos);
   EXPECT_THROW(ORBextractor::from_settings(cv::FileStorage()), Error);
 }
 

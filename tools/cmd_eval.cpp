@@ -98,22 +98,7 @@ int run_eval(const Arguments& arguments) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  try {
-    if (const auto pool = args.get("--pool")) settings.aief.candidate_pool = parse_candidate_pool(*pool);
-    if (const auto map = args.get("--coordinates")) settings.aief.coordinates = parse_coordinate_map(*map);
-    if (const auto subpixel = args.get("--subpixel")) {
-      if (*subpixel != "on" && *subpixel != "off") throw Error("--subpixel expects on or off, got '" + *subpixel + "'");
-      settings.aief.subpixel = *subpixel == "on";
-    }
-    if (const auto guard = args.get("--starvation-guard")) settings.aief.starvation_guard = parse_starvation_guard(*guard);
-    if (const auto ranking = args.get("--ranking")) settings.aief.candidate_ranking = parse_candidate_ranking(*ranking);
-    if (const auto two = args.get("--auto-two-classes")) {
-      if (*two != "on" && *two != "off") throw Error("--auto-two-classes expects on or off, got '" + *two + "'");
-      settings.aief.auto_requires_two_classes = *two == "on";
-    }
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
+  settings.aief = extractor_options(args);  // the AIEF rows' flags, by the option table as in extract
   std::vector<eval::Method> methods = eval::kAllMethods;
   if (const auto keys = args.get("--methods")) {
     methods.clear();

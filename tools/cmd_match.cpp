@@ -1,6 +1,7 @@
 // aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o matches.json] [--draw matches.png]
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "aief/adapt.hpp"
@@ -8,6 +9,7 @@
 #include "aief/extractor.hpp"
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
+#include "core/matcher.hpp"
 #include "io/drawing.hpp"
 #include "io/image_io.hpp"
 #include "io/json_writer.hpp"
@@ -54,22 +56,20 @@ int run_match(const Arguments& arguments) {
   spec.push_back({"--output", "-o", true});
   spec.push_back({"--draw", "", true});
   spec.push_back({"--pairs", "", true});
-  spec.push_back({"--features", "", true});
   spec.push_back({"--help", "-h", false});
   const Args args(arguments, spec);
   if (args.has("--help")) {
     print_help();
     return 0;
   }
+  std::optional<double> ratio;
+  if (args.has("--ratio")) ratio = args.get_double("--ratio", 0.0, 0.0, 1.0, /*min_is_exclusive=*/true);
   MatchOptions match_options;
   try {
-    if (const auto kind = args.get("--matcher")) match_options.kind = parse_matcher_kind(*kind);
+    match_options = match_options_given(args.get("--matcher"), ratio, "--ratio", "--matcher");
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  if (args.has("--ratio") && match_options.kind != MatcherKind::ratio)
-    throw UsageError("--ratio applies to --matcher ratio only, not " + std::string(to_string(match_options.kind)));
-  match_options.ratio = args.get_double("--ratio", match_options.ratio, 0.0, 1.0, /*min_is_exclusive=*/true);
   if (args.has("--pairs")) return run_match_pairs(args, match_options);
   if (args.positionals().size() != 2) throw UsageError("match expects two images A B (aief match --help)");
   check_picture_flag(args, "--draw");

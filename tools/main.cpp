@@ -9,6 +9,7 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "aief/version.hpp"
 #include "simd/kernels.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
@@ -75,9 +76,10 @@ int main(int argc, char** argv) {
       print_usage(first.empty() ? std::cerr : std::cout);
       return first.empty() ? 2 : 0;
     }
-    if (first == "--print-kernels") return print_kernels();
-    if (first == "--version") {
-      std::cout << "aief 0.1.0\n";
+    if (first == "--print-kernels" || first == "--version") {
+      if (argc > 2) throw aief::cli::UsageError(std::string(first) + " takes no argument, got '" + argv[2] + "'");
+      if (first == "--print-kernels") return print_kernels();
+      std::cout << "aief " << aief::kVersionString << "\n";
       return 0;
     }
     for (const Command& command : kCommands) {

@@ -19,14 +19,13 @@ class OrbSlamExtractorBase {
   explicit OrbSlamExtractorBase(const ExtractorOptions& options);
 
   // The options from a settings file as ORB-SLAM2 and ORB-SLAM3 read it: ORBextractor.nFeatures,
-  // .scaleFactor, .nLevels, .iniThFAST, .minThFAST, and ours: ORBextractor.mode (aief | orbslam2
-  // | quadtree-entropy), ORBextractor.entropyThreshold (a number, or "auto"),
-  // ORBextractor.blockSize, ORBextractor.threads (0 = TBB's default), ORBextractor.candidatePool
-  // (a number >= 1, or "off"). Missing keys keep ExtractorOptions' defaults; a value of the wrong
-  // kind (text for a number, 1.5 for an integer, an unknown mode) throws aief::Error naming the
-  // key, out-of-range values throw from ExtractorOptions::validate. scaleFactor is rounded to
-  // float, as both versions' Tracking reads it, so settings and the five-number constructor give
-  // the same extractor. Also the way to change nFeatures for the monocular initialiser.
+  // .scaleFactor, .nLevels, .iniThFAST, .minThFAST, and ours: every extractor option has a key
+  // (ORBextractor.mode, .entropyThreshold (a number or "auto"), .blockSize, .threads, ...; the
+  // list is the option table's, core/option_table.cpp, and `aief extract --help` explains each).
+  // Missing keys keep the mode's values; a wrong value throws aief::Error naming the key and what
+  // it accepts; a mode's conflicts are refused as in the CLI. scaleFactor is rounded to float, as
+  // both versions' Tracking reads it, so settings and the five-number constructor give the same
+  // extractor. Also the way to change nFeatures for the monocular initialiser.
   static ExtractorOptions options_from_settings(const cv::FileStorage& settings);
 
   // The tables of ORB-SLAM's constructor (both versions): scale_n = scale_(n-1) * scaleFactor

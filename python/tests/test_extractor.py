@@ -122,37 +122,37 @@ def test_flat_image_has_no_keypoints():
     assert len(features) == 0 and features.descriptors.shape == (0, 32)
 
 
+# The messages name the keyword as given and what it accepts, from the option table (as the CLI's).
 @pytest.mark.parametrize("kwargs, message", [
-    (dict(n_features=0), "n_features must be in"),
-    (dict(n_features=1_000_001), "n_features must be in"),
-    (dict(levels=0), "n_levels must be in"),
-    (dict(levels=33), "n_levels must be in"),
-    (dict(scale=1.0), "scale_factor must be > 1"),
-    (dict(scale=4.5), "scale_factor must be > 1"),
-    (dict(scale=float("nan")), "scale_factor"),
-    (dict(threads=-1), "threads must be in"),
-    (dict(threads=257), "threads must be in"),
-    (dict(fast_threshold=0), "fast_threshold must be in"),
-    (dict(fast_threshold=255), "fast_threshold must be in"),
+    (dict(n_features=0), r"n_features expects an integer in \[1, 1000000\], got '0'"),
+    (dict(n_features=1_000_001), "n_features expects an integer in"),
+    (dict(n_features=2**40), "n_features expects an integer in"),
+    (dict(levels=0), "levels expects an integer in"),
+    (dict(levels=33), "levels expects an integer in"),
+    (dict(scale=1.0), r"scale expects a number in \(1, 4\], got '1.0'"),
+    (dict(scale=4.5), "scale expects a number in"),
+    (dict(scale=float("nan")), "scale expects a number in"),
+    (dict(scale=1.00000001), "scale_factor must be > 1 and <= 4 in single precision"),
+    (dict(threads=-1), "threads expects an integer in"),
+    (dict(threads=257), "threads expects an integer in"),
+    (dict(fast_threshold=0), "fast_threshold expects an integer in"),
+    (dict(fast_threshold=255), "fast_threshold expects an integer in"),
     (dict(fast_threshold=10, fast_min_threshold=11), "fast_min_threshold must be in"),
-    (dict(fast_min_threshold=0), "fast_min_threshold must be in"),
-    (dict(block_size=7), "block_size must be in"),
-    (dict(block_size=1025), "block_size must be in"),
-    (dict(threshold=-0.5), "entropy_threshold must be in"),
-    (dict(threshold=65), "entropy_threshold must be in"),
-    (dict(threshold=float("inf")), "entropy_threshold must be in"),
-    (dict(threshold="fast"), "threshold must be a number of bits or \"auto\""),
-    (dict(threshold=True), "threshold must be a number of bits or \"auto\""),
-    (dict(threshold=None), "threshold must be a number of bits or \"auto\""),
+    (dict(fast_min_threshold=0), "fast_min_threshold expects an integer in"),
+    (dict(block_size=7), "block_size expects an integer in"),
+    (dict(block_size=1025), "block_size expects an integer in"),
+    (dict(threshold=-0.5), "threshold expects a number in"),
+    (dict(threshold=65), "threshold expects a number in"),
+    (dict(threshold=float("inf")), "threshold expects a number in"),
+    (dict(threshold="fast"), r"threshold expects a number in \[0, 64\] or auto, got 'fast'"),
     (dict(mode="orb"), "unknown mode"),
     (dict(kernels="neon9"), "unknown kernel set"),
     (dict(entropy="shannon"), "unknown entropy"),
-    (dict(max_image_pixels=0), "max_image_pixels must be in"),
-    (dict(max_image_pixels=2**26 + 1), "max_image_pixels must be in"),
-    (dict(pool=0.5), "candidate_pool must be >= 1"),
-    (dict(pool=float("nan")), "candidate_pool must be >= 1"),
-    (dict(pool="big"), "candidate pool must be a number >= 1 or inf"),
-    (dict(pool=True), "pool must be a number >= 1"),
+    (dict(max_image_pixels=0), "max_image_pixels expects an integer in"),
+    (dict(max_image_pixels=2**26 + 1), "max_image_pixels expects an integer in"),
+    (dict(pool=0.5), "pool expects a number >= 1, inf or off"),
+    (dict(pool=float("nan")), "pool expects a number >= 1"),
+    (dict(pool="big"), "pool expects a number >= 1, inf or off, got 'big'"),
     (dict(coordinates="rounded"), "unknown coordinate"),
     (dict(starvation_guard="block"), "unknown starvation guard"),
 ])
@@ -162,8 +162,9 @@ def test_invalid_options_raise_aief_error(kwargs, message):
     assert isinstance(error.value, ValueError)
 
 
-@pytest.mark.parametrize("kwargs", [dict(n_features=1.5), dict(levels="8"), dict(scale="big"), dict(n_features=2**40),
-                                    dict(unknown=1)])
+# A value of the wrong type (a bool is no number) raises TypeError, as Python's own calls do.
+@pytest.mark.parametrize("kwargs", [dict(n_features=1.5), dict(levels="8"), dict(scale="big"), dict(unknown=1),
+                                    dict(threshold=True), dict(pool=True)])
 def test_wrong_types_raise_type_error(kwargs):
     with pytest.raises(TypeError):
         aief.Extractor(**kwargs)

@@ -1,0 +1,99 @@
+"""aief.Extractor's keywords: every row of the option table (core/option_table.hpp) reaches the engine, and
+the CLI's rule holds: the mode first, the keywords given over it, a conflict refused; numbers as numbers."""
+import numpy
+import pytest
+
+import aief
+
+ROWS = aief._aief._option_table()
+
+
+def other_value(row, default):
+    """A value of the row other than its default, valid alone (the C++ test's choice)."""
+    if row["kind"] == "integer":
+        return default + 1 if default + 1 <= row["high"] else default - 1
+    if row["kind"] == "number":
+        return default * 1.25 if default * 1.25 <= row["high"] else default * 0.8
+    if row["kind"] == "toggle":
+        return not default
+    return next(name for name in row["names"]
+                if name != default and name not in ("off", "sse4.2", "avx2", "avx512", "neon64"))
+
+
+@pytest.mark.parametrize("row", ROWS, ids=[row["keyword"] for row in ROWS])
+def test_every_keyword_reaches_the_options(row):
+    if row["key"] == "mode":
+        assert aief.Extractor(mode="orbslam2").options["distribution"] == "quadtree"
+        return
+    default = aief.default_options()[row["key"]]
+    value = other_value(row, default)
+    options = aief.Extractor(**{row["keyword"]: value}).options
+    assert options[row["key"]] == value
+    assert {k: v for k, v in options.items() if k != row["key"]} == {
+        k: v for k, v in aief.default_options().items() if k != row["key"]}
+
+
+def test_positional_arguments_keep_their_order():
+    options = aief.Extractor(300, "quadtree-entropy", 3.5, 6, 1.3, 1, "scalar").options
+    assert (options["n_features"], options["distribution"], options["entropy_threshold"], options["n_levels"],
+            options["scale_factor"], options["threads"], options["kernels"]) == (300, "quadtree", 3.5, 6, 1.3, 1, "scalar")
+    with pytest.raises(TypeError, match="multiple values"):
+        aief.Extractor(300, n_features=400)
+
+
+# The mode sets its values first and the keywords given override them, as the CLI does. Before, the
+# keywords were set first and the mode's preset overwrote them: entropy='off' kept the mask on.
+@pytest.mark.parametrize("mode", ["aief", "aief-paper", "quadtree-entropy"])
+def test_entropy_off_turns_the_mask_off_in_every_mode(mode):
+    assert aief.Extractor(mode=mode, entropy="off").options["entropy"] == "off"
+
+
+def test_a_keyword_the_mode_cannot_honour_is_refused():
+    # Before: mode='orbslam2', entropy='histogram' silently gave off.
+    with pytest.raises(aief.Error, match="mode orbslam2 means entropy off"):
+        aief.Extractor(mode="orbslam2", entropy="histogram")
+    # Before: entropy='off', threshold=7 ran with the mask at F = 7.
+    with pytest.raises(aief.Error, match="threshold sets F of the entropy mask, which entropy off turns off"):
+        aief.Extractor(entropy="off", threshold=7)
+    with pytest.raises(aief.Error, match="which mode orbslam2 turns off"):
+        aief.Extractor(mode="orbslam2", threshold="auto")
+
+
+def test_none_keeps_the_modes_value():
+    assert aief.Extractor(threshold=None, pool=None).options == aief.default_options()
+    assert aief.Extractor(mode="aief-paper", coordinates=None).options["coordinates"] == "scaled"
+
+
+def test_numpy_scalars_are_the_numbers_they_hold():
+    # Before: threshold=numpy.float32(3) was refused as "not a number".
+    options = aief.Extractor(threshold=numpy.float32(3), n_features=numpy.int64(500), pool=numpy.float64(2),
+                             scale=numpy.float32(1.5)).options
+    assert (options["entropy_threshold"], options["n_features"], options["candidate_pool"]) == (3.0, 500, 2.0)
+    assert options["scale_factor"] == float(numpy.float32(1.5))
+
+
+@pytest.mark.parametrize("kwargs", [dict(n_features=True), dict(levels=False), dict(threshold=True), dict(pool=True),
+                                    dict(n_features=numpy.bool_(True)), dict(scale=numpy.bool_(True)),
+                                    dict(n_features=numpy.float32(3)), dict(subpixel=1), dict(mode=2)])
+def test_bools_are_no_numbers_and_numbers_no_bools(kwargs):
+    # Before: n_features=True was accepted as 1.
+    with pytest.raises(TypeError):
+        aief.Extractor(**kwargs)
+
+
+def test_numbers_follow_the_cli_rules():
+    assert aief.Extractor(threshold=1e-320).options["entropy_threshold"] == 1e-320
+    assert str(aief.Extractor(threshold=-0.0).options["entropy_threshold"]) == "0.0"
+    with pytest.raises(aief.Error, match=r"n_features expects an integer in \[1, 1000000\], got '1099511627776'"):
+        aief.Extractor(n_features=2**40)
+    with pytest.raises(aief.Error, match="threshold expects a number in"):
+        aief.Extractor(threshold="0x10")
+
+
+def test_ratio_goes_with_the_ratio_matcher_only():
+    descriptors = numpy.random.default_rng(1).integers(0, 256, (40, 32), dtype=numpy.uint8)
+    # Before: ratio=0.1 without matcher='ratio' was ignored; the CLI refuses it.
+    with pytest.raises(aief.Error, match="ratio applies to matcher ratio only, not mutual"):
+        aief.match(descriptors, descriptors, ratio=0.1)
+    assert len(aief.match(descriptors, descriptors, matcher="ratio", ratio=0.9)) > 0
+    assert len(aief.match(descriptors, descriptors)) == 40

@@ -1,0 +1,289 @@
+// The option table (core/option_table.hpp): every field of ExtractorOptions is a row, and every
+// row reaches every front end (a CLI flag, an ORB-SLAM settings key, the output record; the
+// Python keyword in python/tests/test_options.py), each given value taking effect. The number
+// syntax, the enum names, and the one resolution rule (the mode first, the options given over it,
+// conflicts refused).
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <string>
+#include <variant>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <sys/wait.h>
+
+#include "aief/error.hpp"
+#include "aief/orbslam2_extractor.hpp"
+#include "aief/version.hpp"
+#include "core/option_names.hpp"
+#include "core/option_table.hpp"
+#include "tests/test_support.hpp"
+
+namespace aief {
+namespace {
+
+namespace table = option_table;
+
+// The number of fields of an aggregate: the most initialisers it takes.
+struct AnyValue {
+  template <class T>
+  operator T() const;
+};
+template <class T, class... Values>
+constexpr std::size_t field_count() {
+  if constexpr (requires { T{Values{}..., AnyValue{}}; }) return field_count<T, Values..., AnyValue>();
+  else return sizeof...(Values);
+}
+
+std::vector<const table::OptionRow*> field_rows() {
+  std::vector<const table::OptionRow*> out;
+  for (const table::OptionRow& row : table::rows())
+    if (row.is_field()) out.push_back(&row);
+  return out;
+}
+
+// A value of the row other than its default, valid alone, as a front end writes it.
+std::string other_value(const table::OptionRow& row) {
+  const table::OptionValue value = row.field.get(ExtractorOptions{});
+  switch (row.kind()) {
+    case table::ValueKind::integer: {
+      const long long v = std::get<long long>(value);
+      return std::to_string(v + 1 <= row.high ? v + 1 : v - 1);
+    }
+    case table::ValueKind::number: {
+      const double v = std::get<double>(value);
+      return table::text_of(row, v * 1.25 <= row.high ? v * 1.25 : v * 0.8);
+    }
+    case table::ValueKind::choice:
+      for (std::string_view name : row.field.choices()->names)
+        if (name != std::get<std::string_view>(value) && name != "off" && name != "avx2" && name != "avx512" &&
+            name != "sse4.2" && name != "neon64")
+          return std::string(name);  // off is a conflict with --threshold; a kernel set may be missing here
+      break;
+    case table::ValueKind::toggle: return table::text_of(row, !std::get<bool>(value));
+  }
+  return "";
+}
+
+TEST(OptionTable, EveryFieldOfExtractorOptionsIsARow) {
+  EXPECT_EQ(field_count<ExtractorOptions>(), field_rows().size());
+  ExtractorOptions changed;
+  std::set<std::string_view> keys;
+  for (const table::OptionRow* row : field_rows()) {
+    EXPECT_TRUE(keys.insert(row->key).second) << row->key;
+    // Each row's setter writes its own field: the record changes in that key alone.
+    if (!row->has_front_ends()) continue;
+    ExtractorOptions options;
+    row->field.set(options, table::parse_value(*row, other_value(*row), row->key));
+    const auto before = table::record_of(ExtractorOptions{}), after = table::record_of(options);
+    int differing = 0;
+    for (std::size_t i = 0; i < before.size(); ++i)
+      if (before[i].second != after[i].second) {
+        ++differing;
+        EXPECT_EQ(before[i].first, row->key);
+      }
+    EXPECT_EQ(differing, 1) << row->key;
+  }
+}
+
+TEST(OptionTable, EveryRowHasEveryFrontEndOnce) {
+  std::set<std::string_view> flags, keywords, yaml_keys;
+  std::set<int> positions;
+  for (const table::OptionRow& row : table::rows()) {
+    SCOPED_TRACE(std::string(row.key));
+    EXPECT_FALSE(row.help.empty());
+    if (!row.has_front_ends()) {
+      // Record-only rows are set through another row: distribution by the mode, auto_threshold by --threshold auto.
+      EXPECT_TRUE(row.key == "distribution" || row.key == "auto_threshold");
+      continue;
+    }
+    EXPECT_TRUE(row.cli_flag.starts_with("--") && flags.insert(row.cli_flag).second);
+    EXPECT_TRUE(!row.python_keyword.empty() && keywords.insert(row.python_keyword).second);
+    EXPECT_TRUE(row.yaml_key.starts_with("ORBextractor.") && yaml_keys.insert(row.yaml_key).second);
+    if (row.python_position > 0) {
+      EXPECT_TRUE(positions.insert(row.python_position).second);
+    }
+  }
+  EXPECT_EQ(positions.size(), 7u);
+}
+
+struct CliResult {
+  int status = -1;
+  std::string output;
+};
+
+CliResult run_cli(const std::string& arguments) {
+  CliResult result;
+  FILE* pipe = popen((std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 512> buffer{};
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+// The JSON text the record holds for `text` given to `row`.
+std::string record_json(const table::OptionRow& row, const std::string& text) {
+  ExtractorOptions options;
+  row.field.set(options, table::parse_value(row, text, row.key));
+  for (const auto& [key, value] : table::record_of(options))
+    if (key == row.key) {
+      if (const auto* name = std::get_if<std::string_view>(&value)) return "\"" + std::string(*name) + "\"";
+      if (const auto* flag = std::get_if<bool>(&value)) return *flag ? "true" : "false";
+      if (const auto* integer = std::get_if<long long>(&value)) return std::to_string(*integer);
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.17g", std::get<double>(value));  // io/json_writer.cpp's format
+      return buffer;
+    }
+  return "";
+}
+
+TEST(OptionTable, EveryCliFlagReachesTheOutputRecord) {
+  const test::TempFolder folder("aief_option_table");
+  const std::string image = test::sample_path("boat", "img1.png");
+  for (const table::OptionRow& row : table::rows()) {
+    if (!row.is_field() || !row.has_front_ends()) continue;
+    const std::string value = other_value(row), output = folder.file("f.json");
+    const CliResult r = run_cli("extract " + image + " " + std::string(row.cli_flag) + " " + value + " -o " + output);
+    ASSERT_EQ(r.status, 0) << row.cli_flag << " " << value << "\n" << r.output;
+    std::ifstream in(output);
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string expected = "\"" + std::string(row.key) + "\":" + record_json(row, value);
+    EXPECT_NE(json.find(expected), std::string::npos) << row.cli_flag << " " << value << ": no " << expected;
+  }
+  // --help lists every flag.
+  const CliResult help = run_cli("extract --help");
+  for (const table::OptionRow& row : table::rows())
+    if (row.has_front_ends()) {
+      EXPECT_NE(help.output.find(std::string(row.cli_flag) + " "), std::string::npos) << row.cli_flag;
+    }
+}
+
+TEST(OptionTable, EverySettingsKeyReachesTheOptions) {
+  for (const table::OptionRow& row : table::rows()) {
+    if (!row.is_field() || !row.has_front_ends()) continue;
+    const std::string value = other_value(row);
+    const bool is_text = row.kind() == table::ValueKind::choice || row.kind() == table::ValueKind::toggle;
+    const std::string yaml = "%YAML:1.0\n" + std::string(row.yaml_key) + ": " + (is_text ? "\"" + value + "\"" : value) + "\n";
+    const cv::FileStorage settings(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+    const ExtractorOptions options = ORBextractor::options_from_settings(settings);
+    ExtractorOptions expected;
+    row.field.set(expected, table::parse_value(row, value, row.key));
+    expected.scale_factor = static_cast<float>(expected.scale_factor);  // read into a float, as Tracking.cc
+    EXPECT_EQ(table::record_of(options), table::record_of(expected)) << row.yaml_key << ": " << value;
+  }
+}
+
+TEST(OptionTable, NumbersAreDecimalWithinTheRowsRange) {
+  const auto error_of = [](std::string_view key, std::string_view text) -> std::string {
+    try {
+      table::parse_value(table::row(key), text, "--x");
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  // Hex was read as 16 by --threshold and --pool (std::stod), refused by --features (std::stoll).
+  for (std::string_view key : {"entropy_threshold", "candidate_pool", "n_features", "scale_factor"})
+    EXPECT_NE(error_of(key, "0x10"), "") << key;
+  for (std::string_view text : {" 5", "5 ", "5.5.5", "1e", "e5", "+", "-", ".", "nan", "infinity", "1,5", "--5", "5f"})
+    EXPECT_NE(error_of("entropy_threshold", text), "") << text;
+  // 1e-320 (a subnormal) is inside [0, 64]; strtod's ERANGE refused it.
+  EXPECT_EQ(error_of("entropy_threshold", "1e-320"), "");
+  EXPECT_NE(error_of("entropy_threshold", "1e400"), "");
+  // -0 is 0, never printed as -0.
+  const table::OptionValue zero = table::parse_value(table::row("entropy_threshold"), "-0", "--threshold");
+  EXPECT_FALSE(std::signbit(std::get<double>(zero)));
+  for (std::string_view text : {"+5", "-0", ".5", "5.", "1E1", "2e+1", "3e-1"})
+    EXPECT_EQ(error_of("entropy_threshold", text), "") << text;
+  EXPECT_EQ(error_of("n_features", "+500"), "");
+  EXPECT_NE(error_of("n_features", "5e2"), "");
+  EXPECT_NE(error_of("n_features", "99999999999999999999"), "");
+  EXPECT_NE(error_of("n_features", "1000001").find("--x expects an integer in [1, 1000000], got '1000001'"), std::string::npos);
+  EXPECT_NE(error_of("scale_factor", "1").find("--x expects a number in (1, 4], got '1'"), std::string::npos);
+  EXPECT_NE(error_of("entropy_threshold", "x").find("a number in [0, 64] or auto"), std::string::npos);
+  EXPECT_NE(error_of("candidate_pool", "0.5").find("a number >= 1, inf or off"), std::string::npos);
+}
+
+TEST(OptionTable, TheCliReadsNumbersByTheTable) {
+  const std::string image = test::sample_path("boat", "img1.png");
+  for (const char* flags : {"--threshold 0x10", "--pool 0x10", "--features 0x10", "--scale 0x1.8p0", "--threshold inf"}) {
+    const CliResult r = run_cli("extract " + image + " " + flags);
+    EXPECT_EQ(r.status, 2) << flags << "\n" << r.output;
+  }
+  const CliResult tiny = run_cli("extract " + image + " --threshold 1e-320");
+  EXPECT_EQ(tiny.status, 0) << tiny.output;
+  const CliResult zero = run_cli("extract " + image + " --threshold -0");
+  EXPECT_EQ(zero.status, 0) << zero.output;
+  EXPECT_EQ(zero.output.find("-0"), std::string::npos) << zero.output;
+}
+
+TEST(OptionTable, VersionIsTheBuildsAndTakesNoArgument) {
+  const CliResult version = run_cli("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_EQ(version.output, std::string("aief ") + kVersionString + "\n");
+  const CliResult extra = run_cli("--version extra");
+  EXPECT_EQ(extra.status, 2) << extra.output;
+  EXPECT_NE(extra.output.find("--version takes no argument"), std::string::npos) << extra.output;
+}
+
+ExtractorOptions resolve(const std::vector<std::pair<std::string_view, std::string>>& given) {
+  std::vector<table::GivenOption> list;
+  for (const auto& [key, text] : given) list.push_back({&table::row(key), text, std::string(key)});
+  return table::resolve_options(list);
+}
+
+std::string resolve_error(const std::vector<std::pair<std::string_view, std::string>>& given) {
+  try {
+    resolve(given);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OptionTable, TheModeSetsTheOptionsGivenOverrideConflictsAreRefused) {
+  // Given options apply after the mode, whatever the order they came in.
+  EXPECT_EQ(resolve({{"entropy", "off"}}).entropy, EntropyMeasure::off);
+  EXPECT_EQ(resolve({{"entropy", "off"}, {"mode", "aief-paper"}}).entropy, EntropyMeasure::off);
+  EXPECT_EQ(resolve({{"coordinates", "pixel-centre"}, {"mode", "orbslam2"}}).coordinates, CoordinateMap::pixel_centre);
+  EXPECT_EQ(resolve({{"mode", "quadtree-entropy"}, {"entropy", "intensity"}}).distribution, Distribution::quadtree);
+  EXPECT_TRUE(resolve({{"entropy_threshold", "auto"}}).auto_threshold);
+  EXPECT_TRUE(std::isinf(resolve({{"candidate_pool", "off"}}).candidate_pool));
+  // The mode's definition cannot be overridden; F cannot apply without the mask.
+  EXPECT_NE(resolve_error({{"mode", "orbslam2"}, {"entropy", "histogram"}}).find("mode orbslam2 means entropy off"),
+            std::string::npos);
+  EXPECT_EQ(resolve_error({{"mode", "orbslam2"}, {"entropy", "off"}}), "");
+  EXPECT_NE(resolve_error({{"entropy", "off"}, {"entropy_threshold", "7"}}).find("which entropy off turns off"),
+            std::string::npos);
+  EXPECT_NE(resolve_error({{"mode", "orbslam2"}, {"entropy_threshold", "auto"}}).find("which mode orbslam2 turns off"),
+            std::string::npos);
+  // validate() still has the last word.
+  EXPECT_NE(resolve_error({{"fast_threshold", "10"}, {"fast_min_threshold", "11"}}).find("fast_min_threshold"),
+            std::string::npos);
+  // options_for_mode is the same table.
+  for (const auto& mode : option_names::Table<Mode>::names)
+    EXPECT_EQ(table::record_of(resolve({{"mode", std::string(mode.name)}})), table::record_of(options_for_mode(mode.value)))
+        << mode.name;
+}
+
+TEST(OptionTable, EnumNamesAndTheirEnumeratorsRead) {
+  EXPECT_EQ(parse_kernel_set("avx512bw"), KernelSet::avx512bw);
+  EXPECT_EQ(parse_kernel_set("sse4_2"), KernelSet::sse4_2);
+  EXPECT_EQ(parse_candidate_ranking("cross_score"), CandidateRanking::cross_score);
+  EXPECT_EQ(parse_coordinate_map("pixel_centre"), CoordinateMap::pixel_centre);
+  try {
+    parse_mode("orb");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "unknown mode 'orb' (expected aief, aief-paper, orbslam2 or quadtree-entropy)");
+  }
+}
+
+}  // namespace
+}  // namespace aief
