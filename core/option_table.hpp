@@ -9,7 +9,7 @@
 // How to add an option:
 //   1. a field with its default and one comment in ExtractorOptions (include/aief/options.hpp);
 //      an enum gets its name table in core/option_names.hpp;
-//   2. one row in kRows (core/option_table.cpp): record key, CLI flag, Python keyword, settings
+//   2. one row in make_rows() (core/option_table.cpp): record key, CLI flag, Python keyword, settings
 //      key, help, kind and range, the value each mode sets, whether it changes the output.
 // Nothing else: every front end, --help, validate() and the records pick the row up.
 //
