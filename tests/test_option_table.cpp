@@ -64,7 +64,7 @@ std::string other_value(const table::OptionRow& row) {
             name != "sse4.2" && name != "neon64")
           return std::string(name);  // off is a conflict with --threshold; a kernel set may be missing here
       break;
-    case table::ValueKind::toggle: return table::text_of(row, !std::get<bool>(value));
+    case table::ValueKind::toggle: return table::text_of(row, !std::get<bool>(value));  // the drop-ins' too
   }
   return "";
 }
@@ -172,7 +172,9 @@ TEST(OptionTable, EverySettingsKeyReachesTheOptions) {
     const std::string yaml = "%YAML:1.0\n" + std::string(row.yaml_key) + ": " + (is_text ? "\"" + value + "\"" : value) + "\n";
     const cv::FileStorage settings(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     const ExtractorOptions options = ORBextractor::options_from_settings(settings);
-    ExtractorOptions expected;
+    // The drop-ins' defaults (ORB-SLAM's keypoint convention) with the one key changed.
+    ExtractorOptions expected = ORBextractor::options_from_settings(
+        cv::FileStorage("%YAML:1.0\nORBextractor.nFeatures: 1000\n", cv::FileStorage::READ | cv::FileStorage::MEMORY));
     row.field.set(expected, table::parse_value(row, value, row.key));
     expected.scale_factor = static_cast<float>(expected.scale_factor);  // read into a float, as Tracking.cc
     EXPECT_EQ(table::record_of(options), table::record_of(expected)) << row.yaml_key << ": " << value;
