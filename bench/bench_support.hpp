@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "aief/cv_image_view.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
 
@@ -20,9 +21,5 @@ struct NamedImage {
 const std::vector<NamedImage>& benchmark_images();
 
 const cv::Mat& sample_gray(const std::string& sequence);  // img1 of a bundled sequence
-
-inline ImageView view_of(const cv::Mat& gray) {
-  return {gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)};
-}
 
 }  // namespace aief::bench

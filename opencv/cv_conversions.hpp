@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "aief/cv_image_view.hpp"
 #include "aief/features.hpp"
 
 namespace aief::detail {

@@ -60,7 +60,7 @@ CvExtractor::CvExtractor(ExtractorOptions options) : extractor_(options) {}
 
 void CvExtractor::detect_and_compute(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) {
   const cv::Mat& gray = detail::gray_of(image, gray_);
-  extractor_.extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}, features_);
+  extractor_.extract(view_of(gray), features_);
   detail::fill_cv_keypoints(features_, keypoints);
   detail::fill_cv_descriptors(features_, descriptors, false);
 }

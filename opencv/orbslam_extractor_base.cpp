@@ -103,7 +103,7 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
 const Features& OrbSlamExtractorBase::extract_frame(cv::InputArray image) {
   const cv::Mat input = image.getMat();  // named: gray_of may return a reference to it
   const cv::Mat& gray = detail::gray_of(input, gray_);
-  extractor_.extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}, features_);
+  extractor_.extract(view_of(gray), features_);
   mvImagePyramid.resize(static_cast<std::size_t>(nlevels));
   // Level 0 is the gray input itself (sharing its reference count, so it outlives the caller's
   // Mat); the others are headers over the extractor's buffers, valid until the next call.

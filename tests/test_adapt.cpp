@@ -21,7 +21,6 @@ namespace aief {
 namespace {
 
 using test::load_sample_gray;
-using test::view_of;
 
 // Scalar kernels that count their work.
 struct Counts {

@@ -27,10 +27,10 @@ namespace {
 long long allocations_of_third_frame(ExtractorOptions options, const cv::Mat& gray) {
   Extractor extractor(options);
   Features features;
-  extractor.extract(test::view_of(gray), features);
-  extractor.extract(test::view_of(gray), features);
+  extractor.extract(view_of(gray), features);
+  extractor.extract(view_of(gray), features);
   const long long before = g_allocations.load();
-  extractor.extract(test::view_of(gray), features);
+  extractor.extract(view_of(gray), features);
   return g_allocations.load() - before;
 }
 

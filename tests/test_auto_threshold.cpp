@@ -103,14 +103,14 @@ TEST(AutoThreshold, FrameUsesItAndReportsIt) {
   ExtractorOptions options;
   options.auto_threshold = true;
   options.auto_requires_two_classes = false;  // graf is texture everywhere: Otsu's split alone
-  const Features a = extract(test::view_of(gray), options);
+  const Features a = extract(view_of(gray), options);
   EXPECT_GT(a.info.entropy_threshold_requested, 0.0);
   EXPECT_GE(a.info.blocks_kept, a.info.blocks_total * 3 / 4);
   EXPECT_EQ(static_cast<int>(a.keypoints.size()), options.n_features);
   // Same F given by hand: same bytes.
   ExtractorOptions fixed;
   fixed.entropy_threshold = a.info.entropy_threshold_used;
-  const Features b = extract(test::view_of(gray), fixed);
+  const Features b = extract(view_of(gray), fixed);
   EXPECT_EQ(a.descriptors, b.descriptors);
 }
 
@@ -118,7 +118,7 @@ TEST(AutoThreshold, FrameOfOneTextureKeepsEveryBlock) {
   const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
   ExtractorOptions options;  // the aief mode: two classes required
   options.auto_threshold = true;
-  const Features features = extract(test::view_of(gray), options);
+  const Features features = extract(view_of(gray), options);
   EXPECT_EQ(features.info.entropy_threshold_requested, 0.0);
   EXPECT_GT(features.info.auto_threshold_effectiveness, 0.0) << "the reason F = 0 is reported";
   EXPECT_LT(features.info.auto_threshold_effectiveness, kAutoMinEffectiveness);
@@ -135,7 +135,7 @@ TEST(AutoThreshold, FrameWithASmoothPartDropsIt) {
     for (int x = 0; x < ramp_end; ++x) gray.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(60 + x / 8);
   ExtractorOptions options;
   options.auto_threshold = true;
-  const Features features = extract(test::view_of(gray), options);
+  const Features features = extract(view_of(gray), options);
   EXPECT_GT(features.info.entropy_threshold_requested, 2.0);
   EXPECT_GE(features.info.auto_threshold_effectiveness, kAutoMinEffectiveness);
   EXPECT_LT(features.info.blocks_kept, features.info.blocks_total * 9 / 10);

@@ -86,7 +86,7 @@ TEST(CandidateRanking, DetectionCarriesTheCrossSum) {
     options.n_levels = 3;
     options.candidate_ranking = ranking;
     FrameAnalysis analysis;
-    analysis.start(test::view_of(gray), options, kernel_table(KernelSet::scalar));
+    analysis.start(view_of(gray), options, kernel_table(KernelSet::scalar));
     std::vector<Candidate> all;
     int with_neighbours = 0;
     for (int n = 0; n < analysis.level_count(); ++n) {
@@ -121,13 +121,13 @@ TEST(CandidateRanking, LevelKeepsItsStrongestByTheChosenRanking) {
     options.candidate_pool = 1.0;
     options.subpixel = false;
     options.candidate_ranking = ranking;
-    const Features features = Extractor(options).extract(test::view_of(gray));
+    const Features features = Extractor(options).extract(view_of(gray));
     std::set<std::pair<float, float>> got;
     for (const Keypoint& kp : features.keypoints)
       if (kp.octave == 0) got.insert({kp.x, kp.y});
 
     FrameAnalysis analysis;
-    analysis.start(test::view_of(gray), options, kernel_table(KernelSet::scalar));
+    analysis.start(view_of(gray), options, kernel_table(KernelSet::scalar));
     analysis.build_level(0);
     analysis.detect(0, 0.0);
     std::vector<Candidate> candidates = analysis.blocks(0).candidates;

@@ -18,7 +18,7 @@ std::vector<FastCorner> ours(const cv::Mat& gray, int threshold) {
   std::vector<std::uint8_t> scores;
   std::vector<std::uint64_t> maxima_bits;
   std::vector<FastCorner> corners;
-  fast9_detect(test::view_of(gray), threshold, kernel_table(KernelSet::scalar), scores, maxima_bits, corners);
+  fast9_detect(view_of(gray), threshold, kernel_table(KernelSet::scalar), scores, maxima_bits, corners);
   return corners;
 }
 
@@ -141,7 +141,7 @@ TEST(Fast9, PipelineBlockCandidatesEqualOpenCvWithTheRetryRule) {
       options.fast_min_threshold = setting.min_threshold;
       for (KernelSet set : available_kernel_sets()) {
         FrameAnalysis analysis;
-        analysis.start(test::view_of(gray), options, kernel_table(set));
+        analysis.start(view_of(gray), options, kernel_table(set));
         for (int n = 0; n < analysis.level_count(); ++n) analysis.build_level(n);
         for (int n = 0; n < analysis.level_count(); ++n) {
           analysis.detect(n, 0.0);

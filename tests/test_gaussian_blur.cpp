@@ -20,13 +20,9 @@
 namespace aief {
 namespace {
 
-MutableImageView mutable_view_of(cv::Mat& image) {
-  return {image.data, image.cols, image.rows, static_cast<std::ptrdiff_t>(image.step)};
-}
-
 cv::Mat blur_ours(const cv::Mat& src) {
   cv::Mat dst(src.size(), CV_8UC1, cv::Scalar(0));
-  gaussian7_rows_scalar(test::view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
+  gaussian7_rows_scalar(view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
   return dst;
 }
 
@@ -149,7 +145,7 @@ TEST(GaussianBlur, RowPiecesEqualTheWhole) {
   const std::vector<int> cuts = {0, 1, 3, 4, 10, 11, 250, src.rows - 2, src.rows - 1, src.rows};
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     cv::Mat band = pieces.rowRange(cuts[i], cuts[i + 1]);  // dst row 0 is blurred row cuts[i]
-    gaussian7_rows_scalar(test::view_of(src), mutable_view_of(band), cuts[i], cuts[i + 1], 0, src.cols);
+    gaussian7_rows_scalar(view_of(src), mutable_view_of(band), cuts[i], cuts[i + 1], 0, src.cols);
   }
   EXPECT_EQ(first_difference(pieces, whole, 0), "");
 }
@@ -160,11 +156,11 @@ TEST(GaussianBlur, ColumnSpansEqualTheWholeAndLeaveTheRest) {
   cv::Mat spans(src.size(), CV_8UC1, cv::Scalar(0));
   const std::vector<int> cuts = {0, 1, 3, 4, 40, 41, 600, src.cols - 3, src.cols - 1, src.cols};
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
-    gaussian7_rows_scalar(test::view_of(src), mutable_view_of(spans), 0, src.rows, cuts[i], cuts[i + 1]);
+    gaussian7_rows_scalar(view_of(src), mutable_view_of(spans), 0, src.rows, cuts[i], cuts[i + 1]);
   EXPECT_EQ(first_difference(spans, whole, 0), "");
 
   cv::Mat canvas(src.size(), CV_8UC1, cv::Scalar(77));
-  gaussian7_rows_scalar(test::view_of(src), mutable_view_of(canvas), 0, src.rows, 100, 139);
+  gaussian7_rows_scalar(view_of(src), mutable_view_of(canvas), 0, src.rows, 100, 139);
   EXPECT_EQ(first_difference(canvas.colRange(100, 139), whole.colRange(100, 139), 0), "");
   EXPECT_EQ(cv::countNonZero(canvas.colRange(0, 100) != 77) + cv::countNonZero(canvas.colRange(139, src.cols) != 77), 0);
 }
@@ -174,7 +170,7 @@ TEST(GaussianBlur, StridedViews) {
   const cv::Mat src = big(cv::Rect(5, 3, 61, 33));
   cv::Mat canvas(40, 70, CV_8UC1, cv::Scalar(77));
   cv::Mat dst = canvas(cv::Rect(2, 4, 61, 33));
-  gaussian7_rows_scalar(test::view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
+  gaussian7_rows_scalar(view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
   EXPECT_EQ(first_difference(dst, blur_documented(src.clone()), 0), "");
   int outside_changed = 0;
   for (int y = 0; y < canvas.rows; ++y)

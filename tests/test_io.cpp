@@ -214,7 +214,7 @@ TEST(FeatureFiles, JsonAndYamlCarryEveryKeypointAndDescriptor) {
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
   ExtractorOptions options;
   options.n_features = 200;
-  const Features features = extract(test::view_of(gray), options);
+  const Features features = extract(view_of(gray), options);
   ASSERT_GT(features.keypoints.size(), 100u);
 
   io::write_features(dir.file("f.json"), "boat.png", features, options);

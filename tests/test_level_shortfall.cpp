@@ -54,7 +54,7 @@ TEST(LevelShortfall, AiefModeDeliversTheCountAskedForWhenALevelIsShort) {
   options.n_features = 600;
   options.kernels = KernelSet::scalar;
   options.threads = 1;
-  const Features features = extract(test::view_of(image), options);
+  const Features features = extract(view_of(image), options);
 
   const std::vector<LevelGeometry> levels = level_geometry(image.cols, image.rows, options);
   std::vector<int> per_level(levels.size(), 0);
@@ -71,7 +71,7 @@ TEST(LevelShortfall, AiefModeDeliversTheCountAskedForWhenALevelIsShort) {
   // The paper mode keeps its rule: the short level's budget is lost there.
   ExtractorOptions paper = options_for_mode(Mode::aief_paper);
   paper.n_features = options.n_features;
-  EXPECT_LT(static_cast<int>(extract(test::view_of(image), paper).keypoints.size()), options.n_features);
+  EXPECT_LT(static_cast<int>(extract(view_of(image), paper).keypoints.size()), options.n_features);
 
   // The same bytes at every kernel set and thread count.
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 5);
@@ -80,7 +80,7 @@ TEST(LevelShortfall, AiefModeDeliversTheCountAskedForWhenALevelIsShort) {
       ExtractorOptions other = options;
       other.kernels = set;
       other.threads = threads;
-      EXPECT_TRUE(same_bytes(features, Extractor(other).extract(test::view_of(image))))
+      EXPECT_TRUE(same_bytes(features, Extractor(other).extract(view_of(image))))
           << to_string(set) << " at " << threads << " thread(s)";
     }
 }

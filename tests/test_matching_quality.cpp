@@ -23,7 +23,6 @@ namespace aief {
 namespace {
 
 using test::load_sample_gray;
-using test::view_of;
 
 TEST(SubpixelPeak, RecoversTheVertexOfASampledParabola) {
   // f(t) = 100 - 16 (t - 0.25)^2 sampled at -1, 0, 1: 75, 99, 91.

@@ -45,7 +45,7 @@ void expect_same(const Features& features, const std::vector<cv::KeyPoint>& keyp
 
 TEST(OpenCvAdapter, SameFeaturesAsTheEngineFromGrayBgrAndBgra) {
   const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
-  const Features features = extract(test::view_of(gray));
+  const Features features = extract(view_of(gray));
   ASSERT_GT(features.keypoints.size(), 500u);
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
@@ -77,7 +77,7 @@ TEST(OpenCvAdapter, ColourIsConvertedAsCvtColor) {
   cv::Mat descriptors;
   cv_extract(bgr, keypoints, descriptors, options);
   ASSERT_GT(keypoints.size(), 100u);
-  expect_same(extract(test::view_of(gray), options), keypoints, descriptors);
+  expect_same(extract(view_of(gray), options), keypoints, descriptors);
 }
 
 TEST(OpenCvAdapter, ReusesTheCallersStorageFrameAfterFrame) {
@@ -93,7 +93,7 @@ TEST(OpenCvAdapter, ReusesTheCallersStorageFrameAfterFrame) {
   extractor.detect_and_compute(gray, keypoints, descriptors);
   EXPECT_EQ(keypoints.data(), keypoint_storage);
   EXPECT_EQ(descriptors.data, descriptor_storage);
-  expect_same(extract(test::view_of(gray)), keypoints, descriptors);
+  expect_same(extract(view_of(gray)), keypoints, descriptors);
 }
 
 TEST(OpenCvAdapter, RegionOfInterestUsesItsStride) {
@@ -103,7 +103,7 @@ TEST(OpenCvAdapter, RegionOfInterestUsesItsStride) {
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   cv_extract(roi, keypoints, descriptors);
-  expect_same(extract(test::view_of(roi.clone())), keypoints, descriptors);
+  expect_same(extract(view_of(roi.clone())), keypoints, descriptors);
 }
 
 TEST(OpenCvAdapter, RefusesWhatItCannotRead) {

@@ -87,7 +87,7 @@ TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeaturesAndPyramid) {
   options.scale_factor = 1.2f;  // the same options: ORB-SLAM2 passes a float
   options.coordinates = CoordinateMap::scaled;  // and ORB-SLAM's keypoint convention (docs/slam.md)
   options.subpixel = false;
-  const Features features = extract(test::view_of(gray), options);
+  const Features features = extract(view_of(gray), options);
   ASSERT_GT(features.keypoints.size(), 700u);
   expect_same(features, keypoints, descriptors);
 

@@ -131,7 +131,7 @@ TEST(OrbSlam3DropIn, LappingAreaSplitAndReturnedCount) {
   // can hold them.
   const ExtractorOptions options = options_for_mode(Mode::orbslam2, options_of(800, 1.2f));
   ORBextractor orb(options);
-  const Features features = extract(test::view_of(gray), options);
+  const Features features = extract(view_of(gray), options);
   ASSERT_GT(features.keypoints.size(), 700u);
   const int x_of_first = static_cast<int>(features.keypoints.front().x);
   ASSERT_EQ(static_cast<float>(x_of_first), features.keypoints.front().x);
@@ -175,7 +175,7 @@ TEST(OrbSlam3DropIn, LappingAreaSplitAndReturnedCount) {
 // Keypoints of coarse levels have fractional x: the int bounds compare as float, as in ORB-SLAM3.
 TEST(OrbSlam3DropIn, FractionalXAgainstIntegerBounds) {
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
-  const Features features = extract(test::view_of(gray), options_of(1000, 1.2f));
+  const Features features = extract(view_of(gray), options_of(1000, 1.2f));
   const Keypoint* fractional = nullptr;
   for (const Keypoint& kp : features.keypoints)
     if (kp.x != static_cast<float>(static_cast<int>(kp.x))) fractional = &kp;
@@ -203,7 +203,7 @@ TEST(OrbSlam3DropIn, PyramidColourAndMaskAsOrbSlam3) {
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   orb(gray, cv::Mat::zeros(gray.size(), CV_8U), keypoints, descriptors, area);  // a mask that would reject every pixel
-  const Features features = extract(test::view_of(gray), options_of(500, 1.2f));
+  const Features features = extract(view_of(gray), options_of(500, 1.2f));
   expect_lapping_split(features, 0, 0, keypoints, descriptors, static_cast<int>(keypoints.size()));
 
   // The pyramid ORB-SLAM3's stereo matching reads: level 0 is the image, level n has

@@ -14,7 +14,7 @@ namespace {
 float angle_at(const cv::Mat& image, int x, int y) {
   const PixelPoint point{x, y};
   std::int32_t m10 = 0, m01 = 0;
-  ic_moments_scalar(test::view_of(image), &point, 1, &m10, &m01);
+  ic_moments_scalar(view_of(image), &point, 1, &m10, &m01);
   return ic_angle_deg(m10, m01);
 }
 
@@ -40,7 +40,7 @@ TEST(Orientation, MomentsAreTheDefinition) {
     }
   const PixelPoint point{32, 32};
   std::int32_t got10 = 0, got01 = 0;
-  ic_moments_scalar(test::view_of(image), &point, 1, &got10, &got01);
+  ic_moments_scalar(view_of(image), &point, 1, &got10, &got01);
   EXPECT_EQ(got10, m10);
   EXPECT_EQ(got01, m01);
 }

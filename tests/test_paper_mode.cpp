@@ -20,7 +20,6 @@ namespace aief {
 namespace {
 
 using test::load_sample_gray;
-using test::view_of;
 
 using test::Fnv1a;
 constexpr auto hash_of = test::features_hash;

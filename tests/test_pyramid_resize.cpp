@@ -18,14 +18,10 @@
 namespace aief {
 namespace {
 
-MutableImageView mutable_view_of(cv::Mat& image) {
-  return {image.data, image.cols, image.rows, static_cast<std::ptrdiff_t>(image.step)};
-}
-
 cv::Mat resize_ours(const cv::Mat& src, int dst_width, int dst_height) {
   const ResizePlan plan = make_resize_plan(src.cols, src.rows, dst_width, dst_height);
   cv::Mat dst(dst_height, dst_width, CV_8UC1, cv::Scalar(0));
-  resize_bilinear_rows_scalar(test::view_of(src), plan, mutable_view_of(dst), 0, dst_height);
+  resize_bilinear_rows_scalar(view_of(src), plan, mutable_view_of(dst), 0, dst_height);
   return dst;
 }
 
@@ -149,7 +145,7 @@ TEST(PyramidResize, RowPiecesEqualTheWhole) {
   cv::Mat pieces(dh, dw, CV_8UC1, cv::Scalar(0));
   const std::vector<int> cuts = {0, 1, 2, 7, 64, 65, 300, dh - 1, dh};
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
-    resize_bilinear_rows_scalar(test::view_of(src), plan, mutable_view_of(pieces), cuts[i], cuts[i + 1]);
+    resize_bilinear_rows_scalar(view_of(src), plan, mutable_view_of(pieces), cuts[i], cuts[i + 1]);
   EXPECT_EQ(first_difference(pieces, whole, 0), "");
 }
 
@@ -161,7 +157,7 @@ TEST(PyramidResize, StridedViewsReadAndWriteOnlyTheirPixels) {
   cv::Mat canvas(dh + 4, dw + 9, CV_8UC1, cv::Scalar(77));
   cv::Mat dst = canvas(cv::Rect(4, 2, dw, dh));
   const ResizePlan plan = make_resize_plan(src.cols, src.rows, dw, dh);
-  resize_bilinear_rows_scalar(test::view_of(src), plan, mutable_view_of(dst), 0, dh);
+  resize_bilinear_rows_scalar(view_of(src), plan, mutable_view_of(dst), 0, dh);
   EXPECT_EQ(first_difference(dst, resize_documented(src.clone(), dw, dh), 0), "");
   int outside_changed = 0;
   for (int y = 0; y < canvas.rows; ++y)

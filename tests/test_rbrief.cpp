@@ -24,7 +24,7 @@ constexpr int kBytes = 32;
 
 cv::Mat blur_ours(const cv::Mat& src) {
   cv::Mat dst(src.size(), CV_8UC1, cv::Scalar(0));
-  gaussian7_rows_scalar(test::view_of(src), {dst.data, dst.cols, dst.rows, static_cast<std::ptrdiff_t>(dst.step)}, 0, src.rows, 0, src.cols);
+  gaussian7_rows_scalar(view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
   return dst;
 }
 
@@ -50,7 +50,7 @@ cv::Mat blur_as_orb_does(const cv::Mat& src) {
 std::vector<float> ic_angles(const cv::Mat& raw, const std::vector<PixelPoint>& points) {
   const int n = static_cast<int>(points.size());
   std::vector<std::int32_t> m10(points.size()), m01(points.size());
-  ic_moments_scalar(test::view_of(raw), points.data(), n, m10.data(), m01.data());
+  ic_moments_scalar(view_of(raw), points.data(), n, m10.data(), m01.data());
   std::vector<float> angles(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) angles[i] = ic_angle_deg(m10[i], m01[i]);
   return angles;
@@ -59,7 +59,7 @@ std::vector<float> ic_angles(const cv::Mat& raw, const std::vector<PixelPoint>& 
 std::vector<std::uint8_t> describe_ours(const cv::Mat& blurred, const std::vector<PixelPoint>& points,
                                         const std::vector<float>& angles) {
   std::vector<std::uint8_t> descriptors(points.size() * kBytes);
-  rbrief_describe_scalar(test::view_of(blurred), points.data(), angles.data(), static_cast<int>(points.size()),
+  rbrief_describe_scalar(view_of(blurred), points.data(), angles.data(), static_cast<int>(points.size()),
                          descriptors.data());
   return descriptors;
 }

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "aief/cv_image_view.hpp"  // view_of, for every test
 #include "aief/image.hpp"
 
 namespace aief::test {
@@ -41,9 +42,5 @@ class TempFolder {
  private:
   std::filesystem::path path_;
 };
-
-inline ImageView view_of(const cv::Mat& gray) {
-  return {gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)};
-}
 
 }  // namespace aief::test

@@ -150,7 +150,7 @@ TEST(SweepMatcher, EqualsBruteForceAtEveryThresholdOfTheBundledPairs) {
   for (const char* sequence : {"graf", "boat", "leuven"}) {
     const cv::Mat a = test::load_sample_gray(sequence, "img1.png");
     const cv::Mat b = test::load_sample_gray(sequence, "img2.png");
-    const SweepFeatures sweep = sweep_features(test::view_of(a), test::view_of(b), ExtractorOptions{}, SweepOptions{}, kernels);
+    const SweepFeatures sweep = sweep_features(view_of(a), view_of(b), ExtractorOptions{}, SweepOptions{}, kernels);
     ASSERT_GT(sweep.a.size(), 10u);
     for (const MatchOptions& rule : every_rule()) {
       SweepMatcher matcher(rule, kernels);

@@ -9,6 +9,7 @@
 #include <opencv2/features2d.hpp>
 
 #include "aief/adapt.hpp"
+#include "aief/cv_image_view.hpp"
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "tools/eval/keypoint_metrics.hpp"
@@ -50,8 +51,6 @@ Method parse_method_key(const std::string& key) {
 }
 
 namespace {
-
-ImageView view_of(const cv::Mat& gray) { return {gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)}; }
 
 // Matched point pairs, then every metric from them, the same for every method.
 void measure(const std::vector<Point2>& pa, const std::vector<Point2>& pb, const Homography& truth, int width, int height,
