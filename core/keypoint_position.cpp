@@ -1,5 +1,7 @@
 #include "core/keypoint_position.hpp"
 
+#include <cmath>
+
 namespace aief {
 
 float parabola_peak_offset(int before, int peak, int after) {
@@ -29,6 +31,16 @@ ImagePoint keypoint_position(const Candidate& c, const LevelToImage& mapping) {
     return {(static_cast<float>(c.x) + dx) * mapping.scale, (static_cast<float>(c.y) + dy) * mapping.scale};
   return {static_cast<float>((c.x + 0.5 + dx) * mapping.ratio_x - 0.5),
           static_cast<float>((c.y + 0.5 + dy) * mapping.ratio_y - 0.5)};
+}
+
+PixelPoint level_pixel(ImagePoint position, const LevelToImage& mapping) {
+  // Doubles out of range of int (a huge or non-finite position) land outside every level.
+  const auto nearest = [](double v) {
+    return std::isfinite(v) && std::abs(v) < 1e9 ? static_cast<std::int32_t>(std::nearbyint(v)) : -1;
+  };
+  if (mapping.map == CoordinateMap::scaled)
+    return {nearest(static_cast<double>(position.x / mapping.scale)), nearest(static_cast<double>(position.y / mapping.scale))};
+  return {nearest((position.x + 0.5) / mapping.ratio_x - 0.5), nearest((position.y + 0.5) / mapping.ratio_y - 0.5)};
 }
 
 }  // namespace aief

@@ -14,6 +14,7 @@
 // bits in every build.
 #include "aief/options.hpp"
 #include "core/candidate.hpp"
+#include "core/pixel_point.hpp"
 
 namespace aief {
 
@@ -39,5 +40,10 @@ struct ImagePoint {
 
 // The candidate's position in level-0 pixels.
 ImagePoint keypoint_position(const Candidate& candidate, const LevelToImage& mapping);
+
+// The level pixel nearest to a level-0 position: the map above inverted and rounded half to even
+// (cvRound, as cv::ORB places a given keypoint on its level). A detected keypoint's sub-pixel
+// offset lies in (-0.5, 0.5), so this gives back the pixel it was detected at.
+PixelPoint level_pixel(ImagePoint position, const LevelToImage& mapping);
 
 }  // namespace aief

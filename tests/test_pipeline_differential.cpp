@@ -120,7 +120,7 @@ class PipelineDifferential : public testing::TestWithParam<int> {};
 TEST_P(PipelineDifferential, EveryKernelSetAndThreadCountGivesTheScalarBytes) {
   const Case c = make_case(GetParam());
   SCOPED_TRACE(c.description);
-  const ImageView view = test::view_of(c.image);
+  const ImageView view = view_of(c.image);
   ExtractorOptions reference_options = c.options;
   reference_options.kernels = KernelSet::scalar;
   reference_options.threads = 1;
@@ -136,6 +136,49 @@ TEST_P(PipelineDifferential, EveryKernelSetAndThreadCountGivesTheScalarBytes) {
       Extractor extractor(options);
       const std::string diff = first_difference(reference, extractor.extract(view));
       EXPECT_EQ(diff, "") << to_string(set) << " at " << threads << " thread(s)";
+    }
+  }
+}
+
+// Given keypoints (Extractor::describe): the case's own keypoints, which must come back with their
+// bytes, and as many again at seeded random positions and octaves (some near or past the edges,
+// which the border rule removes), the same under every kernel set as under the scalar reference.
+TEST_P(PipelineDifferential, DescribingGivenKeypointsGivesTheScalarBytesAndTheExtractedOnes) {
+  const Case c = make_case(GetParam());
+  SCOPED_TRACE(c.description);
+  const ImageView view = view_of(c.image);
+  ExtractorOptions reference_options = c.options;
+  reference_options.kernels = KernelSet::scalar;
+  Extractor reference_extractor(reference_options);
+  Features extracted = reference_extractor.extract(view);
+  extracted.info = ExtractionInfo{};  // describe() reports no extraction
+  EXPECT_EQ(first_difference(extracted, reference_extractor.describe(view, extracted.keypoints)), "")
+      << "describing the extracted keypoints";
+
+  std::vector<Keypoint> given = extracted.keypoints;
+  std::mt19937 rng(kSeed ^ static_cast<std::uint32_t>(GetParam()));
+  for (std::size_t i = 0; i < extracted.keypoints.size() + 50; ++i) {
+    Keypoint kp;
+    kp.x = static_cast<float>(uniform(rng, -5.0, c.image.cols + 5.0));
+    kp.y = static_cast<float>(uniform(rng, -5.0, c.image.rows + 5.0));
+    kp.octave = uniform_int(rng, 0, c.options.n_levels - 1);
+    kp.angle_deg = static_cast<float>(uniform(rng, 0.0, 359.9));
+    given.push_back(kp);
+  }
+  for (GivenAngles angles : {GivenAngles::recompute, GivenAngles::keep}) {
+    SCOPED_TRACE(angles == GivenAngles::keep ? "given angles kept" : "angles recomputed");
+    std::vector<std::int32_t> reference_kept;
+    Features reference;
+    reference_extractor.describe(view, given, reference, &reference_kept, angles);
+    for (KernelSet set : available_kernel_sets()) {
+      if (set == KernelSet::scalar) continue;
+      ExtractorOptions options = c.options;
+      options.kernels = set;
+      std::vector<std::int32_t> kept;
+      Features described;
+      Extractor(options).describe(view, given, described, &kept, angles);
+      EXPECT_EQ(first_difference(reference, described), "") << to_string(set);
+      EXPECT_EQ(kept, reference_kept) << to_string(set);
     }
   }
 }

@@ -2,14 +2,22 @@
 // The extractor: built once from options, then run on frame after frame. Buffers (pyramid,
 // score maps, candidate lists) and the kernel table are kept between frames, so frames of one
 // size allocate nothing after the first.
+#include <cstdint>
 #include <memory>
 #include <string_view>
+#include <vector>
 
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
 
 namespace aief {
+
+// Where the angle of a given keypoint comes from (Extractor::describe).
+enum class GivenAngles {
+  recompute,  // the intensity centroid, as for detected keypoints (describe gives extract's bytes)
+  keep,       // the given angle, each in [0, 360), as cv::ORB::compute keeps it
+};
 
 class Extractor {
  public:
@@ -24,6 +32,23 @@ class Extractor {
   Features extract(ImageView image);
   // Same, into `out`, reusing its vectors' storage.
   void extract(ImageView image, Features& out);
+  // With a detection mask: keypoints only where `mask` (the image's size) is non-zero, and the
+  // budget filled there (docs/opencv.md says how the mask reaches each level). An empty mask is
+  // no mask. Throws aief::Error for a mask of another size.
+  void extract(ImageView image, ImageView mask, Features& out);
+
+  // Descriptors of given keypoints (cv::Feature2D::compute), computed as for detected ones:
+  // describing the keypoints extract() returned gives back its keypoints and descriptors bit for
+  // bit. Each keypoint is described on the level its octave names, at its position mapped to
+  // that level; its angle is recomputed (intensity centroid) or kept (GivenAngles) and its other
+  // fields are kept. Keypoints closer than kEdgeBorder to their level's edge are removed (as
+  // cv::ORB removes those near the image's edge); the rules are in docs/opencv.md. out.keypoints
+  // holds the kept ones in their given order, out.info is left empty; kept_indices (when given)
+  // receives each kept keypoint's index in `keypoints`. Throws aief::Error for an image
+  // extract() refuses, an octave outside [0, n_levels), or a kept angle outside [0, 360).
+  void describe(ImageView image, const std::vector<Keypoint>& keypoints, Features& out,
+                std::vector<std::int32_t>* kept_indices = nullptr, GivenAngles angles = GivenAngles::recompute);
+  Features describe(ImageView image, const std::vector<Keypoint>& keypoints, GivenAngles angles = GivenAngles::recompute);
 
   const ExtractorOptions& options() const;
   // Level n of the last frame's pyramid, valid until the next extract; empty for a level too
