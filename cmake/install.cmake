@@ -33,7 +33,8 @@ if(TARGET aief_opencv)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
 else()
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/aief DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev
-          PATTERN opencv.hpp EXCLUDE PATTERN orbslam*_extractor*.hpp EXCLUDE)
+          PATTERN opencv.hpp EXCLUDE PATTERN feature2d.hpp EXCLUDE PATTERN cv_image_view.hpp EXCLUDE
+          PATTERN orbslam*_extractor*.hpp EXCLUDE)
 endif()
 install(FILES ${PROJECT_BINARY_DIR}/generated/aief/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aief COMPONENT dev)
 # io headers say #include "io/...": they live under include/aief/io, with include/aief on the path.
