@@ -1,10 +1,5 @@
 #include "aief/extractor.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <string>
-
-#include "aief/error.hpp"
 #include "core/frame_pipeline.hpp"
 #include "core/given_keypoints.hpp"
 #include "simd/kernels.hpp"
@@ -48,23 +43,7 @@ Features Extractor::extract(ImageView image) {
 void Extractor::extract(ImageView image, Features& out) { state_->pipeline.extract(image, out); }
 
 void Extractor::extract(ImageView image, ImageView mask, Features& out) {
-  extract(image, out);
-  if (mask.empty()) return;
-  if (mask.width != image.width || mask.height != image.height)
-    throw Error("mask " + std::to_string(mask.width) + "x" + std::to_string(mask.height) + " differs from the image's size " +
-                std::to_string(image.width) + "x" + std::to_string(image.height));
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < out.keypoints.size(); ++i) {
-    const Keypoint& kp = out.keypoints[i];
-    const int x = std::clamp(static_cast<int>(std::lround(kp.x)), 0, image.width - 1);
-    const int y = std::clamp(static_cast<int>(std::lround(kp.y)), 0, image.height - 1);
-    if (mask.at(x, y) == 0) continue;
-    out.keypoints[kept] = kp;
-    out.descriptors[kept] = out.descriptors[i];
-    ++kept;
-  }
-  out.keypoints.resize(kept);
-  out.descriptors.resize(kept);
+  state_->pipeline.extract(image, out, nullptr, mask);
 }
 
 void Extractor::describe(ImageView image, const std::vector<Keypoint>& keypoints, Features& out,

@@ -1,7 +1,10 @@
 #include "core/frame_analysis.hpp"
 
 #include <cstdint>
+#include <string>
 
+#include "aief/error.hpp"
+#include "core/detection_mask.hpp"
 #include "core/image_checks.hpp"
 #include "core/keypoint_position.hpp"
 #include "core/level_entropy.hpp"
@@ -9,8 +12,12 @@
 namespace aief {
 
 void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels,
-                          Selections selections) {
+                          Selections selections, ImageView detection_mask) {
   check_image(image, options);
+  if (!detection_mask.empty() && (detection_mask.width != image.width || detection_mask.height != image.height))
+    throw Error("mask " + std::to_string(detection_mask.width) + "x" + std::to_string(detection_mask.height) +
+                " is not the image's size " + std::to_string(image.width) + "x" + std::to_string(image.height));
+  detection_mask_ = detection_mask;
   const bool same_geometry = image.width == width_ && image.height == height_ &&
                              options.n_levels == options_.n_levels &&
                              options.scale_factor == options_.scale_factor &&
@@ -41,6 +48,8 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
   for (std::size_t n = 0; n < levels_.size(); ++n) {
     Level& level = levels_[n];
     level.pyramid.pixels = n == 0 ? image : level.pyramid.image.view();
+    if (detection_mask_.empty()) level.pyramid.detection_mask.resize(0, 0);
+    else if (level.pyramid.usable()) level.pyramid.detection_mask.resize(level.pyramid.geometry.width, level.pyramid.geometry.height);
     level.descriptions.start(level.pyramid.geometry, selections_);
     level.blocks.reset(level.pyramid.geometry.grid.count());
     level.raster_ranks.clear();
@@ -49,9 +58,18 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
 
 void FrameAnalysis::build_level_rows(int n, int y_begin, int y_end) {
   PyramidLevel& pyramid = at(n).pyramid;
-  if (!pyramid.usable() || n == 0) return;  // level 0 is the input itself
-  kernels_->resize_bilinear_rows(level(n - 1).pixels, pyramid.resize_plan, pyramid.image.mutable_view(), y_begin,
-                                 y_end);
+  if (!pyramid.usable()) return;
+  if (n > 0)  // level 0 is the input itself
+    kernels_->resize_bilinear_rows(level(n - 1).pixels, pyramid.resize_plan, pyramid.image.mutable_view(), y_begin,
+                                   y_end);
+  if (detection_mask_.empty()) return;
+  if (n == 0) {
+    binarise_mask_rows(detection_mask_, pyramid.detection_mask.mutable_view(), y_begin, y_end);
+  } else {
+    kernels_->resize_bilinear_rows(level(n - 1).detection_mask.view(), pyramid.resize_plan,
+                                   pyramid.detection_mask.mutable_view(), y_begin, y_end);
+    clear_partial_mask_rows(pyramid.detection_mask.mutable_view(), y_begin, y_end);
+  }
 }
 
 void FrameAnalysis::compute_entropies(int n) {

@@ -30,16 +30,19 @@ class FrameAnalysis {
  public:
   // Checks the image against the options (throws aief::Error) and sizes the levels. Reuses all
   // buffers when the size is the same as the previous frame's. The image is read in place (it
-  // is level 0) and must outlive the analysis of this frame.
+  // is level 0) and must outlive the analysis of this frame. detection_mask (empty: none) is the
+  // image's size (else aief::Error), non-zero where keypoints may be: each level's is made with
+  // its pixels and detection takes candidates only where it allows (core/detection_mask.hpp).
   void start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels,
-             Selections selections = Selections::one);
+             Selections selections = Selections::one, ImageView detection_mask = {});
 
   int level_count() const { return static_cast<int>(levels_.size()); }
   // Level n's pixels (after stage 1) and what stages 2 and 3 found in its blocks.
   const PyramidLevel& level(int n) const { return at(n).pyramid; }
   const LevelBlocks& blocks(int n) const { return at(n).blocks; }
 
-  // Stage 1 per level, in level order: the level's pixels (from the input or level n - 1).
+  // Stage 1 per level, in level order: the level's pixels (from the input or level n - 1), and
+  // its detection mask when there is one.
   void build_level_rows(int n, int y_begin, int y_end);
   void build_level(int n) { build_level_rows(n, 0, level(n).geometry.height); }
   // Stage 2: block entropies of level n (no-op with entropy off).
@@ -87,6 +90,7 @@ class FrameAnalysis {
 
   ExtractorOptions options_;
   Selections selections_ = Selections::one;
+  ImageView detection_mask_;  // the caller's (empty: none)
   const KernelTable* kernels_ = nullptr;
   int width_ = 0, height_ = 0;
   std::vector<Level> levels_;

@@ -21,9 +21,9 @@ void FramePipeline::timed(Stage stage, int n, const Work& work) {
   times_->add(stage, n, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
-void FramePipeline::start(ImageView image, Selections selections, StageTimes* times) {
+void FramePipeline::start(ImageView image, Selections selections, StageTimes* times, ImageView detection_mask) {
   times_ = times;
-  timed(Stage::frame, -1, [&] { analysis_.start(image, options_, *kernels_, selections); });
+  timed(Stage::frame, -1, [&] { analysis_.start(image, options_, *kernels_, selections, detection_mask); });
   const std::size_t levels = static_cast<std::size_t>(analysis_.level_count());
   if (times_) times_->reserve_levels(analysis_.level_count());
   chosen_.resize(levels);
@@ -59,8 +59,8 @@ std::int64_t FramePipeline::level_candidates(int n, double threshold) const {
   return analysis_.level_candidate_count(n, threshold);
 }
 
-void FramePipeline::extract(ImageView image, Features& out, StageTimes* times) {
-  start(image, Selections::one, times);
+void FramePipeline::extract(ImageView image, Features& out, StageTimes* times, ImageView detection_mask) {
+  start(image, Selections::one, times, detection_mask);
   const int levels = analysis_.level_count();
   const bool entropy_on = options_.entropy != EntropyMeasure::off;
   const bool automatic = entropy_on && options_.auto_threshold;

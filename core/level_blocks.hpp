@@ -16,6 +16,9 @@ struct LevelBlocks {
   std::vector<std::uint8_t> detected;   // per block: 1 once its candidates are found
   std::vector<BlockRange> candidate_range;  // per block: its candidates in `candidates`
   std::vector<Candidate> candidates;    // the level's detected candidates, block by block, raster order within
+  // With a detection mask, per block: 1 when any of its pixels is allowed (made by detection on
+  // first need; core/detection_mask.hpp). Empty otherwise.
+  std::vector<std::uint8_t> allowed;
 
   // A new frame: `blocks` blocks, none detected.
   void reset(int blocks) {
@@ -24,6 +27,7 @@ struct LevelBlocks {
     detected.assign(static_cast<std::size_t>(blocks), 0);
     candidate_range.assign(static_cast<std::size_t>(blocks), BlockRange{});
     candidates.clear();
+    allowed.clear();
   }
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "core/detection_mask.hpp"
 #include "core/fast9.hpp"
 #include "core/score_band.hpp"
 
@@ -29,12 +30,21 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options, cons
   std::uint64_t* strong_rows = strong_any + words;
   std::uint64_t* maxima_rows = strong_rows + static_cast<std::ptrdiff_t>(y1 - y0) * words;
   std::fill(strong_any, strong_any + words, std::uint64_t{0});
+  const bool masked = level.has_detection_mask();
+  if (masked) scratch.allowed_bits.resize(static_cast<std::size_t>(words));
   for (int y = y0; y < y1; ++y) {
     const std::uint8_t* row = scores.row(y - score_top);
     std::uint64_t* strong_row = strong_rows + static_cast<std::ptrdiff_t>(y - y0) * words;
+    std::uint64_t* maxima_row = maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words;
     kernels.fast9_local_maxima_bits(row - scores.stride, row, row + scores.stride, x_begin, x_end,
-                                    options.fast_threshold, maxima_rows + static_cast<std::ptrdiff_t>(y - y0) * words,
-                                    strong_row);
+                                    options.fast_threshold, maxima_row, strong_row);
+    if (masked) {  // candidates only where the detection mask allows, before the retry rule
+      allowed_bits(level.detection_mask.view().row(y), x_begin, x_end, scratch.allowed_bits.data());
+      for (int k = 0; k < words; ++k) {
+        maxima_row[k] &= scratch.allowed_bits[static_cast<std::size_t>(k)];
+        strong_row[k] &= scratch.allowed_bits[static_cast<std::size_t>(k)];
+      }
+    }
     for (int k = 0; k < words; ++k) strong_any[k] |= strong_row[k];
   }
 
@@ -96,7 +106,13 @@ void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const Extract
                         const KernelTable& kernels, LevelBlocks& blocks, DetectionScratch& scratch) {
   if (!level.usable()) return;
   const BlockGrid& grid = level.geometry.grid;
-  const auto needs = [&](int b) { return !blocks.detected[static_cast<std::size_t>(b)] && mask.kept(b); };
+  const bool masked = level.has_detection_mask();
+  if (masked && blocks.allowed.empty()) blocks_allowed(level.detection_mask.view(), grid, blocks.allowed);
+  // A block the detection mask covers whole is never scored: it has no candidate.
+  const auto needs = [&](int b) {
+    return !blocks.detected[static_cast<std::size_t>(b)] && mask.kept(b) &&
+           (!masked || blocks.allowed[static_cast<std::size_t>(b)]);
+  };
 
   // Scores of each run of adjacent new blocks in a block row, with the one-pixel ring that
   // suppression reads, go to the score band: one call per row of the run instead of a call per

@@ -19,13 +19,15 @@ namespace aief {
 struct DetectionScratch {
   GrayImage score_band;                    // core/score_band.hpp
   std::vector<std::uint64_t> maxima_bits;  // local maxima of a run of blocks, bit rows
+  std::vector<std::uint64_t> allowed_bits;  // the detection mask over one row of such a run
 };
 
 // Sizes the scratch for a level of `geometry`.
 void size_detection_scratch(const LevelGeometry& geometry, DetectionScratch& scratch);
 
 // Appends the candidates of the blocks `mask` keeps and blocks.detected does not list, and marks
-// them detected.
+// them detected. With a detection mask on the level, candidates only at its allowed pixels, and
+// blocks with none are not scored (core/detection_mask.hpp).
 void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const ExtractorOptions& options,
                         const KernelTable& kernels, LevelBlocks& blocks, DetectionScratch& scratch);
 

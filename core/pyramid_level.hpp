@@ -11,6 +11,11 @@ struct PyramidLevel {
   ResizePlan resize_plan;  // from the previous level (empty for level 0)
   ImageView pixels;        // the level: the caller's image for level 0, else `image`
   GrayImage image;         // pixels of levels >= 1 (unused for level 0)
+  // The detection mask at this level, 255 where keypoints may be and 0 elsewhere; 0 x 0 without
+  // a mask (core/detection_mask.hpp).
+  GrayImage detection_mask;
+
+  bool has_detection_mask() const { return detection_mask.width() > 0; }
 
   // Whether the level can hold keypoints (and is built): both sides >= 2 * kEdgeBorder + 1.
   bool usable() const { return geometry.grid.count() > 0; }

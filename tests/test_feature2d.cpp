@@ -28,7 +28,7 @@ std::string first_difference(const std::vector<cv::KeyPoint>& a, const cv::Mat& 
       return "keypoint " + std::to_string(i) + ": (" + std::to_string(p.pt.x) + ", " + std::to_string(p.pt.y) + ", angle " +
              std::to_string(p.angle) + ") vs (" + std::to_string(q.pt.x) + ", " + std::to_string(q.pt.y) + ", angle " +
              std::to_string(q.angle) + ")";
-    if (std::memcmp(da.ptr(static_cast<int>(i)), db.ptr(static_cast<int>(i)), static_cast<std::size_t>(da.cols)) != 0)
+    if (!da.empty() && std::memcmp(da.ptr(static_cast<int>(i)), db.ptr(static_cast<int>(i)), static_cast<std::size_t>(da.cols)) != 0)
       return "descriptor " + std::to_string(i);
   }
   return "";
@@ -74,6 +74,23 @@ TEST(Feature2D, DetectThenComputeIsDetectAndComputeBitForBit) {
       EXPECT_EQ(first_difference(both, both_descriptors, separate, separate_descriptors), "") << sequence << " " << to_string(mode);
     }
   }
+}
+
+TEST(Feature2D, TheMaskIsTheEnginesDetectionMask) {
+  const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
+  cv::Mat mask(gray.size(), CV_8UC1, cv::Scalar(0));
+  mask(cv::Rect(0, 0, gray.cols / 2, gray.rows)).setTo(255);
+  std::vector<cv::KeyPoint> keypoints, detected;
+  cv::Mat descriptors;
+  const cv::Ptr<cv::Feature2D> detector = opencv::Feature2D::create();
+  detector->detectAndCompute(gray, mask, keypoints, descriptors);
+  detector->detect(gray, detected, mask);
+  Features expected;
+  Extractor().extract(view_of(gray), view_of(mask), expected);
+  EXPECT_EQ(first_difference(keypoints, descriptors, to_cv_keypoints(expected), to_cv_descriptors(expected)), "");
+  EXPECT_EQ(keypoints.size(), 1000u);
+  EXPECT_EQ(first_difference(keypoints, cv::Mat(), detected, cv::Mat()), "");
+  EXPECT_THROW(detector->detect(gray, detected, cv::Mat(gray.size(), CV_32F, cv::Scalar(1))), Error);
 }
 
 TEST(Feature2D, ComputeKeepsEachKeypointsFieldsButTheAngleAndRemovesThoseNearTheEdge) {
