@@ -18,20 +18,6 @@
 
 namespace aief::python {
 
-PyFeatures PyExtractor::extract(const py::object& image) {
-  const ImageInput input(image, extractor_.options().max_image_pixels);
-  Features features;
-  {
-    py::gil_scoped_release no_gil;
-    const std::lock_guard lock(mutex_);
-    GrayImage buffer;
-    const ImageView gray = input.gray(buffer);
-    extraction_rendezvous();
-    extractor_.extract(gray, features);
-  }
-  return to_python(features);
-}
-
 namespace {
 
 namespace table = option_table;
@@ -162,10 +148,22 @@ void bind_extractor(py::module_& m) {
       .def(py::init([](const py::args& args, const py::kwargs& kwargs) {
         return std::make_unique<PyExtractor>(options_from(args, kwargs));
       }))
-      .def("extract", &PyExtractor::extract, py::arg("image"),
+      .def("extract", &PyExtractor::extract, py::arg("image"), py::arg("mask") = py::none(),
            "Features of a 2-D uint8 gray image (any strides; not copied when its rows are contiguous) or an "
            "H x W x 3 BGR / H x W x 4 BGRA uint8 image (converted to gray as the aief CLI converts files). "
-           "The GIL is released meanwhile.")
+           "mask: None, or a 2-D uint8 / bool array of the image's height and width, non-zero where keypoints "
+           "may be; it acts before the distribution, so the n_features budget is filled inside it "
+           "(docs/opencv.md). The GIL is released meanwhile.")
+      .def("describe", &PyExtractor::describe, py::arg("image"), py::arg("keypoints"), py::arg("octave") = py::none(),
+           py::arg("size") = py::none(), py::arg("angle") = py::none(), py::arg("response") = py::none(),
+           py::arg("keep_angles") = false,
+           "Descriptors of given keypoints, computed as for detected ones: (features, kept). keypoints: aief "
+           "Features (e.g. from extract(); describing them gives back their bytes) or an N x 2 array of (x, y) "
+           "level-0 pixels, with optional per-keypoint octave (pyramid level, default 0), size (default 31), "
+           "angle and response. The angle is recomputed (intensity centroid) unless keep_angles (then each must "
+           "be in [0, 360), as cv2.ORB keeps it). Keypoints closer than 19 pixels to their level's edge are "
+           "removed; kept: int32 indices of the kept keypoints in the given ones. An octave outside "
+           "[0, levels) raises aief.Error.")
       .def_property_readonly("options", [](const PyExtractor& e) { return options_dict(e.options()); },
                              "every option in effect, as a dict (the mode's values filled in)")
       .def_property_readonly("kernel_name", &PyExtractor::kernel_name,

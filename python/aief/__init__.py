@@ -14,31 +14,51 @@ __all__ = ["AdaptResult", "Error", "Extractor", "Features", "adapt", "batch_inpu
            "find_homography", "match", "read_image"]
 
 
+def _cv_keypoints(features, class_ids=None):
+    import cv2  # only the cv2-style methods need OpenCV
+
+    ids = [-1] * len(features) if class_ids is None else class_ids
+    return [
+        cv2.KeyPoint(float(x), float(y), float(size), float(angle), float(response), int(octave), int(class_id))
+        for (x, y), size, angle, response, octave, class_id in zip(features.keypoints, features.size, features.angle,
+                                                                  features.response, features.octave, ids)
+    ]
+
+
 def _detect_and_compute(self, image, mask=None):
     """As cv2.Feature2D.detectAndCompute: (list of cv2.KeyPoint, N x 32 uint8 descriptors).
 
-    A keypoint whose pixel (rounded position) is 0 in `mask` is dropped after extraction, as
-    cv2.KeyPointsFilter.runByPixelsMask drops it; the distribution over blocks is not redone.
+    `mask` (2-D uint8 or bool, non-zero where keypoints may be) acts inside the extraction, before
+    the distribution, so the n_features budget is filled inside it, as cv2.ORB fills its own.
     Needs cv2 (python3-opencv).
     """
-    import cv2  # only this method needs OpenCV
+    features = self.extract(image, mask)
+    return _cv_keypoints(features), features.descriptors
+
+
+def _detect(self, image, mask=None):
+    """As cv2.Feature2D.detect: the keypoints of detectAndCompute, as a list of cv2.KeyPoint."""
+    return _cv_keypoints(self.extract(image, mask))
+
+
+def _compute(self, image, keypoints):
+    """As cv2.Feature2D.compute: (keypoints, N x 32 uint8 descriptors) of the given cv2.KeyPoints.
+
+    Each keypoint is described on the pyramid level its octave names; its angle is recomputed as
+    for detected keypoints, its other fields (class_id too) are kept; keypoints closer than 19
+    pixels to their level's edge are left out, as cv2.ORB leaves some out. detect() followed by
+    compute() gives detectAndCompute() bit for bit. See Extractor.describe for arrays.
+    """
     import numpy
 
-    features = self.extract(image)
-    keep = numpy.ones(len(features), dtype=bool)
-    if mask is not None:
-        mask = numpy.asarray(mask)
-        if mask.shape != numpy.asarray(image).shape[:2]:
-            raise Error(f"mask shape {mask.shape} differs from the image's {numpy.asarray(image).shape[:2]}")
-        cols = numpy.clip(numpy.rint(features.keypoints[:, 0]).astype(int), 0, mask.shape[1] - 1)
-        rows = numpy.clip(numpy.rint(features.keypoints[:, 1]).astype(int), 0, mask.shape[0] - 1)
-        keep = mask[rows, cols] != 0
-    keypoints = [
-        cv2.KeyPoint(float(x), float(y), float(size), float(angle), float(response), int(octave), -1)
-        for (x, y), size, angle, response, octave, k in zip(features.keypoints, features.size, features.angle,
-                                                            features.response, features.octave, keep) if k
-    ]
-    return keypoints, numpy.ascontiguousarray(features.descriptors[keep])
+    keypoints = list(keypoints)
+    xy = numpy.float32([k.pt for k in keypoints]).reshape(-1, 2)
+    features, kept = self.describe(image, xy, octave=numpy.int32([k.octave for k in keypoints]),
+                                   size=numpy.float32([k.size for k in keypoints]),
+                                   response=numpy.float32([k.response for k in keypoints]))
+    return _cv_keypoints(features, [keypoints[i].class_id for i in kept]), features.descriptors
 
 
 Extractor.detectAndCompute = _detect_and_compute
+Extractor.detect = _detect
+Extractor.compute = _compute

@@ -1,4 +1,4 @@
-"""Extractor.detectAndCompute: cv2.Feature2D's return shape, mask as cv2.KeyPointsFilter applies it."""
+"""Extractor.detectAndCompute, detect, compute: cv2.Feature2D's methods; the mask fills the budget inside it."""
 import cv2
 import numpy
 
@@ -25,23 +25,66 @@ def test_keypoints_and_descriptors_like_cv2_orb():
     assert len(matches) == len(keypoints)
 
 
-def test_mask_drops_keypoints_on_zero_pixels():
-    image = read_unchanged(sample_path("boat"))
+def test_mask_fills_the_budget_inside_it():
+    image = read_unchanged(sample_path("graf"))
     extractor = aief.Extractor()
-    all_keypoints, all_descriptors = extractor.detectAndCompute(image)
+    all_keypoints, _ = extractor.detectAndCompute(image)
     mask = numpy.zeros(image.shape[:2], numpy.uint8)
     mask[:, : image.shape[1] // 2] = 255
+    inside = [k for k in all_keypoints if round(k.pt[0]) < image.shape[1] // 2]
+    assert len(inside) == 549  # what dropping masked keypoints after extraction kept
     keypoints, descriptors = extractor.detectAndCompute(image, mask)
-    kept = [i for i, k in enumerate(all_keypoints) if round(k.pt[0]) < image.shape[1] // 2]
-    assert 0 < len(keypoints) == len(kept) < len(all_keypoints)
-    numpy.testing.assert_array_equal(descriptors, all_descriptors[kept])
+    assert len(keypoints) == len(descriptors) == 1000
+    assert all(mask[round(k.pt[1]), round(k.pt[0])] for k in keypoints)
+    features = extractor.extract(image, mask.astype(bool))
+    numpy.testing.assert_array_equal(features.descriptors, descriptors)
+    # A mask allowing every pixel is no mask.
+    numpy.testing.assert_array_equal(extractor.extract(image, numpy.ones(image.shape[:2], numpy.uint8)).descriptors,
+                                     extractor.extract(image).descriptors)
+
+
+def test_detect_then_compute_is_detect_and_compute():
+    image = read_unchanged(sample_path("boat"))
+    for mode in ("aief", "aief-paper", "orbslam2", "quadtree-entropy"):
+        extractor = aief.Extractor(mode=mode)
+        keypoints, descriptors = extractor.detectAndCompute(image)
+        detected = extractor.detect(image)
+        described, described_descriptors = extractor.compute(image, detected)
+        assert len(described) == len(keypoints)
+        numpy.testing.assert_array_equal(described_descriptors, descriptors)
+        for a, b in zip(described, keypoints):
+            assert (a.pt, a.size, a.angle, a.response, a.octave) == (b.pt, b.size, b.angle, b.response, b.octave)
+        # The array form gives back the extraction's bytes too.
+        features = extractor.extract(image)
+        again, kept = extractor.describe(image, features)
+        assert kept.tolist() == list(range(len(features)))
+        numpy.testing.assert_array_equal(again.descriptors, features.descriptors)
+        numpy.testing.assert_array_equal(again.angle, features.angle)
+
+
+def test_compute_keeps_class_ids_and_leaves_out_keypoints_near_the_edge():
+    image = read_unchanged(sample_path("boat"))
+    h, w = image.shape[:2]
+    given = [cv2.KeyPoint(100, 100, 31, 0, 0, 0, 7), cv2.KeyPoint(18.4, 100, 31, 0, 0, 0, 8),
+             cv2.KeyPoint(w - 19.6, 300, 31, 0, 0, 0, 9), cv2.KeyPoint(300, 300, 31, 0, 0, 2, 10)]
+    keypoints, descriptors = aief.Extractor().compute(image, given)
+    assert [k.class_id for k in keypoints] == [7, 9, 10] and descriptors.shape == (3, 32)
+    features, kept = aief.Extractor().describe(image, numpy.float32([[100, 100], [300, 300]]), octave=[0, 9 - 9])
+    assert kept.tolist() == [0, 1] and len(features) == 2
+    try:
+        aief.Extractor().describe(image, numpy.float32([[100, 100]]), octave=[8])
+    except aief.Error as e:
+        assert "octave 8" in str(e)
+    else:
+        raise AssertionError("no error")
 
 
 def test_mask_of_another_shape_is_an_error():
     image = read_unchanged(sample_path("boat"))
-    try:
-        aief.Extractor().detectAndCompute(image, numpy.ones((10, 10), numpy.uint8))
-    except aief.Error as e:
-        assert "mask shape" in str(e)
-    else:
-        raise AssertionError("no error")
+    for mask in (numpy.ones((10, 10), numpy.uint8), numpy.ones(image.shape[:2], numpy.float32)):
+        try:
+            aief.Extractor().detectAndCompute(image, mask)
+        except aief.Error as e:
+            assert "is not the image's size" in str(e) or "uint8 or bool" in str(e)
+        else:
+            raise AssertionError("no error")
