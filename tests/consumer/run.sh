@@ -51,6 +51,7 @@ cmake --build "$work/consumer" > "$work/build.log" 2>&1 || { cat "$work/build.lo
 "$work/consumer/consumer" || fail "the find_package consumer failed"
 if [ "$expect_opencv" = ON ]; then
   "$work/consumer/consumer_opencv" || fail "the aief::opencv consumer failed"
+  "$work/consumer/feature2d_consumer" || fail "the cv::Feature2D consumer failed"
   "$work/consumer/orbslam2_swap" || fail "the ORB-SLAM2 swap of docs/orbslam2.md failed"
   "$work/consumer/orbslam3_swap" || fail "the ORB-SLAM3 swap of docs/orbslam3.md failed"
 fi
