@@ -90,10 +90,27 @@ class Extractor:
         ranking: Optional[str] = None,
         auto_requires_two_classes: Optional[bool] = None,
     ) -> None: ...
-    def extract(self, image: ImageLike) -> Features:
-        """Features of a gray, BGR or BGRA uint8 image; the GIL is released meanwhile."""
-    # Defined in python/aief/__init__.py (needs cv2): as cv2.Feature2D.detectAndCompute.
+    def extract(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> Features:
+        """Features of a gray, BGR or BGRA uint8 image; mask (2-D uint8 or bool, non-zero where
+        keypoints may be) acts before the distribution, so the budget is filled inside it. The GIL
+        is released meanwhile."""
+    def describe(
+        self,
+        image: ImageLike,
+        keypoints: Union[Features, numpy.typing.ArrayLike],
+        octave: Optional[numpy.typing.ArrayLike] = None,
+        size: Optional[numpy.typing.ArrayLike] = None,
+        angle: Optional[numpy.typing.ArrayLike] = None,
+        response: Optional[numpy.typing.ArrayLike] = None,
+        keep_angles: bool = False,
+    ) -> tuple[Features, numpy.ndarray]:
+        """Descriptors of given keypoints (Features or N x 2 (x, y)), computed as for detected ones:
+        (features of the kept keypoints, their int32 indices). Angles recomputed unless keep_angles;
+        keypoints closer than 19 pixels to their level's edge are removed."""
+    # Defined in python/aief/__init__.py (need cv2): as cv2.Feature2D's methods.
     def detectAndCompute(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> tuple[list[Any], numpy.ndarray]: ...
+    def detect(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> list[Any]: ...
+    def compute(self, image: ImageLike, keypoints: list[Any]) -> tuple[list[Any], numpy.ndarray]: ...
     @property
     def options(self) -> dict[str, Any]:
         """Every option in effect, as a dict."""
