@@ -1,8 +1,11 @@
 #include "aief/feature2d.hpp"
 
+#include <cstdio>
 #include <string>
+#include <variant>
 
 #include "aief/error.hpp"
+#include "core/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
 namespace aief::opencv {
@@ -60,11 +63,40 @@ void Feature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask, std:
 }
 
 void Feature2D::write(cv::FileStorage& storage) const {
-  (void)storage;  // filled from the option table (core/option_table.hpp) once it lands
+  if (!storage.isOpened()) return;
+  storage << "name" << getDefaultName();
+  // Every option as the output files record it (core/option_table.hpp): numbers as numbers,
+  // names and toggles as the text the table reads back.
+  for (const auto& [key, value] : option_table::record_of(options())) {
+    const std::string name(key);
+    if (const auto* number = std::get_if<double>(&value)) storage << name << *number;
+    else if (const auto* integer = std::get_if<long long>(&value); integer && *integer == static_cast<int>(*integer))
+      storage << name << static_cast<int>(*integer);
+    else storage << name << option_table::text_of(option_table::row(key), value);
+  }
 }
 
 void Feature2D::read(const cv::FileNode& node) {
-  (void)node;
+  ExtractorOptions options = this->options();
+  for (const option_table::OptionRow& row : option_table::rows()) {
+    if (!row.is_field()) continue;
+    const cv::FileNode value = node[std::string(row.key)];
+    if (value.empty()) continue;
+    std::string text;
+    if (value.isInt()) {
+      text = std::to_string(static_cast<int>(value));
+    } else if (value.isReal()) {
+      char buffer[40];
+      std::snprintf(buffer, sizeof buffer, "%.17g", static_cast<double>(value));
+      text = buffer;
+    } else if (value.isString()) {
+      text = static_cast<std::string>(value);
+    } else {
+      throw Error("setting " + std::string(row.key) + " is neither a number nor a string");
+    }
+    row.field.set(options, option_table::parse_value(row, text, row.key));
+  }
+  extractor_ = Extractor(options);  // validates; on an error the detector is left as it was
 }
 
 }  // namespace aief::opencv

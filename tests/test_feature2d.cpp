@@ -45,6 +45,27 @@ TEST(Feature2D, IsACvFeature2DWithOrbsDescriptorShape) {
   EXPECT_FALSE(detector->empty());
 }
 
+TEST(Feature2D, OptionsGoThroughFileStorage) {
+  ExtractorOptions options = options_for_mode(Mode::orbslam2);
+  options.n_features = 777;
+  options.scale_factor = 1.3;
+  const cv::Ptr<cv::Feature2D> written = opencv::Feature2D::create(options);
+  cv::FileStorage out("settings.yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  written->write(out);
+  const cv::String text = out.releaseAndGetString();
+  cv::FileStorage in(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  const cv::Ptr<opencv::Feature2D> read = opencv::Feature2D::create();
+  read->read(in.root());
+  EXPECT_EQ(read->options().n_features, 777);
+  EXPECT_EQ(read->options().scale_factor, 1.3);
+  EXPECT_EQ(read->options().distribution, options.distribution);
+  EXPECT_EQ(read->options().entropy, options.entropy);
+  EXPECT_EQ(read->options().coordinates, options.coordinates);
+  cv::FileStorage bad("%YAML:1.0\nn_features: -5\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  EXPECT_THROW(read->read(bad.root()), Error);
+  EXPECT_EQ(read->options().n_features, 777) << "a bad setting leaves the detector as it was";
+}
+
 TEST(Feature2D, DetectAndComputeGivesTheEnginesFeatures) {
   const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
   for (Mode mode : kEveryMode) {
