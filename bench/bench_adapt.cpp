@@ -17,7 +17,8 @@ namespace aief::bench {
 namespace {
 
 cv::Mat second_image(const std::string& sequence) {
-  return cv::imread(std::string(AIEF_SAMPLE_DIR) + "/" + sequence + "/img2.png", cv::IMREAD_GRAYSCALE);
+  return cv::imread(std::string(AIEF_SAMPLE_DIR) + "/" + sequence + "/img2.png",
+                    cv::IMREAD_GRAYSCALE);
 }
 
 void register_adapt_benchmarks() {
@@ -26,7 +27,8 @@ void register_adapt_benchmarks() {
     const auto b = std::make_shared<cv::Mat>(second_image(sequence));
     for (int threads : {1, 2}) {
       const std::string suffix = "/t" + std::to_string(threads) + "/" + sequence;
-      benchmark::RegisterBenchmark(("adapt/sweep" + suffix).c_str(), [a, b, threads](benchmark::State& state) {
+      benchmark::RegisterBenchmark(("adapt/sweep" + suffix).c_str(), [a, b, threads](
+                                                                         benchmark::State& state) {
         ExtractorOptions options;
         options.threads = threads;
         AdaptiveSweep sweep(options);  // reused, as a user sweeping many pairs would
@@ -34,17 +36,20 @@ void register_adapt_benchmarks() {
         for (auto _ : state) sweep.run(view_of(*a), view_of(*b), result);
         state.counters["thresholds"] = static_cast<double>(result.curve.size());
       })->Unit(benchmark::kMillisecond);
-      benchmark::RegisterBenchmark(("adapt/extract_both_and_match" + suffix).c_str(), [a, b, threads](benchmark::State& state) {
-        ExtractorOptions options;
-        options.threads = threads;
-        Extractor extractor(options);
-        Features fa, fb;
-        for (auto _ : state) {
-          extractor.extract(view_of(*a), fa);
-          extractor.extract(view_of(*b), fb);
-          benchmark::DoNotOptimize(match_descriptors(fa.descriptors, fb.descriptors));
-        }
-      })->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(
+          ("adapt/extract_both_and_match" + suffix).c_str(),
+          [a, b, threads](benchmark::State& state) {
+            ExtractorOptions options;
+            options.threads = threads;
+            Extractor extractor(options);
+            Features fa, fb;
+            for (auto _ : state) {
+              extractor.extract(view_of(*a), fa);
+              extractor.extract(view_of(*b), fb);
+              benchmark::DoNotOptimize(match_descriptors(fa.descriptors, fb.descriptors));
+            }
+          })
+          ->Unit(benchmark::kMillisecond);
     }
   }
 }

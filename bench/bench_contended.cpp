@@ -56,7 +56,8 @@ class BusyThread {
   void spin() {
     std::uint64_t state = 88172645463325252ULL;
     while (!stop_.load(std::memory_order_relaxed)) {
-      for (int i = 0; i < 1024; ++i) state ^= state << 13, state ^= state >> 7, state ^= state << 17;  // xorshift64
+      for (int i = 0; i < 1024; ++i)
+        state ^= state << 13, state ^= state >> 7, state ^= state << 17;  // xorshift64
       benchmark::DoNotOptimize(state);
     }
   }
@@ -76,7 +77,8 @@ class Rig {
     for (int i = 0; i < cameras; ++i) cameras_.push_back(std::make_unique<Camera>(options));
     for (auto& camera : cameras_) camera->extract(gray_);  // buffers sized before timing
     if (cameras > 1)
-      for (std::size_t i = 0; i < cameras_.size(); ++i) threads_.emplace_back([this, i] { camera_loop(i); });
+      for (std::size_t i = 0; i < cameras_.size(); ++i)
+        threads_.emplace_back([this, i] { camera_loop(i); });
   }
   ~Rig() {
     {
@@ -145,7 +147,9 @@ const char* name_of(Situation situation) {
   return "?";
 }
 
-int cameras_in(Situation situation) { return situation == Situation::stereo || situation == Situation::stereo_busy1 ? 2 : 1; }
+int cameras_in(Situation situation) {
+  return situation == Situation::stereo || situation == Situation::stereo_busy1 ? 2 : 1;
+}
 
 std::unique_ptr<BusyThread> competitor_for(Situation situation) {
   const bool busy = situation == Situation::busy1 || situation == Situation::stereo_busy1;
@@ -161,42 +165,57 @@ double median(std::vector<double> values) {
 double frame_milliseconds(Rig& rig) {
   const auto start = std::chrono::steady_clock::now();
   rig.extract_frame();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
 }
 
 void register_contended_benchmarks() {
   for (const NamedImage& image : benchmark_images()) {
     if (image.name != "640x480" && image.name != "graf_800x640") continue;  // SLAM camera sizes
     const cv::Mat* gray = &image.gray;
-    for (Situation situation : {Situation::idle, Situation::busy1, Situation::stereo, Situation::stereo_busy1}) {
+    for (Situation situation :
+         {Situation::idle, Situation::busy1, Situation::stereo, Situation::stereo_busy1}) {
       for (int threads : {0, 1, 2}) {
-        const std::string name = "contended/aief/t" + std::to_string(threads) + "/" + name_of(situation) + "/" + image.name;
-        benchmark::RegisterBenchmark(name.c_str(), [gray, threads, situation](benchmark::State& state) {
-          Rig rig(cameras_in(situation), threads, *gray);
-          const std::unique_ptr<BusyThread> competitor = competitor_for(situation);
-          for (auto _ : state) rig.extract_frame();
-          state.SetItemsProcessed(state.iterations() * cameras_in(situation) * gray->cols * gray->rows);
-        })->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+        const std::string name = "contended/aief/t" + std::to_string(threads) + "/" +
+                                 name_of(situation) + "/" + image.name;
+        benchmark::RegisterBenchmark(
+            name.c_str(),
+            [gray, threads, situation](benchmark::State& state) {
+              Rig rig(cameras_in(situation), threads, *gray);
+              const std::unique_ptr<BusyThread> competitor = competitor_for(situation);
+              for (auto _ : state) rig.extract_frame();
+              state.SetItemsProcessed(state.iterations() * cameras_in(situation) * gray->cols *
+                                      gray->rows);
+            })
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->MeasureProcessCPUTime();
       }
-      const std::string name = "threads_ratio/aief/t2_vs_t1/" + std::string(name_of(situation)) + "/" + image.name;
-      benchmark::RegisterBenchmark(name.c_str(), [gray, situation](benchmark::State& state) {
-        Rig one_thread(cameras_in(situation), 1, *gray), two_threads(cameras_in(situation), 2, *gray);
-        const std::unique_ptr<BusyThread> competitor = competitor_for(situation);
-        std::vector<double> t1, t2, ratio;
-        bool two_first = false;
-        for (auto _ : state) {
-          // Alternate which runs first, so neither always follows the other.
-          const double first = frame_milliseconds(two_first ? two_threads : one_thread);
-          const double second = frame_milliseconds(two_first ? one_thread : two_threads);
-          t1.push_back(two_first ? second : first);
-          t2.push_back(two_first ? first : second);
-          ratio.push_back(t2.back() / t1.back());
-          two_first = !two_first;
-        }
-        state.counters["t1_ms"] = median(t1);
-        state.counters["t2_ms"] = median(t2);
-        state.counters["t2_over_t1"] = median(ratio);
-      })->Unit(benchmark::kMillisecond)->UseRealTime();
+      const std::string name =
+          "threads_ratio/aief/t2_vs_t1/" + std::string(name_of(situation)) + "/" + image.name;
+      benchmark::RegisterBenchmark(
+          name.c_str(),
+          [gray, situation](benchmark::State& state) {
+            Rig one_thread(cameras_in(situation), 1, *gray),
+                two_threads(cameras_in(situation), 2, *gray);
+            const std::unique_ptr<BusyThread> competitor = competitor_for(situation);
+            std::vector<double> t1, t2, ratio;
+            bool two_first = false;
+            for (auto _ : state) {
+              // Alternate which runs first, so neither always follows the other.
+              const double first = frame_milliseconds(two_first ? two_threads : one_thread);
+              const double second = frame_milliseconds(two_first ? one_thread : two_threads);
+              t1.push_back(two_first ? second : first);
+              t2.push_back(two_first ? first : second);
+              ratio.push_back(t2.back() / t1.back());
+              two_first = !two_first;
+            }
+            state.counters["t1_ms"] = median(t1);
+            state.counters["t2_ms"] = median(t2);
+            state.counters["t2_over_t1"] = median(ratio);
+          })
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
     }
   }
 }

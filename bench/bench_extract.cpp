@@ -18,9 +18,11 @@ void register_extract_benchmarks() {
       for (KernelSet set : available_kernel_sets()) {
         for (int threads : {1, 2}) {
           if (mode != Mode::aief && (threads != 1 || set != best_kernel_set())) continue;
-          const std::string name = "extract/" + std::string(to_string(mode)) + "/" + std::string(to_string(set)) + "/t" +
-                                   std::to_string(threads) + "/" + image.name;
-          benchmark::RegisterBenchmark(name.c_str(), [gray, mode, set, threads](benchmark::State& state) {
+          const std::string name = "extract/" + std::string(to_string(mode)) + "/" +
+                                   std::string(to_string(set)) + "/t" + std::to_string(threads) +
+                                   "/" + image.name;
+          benchmark::RegisterBenchmark(name.c_str(), [gray, mode, set,
+                                                      threads](benchmark::State& state) {
             ExtractorOptions options = options_for_mode(mode);
             options.kernels = set;
             options.threads = threads;
@@ -33,14 +35,17 @@ void register_extract_benchmarks() {
         }
       }
     }
-    benchmark::RegisterBenchmark(("extract/opencv_orb/" + image.name).c_str(), [gray](benchmark::State& state) {
-      cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 8);
-      std::vector<cv::KeyPoint> keypoints;
-      cv::Mat descriptors;
-      for (auto _ : state) orb->detectAndCompute(*gray, cv::noArray(), keypoints, descriptors);
-      state.counters["keypoints"] = static_cast<double>(keypoints.size());
-      state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
-    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(
+        ("extract/opencv_orb/" + image.name).c_str(),
+        [gray](benchmark::State& state) {
+          cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 8);
+          std::vector<cv::KeyPoint> keypoints;
+          cv::Mat descriptors;
+          for (auto _ : state) orb->detectAndCompute(*gray, cv::noArray(), keypoints, descriptors);
+          state.counters["keypoints"] = static_cast<double>(keypoints.size());
+          state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
+        })
+        ->Unit(benchmark::kMillisecond);
   }
 }
 

@@ -25,15 +25,19 @@ struct Pyramid {
 
 Pyramid make_pyramid(const cv::Mat& gray) {
   Pyramid pyramid;
-  const std::vector<LevelGeometry> geometry = level_geometry(gray.cols, gray.rows, ExtractorOptions{});
+  const std::vector<LevelGeometry> geometry =
+      level_geometry(gray.cols, gray.rows, ExtractorOptions{});
   for (std::size_t n = 0; n < geometry.size(); ++n) {
     GrayImage level(geometry[n].width, geometry[n].height);
     if (n == 0) {
-      for (int y = 0; y < gray.rows; ++y) std::copy_n(gray.ptr<std::uint8_t>(y), gray.cols, level.data() + y * gray.cols);
+      for (int y = 0; y < gray.rows; ++y)
+        std::copy_n(gray.ptr<std::uint8_t>(y), gray.cols, level.data() + y * gray.cols);
       pyramid.plans.emplace_back();
     } else {
-      pyramid.plans.push_back(make_resize_plan(geometry[n - 1].width, geometry[n - 1].height, geometry[n].width, geometry[n].height));
-      resize_bilinear_rows_scalar(pyramid.levels.back().view(), pyramid.plans.back(), level.mutable_view(), 0, level.height());
+      pyramid.plans.push_back(make_resize_plan(geometry[n - 1].width, geometry[n - 1].height,
+                                               geometry[n].width, geometry[n].height));
+      resize_bilinear_rows_scalar(pyramid.levels.back().view(), pyramid.plans.back(),
+                                  level.mutable_view(), 0, level.height());
     }
     pyramid.pixels += static_cast<long long>(level.width()) * level.height();
     pyramid.levels.push_back(std::move(level));
@@ -48,9 +52,11 @@ cv::Mat as_mat(const GrayImage& image) {
 constexpr const char* kResize = listed_kernel("resize_bilinear_rows");
 constexpr const char* kGaussian = listed_kernel("gaussian7_rows");
 constexpr const char* kHistogram = listed_kernel("accumulate_histogram");
-constexpr const char* kFast = "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (core/fast9_detect.hpp)
+constexpr const char* kFast =
+    "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (core/fast9_detect.hpp)
 
-std::string benchmark_name(const char* kernel, const std::string& variant, const std::string& image) {
+std::string benchmark_name(const char* kernel, const std::string& variant,
+                           const std::string& image) {
   return std::string(kernel) + "/" + variant + "/" + image;
 }
 
@@ -61,81 +67,108 @@ void register_kernel_benchmarks() {
       const KernelTable* kernels = &kernel_table(set);
       const std::string variant = std::string(to_string(set));
 
-      benchmark::RegisterBenchmark(benchmark_name(kResize, variant, image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
-        std::vector<GrayImage> out;
-        for (std::size_t n = 0; n < pyramid->levels.size(); ++n) out.emplace_back(pyramid->levels[n].width(), pyramid->levels[n].height());
-        for (auto _ : state)
-          for (std::size_t n = 1; n < pyramid->levels.size(); ++n)
-            kernels->resize_bilinear_rows(pyramid->levels[n - 1].view(), pyramid->plans[n], out[n].mutable_view(), 0, out[n].height());
-        state.SetItemsProcessed(state.iterations() * (pyramid->pixels - pyramid->levels[0].width() * pyramid->levels[0].height()));
-      });
-      benchmark::RegisterBenchmark(benchmark_name(kGaussian, variant, image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
-        std::vector<GrayImage> out;
-        for (const GrayImage& level : pyramid->levels) out.emplace_back(level.width(), level.height());
-        for (auto _ : state)
-          for (std::size_t n = 0; n < pyramid->levels.size(); ++n)
-            kernels->gaussian7_rows(pyramid->levels[n].view(), out[n].mutable_view(), 0, out[n].height(), 0, out[n].width());
-        state.SetItemsProcessed(state.iterations() * pyramid->pixels);
-      });
-      benchmark::RegisterBenchmark(benchmark_name(kFast, variant, image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
-        std::vector<std::uint8_t> scores;
-        std::vector<std::uint64_t> maxima_bits;
-        std::vector<FastCorner> corners;
-        std::size_t found = 0;
-        for (auto _ : state)
-          for (const GrayImage& level : pyramid->levels) {
-            fast9_detect(level.view(), 20, *kernels, scores, maxima_bits, corners);
-            found += corners.size();
-          }
-        benchmark::DoNotOptimize(found);
-        state.SetItemsProcessed(state.iterations() * pyramid->pixels);
-      });
-      benchmark::RegisterBenchmark(benchmark_name(kHistogram, variant, image.name).c_str(), [pyramid, kernels](benchmark::State& state) {
-        std::uint32_t hist[256];
-        for (auto _ : state)
-          for (const GrayImage& level : pyramid->levels) {
-            std::fill(hist, hist + 256, 0u);
-            kernels->accumulate_histogram(level.data(), level.width(), level.width(), level.height(), hist);
-            benchmark::DoNotOptimize(hist);
-          }
-        state.SetItemsProcessed(state.iterations() * pyramid->pixels);
-      });
+      benchmark::RegisterBenchmark(
+          benchmark_name(kResize, variant, image.name).c_str(),
+          [pyramid, kernels](benchmark::State& state) {
+            std::vector<GrayImage> out;
+            for (std::size_t n = 0; n < pyramid->levels.size(); ++n)
+              out.emplace_back(pyramid->levels[n].width(), pyramid->levels[n].height());
+            for (auto _ : state)
+              for (std::size_t n = 1; n < pyramid->levels.size(); ++n)
+                kernels->resize_bilinear_rows(pyramid->levels[n - 1].view(), pyramid->plans[n],
+                                              out[n].mutable_view(), 0, out[n].height());
+            state.SetItemsProcessed(
+                state.iterations() *
+                (pyramid->pixels - pyramid->levels[0].width() * pyramid->levels[0].height()));
+          });
+      benchmark::RegisterBenchmark(benchmark_name(kGaussian, variant, image.name).c_str(),
+                                   [pyramid, kernels](benchmark::State& state) {
+                                     std::vector<GrayImage> out;
+                                     for (const GrayImage& level : pyramid->levels)
+                                       out.emplace_back(level.width(), level.height());
+                                     for (auto _ : state)
+                                       for (std::size_t n = 0; n < pyramid->levels.size(); ++n)
+                                         kernels->gaussian7_rows(
+                                             pyramid->levels[n].view(), out[n].mutable_view(), 0,
+                                             out[n].height(), 0, out[n].width());
+                                     state.SetItemsProcessed(state.iterations() * pyramid->pixels);
+                                   });
+      benchmark::RegisterBenchmark(benchmark_name(kFast, variant, image.name).c_str(),
+                                   [pyramid, kernels](benchmark::State& state) {
+                                     std::vector<std::uint8_t> scores;
+                                     std::vector<std::uint64_t> maxima_bits;
+                                     std::vector<FastCorner> corners;
+                                     std::size_t found = 0;
+                                     for (auto _ : state)
+                                       for (const GrayImage& level : pyramid->levels) {
+                                         fast9_detect(level.view(), 20, *kernels, scores,
+                                                      maxima_bits, corners);
+                                         found += corners.size();
+                                       }
+                                     benchmark::DoNotOptimize(found);
+                                     state.SetItemsProcessed(state.iterations() * pyramid->pixels);
+                                   });
+      benchmark::RegisterBenchmark(benchmark_name(kHistogram, variant, image.name).c_str(),
+                                   [pyramid, kernels](benchmark::State& state) {
+                                     std::uint32_t hist[256];
+                                     for (auto _ : state)
+                                       for (const GrayImage& level : pyramid->levels) {
+                                         std::fill(hist, hist + 256, 0u);
+                                         kernels->accumulate_histogram(level.data(), level.width(),
+                                                                       level.width(),
+                                                                       level.height(), hist);
+                                         benchmark::DoNotOptimize(hist);
+                                       }
+                                     state.SetItemsProcessed(state.iterations() * pyramid->pixels);
+                                   });
     }
 
     // OpenCV's kernels for the same jobs, same levels.
-    benchmark::RegisterBenchmark(benchmark_name(kResize, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
-      std::vector<cv::Mat> out(pyramid->levels.size());
-      for (auto _ : state)
-        for (std::size_t n = 1; n < pyramid->levels.size(); ++n)
-          cv::resize(as_mat(pyramid->levels[n - 1]), out[n], cv::Size(pyramid->levels[n].width(), pyramid->levels[n].height()), 0, 0, cv::INTER_LINEAR);
-      state.SetItemsProcessed(state.iterations() * (pyramid->pixels - pyramid->levels[0].width() * pyramid->levels[0].height()));
-    });
-    benchmark::RegisterBenchmark(benchmark_name(kGaussian, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
-      std::vector<cv::Mat> out(pyramid->levels.size());
-      for (auto _ : state)
-        for (std::size_t n = 0; n < pyramid->levels.size(); ++n)
-          cv::GaussianBlur(as_mat(pyramid->levels[n]), out[n], cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
-      state.SetItemsProcessed(state.iterations() * pyramid->pixels);
-    });
-    benchmark::RegisterBenchmark(benchmark_name(kFast, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
-      std::vector<cv::KeyPoint> keypoints;
-      for (auto _ : state)
-        for (const GrayImage& level : pyramid->levels) cv::FAST(as_mat(level), keypoints, 20, true);
-      state.SetItemsProcessed(state.iterations() * pyramid->pixels);
-    });
-    benchmark::RegisterBenchmark(benchmark_name(kHistogram, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
-      cv::Mat hist;
-      const int channels[] = {0};
-      const int bins[] = {256};
-      const float range[] = {0, 256};
-      const float* ranges[] = {range};
-      for (auto _ : state)
-        for (const GrayImage& level : pyramid->levels) {
-          cv::Mat mat = as_mat(level);
-          cv::calcHist(&mat, 1, channels, cv::Mat(), hist, 1, bins, ranges);
-        }
-      state.SetItemsProcessed(state.iterations() * pyramid->pixels);
-    });
+    benchmark::RegisterBenchmark(
+        benchmark_name(kResize, "opencv", image.name).c_str(), [pyramid](benchmark::State& state) {
+          std::vector<cv::Mat> out(pyramid->levels.size());
+          for (auto _ : state)
+            for (std::size_t n = 1; n < pyramid->levels.size(); ++n)
+              cv::resize(as_mat(pyramid->levels[n - 1]), out[n],
+                         cv::Size(pyramid->levels[n].width(), pyramid->levels[n].height()), 0, 0,
+                         cv::INTER_LINEAR);
+          state.SetItemsProcessed(
+              state.iterations() *
+              (pyramid->pixels - pyramid->levels[0].width() * pyramid->levels[0].height()));
+        });
+    benchmark::RegisterBenchmark(benchmark_name(kGaussian, "opencv", image.name).c_str(),
+                                 [pyramid](benchmark::State& state) {
+                                   std::vector<cv::Mat> out(pyramid->levels.size());
+                                   for (auto _ : state)
+                                     for (std::size_t n = 0; n < pyramid->levels.size(); ++n)
+                                       cv::GaussianBlur(as_mat(pyramid->levels[n]), out[n],
+                                                        cv::Size(7, 7), 2, 2,
+                                                        cv::BORDER_REFLECT_101);
+                                   state.SetItemsProcessed(state.iterations() * pyramid->pixels);
+                                 });
+    benchmark::RegisterBenchmark(benchmark_name(kFast, "opencv", image.name).c_str(),
+                                 [pyramid](benchmark::State& state) {
+                                   std::vector<cv::KeyPoint> keypoints;
+                                   for (auto _ : state)
+                                     for (const GrayImage& level : pyramid->levels)
+                                       cv::FAST(as_mat(level), keypoints, 20, true);
+                                   state.SetItemsProcessed(state.iterations() * pyramid->pixels);
+                                 });
+    benchmark::RegisterBenchmark(benchmark_name(kHistogram, "opencv", image.name).c_str(),
+                                 [pyramid](benchmark::State& state) {
+                                   cv::Mat hist;
+                                   const int channels[] = {0};
+                                   const int bins[] = {256};
+                                   const float range[] = {0, 256};
+                                   const float* ranges[] = {range};
+                                   for (auto _ : state)
+                                     for (const GrayImage& level : pyramid->levels) {
+                                       cv::Mat mat = as_mat(level);
+                                       cv::calcHist(&mat, 1, channels, cv::Mat(), hist, 1, bins,
+                                                    ranges);
+                                     }
+                                   state.SetItemsProcessed(state.iterations() * pyramid->pixels);
+                                 });
   }
 }
 

@@ -8,8 +8,8 @@
 #include "aief/error.hpp"
 #include "core/frame_pipeline.hpp"
 #include "core/matcher.hpp"
-#include "core/sweep_runs.hpp"
 #include "core/sweep_matcher.hpp"
+#include "core/sweep_runs.hpp"
 #include "parallel/scheduler.hpp"
 #include "simd/kernels.hpp"
 
@@ -21,7 +21,8 @@ void SweepOptions::validate() const {
     message << field << " must be " << rule << ", got " << value;
     throw Error(message.str());
   };
-  if (!std::isfinite(first_threshold) || first_threshold < 0) fail("first_threshold", first_threshold, "finite and >= 0");
+  if (!std::isfinite(first_threshold) || first_threshold < 0)
+    fail("first_threshold", first_threshold, "finite and >= 0");
   if (!std::isfinite(step) || step < 0.01 || step > 8) fail("step", step, "in [0.01, 8]");
   if (min_inliers < 4) fail("min_inliers", min_inliers, ">= 4");
   match.validate();
@@ -31,7 +32,8 @@ void SweepOptions::validate() const {
 namespace {
 
 // Identity of candidate i of level n: candidate indices numbered on through the levels. The
-// candidates are all detected by FramePipeline::analyse, so the numbering holds for every threshold.
+// candidates are all detected by FramePipeline::analyse, so the numbering holds for every
+// threshold.
 std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
   std::vector<std::int32_t> offsets(static_cast<std::size_t>(analysis.level_count()));
   std::size_t next = 0;
@@ -39,7 +41,8 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
     offsets[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(next);
     next += analysis.blocks(n).candidates.size();
   }
-  if (next > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) throw Error("adapt: too many candidates");
+  if (next > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw Error("adapt: too many candidates");
   return offsets;
 }
 
@@ -48,10 +51,13 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
 // level exactly when no e has F < e <= G, and F keeps the blocks above the first e > F.
 class SortedBlockEntropies {
  public:
-  explicit SortedBlockEntropies(const FrameAnalysis& analysis) : levels_(static_cast<std::size_t>(analysis.level_count())) {
+  explicit SortedBlockEntropies(const FrameAnalysis& analysis)
+      : levels_(static_cast<std::size_t>(analysis.level_count())) {
     for (int n = 0; n < analysis.level_count(); ++n) {
       std::vector<double>& sorted = levels_[static_cast<std::size_t>(n)];
-      sorted = analysis.blocks(n).entropy_bits;  // every block of a usable level (the sweep needs an entropy measure)
+      sorted =
+          analysis.blocks(n)
+              .entropy_bits;  // every block of a usable level (the sweep needs an entropy measure)
       std::sort(sorted.begin(), sorted.end());
     }
   }
@@ -74,7 +80,8 @@ class SortedBlockEntropies {
   int blocks_kept(double f) const {
     std::size_t kept = 0;
     for (const std::vector<double>& sorted : levels_)
-      kept += static_cast<std::size_t>(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), f));
+      kept += static_cast<std::size_t>(sorted.end() -
+                                       std::upper_bound(sorted.begin(), sorted.end(), f));
     return static_cast<int>(kept);
   }
 
@@ -86,17 +93,19 @@ class SortedBlockEntropies {
 // the sweep measures each F as it is), with the identity of each feature. `chosen` holds each
 // level's selection at `previous` (when there is one, i.e. previous >= 0); a level whose kept
 // blocks did not change since keeps it.
-void features_at(FramePipeline& frame, const SortedBlockEntropies& entropies, double threshold, double previous,
-                 const std::vector<std::int32_t>& id_offsets, std::vector<std::vector<std::int32_t>>& chosen,
-                 ThresholdFeatures& result) {
+void features_at(FramePipeline& frame, const SortedBlockEntropies& entropies, double threshold,
+                 double previous, const std::vector<std::int32_t>& id_offsets,
+                 std::vector<std::vector<std::int32_t>>& chosen, ThresholdFeatures& result) {
   const FrameAnalysis& analysis = frame.analysis();
   const int levels = analysis.level_count();
   chosen.resize(static_cast<std::size_t>(levels));
   result.ids.clear();
   for (int n = 0; n < levels; ++n) {
     std::vector<std::int32_t>& level_chosen = chosen[static_cast<std::size_t>(n)];
-    if (previous < 0 || !entropies.same_level_blocks_kept(n, previous, threshold)) frame.select(n, threshold, level_chosen);
-    for (std::int32_t i : level_chosen) result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
+    if (previous < 0 || !entropies.same_level_blocks_kept(n, previous, threshold))
+      frame.select(n, threshold, level_chosen);
+    for (std::int32_t i : level_chosen)
+      result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
   }
   Features& out = result.features;
   analysis.assemble(chosen, out);
@@ -111,13 +120,15 @@ void features_at(FramePipeline& frame, const SortedBlockEntropies& entropies, do
 bool same_features(const Features& x, const Features& y) {
   if (x.keypoints.size() != y.keypoints.size() || x.descriptors != y.descriptors) return false;
   for (std::size_t k = 0; k < x.keypoints.size(); ++k)
-    if (x.keypoints[k].x != y.keypoints[k].x || x.keypoints[k].y != y.keypoints[k].y || x.keypoints[k].octave != y.keypoints[k].octave)
+    if (x.keypoints[k].x != y.keypoints[k].x || x.keypoints[k].y != y.keypoints[k].y ||
+        x.keypoints[k].octave != y.keypoints[k].octave)
       return false;
   return true;
 }
 
-void homography_of(const Features& a, const Features& b, const std::vector<Match>& matches, const RansacOptions& ransac,
-                   std::vector<Point2>& src, std::vector<Point2>& dst, HomographyResult& out) {
+void homography_of(const Features& a, const Features& b, const std::vector<Match>& matches,
+                   const RansacOptions& ransac, std::vector<Point2>& src, std::vector<Point2>& dst,
+                   HomographyResult& out) {
   src.clear();
   dst.clear();
   for (const Match& m : matches) {
@@ -138,7 +149,8 @@ void check_sweep_inputs(const ExtractorOptions& options, const SweepOptions& swe
 
 }  // namespace
 
-SweepPipeline::SweepPipeline(const ExtractorOptions& options, const SweepOptions& sweep, const KernelTable& kernels)
+SweepPipeline::SweepPipeline(const ExtractorOptions& options, const SweepOptions& sweep,
+                             const KernelTable& kernels)
     : options_(options),
       sweep_(sweep),
       kernels_(&kernels),
@@ -152,14 +164,17 @@ const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats r
   // The two images are independent until matching: each is analysed by its frame pipeline (at
   // the sweep's lowest F), and later selected at every threshold, on its own thread.
   scheduler_.for_each(2, [&](int image) {
-    if (image == 0) frame_a_.analyse(a, sweep_.first_threshold);
-    else frame_b_.analyse(b, sweep_.first_threshold);
+    if (image == 0)
+      frame_a_.analyse(a, sweep_.first_threshold);
+    else
+      frame_b_.analyse(b, sweep_.first_threshold);
   });
 
   SweepFeatures& result = features_;
   result.image_entropy_bits = frame_a_.analysis().image_entropy_bits();
   // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
-  const int cycles = std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep_.step)));
+  const int cycles =
+      std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep_.step)));
 
   // Selection and description share the memo of an analysis: serial per image, the two images
   // side by side. The features of each threshold keep their storage from pair to pair.
@@ -199,8 +214,10 @@ void SweepPipeline::evaluate(MatchRun& run, std::size_t c) {
   const ThresholdFeatures& a = features_.a[c].resolved(features_.a);
   const ThresholdFeatures& b = features_.b[c].resolved(features_.b);
   Evaluated& evaluated = evaluated_[c];
-  evaluated.matches = run.matcher.match(a.features.descriptors, a.ids, b.features.descriptors, b.ids);
-  homography_of(a.features, b.features, evaluated.matches, sweep_.ransac, run.src, run.dst, evaluated.homography);
+  evaluated.matches =
+      run.matcher.match(a.features.descriptors, a.ids, b.features.descriptors, b.ids);
+  homography_of(a.features, b.features, evaluated.matches, sweep_.ransac, run.src, run.dst,
+                evaluated.homography);
 }
 
 // Estimated work of each distinct threshold matched first in a run (every distance) or after the
@@ -211,16 +228,21 @@ void SweepPipeline::evaluate(MatchRun& run, std::size_t c) {
 // and 9-12 ms for an even count of thresholds.
 std::vector<int> SweepPipeline::cut_into_runs(int runs) {
   const int count = static_cast<int>(distinct_.size());
-  std::vector<double> fresh(static_cast<std::size_t>(count)), incremental(static_cast<std::size_t>(count));
-  const auto new_features = [&](const std::vector<ThresholdFeatures>& all, std::vector<int>& new_counts) {
+  std::vector<double> fresh(static_cast<std::size_t>(count)),
+      incremental(static_cast<std::size_t>(count));
+  const auto new_features = [&](const std::vector<ThresholdFeatures>& all,
+                                std::vector<int>& new_counts) {
     const auto ids_at = [&](int k) -> const std::vector<std::int32_t>& {
-      return all[static_cast<std::size_t>(distinct_[static_cast<std::size_t>(k)])].resolved(all).ids;
+      return all[static_cast<std::size_t>(distinct_[static_cast<std::size_t>(k)])]
+          .resolved(all)
+          .ids;
     };
     new_counts.assign(static_cast<std::size_t>(count), 0);
     std::int32_t max_id = -1;
     for (int k = 0; k < count; ++k)
       for (std::int32_t id : ids_at(k)) max_id = std::max(max_id, id);
-    present_at_.assign(static_cast<std::size_t>(max_id) + 1, -1);  // the last distinct threshold holding each id
+    present_at_.assign(static_cast<std::size_t>(max_id) + 1,
+                       -1);  // the last distinct threshold holding each id
     for (int k = 0; k < count; ++k) {
       for (std::int32_t id : ids_at(k)) {
         int& present = present_at_[static_cast<std::size_t>(id)];
@@ -235,7 +257,8 @@ std::vector<int> SweepPipeline::cut_into_runs(int runs) {
     const std::size_t c = static_cast<std::size_t>(distinct_[static_cast<std::size_t>(k)]);
     const double size_a = static_cast<double>(features_.a[c].resolved(features_.a).ids.size());
     const double size_b = static_cast<double>(features_.b[c].resolved(features_.b).ids.size());
-    const double new_a = new_a_[static_cast<std::size_t>(k)], new_b = new_b_[static_cast<std::size_t>(k)];
+    const double new_a = new_a_[static_cast<std::size_t>(k)],
+                 new_b = new_b_[static_cast<std::size_t>(k)];
     const double fixed = 80.0 * (size_a + size_b) / 2;
     fresh[static_cast<std::size_t>(k)] = size_a * size_b + fixed;
     incremental[static_cast<std::size_t>(k)] = new_b * size_a + new_a * (size_b - new_b) + fixed;
@@ -249,8 +272,12 @@ void SweepPipeline::run(ImageView a, ImageView b, AdaptResult& result) {
   std::vector<ThresholdFeatures>& features_a = features_.a;
   std::vector<ThresholdFeatures>& features_b = features_.b;
   const int cycles = static_cast<int>(features_a.size());
-  const auto at_a = [&](std::size_t c) -> const ThresholdFeatures& { return features_a[c].resolved(features_a); };
-  const auto at_b = [&](std::size_t c) -> const ThresholdFeatures& { return features_b[c].resolved(features_b); };
+  const auto at_a = [&](std::size_t c) -> const ThresholdFeatures& {
+    return features_a[c].resolved(features_a);
+  };
+  const auto at_b = [&](std::size_t c) -> const ThresholdFeatures& {
+    return features_b[c].resolved(features_b);
+  };
 
   result.image_entropy_bits = features_.image_entropy_bits;
   // Low thresholds often keep every block: a threshold whose two feature sets equal the previous
@@ -276,12 +303,15 @@ void SweepPipeline::run(ImageView a, ImageView b, AdaptResult& result) {
   evaluated_.resize(static_cast<std::size_t>(cycles));
   const int distinct_count = static_cast<int>(distinct.size());
   const int runs = std::min(scheduler_.concurrency(), distinct_count);
-  while (static_cast<int>(runs_.size()) < runs) runs_.push_back({SweepMatcher(sweep_.match, *kernels_), {}, {}});
-  const std::vector<int> run_begin = runs > 1 ? cut_into_runs(runs) : std::vector<int>{0, distinct_count};
+  while (static_cast<int>(runs_.size()) < runs)
+    runs_.push_back({SweepMatcher(sweep_.match, *kernels_), {}, {}});
+  const std::vector<int> run_begin =
+      runs > 1 ? cut_into_runs(runs) : std::vector<int>{0, distinct_count};
   scheduler_.for_each(runs, [&](int r) {
     MatchRun& run = runs_[static_cast<std::size_t>(r)];
     run.matcher.reset();
-    for (int k = run_begin[static_cast<std::size_t>(r)]; k < run_begin[static_cast<std::size_t>(r) + 1]; ++k)
+    for (int k = run_begin[static_cast<std::size_t>(r)];
+         k < run_begin[static_cast<std::size_t>(r) + 1]; ++k)
       evaluate(run, static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]));
   });
 
@@ -304,12 +334,14 @@ void SweepPipeline::run(ImageView a, ImageView b, AdaptResult& result) {
     if (!point.eligible) continue;
     if (result.chosen_index >= 0) {
       const SweepPoint& best = result.curve[static_cast<std::size_t>(result.chosen_index)];
-      if (point.cmr < best.cmr || (point.cmr == best.cmr && point.inliers <= best.inliers)) continue;
+      if (point.cmr < best.cmr || (point.cmr == best.cmr && point.inliers <= best.inliers))
+        continue;
     }
     result.chosen_index = c;
   }
 
-  const std::size_t chosen = static_cast<std::size_t>(result.chosen_index >= 0 ? result.chosen_index : 0);
+  const std::size_t chosen =
+      static_cast<std::size_t>(result.chosen_index >= 0 ? result.chosen_index : 0);
   result.found = result.chosen_index >= 0;
   result.threshold = result.curve[chosen].threshold;
   // The chosen threshold's features, wherever they are held, with its own info (thresholds);
@@ -323,8 +355,9 @@ void SweepPipeline::run(ImageView a, ImageView b, AdaptResult& result) {
   result.homography = evaluated.homography;
 }
 
-SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
-                             const KernelTable& kernels, Repeats repeats) {
+SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options,
+                             const SweepOptions& sweep, const KernelTable& kernels,
+                             Repeats repeats) {
   SweepPipeline pipeline(options, sweep, kernels);
   return pipeline.features(a, b, repeats);
 }
@@ -342,7 +375,8 @@ struct AdaptiveSweep::State {
 };
 
 AdaptiveSweep::AdaptiveSweep(const ExtractorOptions& options, const SweepOptions& sweep)
-    : state_(std::make_unique<State>(State{SweepPipeline(options, sweep, kernel_table(options.kernels))})) {}
+    : state_(std::make_unique<State>(
+          State{SweepPipeline(options, sweep, kernel_table(options.kernels))})) {}
 
 AdaptiveSweep::~AdaptiveSweep() = default;
 AdaptiveSweep::AdaptiveSweep(AdaptiveSweep&&) noexcept = default;
@@ -354,9 +388,12 @@ AdaptResult AdaptiveSweep::run(ImageView a, ImageView b) {
   return result;
 }
 
-void AdaptiveSweep::run(ImageView a, ImageView b, AdaptResult& out) { state_->pipeline.run(a, b, out); }
+void AdaptiveSweep::run(ImageView a, ImageView b, AdaptResult& out) {
+  state_->pipeline.run(a, b, out);
+}
 
-AdaptResult adapt(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep) {
+AdaptResult adapt(ImageView a, ImageView b, const ExtractorOptions& options,
+                  const SweepOptions& sweep) {
   return AdaptiveSweep(options, sweep).run(a, b);
 }
 

@@ -39,15 +39,17 @@ struct SweepFeatures {
   std::vector<ThresholdFeatures> a, b;
 };
 
-SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options, const SweepOptions& sweep,
-                             const KernelTable& kernels, Repeats repeats = Repeats::copied);
+SweepFeatures sweep_features(ImageView a, ImageView b, const ExtractorOptions& options,
+                             const SweepOptions& sweep, const KernelTable& kernels,
+                             Repeats repeats = Repeats::copied);
 
 // The sweep with everything it keeps between pairs (AdaptiveSweep's state): both analyses, every
 // threshold's features and matches, one matcher per thread.
 class SweepPipeline {
  public:
   // Validates the options (throws aief::Error).
-  SweepPipeline(const ExtractorOptions& options, const SweepOptions& sweep, const KernelTable& kernels);
+  SweepPipeline(const ExtractorOptions& options, const SweepOptions& sweep,
+                const KernelTable& kernels);
 
   void run(ImageView a, ImageView b, AdaptResult& out);
   // Analyses both images and extracts them at every threshold; valid until the next call.

@@ -30,7 +30,8 @@ AutoThreshold otsu_split(const std::array<int, kBins>& histogram, int total) {
     if (count_low == 0) continue;
     if (count_high == 0) break;
     const double mean_low = sum_low / count_low, mean_high = (sum_all - sum_low) / count_high;
-    const double variance = static_cast<double>(count_low) * count_high * (mean_low - mean_high) * (mean_low - mean_high);
+    const double variance = static_cast<double>(count_low) * count_high * (mean_low - mean_high) *
+                            (mean_low - mean_high);
     if (variance > best_variance) {
       best_variance = variance;
       best_bin = i;
@@ -41,7 +42,8 @@ AutoThreshold otsu_split(const std::array<int, kBins>& histogram, int total) {
   const double total_variance = static_cast<double>(total) * sum_squares - sum_all * sum_all;
   AutoThreshold split;
   split.threshold_bits = (best_bin + 1) * kBinBits;  // blocks in bins <= best_bin fall below F
-  split.effectiveness = total_variance > 0 && best_variance > 0 ? std::min(1.0, best_variance / total_variance) : 0.0;
+  split.effectiveness =
+      total_variance > 0 && best_variance > 0 ? std::min(1.0, best_variance / total_variance) : 0.0;
   return split;
 }
 
@@ -65,8 +67,10 @@ AutoThreshold auto_entropy_threshold(std::vector<double>& entropies, bool requir
   // Keep at least kAutoMinKeptShare of the blocks: F no higher than the entropy below which
   // the other blocks lie (a block is kept when E > F).
   std::vector<double>& sorted = entropies;
-  const std::size_t dropped_at_most = static_cast<std::size_t>(std::floor((1.0 - kAutoMinKeptShare) * total));
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(dropped_at_most), sorted.end());
+  const std::size_t dropped_at_most =
+      static_cast<std::size_t>(std::floor((1.0 - kAutoMinKeptShare) * total));
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(dropped_at_most),
+                   sorted.end());
   const double cap = std::nextafter(sorted[dropped_at_most], 0.0);
   threshold = std::min(threshold, std::max(cap, 0.0));
   split.threshold_bits = std::max(threshold, 0.0);

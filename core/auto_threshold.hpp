@@ -25,13 +25,14 @@ inline constexpr double kAutoMinKeptShare = 0.75;
 inline constexpr double kAutoMinEffectiveness = 0.75;
 
 struct AutoThreshold {
-  double threshold_bits = 0;   // F
-  double effectiveness = 0;    // Otsu's eta at the split, in [0, 1] (0 when all entropies are equal)
+  double threshold_bits = 0;  // F
+  double effectiveness = 0;   // Otsu's eta at the split, in [0, 1] (0 when all entropies are equal)
 };
 
 // Reorders `block_entropies_bits` (a selection runs in place, so a frame allocates nothing).
 // `require_two_classes`: F = 0 when eta < kAutoMinEffectiveness.
-AutoThreshold auto_entropy_threshold(std::vector<double>& block_entropies_bits, bool require_two_classes);
+AutoThreshold auto_entropy_threshold(std::vector<double>& block_entropies_bits,
+                                     bool require_two_classes);
 
 // The block entropies the automatic F splits: every block of every level, less the uniform ones
 // when the options say so (ExtractorOptions::auto_skips_uniform_blocks): a uniform block (one

@@ -45,14 +45,15 @@ __extension__ using Uint128 = unsigned __int128;
 // H = log2(n) - S / (n 2^32) with S = sum c log2 c in Q32.
 double entropy_from_sums(std::uint64_t n, Uint128 sum_q32) {
   if (n == 0) return 0.0;
-  const double h = std::log2(static_cast<double>(n)) - static_cast<double>(sum_q32) / (static_cast<double>(n) * kQ32);
+  const double h = std::log2(static_cast<double>(n)) -
+                   static_cast<double>(sum_q32) / (static_cast<double>(n) * kQ32);
   return h > 0.0 ? h : 0.0;
 }
 
 }  // namespace
 
-void accumulate_histogram_scalar(const std::uint8_t* data, std::ptrdiff_t stride, int width, int height,
-                                 std::uint32_t* hist) {
+void accumulate_histogram_scalar(const std::uint8_t* data, std::ptrdiff_t stride, int width,
+                                 int height, std::uint32_t* hist) {
   // Four sub-histograms: consecutive equal pixels would otherwise wait on each other's
   // increment (store-to-load forwarding chain).
   std::uint32_t banks[4][256];
@@ -90,7 +91,8 @@ double histogram_entropy_bits(const std::uint32_t* hist, std::uint64_t pixels) {
 }
 
 double intensity_entropy_bits(const std::uint32_t* hist) {
-  // p = f / S over pixels: H = log2(S) - (1/S) sum_pixels f log2 f = log2(S) - (1/S) sum_k c_k k log2 k.
+  // p = f / S over pixels: H = log2(S) - (1/S) sum_pixels f log2 f = log2(S) - (1/S) sum_k c_k k
+  // log2 k.
   const std::uint64_t* table = c_log2_c_table();
   std::uint64_t s = 0;
   Uint128 sum = 0;
@@ -103,12 +105,14 @@ double intensity_entropy_bits(const std::uint32_t* hist) {
 
 double entropy_bits(const std::uint32_t* hist, EntropyMeasure measure) {
   assert(measure != EntropyMeasure::off);
-  return measure == EntropyMeasure::intensity ? intensity_entropy_bits(hist) : histogram_entropy_bits(hist);
+  return measure == EntropyMeasure::intensity ? intensity_entropy_bits(hist)
+                                              : histogram_entropy_bits(hist);
 }
 
 double entropy_bits(const std::uint32_t* hist, std::uint64_t pixels, EntropyMeasure measure) {
   assert(measure != EntropyMeasure::off);
-  return measure == EntropyMeasure::intensity ? intensity_entropy_bits(hist) : histogram_entropy_bits(hist, pixels);
+  return measure == EntropyMeasure::intensity ? intensity_entropy_bits(hist)
+                                              : histogram_entropy_bits(hist, pixels);
 }
 
 }  // namespace aief

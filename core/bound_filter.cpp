@@ -4,8 +4,8 @@
 
 namespace aief {
 
-int positions_within_bounds_scalar(const std::uint16_t* distances, const std::int16_t* train_bounds, int n,
-                                   int query_bound, std::int32_t* positions) {
+int positions_within_bounds_scalar(const std::uint16_t* distances, const std::int16_t* train_bounds,
+                                   int n, int query_bound, std::int32_t* positions) {
   int count = 0;
   for (int k = 0; k < n; ++k) {
     positions[count] = k;  // written always, kept when it passes: no branch on the data

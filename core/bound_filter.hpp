@@ -10,7 +10,7 @@ namespace aief {
 // Writes, in ascending order, the positions k in [0, n) with
 // distances[k] <= max(query_bound, train_bounds[k]) (compared as signed 16-bit values) and
 // returns how many. Reads exactly n elements of each array; `positions` has room for n.
-int positions_within_bounds_scalar(const std::uint16_t* distances, const std::int16_t* train_bounds, int n,
-                                   int query_bound, std::int32_t* positions);
+int positions_within_bounds_scalar(const std::uint16_t* distances, const std::int16_t* train_bounds,
+                                   int n, int query_bound, std::int32_t* positions);
 
 }  // namespace aief

@@ -10,14 +10,15 @@ namespace aief {
 
 namespace {
 
-constexpr int kScoreLevels = 256;                // FAST scores are bytes
-constexpr int kStrengthLevels = 5 * kScoreLevels;  // rank_strength(): at most five scores (the cross)
+constexpr int kScoreLevels = 256;  // FAST scores are bytes
+constexpr int kStrengthLevels =
+    5 * kScoreLevels;  // rank_strength(): at most five scores (the cross)
 
 // Order of candidates of equal strength, as stronger() ranks them: higher score, then y, then x
 // (a level is narrower and shorter than 2^25 pixels: max_image_pixels <= 2^26).
 std::int64_t tie_key(const Candidate& c) {
-  return (static_cast<std::int64_t>(kScoreLevels - 1 - c.score) << 50) | (static_cast<std::int64_t>(c.y) << 25) |
-         static_cast<std::int64_t>(c.x);
+  return (static_cast<std::int64_t>(kScoreLevels - 1 - c.score) << 50) |
+         (static_cast<std::int64_t>(c.y) << 25) | static_cast<std::int64_t>(c.x);
 }
 
 }  // namespace
@@ -29,8 +30,9 @@ std::int64_t candidate_pool_size(double pool_factor, int n_wanted) {
   return std::max<std::int64_t>(static_cast<std::int64_t>(size), n_wanted);
 }
 
-void pool_candidates(const std::vector<Candidate>& candidates, const std::vector<BlockRange>& blocks,
-                     std::int64_t pool_size, std::vector<Candidate>& pooled, std::vector<std::int32_t>& pooled_index,
+void pool_candidates(const std::vector<Candidate>& candidates,
+                     const std::vector<BlockRange>& blocks, std::int64_t pool_size,
+                     std::vector<Candidate>& pooled, std::vector<std::int32_t>& pooled_index,
                      std::vector<BlockRange>& pooled_blocks, CandidatePoolScratch& scratch) {
   assert(pool_size >= 0);
   pooled.clear();
@@ -46,14 +48,16 @@ void pool_candidates(const std::vector<Candidate>& candidates, const std::vector
   for (const BlockRange& block : blocks)
     for (std::int32_t i = block.begin; i < block.end; ++i) {
       const Candidate& c = candidates[static_cast<std::size_t>(i)];
-      assert(c.score >= 0 && c.score < kScoreLevels && c.x >= 0 && c.x < (1 << 25) && c.y >= 0 && c.y < (1 << 25));
+      assert(c.score >= 0 && c.score < kScoreLevels && c.x >= 0 && c.x < (1 << 25) && c.y >= 0 &&
+             c.y < (1 << 25));
       const int strength = rank_strength(c);
       assert(strength >= 0 && strength < kStrengthLevels);
       ++count_at[static_cast<std::size_t>(strength)];
       ++total;
     }
-  int cut_strength = -1;                                      // keep every strength above it
-  std::int64_t key_limit = std::numeric_limits<std::int64_t>::max();  // at cut_strength: keys <= limit
+  int cut_strength = -1;  // keep every strength above it
+  std::int64_t key_limit =
+      std::numeric_limits<std::int64_t>::max();  // at cut_strength: keys <= limit
   if (total > pool_size) {
     std::int64_t above = 0;
     cut_strength = kStrengthLevels - 1;
@@ -64,12 +68,15 @@ void pool_candidates(const std::vector<Candidate>& candidates, const std::vector
     tied.clear();
     for (const BlockRange& block : blocks)
       for (std::int32_t i = block.begin; i < block.end; ++i)
-        if (rank_strength(candidates[static_cast<std::size_t>(i)]) == cut_strength) tied.push_back(i);
+        if (rank_strength(candidates[static_cast<std::size_t>(i)]) == cut_strength)
+          tied.push_back(i);
     const auto by_tie_key = [&](std::int32_t a, std::int32_t b) {
-      return tie_key(candidates[static_cast<std::size_t>(a)]) < tie_key(candidates[static_cast<std::size_t>(b)]);
+      return tie_key(candidates[static_cast<std::size_t>(a)]) <
+             tie_key(candidates[static_cast<std::size_t>(b)]);
     };
     std::nth_element(tied.begin(), tied.begin() + (tied_wanted - 1), tied.end(), by_tie_key);
-    key_limit = tie_key(candidates[static_cast<std::size_t>(tied[static_cast<std::size_t>(tied_wanted - 1)])]);
+    key_limit = tie_key(
+        candidates[static_cast<std::size_t>(tied[static_cast<std::size_t>(tied_wanted - 1)])]);
   }
 
   for (const BlockRange& block : blocks) {

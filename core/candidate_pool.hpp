@@ -26,8 +26,9 @@ struct CandidatePoolScratch {
 // `candidates` in `pooled_index` and the pooled ranges in `pooled_blocks` (blocks left empty are
 // dropped). Requires pool_size >= 0; when the blocks hold no more than pool_size candidates they
 // are all copied.
-void pool_candidates(const std::vector<Candidate>& candidates, const std::vector<BlockRange>& blocks,
-                     std::int64_t pool_size, std::vector<Candidate>& pooled, std::vector<std::int32_t>& pooled_index,
+void pool_candidates(const std::vector<Candidate>& candidates,
+                     const std::vector<BlockRange>& blocks, std::int64_t pool_size,
+                     std::vector<Candidate>& pooled, std::vector<std::int32_t>& pooled_index,
                      std::vector<BlockRange>& pooled_blocks, CandidatePoolScratch& scratch);
 
 }  // namespace aief

@@ -21,13 +21,16 @@ void clear_partial_mask_rows(MutableImageView level_mask, int y_begin, int y_end
   }
 }
 
-void blocks_allowed(ImageView level_mask, const BlockGrid& grid, std::vector<std::uint8_t>& allowed) {
+void blocks_allowed(ImageView level_mask, const BlockGrid& grid,
+                    std::vector<std::uint8_t>& allowed) {
   allowed.assign(static_cast<std::size_t>(grid.count()), 0);
   for (int r = 0; r < grid.rows(); ++r)
     for (int c = 0; c < grid.cols(); ++c) {
-      const int x0 = grid.col_edges[static_cast<std::size_t>(c)], x1 = grid.col_edges[static_cast<std::size_t>(c) + 1];
+      const int x0 = grid.col_edges[static_cast<std::size_t>(c)],
+                x1 = grid.col_edges[static_cast<std::size_t>(c) + 1];
       bool any = false;
-      for (int y = grid.row_edges[static_cast<std::size_t>(r)]; y < grid.row_edges[static_cast<std::size_t>(r) + 1] && !any; ++y) {
+      for (int y = grid.row_edges[static_cast<std::size_t>(r)];
+           y < grid.row_edges[static_cast<std::size_t>(r) + 1] && !any; ++y) {
         const std::uint8_t* row = level_mask.row(y);
         any = std::any_of(row + x0, row + x1, [](std::uint8_t v) { return v != 0; });
       }

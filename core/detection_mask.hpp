@@ -29,7 +29,8 @@ void binarise_mask_rows(ImageView mask, MutableImageView level_mask, int y_begin
 void clear_partial_mask_rows(MutableImageView level_mask, int y_begin, int y_end);
 
 // Per block of `grid`: 1 when any pixel of the block is allowed in `level_mask`.
-void blocks_allowed(ImageView level_mask, const BlockGrid& grid, std::vector<std::uint8_t>& allowed);
+void blocks_allowed(ImageView level_mask, const BlockGrid& grid,
+                    std::vector<std::uint8_t>& allowed);
 
 // Bits of the allowed pixels of row `row` over [x_begin, x_end): bit i of word k is pixel
 // x_begin + 64 k + i. Writes (x_end - x_begin + 63) / 64 words.

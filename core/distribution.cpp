@@ -38,7 +38,10 @@ void distribute_proportional(const std::vector<Candidate>& candidates,
   std::int32_t lo = 0, hi = largest;
   while (lo < hi) {
     const std::int32_t mid = lo + (hi - lo + 1) / 2;
-    if (kept_at_level(blocks, mid) <= n_wanted) lo = mid; else hi = mid - 1;
+    if (kept_at_level(blocks, mid) <= n_wanted)
+      lo = mid;
+    else
+      hi = mid - 1;
   }
   const std::int32_t k = lo;
   std::int64_t remainder = n_wanted - kept_at_level(blocks, k);
@@ -49,13 +52,15 @@ void distribute_proportional(const std::vector<Candidate>& candidates,
   std::vector<std::int32_t>& next_in_line = scratch.next_in_line;
   next_in_line.clear();
   const auto by_strength = [&](std::int32_t a, std::int32_t b) {
-    return stronger(candidates[static_cast<std::size_t>(a)], candidates[static_cast<std::size_t>(b)]);
+    return stronger(candidates[static_cast<std::size_t>(a)],
+                    candidates[static_cast<std::size_t>(b)]);
   };
   for (const BlockRange& block : blocks) {
     const std::int32_t keep = std::min(block.size(), k);
     const std::int32_t ranked = std::min(block.size(), k + 1);
     order.resize(static_cast<std::size_t>(block.size()));
-    for (std::int32_t i = 0; i < block.size(); ++i) order[static_cast<std::size_t>(i)] = block.begin + i;
+    for (std::int32_t i = 0; i < block.size(); ++i)
+      order[static_cast<std::size_t>(i)] = block.begin + i;
     std::partial_sort(order.begin(), order.begin() + ranked, order.end(), by_strength);
     selected.insert(selected.end(), order.begin(), order.begin() + keep);
     if (ranked > keep) next_in_line.push_back(order[static_cast<std::size_t>(keep)]);
@@ -72,8 +77,13 @@ using Node = QuadtreeNode;
 
 class Quadtree {
  public:
-  Quadtree(const std::vector<Candidate>& candidates, int min_x, int min_y, DistributionScratch& scratch)
-      : keys(scratch.keys), nodes(scratch.nodes), candidates_(candidates), min_x_(min_x), min_y_(min_y),
+  Quadtree(const std::vector<Candidate>& candidates, int min_x, int min_y,
+           DistributionScratch& scratch)
+      : keys(scratch.keys),
+        nodes(scratch.nodes),
+        candidates_(candidates),
+        min_x_(min_x),
+        min_y_(min_y),
         scratch_(scratch.partition) {
     keys.clear();
     nodes.clear();
@@ -143,7 +153,8 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
 
   Quadtree tree(candidates, min_x, min_y, scratch);
   // Initial nodes side by side, about square (ORB-SLAM2); at least one, for portrait images.
-  const int initial = std::max(1, static_cast<int>(std::lround(static_cast<float>(width) / static_cast<float>(height))));
+  const int initial = std::max(
+      1, static_cast<int>(std::lround(static_cast<float>(width) / static_cast<float>(height))));
   const float node_width = static_cast<float>(width) / static_cast<float>(initial);
   std::vector<std::int32_t>& counts = scratch.initial_counts;
   std::vector<std::int32_t>& owner = scratch.owner;
@@ -168,7 +179,8 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
       start += count;
     }
     for (std::size_t i = 0; i < candidates.size(); ++i)
-      tree.keys[static_cast<std::size_t>(counts[static_cast<std::size_t>(owner[i])]++)] = static_cast<std::int32_t>(i);
+      tree.keys[static_cast<std::size_t>(counts[static_cast<std::size_t>(owner[i])]++)] =
+          static_cast<std::int32_t>(i);
   }
 
   // Expansion order for the final, careful rounds: more candidates first, then top-left first.
@@ -193,7 +205,8 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
       if (!node.alive || node.size() <= 1) continue;
       const int made = tree.divide(i, children);
       for (int c = 0; c < made; ++c)
-        if (tree.nodes[static_cast<std::size_t>(children[c])].size() > 1) expandable.push_back(children[c]);
+        if (tree.nodes[static_cast<std::size_t>(children[c])].size() > 1)
+          expandable.push_back(children[c]);
     }
     // ORB-SLAM2 also stops when a round adds no node, which can leave two candidates sharing a
     // node and the level short of min(n_wanted, candidates); positions are distinct, so
@@ -209,7 +222,8 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
         for (std::int32_t index : previous) {
           const int made = tree.divide(index, children);
           for (int c = 0; c < made; ++c)
-            if (tree.nodes[static_cast<std::size_t>(children[c])].size() > 1) expandable.push_back(children[c]);
+            if (tree.nodes[static_cast<std::size_t>(children[c])].size() > 1)
+              expandable.push_back(children[c]);
           if (tree.alive_count >= n_wanted) break;
         }
         if (tree.alive_count >= n_wanted || expandable.empty()) finished = true;
@@ -224,15 +238,19 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
     std::int32_t best = tree.keys[static_cast<std::size_t>(node.begin)];
     for (std::int32_t k = node.begin + 1; k < node.end; ++k) {
       const std::int32_t key = tree.keys[static_cast<std::size_t>(k)];
-      if (stronger(candidates[static_cast<std::size_t>(key)], candidates[static_cast<std::size_t>(best)])) best = key;
+      if (stronger(candidates[static_cast<std::size_t>(key)],
+                   candidates[static_cast<std::size_t>(best)]))
+        best = key;
     }
     selected.push_back(best);
   }
   const std::size_t kept = selected.size() - first;
   if (kept > static_cast<std::size_t>(n_wanted)) {
-    std::sort(selected.begin() + static_cast<std::ptrdiff_t>(first), selected.end(), [&](std::int32_t a, std::int32_t b) {
-      return stronger(candidates[static_cast<std::size_t>(a)], candidates[static_cast<std::size_t>(b)]);
-    });
+    std::sort(selected.begin() + static_cast<std::ptrdiff_t>(first), selected.end(),
+              [&](std::int32_t a, std::int32_t b) {
+                return stronger(candidates[static_cast<std::size_t>(a)],
+                                candidates[static_cast<std::size_t>(b)]);
+              });
     selected.resize(first + static_cast<std::size_t>(n_wanted));
   }
 }

@@ -10,14 +10,16 @@ struct Extractor::State {
   ExtractorOptions options;
   const KernelTable* kernels;
   FramePipeline pipeline;
-  FrameAnalysis given_analysis;  // describe(): its own pyramid, so extract()'s stays for pyramid_level()
+  FrameAnalysis
+      given_analysis;  // describe(): its own pyramid, so extract()'s stays for pyramid_level()
   GivenKeypointScratch given;
 };
 
 Extractor::Extractor(ExtractorOptions options) {
   options.validate();
   const KernelTable& kernels = kernel_table(options.kernels);
-  state_ = std::make_unique<State>(State{options, &kernels, FramePipeline(options, kernels, options.threads)});
+  state_ = std::make_unique<State>(
+      State{options, &kernels, FramePipeline(options, kernels, options.threads)});
 }
 
 Extractor::~Extractor() = default;
@@ -51,10 +53,12 @@ void Extractor::describe(ImageView image, const std::vector<Keypoint>& keypoints
   State& s = *state_;
   check_given_keypoints(keypoints, s.options.n_levels, angles);  // before any pixel is read
   s.given_analysis.start(image, s.options, *s.kernels);
-  describe_given_keypoints(s.given_analysis, *s.kernels, keypoints, angles, s.given, out, kept_indices);
+  describe_given_keypoints(s.given_analysis, *s.kernels, keypoints, angles, s.given, out,
+                           kept_indices);
 }
 
-Features Extractor::describe(ImageView image, const std::vector<Keypoint>& keypoints, GivenAngles angles) {
+Features Extractor::describe(ImageView image, const std::vector<Keypoint>& keypoints,
+                             GivenAngles angles) {
   Features features;
   describe(image, keypoints, features, nullptr, angles);
   return features;

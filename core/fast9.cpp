@@ -29,8 +29,8 @@ int corner_score(const std::uint8_t* p, const std::ptrdiff_t offsets[16]) {
 
 }  // namespace
 
-void fast9_scores_row_scalar(const std::uint8_t* center, std::ptrdiff_t stride, int x_begin, int x_end,
-                             int min_threshold, std::uint8_t* scores) {
+void fast9_scores_row_scalar(const std::uint8_t* center, std::ptrdiff_t stride, int x_begin,
+                             int x_end, int min_threshold, std::uint8_t* scores) {
   assert(min_threshold >= 1);
   std::ptrdiff_t offsets[16];
   for (int k = 0; k < 16; ++k) offsets[k] = kFastRingDy[k] * stride + kFastRingDx[k];
@@ -40,20 +40,30 @@ void fast9_scores_row_scalar(const std::uint8_t* center, std::ptrdiff_t stride, 
     // Early rejection as OpenCV: a 9-arc always covers one of ring pixels 0/8 and one of 4/12
     // ... at threshold t a corner needs some of them beyond v +- t.
     const int hi = v + min_threshold, lo = v - min_threshold;
-    const auto beyond = [&](int k) { const int r = p[offsets[k]]; return (r > hi ? 1 : 0) | (r < lo ? 2 : 0); };
+    const auto beyond = [&](int k) {
+      const int r = p[offsets[k]];
+      return (r > hi ? 1 : 0) | (r < lo ? 2 : 0);
+    };
     int mask = beyond(0) | beyond(8);
-    if (mask == 0) { scores[x] = 0; continue; }
+    if (mask == 0) {
+      scores[x] = 0;
+      continue;
+    }
     mask &= beyond(2) | beyond(10);
     mask &= beyond(4) | beyond(12);
     mask &= beyond(6) | beyond(14);
-    if (mask == 0) { scores[x] = 0; continue; }
+    if (mask == 0) {
+      scores[x] = 0;
+      continue;
+    }
     const int score = corner_score(p, offsets);
     scores[x] = score >= min_threshold ? static_cast<std::uint8_t>(score) : 0;
   }
 }
 
-void fast9_local_maxima_bits_scalar(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
-                                    int x_begin, int x_end, int strong_threshold, std::uint64_t* maxima,
+void fast9_local_maxima_bits_scalar(const std::uint8_t* above, const std::uint8_t* row,
+                                    const std::uint8_t* below, int x_begin, int x_end,
+                                    int strong_threshold, std::uint64_t* maxima,
                                     std::uint64_t* strong) {
   const int words = fast9_maxima_words(x_end - x_begin);
   std::fill(maxima, maxima + words, std::uint64_t{0});

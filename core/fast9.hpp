@@ -40,8 +40,9 @@ void fast9_scores_row_scalar(const std::uint8_t* center, std::ptrdiff_t stride, 
 // blocks; a block then takes its bit range, strong or all (ORB-SLAM2's retry rule), without
 // a pass over its candidates.
 constexpr int fast9_maxima_words(int width) { return (width + 63) / 64; }
-void fast9_local_maxima_bits_scalar(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
-                                    int x_begin, int x_end, int strong_threshold, std::uint64_t* maxima,
+void fast9_local_maxima_bits_scalar(const std::uint8_t* above, const std::uint8_t* row,
+                                    const std::uint8_t* below, int x_begin, int x_end,
+                                    int strong_threshold, std::uint64_t* maxima,
                                     std::uint64_t* strong);
 
 }  // namespace aief

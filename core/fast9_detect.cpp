@@ -5,8 +5,9 @@
 
 namespace aief {
 
-void fast9_detect(ImageView image, int threshold, const KernelTable& kernels, std::vector<std::uint8_t>& scores,
-                  std::vector<std::uint64_t>& maxima_bits, std::vector<FastCorner>& corners) {
+void fast9_detect(ImageView image, int threshold, const KernelTable& kernels,
+                  std::vector<std::uint8_t>& scores, std::vector<std::uint64_t>& maxima_bits,
+                  std::vector<FastCorner>& corners) {
   corners.clear();
   const int w = image.width, h = image.height;
   if (w < 7 || h < 7) return;
@@ -20,7 +21,8 @@ void fast9_detect(ImageView image, int threshold, const KernelTable& kernels, st
   std::uint64_t* maxima = maxima_bits.data();
   for (int y = 3; y < h - 3; ++y) {
     const std::uint8_t* row = scores.data() + static_cast<std::ptrdiff_t>(y) * w;
-    kernels.fast9_local_maxima_bits(row - w, row, row + w, 3, w - 3, threshold, maxima, maxima + words);
+    kernels.fast9_local_maxima_bits(row - w, row, row + w, 3, w - 3, threshold, maxima,
+                                    maxima + words);
     for (int k = 0; k < words; ++k)
       for (std::uint64_t bits = maxima[k]; bits != 0; bits &= bits - 1) {
         const int x = 3 + 64 * k + std::countr_zero(bits);

@@ -11,18 +11,20 @@
 
 namespace aief {
 
-void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels,
-                          Selections selections, ImageView detection_mask) {
+void FrameAnalysis::start(ImageView image, const ExtractorOptions& options,
+                          const KernelTable& kernels, Selections selections,
+                          ImageView detection_mask) {
   check_image(image, options);
-  if (!detection_mask.empty() && (detection_mask.width != image.width || detection_mask.height != image.height))
-    throw Error("mask " + std::to_string(detection_mask.width) + "x" + std::to_string(detection_mask.height) +
-                " is not the image's size " + std::to_string(image.width) + "x" + std::to_string(image.height));
+  if (!detection_mask.empty() &&
+      (detection_mask.width != image.width || detection_mask.height != image.height))
+    throw Error("mask " + std::to_string(detection_mask.width) + "x" +
+                std::to_string(detection_mask.height) + " is not the image's size " +
+                std::to_string(image.width) + "x" + std::to_string(image.height));
   detection_mask_ = detection_mask;
-  const bool same_geometry = image.width == width_ && image.height == height_ &&
-                             options.n_levels == options_.n_levels &&
-                             options.scale_factor == options_.scale_factor &&
-                             options.block_size == options_.block_size &&
-                             options.n_features == options_.n_features && !levels_.empty();
+  const bool same_geometry =
+      image.width == width_ && image.height == height_ && options.n_levels == options_.n_levels &&
+      options.scale_factor == options_.scale_factor && options.block_size == options_.block_size &&
+      options.n_features == options_.n_features && !levels_.empty();
   options_ = options;
   selections_ = selections;
   kernels_ = &kernels;
@@ -40,7 +42,8 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
       if (n > 0) {
         pyramid.image.resize(pyramid.geometry.width, pyramid.geometry.height);
         const LevelGeometry& above = levels_[n - 1].pyramid.geometry;
-        pyramid.resize_plan = make_resize_plan(above.width, above.height, pyramid.geometry.width, pyramid.geometry.height);
+        pyramid.resize_plan = make_resize_plan(above.width, above.height, pyramid.geometry.width,
+                                               pyramid.geometry.height);
       }
       size_detection_scratch(pyramid.geometry, levels_[n].detection);
     }
@@ -48,8 +51,11 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options, cons
   for (std::size_t n = 0; n < levels_.size(); ++n) {
     Level& level = levels_[n];
     level.pyramid.pixels = n == 0 ? image : level.pyramid.image.view();
-    if (detection_mask_.empty()) level.pyramid.detection_mask.resize(0, 0);
-    else if (level.pyramid.usable()) level.pyramid.detection_mask.resize(level.pyramid.geometry.width, level.pyramid.geometry.height);
+    if (detection_mask_.empty())
+      level.pyramid.detection_mask.resize(0, 0);
+    else if (level.pyramid.usable())
+      level.pyramid.detection_mask.resize(level.pyramid.geometry.width,
+                                          level.pyramid.geometry.height);
     level.descriptions.start(level.pyramid.geometry, selections_);
     level.blocks.reset(level.pyramid.geometry.grid.count());
     level.raster_ranks.clear();
@@ -60,8 +66,8 @@ void FrameAnalysis::build_level_rows(int n, int y_begin, int y_end) {
   PyramidLevel& pyramid = at(n).pyramid;
   if (!pyramid.usable()) return;
   if (n > 0)  // level 0 is the input itself
-    kernels_->resize_bilinear_rows(level(n - 1).pixels, pyramid.resize_plan, pyramid.image.mutable_view(), y_begin,
-                                   y_end);
+    kernels_->resize_bilinear_rows(level(n - 1).pixels, pyramid.resize_plan,
+                                   pyramid.image.mutable_view(), y_begin, y_end);
   if (detection_mask_.empty()) return;
   if (n == 0) {
     binarise_mask_rows(detection_mask_, pyramid.detection_mask.mutable_view(), y_begin, y_end);
@@ -76,9 +82,11 @@ void FrameAnalysis::compute_entropies(int n) {
   Level& level = at(n);
   if (options_.entropy == EntropyMeasure::off || !level.pyramid.usable()) return;
   std::uint32_t whole[256] = {};
-  compute_block_entropies(level.pyramid.pixels, level.pyramid.geometry.grid, options_.entropy, *kernels_, level.blocks,
-                          n == 0 ? whole : nullptr);
-  if (n == 0) image_entropy_bits_ = whole_level_entropy_bits(level.pyramid.pixels, options_.entropy, *kernels_, whole);
+  compute_block_entropies(level.pyramid.pixels, level.pyramid.geometry.grid, options_.entropy,
+                          *kernels_, level.blocks, n == 0 ? whole : nullptr);
+  if (n == 0)
+    image_entropy_bits_ =
+        whole_level_entropy_bits(level.pyramid.pixels, options_.entropy, *kernels_, whole);
 }
 
 BlockMask FrameAnalysis::mask(int n, double threshold) const {
@@ -89,7 +97,8 @@ BlockMask FrameAnalysis::mask(int n, double threshold) const {
 void FrameAnalysis::detect(int n, double threshold) {
   Level& level = at(n);
   if (!level.pyramid.usable()) return;
-  detect_kept_blocks(level.pyramid, mask(n, threshold), options_, *kernels_, level.blocks, level.detection);
+  detect_kept_blocks(level.pyramid, mask(n, threshold), options_, *kernels_, level.blocks,
+                     level.detection);
   level.descriptions.track(level.blocks.candidates.size());
 }
 
@@ -102,10 +111,11 @@ void FrameAnalysis::select(int n, double threshold, int budget, std::vector<std:
   chosen.clear();
   if (!level.pyramid.usable() || budget <= 0) return;
   std::vector<std::int32_t>& selected = level.selected;
-  select_candidates(level.pyramid, level.blocks, mask(n, threshold), options_, budget, level.selection, selected);
+  select_candidates(level.pyramid, level.blocks, mask(n, threshold), options_, budget,
+                    level.selection, selected);
   if (selections_ == Selections::many)
-    sort_by_raster_rank(level.blocks.candidates, level.pyramid.geometry.width, level.pyramid.geometry.height,
-                        level.raster_ranks, selected);
+    sort_by_raster_rank(level.blocks.candidates, level.pyramid.geometry.width,
+                        level.pyramid.geometry.height, level.raster_ranks, selected);
   else
     sort_in_raster_order(level.blocks.candidates, selected);
   level.descriptions.describe(level.pyramid, level.blocks.candidates, selected, *kernels_);
@@ -146,7 +156,8 @@ int FrameAnalysis::blocks_kept(double threshold) const {
   return kept;
 }
 
-void FrameAnalysis::assemble(const std::vector<std::vector<std::int32_t>>& chosen, Features& out) const {
+void FrameAnalysis::assemble(const std::vector<std::vector<std::int32_t>>& chosen,
+                             Features& out) const {
   out.image_width = width_;
   out.image_height = height_;
   out.keypoints.clear();
@@ -154,8 +165,9 @@ void FrameAnalysis::assemble(const std::vector<std::vector<std::int32_t>>& chose
   for (int n = 0; n < level_count(); ++n) {
     const Level& level = at(n);
     const float scale = level.pyramid.geometry.scale;
-    const LevelToImage mapping = level_to_image(options_.coordinates, options_.subpixel, scale, width_, height_,
-                                                level.pyramid.geometry.width, level.pyramid.geometry.height);
+    const LevelToImage mapping =
+        level_to_image(options_.coordinates, options_.subpixel, scale, width_, height_,
+                       level.pyramid.geometry.width, level.pyramid.geometry.height);
     for (std::int32_t i : chosen[static_cast<std::size_t>(n)]) {
       const Candidate& c = level.blocks.candidates[static_cast<std::size_t>(i)];
       Keypoint kp;

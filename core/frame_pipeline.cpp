@@ -7,7 +7,8 @@
 
 namespace aief {
 
-FramePipeline::FramePipeline(const ExtractorOptions& options, const KernelTable& kernels, int threads)
+FramePipeline::FramePipeline(const ExtractorOptions& options, const KernelTable& kernels,
+                             int threads)
     : options_(options), kernels_(&kernels), scheduler_(threads), fallback_(options) {}
 
 template <class Work>
@@ -18,12 +19,16 @@ void FramePipeline::timed(Stage stage, int n, const Work& work) {
   }
   const auto start = std::chrono::steady_clock::now();
   work();
-  times_->add(stage, n, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  times_->add(
+      stage, n,
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
-void FramePipeline::start(ImageView image, Selections selections, StageTimes* times, ImageView detection_mask) {
+void FramePipeline::start(ImageView image, Selections selections, StageTimes* times,
+                          ImageView detection_mask) {
   times_ = times;
-  timed(Stage::frame, -1, [&] { analysis_.start(image, options_, *kernels_, selections, detection_mask); });
+  timed(Stage::frame, -1,
+        [&] { analysis_.start(image, options_, *kernels_, selections, detection_mask); });
   const std::size_t levels = static_cast<std::size_t>(analysis_.level_count());
   if (times_) times_->reserve_levels(analysis_.level_count());
   chosen_.resize(levels);
@@ -39,7 +44,8 @@ void FramePipeline::compute_entropies(int n) {
   timed(Stage::entropy, n, [&] { analysis_.compute_entropies(n); });
 }
 
-void FramePipeline::select_level(int n, double threshold, int budget, std::vector<std::int32_t>& chosen) {
+void FramePipeline::select_level(int n, double threshold, int budget,
+                                 std::vector<std::int32_t>& chosen) {
   timed(Stage::select, n, [&] { analysis_.select(n, threshold, budget, chosen); });
 }
 
@@ -59,7 +65,8 @@ std::int64_t FramePipeline::level_candidates(int n, double threshold) const {
   return analysis_.level_candidate_count(n, threshold);
 }
 
-void FramePipeline::extract(ImageView image, Features& out, StageTimes* times, ImageView detection_mask) {
+void FramePipeline::extract(ImageView image, Features& out, StageTimes* times,
+                            ImageView detection_mask) {
   start(image, Selections::one, times, detection_mask);
   const int levels = analysis_.level_count();
   const bool entropy_on = options_.entropy != EntropyMeasure::off;
@@ -82,7 +89,8 @@ void FramePipeline::extract(ImageView image, Features& out, StageTimes* times, I
   if (automatic) {
     timed(Stage::frame, -1, [&] {
       auto_threshold_entropies(analysis_, entropies_);
-      const AutoThreshold chosen = auto_entropy_threshold(entropies_, options_.auto_requires_two_classes);
+      const AutoThreshold chosen =
+          auto_entropy_threshold(entropies_, options_.auto_requires_two_classes);
       requested = chosen.threshold_bits;
       effectiveness = chosen.effectiveness;
     });
@@ -113,7 +121,8 @@ void FramePipeline::write_info(double requested, double effectiveness, Extractio
   info.entropy_threshold_used = requested;
   for (int n = 0; n < levels; ++n)
     if (analysis_.level(n).usable())
-      info.entropy_threshold_used = std::min(info.entropy_threshold_used, thresholds_[static_cast<std::size_t>(n)]);
+      info.entropy_threshold_used =
+          std::min(info.entropy_threshold_used, thresholds_[static_cast<std::size_t>(n)]);
   info.threshold_lowered = info.entropy_threshold_used < info.entropy_threshold_requested;
   info.image_entropy_bits = analysis_.image_entropy_bits();
   info.auto_threshold_effectiveness = effectiveness;

@@ -32,7 +32,8 @@ class FramePipeline final : private CandidateSource {
   // Keypoints and descriptors of one frame, with the automatic F and the threshold fallback as
   // the options ask. Throws aief::Error for an image the options refuse. `times`, when given,
   // gets each stage's milliseconds added. detection_mask: as FrameAnalysis::start's.
-  void extract(ImageView image, Features& out, StageTimes* times = nullptr, ImageView detection_mask = {});
+  void extract(ImageView image, Features& out, StageTimes* times = nullptr,
+               ImageView detection_mask = {});
 
   // The sweep's analysis of one image (core/adaptive_sweep.hpp): pixels, entropies and the
   // candidates of every block `lowest_threshold` keeps, every level in turn on the caller's
@@ -51,7 +52,8 @@ class FramePipeline final : private CandidateSource {
   void detect_frame(double threshold) override;
   std::int64_t level_candidates(int n, double threshold) const override;
 
-  void start(ImageView image, Selections selections, StageTimes* times, ImageView detection_mask = {});
+  void start(ImageView image, Selections selections, StageTimes* times,
+             ImageView detection_mask = {});
   void build_level(int n);
   void compute_entropies(int n);
   void select_level(int n, double threshold, int budget, std::vector<std::int32_t>& chosen);
@@ -64,13 +66,13 @@ class FramePipeline final : private CandidateSource {
   parallel::Scheduler scheduler_;
   FrameAnalysis analysis_;
   ThresholdFallback fallback_;
-  StageTimes* times_ = nullptr;  // for the frame being run
+  StageTimes* times_ = nullptr;                    // for the frame being run
   std::vector<std::vector<std::int32_t>> chosen_;  // per level: its selection, raster order
   std::vector<double> thresholds_;                 // per level: F applied
   std::vector<int> budgets_;                       // per level: N_n, raised by the shortfall
   std::vector<double> selected_thresholds_;        // what each level first selected with
   std::vector<int> selected_budgets_;
-  std::vector<double> entropies_;                  // every block's, for the automatic F
+  std::vector<double> entropies_;  // every block's, for the automatic F
 };
 
 }  // namespace aief

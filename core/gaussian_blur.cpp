@@ -21,7 +21,8 @@ void horizontal(const std::uint8_t* row, int width, int x_begin, int x_end, std:
     if (x >= 3 && x + 3 < width) {
       for (int t = 0; t < 7; ++t) sum += k[static_cast<std::size_t>(t)] * row[x + t - 3];
     } else {
-      for (int t = 0; t < 7; ++t) sum += k[static_cast<std::size_t>(t)] * row[reflect101(x + t - 3, width)];
+      for (int t = 0; t < 7; ++t)
+        sum += k[static_cast<std::size_t>(t)] * row[reflect101(x + t - 3, width)];
     }
     h[x] = static_cast<std::uint16_t>(sum);
   }
@@ -29,7 +30,8 @@ void horizontal(const std::uint8_t* row, int width, int x_begin, int x_end, std:
 
 }  // namespace
 
-void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin, int x_end) {
+void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin,
+                           int x_end) {
   assert(src.width >= 4 && src.height >= 4);
   assert(0 <= x_begin && x_begin <= x_end && x_end <= src.width);
   const int width = src.width, height = src.height;
@@ -40,7 +42,8 @@ void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int
   int ring_row[7] = {kNoRow, kNoRow, kNoRow, kNoRow, kNoRow, kNoRow, kNoRow};
   const auto horizontal_row = [&](int sy) -> const std::uint16_t* {
     const int slot = ((sy % 7) + 7) % 7;
-    std::uint16_t* h = ring.data() + static_cast<std::size_t>(slot) * static_cast<std::size_t>(width);
+    std::uint16_t* h =
+        ring.data() + static_cast<std::size_t>(slot) * static_cast<std::size_t>(width);
     if (ring_row[slot] != sy) {
       horizontal(src.row(reflect101(sy, height)), width, x_begin, x_end, h);
       ring_row[slot] = sy;
@@ -54,7 +57,8 @@ void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int
     std::uint8_t* out = dst.row(y - y_begin);
     for (int x = x_begin; x < x_end; ++x) {
       std::uint32_t sum = 32768;
-      for (int t = 0; t < 7; ++t) sum += k[static_cast<std::size_t>(t)] * static_cast<std::uint32_t>(rows[t][x]);
+      for (int t = 0; t < 7; ++t)
+        sum += k[static_cast<std::size_t>(t)] * static_cast<std::uint32_t>(rows[t][x]);
       out[x] = static_cast<std::uint8_t>(sum >> 16);
     }
   }

@@ -20,6 +20,7 @@ inline constexpr std::array<std::uint16_t, 7> kGaussian7Q8 = {18, 34, 48, 56, 48
 // only the columns it reads. dst is src's width, 0 <= x_begin <= x_end <= width, src's width
 // and height are >= 4, and they do not overlap. Reads src rows y_begin - 3 .. y_end + 2 and
 // columns x_begin - 3 .. x_end + 2 (reflected at the edges).
-void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin, int x_end);
+void gaussian7_rows_scalar(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin,
+                           int x_end);
 
 }  // namespace aief

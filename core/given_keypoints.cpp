@@ -9,7 +9,8 @@
 
 namespace aief {
 
-void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels, GivenAngles angles) {
+void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels,
+                           GivenAngles angles) {
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
     const Keypoint& kp = keypoints[i];
     if (kp.octave < 0 || kp.octave >= n_levels)
@@ -21,8 +22,9 @@ void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels,
   }
 }
 
-void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernels, const std::vector<Keypoint>& keypoints,
-                              GivenAngles given_angles, GivenKeypointScratch& scratch, Features& out,
+void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernels,
+                              const std::vector<Keypoint>& keypoints, GivenAngles given_angles,
+                              GivenKeypointScratch& scratch, Features& out,
                               std::vector<std::int32_t>* kept_indices) {
   const ExtractorOptions& options = analysis.options();
   const int levels = analysis.level_count();
@@ -40,12 +42,14 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
     const PyramidLevel& level = analysis.level(kp.octave);
     if (!level.usable()) continue;
     const int w = level.geometry.width, h = level.geometry.height;
-    const LevelToImage mapping =
-        level_to_image(options.coordinates, options.subpixel, level.geometry.scale, width0, height0, w, h);
+    const LevelToImage mapping = level_to_image(options.coordinates, options.subpixel,
+                                                level.geometry.scale, width0, height0, w, h);
     const PixelPoint p = level_pixel({kp.x, kp.y}, mapping);
-    if (p.x < kEdgeBorder || p.x >= w - kEdgeBorder || p.y < kEdgeBorder || p.y >= h - kEdgeBorder) continue;
+    if (p.x < kEdgeBorder || p.x >= w - kEdgeBorder || p.y < kEdgeBorder || p.y >= h - kEdgeBorder)
+      continue;
     scratch.level_pixel[i] = p;
-    scratch.level_members[static_cast<std::size_t>(kp.octave)].push_back(static_cast<std::int32_t>(i));
+    scratch.level_members[static_cast<std::size_t>(kp.octave)].push_back(
+        static_cast<std::int32_t>(i));
     deepest = std::max(deepest, kp.octave);
   }
   for (int n = 1; n <= deepest; ++n) analysis.build_level(n);  // a chain: level n from level n - 1
@@ -75,25 +79,30 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
     if (given_angles == GivenAngles::recompute) {
       scratch.m10.resize(members.size());
       scratch.m01.resize(members.size());
-      kernels.ic_moments(level.pixels, scratch.points.data(), m, scratch.m10.data(), scratch.m01.data());
-      for (std::size_t k = 0; k < members.size(); ++k) angles[k] = ic_angle_deg(scratch.m10[k], scratch.m01[k]);
+      kernels.ic_moments(level.pixels, scratch.points.data(), m, scratch.m10.data(),
+                         scratch.m01.data());
+      for (std::size_t k = 0; k < members.size(); ++k)
+        angles[k] = ic_angle_deg(scratch.m10[k], scratch.m01[k]);
     } else {
-      for (std::size_t k = 0; k < members.size(); ++k) angles[k] = keypoints[static_cast<std::size_t>(members[k])].angle_deg;
+      for (std::size_t k = 0; k < members.size(); ++k)
+        angles[k] = keypoints[static_cast<std::size_t>(members[k])].angle_deg;
     }
-    for (std::size_t k = 0; k < members.size(); ++k) scratch.angle_deg[static_cast<std::size_t>(members[k])] = angles[k];
+    for (std::size_t k = 0; k < members.size(); ++k)
+      scratch.angle_deg[static_cast<std::size_t>(members[k])] = angles[k];
     // The blur is the same pixel for pixel whatever region is blurred, so only the rectangle the
     // patterns read is: every sample lies within kEdgeBorder of its point.
     scratch.blurred.resize(w, h);
     const int y_begin = y_min - kEdgeBorder, y_end = y_max + kEdgeBorder + 1;
     const MutableImageView whole = scratch.blurred.mutable_view();
-    kernels.gaussian7_rows(level.pixels, {whole.row(y_begin), w, y_end - y_begin, whole.stride}, y_begin, y_end,
-                           x_min - kEdgeBorder, x_max + kEdgeBorder + 1);
+    kernels.gaussian7_rows(level.pixels, {whole.row(y_begin), w, y_end - y_begin, whole.stride},
+                           y_begin, y_end, x_min - kEdgeBorder, x_max + kEdgeBorder + 1);
     const std::size_t first_row = scratch.descriptors.size() / kDescriptorBytes;
     scratch.descriptors.resize((first_row + members.size()) * kDescriptorBytes);
     kernels.rbrief_describe(scratch.blurred.view(), scratch.points.data(), angles.data(), m,
                             scratch.descriptors.data() + first_row * kDescriptorBytes);
     for (std::size_t k = 0; k < members.size(); ++k)
-      scratch.descriptor_row[static_cast<std::size_t>(members[k])] = static_cast<std::int32_t>(first_row + k);
+      scratch.descriptor_row[static_cast<std::size_t>(members[k])] =
+          static_cast<std::int32_t>(first_row + k);
   }
 
   out.image_width = width0;
@@ -109,7 +118,8 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
     kp.angle_deg = scratch.angle_deg[i];
     out.keypoints.push_back(kp);
     Descriptor& descriptor = out.descriptors.emplace_back();
-    std::memcpy(descriptor.data(), scratch.descriptors.data() + static_cast<std::size_t>(row) * kDescriptorBytes,
+    std::memcpy(descriptor.data(),
+                scratch.descriptors.data() + static_cast<std::size_t>(row) * kDescriptorBytes,
                 kDescriptorBytes);
     if (kept_indices) kept_indices->push_back(static_cast<std::int32_t>(i));
   }

@@ -34,23 +34,25 @@ struct GivenKeypointScratch {
   std::vector<PixelPoint> level_pixel;                   // per keypoint
   std::vector<PixelPoint> points;                        // one level's, in level_members order
   std::vector<std::int32_t> m10, m01;
-  std::vector<float> level_angle_deg;                    // one level's
-  std::vector<float> angle_deg;                          // per keypoint
-  std::vector<std::int32_t> descriptor_row;              // per keypoint: its row (-1: removed)
-  std::vector<std::uint8_t> descriptors;                 // 32 bytes a row, level by level
-  GrayImage blurred;                                     // one level's blurred rows
+  std::vector<float> level_angle_deg;        // one level's
+  std::vector<float> angle_deg;              // per keypoint
+  std::vector<std::int32_t> descriptor_row;  // per keypoint: its row (-1: removed)
+  std::vector<std::uint8_t> descriptors;     // 32 bytes a row, level by level
+  GrayImage blurred;                         // one level's blurred rows
 };
 
 // Throws aief::Error, naming the keypoint, when its octave is outside [0, n_levels) or, with
 // GivenAngles::keep, its angle outside [0, 360).
-void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels, GivenAngles angles);
+void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels,
+                           GivenAngles angles);
 
 // `analysis` has been started on the image (FrameAnalysis::start); this builds the levels the
 // keypoints need. out.keypoints := the kept keypoints in their given order, each with its angle
 // recomputed and every other field as given; out.descriptors := theirs. kept_indices (when
 // given) := the index in `keypoints` of each kept one.
-void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernels, const std::vector<Keypoint>& keypoints,
-                              GivenAngles angles, GivenKeypointScratch& scratch, Features& out,
+void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernels,
+                              const std::vector<Keypoint>& keypoints, GivenAngles angles,
+                              GivenKeypointScratch& scratch, Features& out,
                               std::vector<std::int32_t>* kept_indices);
 
 }  // namespace aief

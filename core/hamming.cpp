@@ -19,7 +19,8 @@ std::uint32_t hamming_256_scalar(const std::uint8_t* a, const std::uint8_t* b) {
 void hamming_256_many_scalar(const std::uint8_t* query, const std::uint8_t* train, int n_train,
                              std::uint16_t* distances) {
   for (int j = 0; j < n_train; ++j)
-    distances[j] = static_cast<std::uint16_t>(hamming_256_scalar(query, train + static_cast<std::ptrdiff_t>(j) * 32));
+    distances[j] = static_cast<std::uint16_t>(
+        hamming_256_scalar(query, train + static_cast<std::ptrdiff_t>(j) * 32));
 }
 
 }  // namespace aief

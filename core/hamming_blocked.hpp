@@ -9,8 +9,8 @@
 
 namespace aief {
 
-constexpr int kHammingBlock = 16;          // descriptors per block
-constexpr int kDescriptorWords = 8;        // 32-bit words per 256-bit descriptor
+constexpr int kHammingBlock = 16;    // descriptors per block
+constexpr int kDescriptorWords = 8;  // 32-bit words per 256-bit descriptor
 
 // Blocks needed for n descriptors.
 inline int hamming_block_count(int n) { return (n + kHammingBlock - 1) / kHammingBlock; }
@@ -21,7 +21,7 @@ void block_descriptors(const std::uint8_t* descriptors, int n, std::vector<std::
 
 // distances[k] = hamming(query, descriptor k of `blocked`) for k in [0, 16 n_blocks): padding
 // descriptors give the query's own popcount. Reads 16 * 8 * n_blocks words.
-void hamming_256_blocked_scalar(const std::uint8_t* query, const std::uint32_t* blocked, int n_blocks,
-                                std::uint16_t* distances);
+void hamming_256_blocked_scalar(const std::uint8_t* query, const std::uint32_t* blocked,
+                                int n_blocks, std::uint16_t* distances);
 
 }  // namespace aief

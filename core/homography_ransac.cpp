@@ -15,7 +15,8 @@ void RansacOptions::validate() const {
     message << field << " must be " << rule << ", got " << value;
     throw Error(message.str());
   };
-  if (!(threshold_px > 0.0) || !std::isfinite(threshold_px)) fail("threshold_px", threshold_px, "finite and > 0");
+  if (!(threshold_px > 0.0) || !std::isfinite(threshold_px))
+    fail("threshold_px", threshold_px, "finite and > 0");
   if (!(confidence > 0.0 && confidence < 1.0)) fail("confidence", confidence, "in (0, 1)");
   if (max_iterations < 1) fail("max_iterations", max_iterations, ">= 1");
 }
@@ -32,8 +33,11 @@ inline Point2 project(const Homography& H, Point2 p) {
 
 Point2 apply_homography(const Homography& H, Point2 p) { return project(H, p); }
 
-double mean_corner_error(const Homography& estimated, const Homography& truth, int width, int height) {
-  const Point2 corners[4] = {{0, 0}, {static_cast<double>(width), 0}, {static_cast<double>(width), static_cast<double>(height)},
+double mean_corner_error(const Homography& estimated, const Homography& truth, int width,
+                         int height) {
+  const Point2 corners[4] = {{0, 0},
+                             {static_cast<double>(width), 0},
+                             {static_cast<double>(width), static_cast<double>(height)},
                              {0, static_cast<double>(height)}};
   double sum = 0;
   for (const Point2& corner : corners) {
@@ -76,9 +80,11 @@ Homography denormalise(const double h[9], const Normaliser& src, const Normalise
   const double td[9] = {1 / dst.s, 0, dst.cx, 0, 1 / dst.s, dst.cy, 0, 0, 1};
   double tmp[9], out[9];
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) tmp[r * 3 + c] = h[r * 3] * ts[c] + h[r * 3 + 1] * ts[3 + c] + h[r * 3 + 2] * ts[6 + c];
+    for (int c = 0; c < 3; ++c)
+      tmp[r * 3 + c] = h[r * 3] * ts[c] + h[r * 3 + 1] * ts[3 + c] + h[r * 3 + 2] * ts[6 + c];
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) out[r * 3 + c] = td[r * 3] * tmp[c] + td[r * 3 + 1] * tmp[3 + c] + td[r * 3 + 2] * tmp[6 + c];
+    for (int c = 0; c < 3; ++c)
+      out[r * 3 + c] = td[r * 3] * tmp[c] + td[r * 3 + 1] * tmp[3 + c] + td[r * 3 + 2] * tmp[6 + c];
   Homography H;
   const double scale = std::abs(out[8]) > 1e-15 ? out[8] : 1.0;
   for (int k = 0; k < 9; ++k) H[static_cast<std::size_t>(k)] = out[k] / scale;
@@ -138,7 +144,8 @@ void smallest_eigenvector(double a[9][9], double out[9]) {
       for (int q = p + 1; q < 9; ++q) {
         if (std::abs(a[p][q]) < 1e-300) continue;
         const double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+        const double t =
+            (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
         const double c = 1 / std::sqrt(t * t + 1), s = t * c;
         for (int k = 0; k < 9; ++k) {
           const double akp = a[k][p], akq = a[k][q];
@@ -170,20 +177,26 @@ void smallest_eigenvector(double a[9][9], double out[9]) {
 // starts at +0 never becomes -0), and A^T A is symmetric (x * y == y * x), so only the 21 + 21
 // nonzero products of the upper triangle are summed and the lower one is mirrored. Returns false,
 // leaving a partial sum, when a normalised coordinate is not finite (0 * inf would be NaN there).
-bool accumulate_normal_equations(const std::vector<Point2>& src, const std::vector<Point2>& dst, const std::vector<int>& indices,
-                                 const Normaliser& ns, const Normaliser& nd, double ata[9][9]) {
+bool accumulate_normal_equations(const std::vector<Point2>& src, const std::vector<Point2>& dst,
+                                 const std::vector<int>& indices, const Normaliser& ns,
+                                 const Normaliser& nd, double ata[9][9]) {
   static constexpr int kFirstRowNonzero[6] = {0, 1, 2, 6, 7, 8};
   static constexpr int kSecondRowNonzero[6] = {3, 4, 5, 6, 7, 8};
   for (int i : indices) {
-    const Point2 p = ns.apply(src[static_cast<std::size_t>(i)]), q = nd.apply(dst[static_cast<std::size_t>(i)]);
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(q.x) || !std::isfinite(q.y)) return false;
+    const Point2 p = ns.apply(src[static_cast<std::size_t>(i)]),
+                 q = nd.apply(dst[static_cast<std::size_t>(i)]);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(q.x) || !std::isfinite(q.y))
+      return false;
     double r0[9], r1[9];
     dlt_rows(p, q, r0, r1);
     for (int a = 0; a < 6; ++a)
-      for (int b = a; b < 6; ++b) ata[kFirstRowNonzero[a]][kFirstRowNonzero[b]] += r0[kFirstRowNonzero[a]] * r0[kFirstRowNonzero[b]];
+      for (int b = a; b < 6; ++b)
+        ata[kFirstRowNonzero[a]][kFirstRowNonzero[b]] +=
+            r0[kFirstRowNonzero[a]] * r0[kFirstRowNonzero[b]];
     for (int a = 0; a < 6; ++a)
       for (int b = a; b < 6; ++b)
-        ata[kSecondRowNonzero[a]][kSecondRowNonzero[b]] += r1[kSecondRowNonzero[a]] * r1[kSecondRowNonzero[b]];
+        ata[kSecondRowNonzero[a]][kSecondRowNonzero[b]] +=
+            r1[kSecondRowNonzero[a]] * r1[kSecondRowNonzero[b]];
   }
   for (int p = 0; p < 9; ++p)
     for (int q = p + 1; q < 9; ++q) ata[q][p] = ata[p][q];
@@ -191,17 +204,20 @@ bool accumulate_normal_equations(const std::vector<Point2>& src, const std::vect
 }
 
 // Least-squares normalised DLT over the given correspondences (>= 4).
-bool fit_least_squares(const std::vector<Point2>& src, const std::vector<Point2>& dst, const std::vector<int>& indices,
-                       Homography& H) {
-  const Normaliser ns = normaliser_of(indices, [&](int i) { return src[static_cast<std::size_t>(i)]; });
-  const Normaliser nd = normaliser_of(indices, [&](int i) { return dst[static_cast<std::size_t>(i)]; });
+bool fit_least_squares(const std::vector<Point2>& src, const std::vector<Point2>& dst,
+                       const std::vector<int>& indices, Homography& H) {
+  const Normaliser ns =
+      normaliser_of(indices, [&](int i) { return src[static_cast<std::size_t>(i)]; });
+  const Normaliser nd =
+      normaliser_of(indices, [&](int i) { return dst[static_cast<std::size_t>(i)]; });
   double ata[9][9] = {};
   if (!accumulate_normal_equations(src, dst, indices, ns, nd, ata)) {
     // A coordinate overflowed in normalisation: the plain sum, products with the zeros included.
     for (auto& row : ata) std::fill(std::begin(row), std::end(row), 0.0);
     for (int i : indices) {
       double r[2][9];
-      dlt_rows(ns.apply(src[static_cast<std::size_t>(i)]), nd.apply(dst[static_cast<std::size_t>(i)]), r[0], r[1]);
+      dlt_rows(ns.apply(src[static_cast<std::size_t>(i)]),
+               nd.apply(dst[static_cast<std::size_t>(i)]), r[0], r[1]);
       for (const auto& row : r)
         for (int p = 0; p < 9; ++p)
           for (int q = 0; q < 9; ++q) ata[p][q] += row[p] * row[q];
@@ -216,7 +232,9 @@ bool fit_least_squares(const std::vector<Point2>& src, const std::vector<Point2>
   return true;
 }
 
-double cross(Point2 a, Point2 b, Point2 c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); }
+double cross(Point2 a, Point2 b, Point2 c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
 
 // A sample is usable when no three of its points are collinear in either image and every
 // triangle keeps its orientation (a homography of the visible plane does not mirror it).
@@ -236,14 +254,16 @@ bool sample_is_sound(const Point2 p[4], const Point2 q[4]) {
 }
 
 // Inliers of H over `order` (canonical order), and the sum of their squared errors.
-int count_inliers(const Homography& H, const std::vector<Point2>& src, const std::vector<Point2>& dst,
-                  const std::vector<int>& order, double threshold_sq, std::vector<int>* inliers, double* error_sum) {
+int count_inliers(const Homography& H, const std::vector<Point2>& src,
+                  const std::vector<Point2>& dst, const std::vector<int>& order,
+                  double threshold_sq, std::vector<int>* inliers, double* error_sum) {
   int count = 0;
   double sum = 0;
   if (inliers) inliers->clear();
   for (int i : order) {
     const Point2 p = project(H, src[static_cast<std::size_t>(i)]);
-    const double dx = p.x - dst[static_cast<std::size_t>(i)].x, dy = p.y - dst[static_cast<std::size_t>(i)].y;
+    const double dx = p.x - dst[static_cast<std::size_t>(i)].x,
+                 dy = p.y - dst[static_cast<std::size_t>(i)].y;
     const double e = dx * dx + dy * dy;
     if (e <= threshold_sq) {  // NaN (a point sent to infinity) is never an inlier
       ++count;
@@ -257,8 +277,9 @@ int count_inliers(const Homography& H, const std::vector<Point2>& src, const std
 
 // The inlier count of a hypothesis, or -1 once the points left cannot bring it to `needed`
 // (it would be refused anyway); the squared error sum of the inliers when counted to the end.
-int count_inliers_reaching(const Homography& H, const std::vector<Point2>& src, const std::vector<Point2>& dst,
-                           const std::vector<int>& order, double threshold_sq, int needed, double* error_sum) {
+int count_inliers_reaching(const Homography& H, const std::vector<Point2>& src,
+                           const std::vector<Point2>& dst, const std::vector<int>& order,
+                           double threshold_sq, int needed, double* error_sum) {
   int count = 0;
   double sum = 0;
   int left = static_cast<int>(order.size());
@@ -266,7 +287,8 @@ int count_inliers_reaching(const Homography& H, const std::vector<Point2>& src, 
     if (count + left < needed) return -1;
     --left;
     const Point2 p = project(H, src[static_cast<std::size_t>(i)]);
-    const double dx = p.x - dst[static_cast<std::size_t>(i)].x, dy = p.y - dst[static_cast<std::size_t>(i)].y;
+    const double dx = p.x - dst[static_cast<std::size_t>(i)].x,
+                 dy = p.y - dst[static_cast<std::size_t>(i)].y;
     const double e = dx * dx + dy * dy;
     if (e <= threshold_sq) {
       ++count;
@@ -289,14 +311,16 @@ struct Sampler {
   int below(int n) {  // uniform in [0, n), rejection of the biased tail
     const std::uint64_t limit = ~0ull - (~0ull % static_cast<std::uint64_t>(n));
     std::uint64_t r;
-    do r = next(); while (r >= limit);
+    do r = next();
+    while (r >= limit);
     return static_cast<int>(r % static_cast<std::uint64_t>(n));
   }
 };
 
 }  // namespace
 
-HomographyResult find_homography_ransac(const std::vector<Point2>& src, const std::vector<Point2>& dst,
+HomographyResult find_homography_ransac(const std::vector<Point2>& src,
+                                        const std::vector<Point2>& dst,
                                         const RansacOptions& options) {
   options.validate();
   if (src.size() != dst.size())
@@ -356,8 +380,10 @@ HomographyResult find_homography_ransac(const std::vector<Point2>& src, const st
     ++sound_samples;
     // Normalise the sample, solve, map back.
     const std::array<int, 4> four = {pick[0], pick[1], pick[2], pick[3]};
-    const Normaliser ns = normaliser_of(four, [&](int i) { return src[static_cast<std::size_t>(i)]; });
-    const Normaliser nd = normaliser_of(four, [&](int i) { return dst[static_cast<std::size_t>(i)]; });
+    const Normaliser ns =
+        normaliser_of(four, [&](int i) { return src[static_cast<std::size_t>(i)]; });
+    const Normaliser nd =
+        normaliser_of(four, [&](int i) { return dst[static_cast<std::size_t>(i)]; });
     Point2 pn[4], qn[4];
     for (int k = 0; k < 4; ++k) {
       pn[k] = ns.apply(p[k]);
@@ -385,7 +411,8 @@ HomographyResult find_homography_ransac(const std::vector<Point2>& src, const st
     }
   }
   if (best_count < 4) {
-    result.failure = sound_samples == 0 ? "all samples degenerate (collinear points)" : "no model with 4 inliers";
+    result.failure = sound_samples == 0 ? "all samples degenerate (collinear points)"
+                                        : "no model with 4 inliers";
     return result;
   }
 

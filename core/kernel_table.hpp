@@ -58,7 +58,8 @@ struct KernelEntry<Result (*)(Params...)> {
 struct KernelTable {
   KernelSet set = KernelSet::scalar;
   const char* name = "scalar";
-#define AIEF_KERNEL_ENTRY(kernel) KernelEntry<decltype(&kernel##_scalar)> kernel{&kernel##_scalar, "scalar"};
+#define AIEF_KERNEL_ENTRY(kernel) \
+  KernelEntry<decltype(&kernel##_scalar)> kernel{&kernel##_scalar, "scalar"};
   AIEF_FOR_EACH_KERNEL(AIEF_KERNEL_ENTRY)
 #undef AIEF_KERNEL_ENTRY
 };

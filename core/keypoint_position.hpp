@@ -25,14 +25,14 @@ float parabola_peak_offset(int before, int peak, int after);
 // How one level maps to level 0.
 struct LevelToImage {
   CoordinateMap map = CoordinateMap::scaled;
-  float scale = 1;      // scale_factor^n in float (ORB-SLAM2), for CoordinateMap::scaled
-  double ratio_x = 1;   // W_0 / W_n, for CoordinateMap::pixel_centre
-  double ratio_y = 1;   // H_0 / H_n
+  float scale = 1;     // scale_factor^n in float (ORB-SLAM2), for CoordinateMap::scaled
+  double ratio_x = 1;  // W_0 / W_n, for CoordinateMap::pixel_centre
+  double ratio_y = 1;  // H_0 / H_n
   bool subpixel = false;
 };
 
-LevelToImage level_to_image(CoordinateMap map, bool subpixel, float scale, int width0, int height0, int width_n,
-                            int height_n);
+LevelToImage level_to_image(CoordinateMap map, bool subpixel, float scale, int width0, int height0,
+                            int width_n, int height_n);
 
 struct ImagePoint {
   float x, y;

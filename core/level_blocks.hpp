@@ -11,11 +11,12 @@
 namespace aief {
 
 struct LevelBlocks {
-  std::vector<double> entropy_bits;     // per block, row-major (empty: entropy off)
-  std::vector<std::uint8_t> uniform;    // per block: 1 when all its pixels are one gray level
-  std::vector<std::uint8_t> detected;   // per block: 1 once its candidates are found
+  std::vector<double> entropy_bits;         // per block, row-major (empty: entropy off)
+  std::vector<std::uint8_t> uniform;        // per block: 1 when all its pixels are one gray level
+  std::vector<std::uint8_t> detected;       // per block: 1 once its candidates are found
   std::vector<BlockRange> candidate_range;  // per block: its candidates in `candidates`
-  std::vector<Candidate> candidates;    // the level's detected candidates, block by block, raster order within
+  std::vector<Candidate>
+      candidates;  // the level's detected candidates, block by block, raster order within
   // With a detection mask, per block: 1 when any of its pixels is allowed (made by detection on
   // first need; core/detection_mask.hpp). Empty otherwise.
   std::vector<std::uint8_t> allowed;
@@ -37,7 +38,9 @@ struct BlockMask {
   const std::vector<double>* entropy_bits = nullptr;
   double threshold = 0;
 
-  bool kept(int b) const { return entropy_bits == nullptr || (*entropy_bits)[static_cast<std::size_t>(b)] > threshold; }
+  bool kept(int b) const {
+    return entropy_bits == nullptr || (*entropy_bits)[static_cast<std::size_t>(b)] > threshold;
+  }
 };
 
 }  // namespace aief

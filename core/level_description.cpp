@@ -21,8 +21,10 @@ void LevelDescriptions::start(const LevelGeometry& geometry, Selections selectio
   selections_ = selections;
   const int w = geometry.width, h = geometry.height;
   if (geometry.grid.count() > 0) {  // a level too small to use is never described
-    if (selections_ == Selections::many) blurred_.resize(w, h);
-    else blurred_.resize(w, std::min(h, kBlurBandKeypointRows + 2 * kEdgeBorder));
+    if (selections_ == Selections::many)
+      blurred_.resize(w, h);
+    else
+      blurred_.resize(w, std::min(h, kBlurBandKeypointRows + 2 * kEdgeBorder));
   }
   blurred_top_ = blurred_end_ = 0;
   memo_slot_.clear();
@@ -36,8 +38,10 @@ std::size_t LevelDescriptions::slot(std::int32_t i) const {
   return static_cast<std::size_t>(slot);
 }
 
-void LevelDescriptions::describe(const PyramidLevel& level, const std::vector<Candidate>& candidates,
-                                 const std::vector<std::int32_t>& indices, const KernelTable& kernels) {
+void LevelDescriptions::describe(const PyramidLevel& level,
+                                 const std::vector<Candidate>& candidates,
+                                 const std::vector<std::int32_t>& indices,
+                                 const KernelTable& kernels) {
   points_.clear();
   todo_.clear();
   for (std::int32_t i : indices) {
@@ -56,13 +60,16 @@ void LevelDescriptions::describe(const PyramidLevel& level, const std::vector<Ca
   // Orientation on the raw level, descriptors on the blurred one (as ORB-SLAM2).
   kernels.ic_moments(level.pixels, points_.data(), count, m10_.data(), m01_.data());
   for (int i = 0; i < count; ++i)
-    angles_[static_cast<std::size_t>(i)] = ic_angle_deg(m10_[static_cast<std::size_t>(i)], m01_[static_cast<std::size_t>(i)]);
+    angles_[static_cast<std::size_t>(i)] =
+        ic_angle_deg(m10_[static_cast<std::size_t>(i)], m01_[static_cast<std::size_t>(i)]);
   if (selections_ == Selections::many) {
     if (blurred_end_ == 0) {
-      kernels.gaussian7_rows(level.pixels, blurred_.mutable_view(), 0, level.geometry.height, 0, level.geometry.width);
+      kernels.gaussian7_rows(level.pixels, blurred_.mutable_view(), 0, level.geometry.height, 0,
+                             level.geometry.width);
       blurred_end_ = level.geometry.height;
     }
-    kernels.rbrief_describe(blurred_.view(), points_.data(), angles_.data(), count, descriptors_.data());
+    kernels.rbrief_describe(blurred_.view(), points_.data(), angles_.data(), count,
+                            descriptors_.data());
   } else {
     describe_through_band(level, kernels, count);
   }
@@ -71,12 +78,14 @@ void LevelDescriptions::describe(const PyramidLevel& level, const std::vector<Ca
     memo_slot_[index] = static_cast<std::int32_t>(memo_angle_deg_.size());
     memo_angle_deg_.push_back(angles_[static_cast<std::size_t>(i)]);
     Descriptor& descriptor = memo_descriptor_.emplace_back();
-    std::memcpy(descriptor.data(), descriptors_.data() + static_cast<std::size_t>(i) * kDescriptorBytes,
+    std::memcpy(descriptor.data(),
+                descriptors_.data() + static_cast<std::size_t>(i) * kDescriptorBytes,
                 kDescriptorBytes);
   }
 }
 
-void LevelDescriptions::describe_through_band(const PyramidLevel& level, const KernelTable& kernels, int count) {
+void LevelDescriptions::describe_through_band(const PyramidLevel& level, const KernelTable& kernels,
+                                              int count) {
   // The points come in raster order, so the blurred rows they read, [y - kEdgeBorder, y +
   // kEdgeBorder], form a window sliding down the level. The band holds blurred rows [top, end);
   // when a point needs a row below it, the rows still needed move to the band's top and only
@@ -98,8 +107,9 @@ void LevelDescriptions::describe_through_band(const PyramidLevel& level, const K
       const PixelPoint& p = points[static_cast<std::size_t>(i)];
       shifted[static_cast<std::size_t>(i)] = {p.x, p.y - top};
     }
-    kernels.rbrief_describe({band.data, width, end - top, band.stride}, shifted.data() + first, angles_.data() + first,
-                            last - first, descriptors_.data() + static_cast<std::size_t>(first) * kDescriptorBytes);
+    kernels.rbrief_describe(
+        {band.data, width, end - top, band.stride}, shifted.data() + first, angles_.data() + first,
+        last - first, descriptors_.data() + static_cast<std::size_t>(first) * kDescriptorBytes);
     first = last;
   };
   for (int i = 0; i < count; ++i) {
@@ -114,7 +124,8 @@ void LevelDescriptions::describe_through_band(const PyramidLevel& level, const K
                    static_cast<std::size_t>(end - new_top) * static_cast<std::size_t>(band.stride));
       kept_end = end;
     }
-    blur_patch_rows(kernels, level.pixels, {band.row(kept_end - new_top), width, new_end - kept_end, band.stride},
+    blur_patch_rows(kernels, level.pixels,
+                    {band.row(kept_end - new_top), width, new_end - kept_end, band.stride},
                     kept_end, new_end, points.data(), count, blur_columns_);
     top = new_top;
     end = new_end;

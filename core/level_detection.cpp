@@ -13,11 +13,14 @@ namespace {
 
 // The candidates of blocks [c_begin, c_end) of block row r, whose scores (with the ring) are in
 // the score band from level row score_top.
-void detect_run(const PyramidLevel& level, const ExtractorOptions& options, const KernelTable& kernels, int r,
-                int c_begin, int c_end, int score_top, LevelBlocks& blocks, DetectionScratch& scratch) {
+void detect_run(const PyramidLevel& level, const ExtractorOptions& options,
+                const KernelTable& kernels, int r, int c_begin, int c_end, int score_top,
+                LevelBlocks& blocks, DetectionScratch& scratch) {
   const BlockGrid& grid = level.geometry.grid;
-  const int x_begin = grid.col_edges[static_cast<std::size_t>(c_begin)], x_end = grid.col_edges[static_cast<std::size_t>(c_end)];
-  const int y0 = grid.row_edges[static_cast<std::size_t>(r)], y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
+  const int x_begin = grid.col_edges[static_cast<std::size_t>(c_begin)],
+            x_end = grid.col_edges[static_cast<std::size_t>(c_end)];
+  const int y0 = grid.row_edges[static_cast<std::size_t>(r)],
+            y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
   const MutableImageView scores = scratch.score_band.mutable_view();
 
   // Local maxima of the score map (threshold-free, see core/fast9.hpp) over the whole run, one
@@ -66,7 +69,8 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options, cons
       return word;
     };
     bool any_strong = false;
-    for (int k = k_first; k <= k_last; ++k) any_strong = any_strong || block_bits(strong_any, k) != 0;
+    for (int k = k_first; k <= k_last; ++k)
+      any_strong = any_strong || block_bits(strong_any, k) != 0;
     const std::uint64_t* taken_rows = any_strong ? strong_rows : maxima_rows;
     const bool rank_by_cross = options.candidate_ranking == CandidateRanking::cross_score;
     const std::size_t first = candidates.size();
@@ -76,8 +80,10 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options, cons
       const std::uint8_t* row = scores.row(y - score_top);
       for (; word != 0; word &= word - 1) {
         const int x = x_begin + 64 * k + std::countr_zero(word);
-        const std::uint8_t left = row[x - 1], right = row[x + 1], up = row[x - stride], down = row[x + stride];
-        candidates.push_back(Candidate{x, y, row[x], left, right, up, down, rank_by_cross ? left + right + up + down : 0});
+        const std::uint8_t left = row[x - 1], right = row[x + 1], up = row[x - stride],
+                           down = row[x + stride];
+        candidates.push_back(Candidate{x, y, row[x], left, right, up, down,
+                                       rank_by_cross ? left + right + up + down : 0});
       }
     };
     if (k_first == k_last) {  // the usual block, inside one word: one masked word per row
@@ -91,8 +97,8 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options, cons
           take(block_bits(taken_rows + static_cast<std::ptrdiff_t>(y - y0) * words, k), y, k);
     }
     blocks.detected[static_cast<std::size_t>(block)] = 1;
-    blocks.candidate_range[static_cast<std::size_t>(block)] = {static_cast<std::int32_t>(first),
-                                                               static_cast<std::int32_t>(candidates.size())};
+    blocks.candidate_range[static_cast<std::size_t>(block)] = {
+        static_cast<std::int32_t>(first), static_cast<std::int32_t>(candidates.size())};
   }
 }
 
@@ -103,11 +109,13 @@ void size_detection_scratch(const LevelGeometry& geometry, DetectionScratch& scr
 }
 
 void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const ExtractorOptions& options,
-                        const KernelTable& kernels, LevelBlocks& blocks, DetectionScratch& scratch) {
+                        const KernelTable& kernels, LevelBlocks& blocks,
+                        DetectionScratch& scratch) {
   if (!level.usable()) return;
   const BlockGrid& grid = level.geometry.grid;
   const bool masked = level.has_detection_mask();
-  if (masked && blocks.allowed.empty()) blocks_allowed(level.detection_mask.view(), grid, blocks.allowed);
+  if (masked && blocks.allowed.empty())
+    blocks_allowed(level.detection_mask.view(), grid, blocks.allowed);
   // A block the detection mask covers whole is never scored: it has no candidate.
   const auto needs = [&](int b) {
     return !blocks.detected[static_cast<std::size_t>(b)] && mask.kept(b) &&
@@ -127,9 +135,10 @@ void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const Extract
       }
       int end = c;
       while (end < grid.cols() && needs(r * grid.cols() + end)) ++end;
-      compute_score_rows(level.pixels, kernels, options.fast_min_threshold, scratch.score_band, score_top, score_top,
-                         grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
-                         grid.col_edges[static_cast<std::size_t>(c)] - 1, grid.col_edges[static_cast<std::size_t>(end)] + 1);
+      compute_score_rows(level.pixels, kernels, options.fast_min_threshold, scratch.score_band,
+                         score_top, score_top, grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
+                         grid.col_edges[static_cast<std::size_t>(c)] - 1,
+                         grid.col_edges[static_cast<std::size_t>(end)] + 1);
       detect_run(level, options, kernels, r, c, end, score_top, blocks, scratch);
       c = end;
     }

@@ -17,8 +17,8 @@ namespace aief {
 
 // Detection's own buffers for one level.
 struct DetectionScratch {
-  GrayImage score_band;                    // core/score_band.hpp
-  std::vector<std::uint64_t> maxima_bits;  // local maxima of a run of blocks, bit rows
+  GrayImage score_band;                     // core/score_band.hpp
+  std::vector<std::uint64_t> maxima_bits;   // local maxima of a run of blocks, bit rows
   std::vector<std::uint64_t> allowed_bits;  // the detection mask over one row of such a run
 };
 

@@ -17,7 +17,7 @@ void compute_block_entropies(ImageView pixels, const BlockGrid& grid, EntropyMea
 
 // Eq. 7: the entropy of the whole level from `whole` (its blocks' histograms, from
 // compute_block_entropies) and the border strips the blocks do not cover, which this adds.
-double whole_level_entropy_bits(ImageView pixels, EntropyMeasure measure, const KernelTable& kernels,
-                                std::uint32_t whole[256]);
+double whole_level_entropy_bits(ImageView pixels, EntropyMeasure measure,
+                                const KernelTable& kernels, std::uint32_t whole[256]);
 
 }  // namespace aief

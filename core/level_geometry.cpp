@@ -48,8 +48,9 @@ std::vector<LevelGeometry> level_geometry(int width, int height, const Extractor
   // too small for a keypoint would otherwise keep its share and the frame deliver fewer than N
   // (964 of 1000 with 20 levels). With every level usable, L is n_levels: ORB-SLAM2's budgets.
   int budget_levels = 0;
-  while (budget_levels < levels && level_is_usable(geometry[static_cast<std::size_t>(budget_levels)].width,
-                                                   geometry[static_cast<std::size_t>(budget_levels)].height))
+  while (budget_levels < levels &&
+         level_is_usable(geometry[static_cast<std::size_t>(budget_levels)].width,
+                         geometry[static_cast<std::size_t>(budget_levels)].height))
     ++budget_levels;
   budget_levels = std::max(budget_levels, 1);
 
@@ -66,12 +67,14 @@ std::vector<LevelGeometry> level_geometry(int width, int height, const Extractor
     assigned += count;
     per_scale *= factor;
   }
-  geometry[static_cast<std::size_t>(budget_levels) - 1].n_features = std::max(options.n_features - assigned, 0);
+  geometry[static_cast<std::size_t>(budget_levels) - 1].n_features =
+      std::max(options.n_features - assigned, 0);
   // With many levels and few features the rounding can hand out more than N (17 features over
   // 20 levels at 1.04 round to 1 each; ORB-SLAM2 then returns 19): take the excess back from the
   // smallest levels, so the total never exceeds N.
   for (int n = budget_levels - 1; n >= 0 && assigned > options.n_features; --n) {
-    const int take = std::min(geometry[static_cast<std::size_t>(n)].n_features, assigned - options.n_features);
+    const int take =
+        std::min(geometry[static_cast<std::size_t>(n)].n_features, assigned - options.n_features);
     geometry[static_cast<std::size_t>(n)].n_features -= take;
     assigned -= take;
   }

@@ -25,9 +25,10 @@ BlockGrid make_block_grid(int width, int height, int block_size);
 struct LevelGeometry {
   int width = 0;
   int height = 0;
-  float scale = 1;     // level-0 pixels per level pixel: scale_factor^n in float (ORB-SLAM2)
-  int n_features = 0;  // N_n of Eq. 12-17 over the usable levels, ORB-SLAM2's rounding, rest on the last
-  BlockGrid grid;      // empty when the level is smaller than 2 * kEdgeBorder + 1
+  float scale = 1;  // level-0 pixels per level pixel: scale_factor^n in float (ORB-SLAM2)
+  int n_features =
+      0;  // N_n of Eq. 12-17 over the usable levels, ORB-SLAM2's rounding, rest on the last
+  BlockGrid grid;  // empty when the level is smaller than 2 * kEdgeBorder + 1
 };
 
 // All n_levels levels. Levels too small to hold a keypoint keep their size but have no blocks and

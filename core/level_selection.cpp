@@ -22,11 +22,14 @@ void select_candidates(const PyramidLevel& level, const LevelBlocks& blocks, Blo
     if (pool_size < 0 || total <= pool_size) {
       distribute_proportional(blocks.candidates, kept, budget, selected, scratch.distribution);
     } else {
-      // The level's strongest candidates first (core/candidate_pool.hpp), then the same water level.
-      pool_candidates(blocks.candidates, kept, pool_size, scratch.pooled, scratch.pooled_index, scratch.pooled_blocks,
-                      scratch.pool);
-      distribute_proportional(scratch.pooled, scratch.pooled_blocks, budget, selected, scratch.distribution);
-      for (std::int32_t& index : selected) index = scratch.pooled_index[static_cast<std::size_t>(index)];
+      // The level's strongest candidates first (core/candidate_pool.hpp), then the same water
+      // level.
+      pool_candidates(blocks.candidates, kept, pool_size, scratch.pooled, scratch.pooled_index,
+                      scratch.pooled_blocks, scratch.pool);
+      distribute_proportional(scratch.pooled, scratch.pooled_blocks, budget, selected,
+                              scratch.distribution);
+      for (std::int32_t& index : selected)
+        index = scratch.pooled_index[static_cast<std::size_t>(index)];
     }
   } else {
     // The quadtree sees the kept blocks' candidates as one set, over ORB-SLAM2's rectangle.
@@ -43,8 +46,9 @@ void select_candidates(const PyramidLevel& level, const LevelBlocks& blocks, Blo
       }
     }
     constexpr int kQuadtreeMargin = kEdgeBorder - 3;  // ORB-SLAM2's minBorderX
-    distribute_quadtree(set, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin, kQuadtreeMargin,
-                        level.geometry.height - kQuadtreeMargin, budget, selected, scratch.distribution);
+    distribute_quadtree(set, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin,
+                        kQuadtreeMargin, level.geometry.height - kQuadtreeMargin, budget, selected,
+                        scratch.distribution);
     for (std::int32_t& index : selected) index = set_index[static_cast<std::size_t>(index)];
   }
 }

@@ -16,13 +16,13 @@ namespace aief {
 
 // Selection's own buffers for one level.
 struct SelectionScratch {
-  std::vector<BlockRange> kept_blocks;       // proportional: the kept blocks' candidate ranges
-  std::vector<Candidate> pooled;              // proportional, pooled: the pool's candidates
-  std::vector<std::int32_t> pooled_index;     // ... each one's index in the level's candidates
-  std::vector<BlockRange> pooled_blocks;      // ... and the kept blocks' ranges in the pool
+  std::vector<BlockRange> kept_blocks;     // proportional: the kept blocks' candidate ranges
+  std::vector<Candidate> pooled;           // proportional, pooled: the pool's candidates
+  std::vector<std::int32_t> pooled_index;  // ... each one's index in the level's candidates
+  std::vector<BlockRange> pooled_blocks;   // ... and the kept blocks' ranges in the pool
   CandidatePoolScratch pool;
-  std::vector<Candidate> quadtree_set;        // quadtree: the kept blocks' candidates
-  std::vector<std::int32_t> quadtree_index;   // ... each one's index in the level's candidates
+  std::vector<Candidate> quadtree_set;       // quadtree: the kept blocks' candidates
+  std::vector<std::int32_t> quadtree_index;  // ... each one's index in the level's candidates
   DistributionScratch distribution;
 };
 

@@ -42,13 +42,14 @@ void MatchOptions::validate() const {
     throw Error("max_distance must be in [0, 256], got " + std::to_string(max_distance));
 }
 
-MatchOptions match_options_given(std::optional<std::string_view> matcher, std::optional<double> ratio,
-                                 std::string_view ratio_named, std::string_view matcher_named) {
+MatchOptions match_options_given(std::optional<std::string_view> matcher,
+                                 std::optional<double> ratio, std::string_view ratio_named,
+                                 std::string_view matcher_named) {
   MatchOptions options;
   if (matcher) options.kind = parse_matcher_kind(*matcher);
   if (ratio && options.kind != MatcherKind::ratio)
-    throw Error(std::string(ratio_named) + " applies to " + std::string(matcher_named) + " ratio only, not " +
-                std::string(to_string(options.kind)));
+    throw Error(std::string(ratio_named) + " applies to " + std::string(matcher_named) +
+                " ratio only, not " + std::string(to_string(options.kind)));
   if (ratio) options.ratio = *ratio;
   options.validate();
   return options;
@@ -67,8 +68,9 @@ constexpr int kRowsPerBand = 64;  // queries per parallel piece; fixed, so mergi
 
 }  // namespace
 
-std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b,
-                                     const MatchOptions& options, const KernelTable& kernels) {
+std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
+                                     const std::vector<Descriptor>& b, const MatchOptions& options,
+                                     const KernelTable& kernels) {
   options.validate();
   std::vector<Match> matches;
   if (a.empty() || b.empty()) return matches;
@@ -87,8 +89,10 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std
   tbb::parallel_for(0, bands, [&](int band) {
     parallel::handoff_acquire(&parallel::kBodyStartTag);
     std::vector<std::uint16_t> distances(static_cast<std::size_t>(n_b));
-    int* col_distance = mutual ? band_col_distance.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
-    int* col_best = mutual ? band_col_best.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
+    int* col_distance =
+        mutual ? band_col_distance.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
+    int* col_best =
+        mutual ? band_col_best.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
     if (mutual) std::fill(col_distance, col_distance + n_b, std::numeric_limits<int>::max());
     const int end = std::min(n_a, (band + 1) * kRowsPerBand);
     for (int i = band * kRowsPerBand; i < end; ++i) {
@@ -129,7 +133,8 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std
   }
 
   int min_distance = std::numeric_limits<int>::max();
-  for (const Nearest& nearest : row_nearest) min_distance = std::min(min_distance, nearest.best_distance);
+  for (const Nearest& nearest : row_nearest)
+    min_distance = std::min(min_distance, nearest.best_distance);
   // The paper's filter (the ORB tutorial's "good matches"): max(2 * min_distance, 30).
   const int paper_limit = std::max(2 * min_distance, 30);
 
@@ -149,7 +154,8 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std
   return matches;
 }
 
-std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b,
+std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
+                                     const std::vector<Descriptor>& b,
                                      const MatchOptions& options) {
   return match_descriptors(a, b, options, kernel_table(KernelSet::auto_select));
 }

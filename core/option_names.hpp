@@ -27,43 +27,45 @@ struct Table;
 template <>
 struct Table<Mode> {
   static constexpr std::string_view what = "mode";
-  static constexpr Name<Mode> names[] = {{Mode::aief, "aief", "aief"},
-                                         {Mode::aief_paper, "aief-paper", "aief_paper"},
-                                         {Mode::orbslam2, "orbslam2", "orbslam2"},
-                                         {Mode::quadtree_entropy, "quadtree-entropy", "quadtree_entropy"}};
+  static constexpr Name<Mode> names[] = {
+      {Mode::aief, "aief", "aief"},
+      {Mode::aief_paper, "aief-paper", "aief_paper"},
+      {Mode::orbslam2, "orbslam2", "orbslam2"},
+      {Mode::quadtree_entropy, "quadtree-entropy", "quadtree_entropy"}};
 };
 
 template <>
 struct Table<Distribution> {
   static constexpr std::string_view what = "distribution";
-  static constexpr Name<Distribution> names[] = {{Distribution::proportional, "proportional", "proportional"},
-                                                 {Distribution::quadtree, "quadtree", "quadtree"}};
+  static constexpr Name<Distribution> names[] = {
+      {Distribution::proportional, "proportional", "proportional"},
+      {Distribution::quadtree, "quadtree", "quadtree"}};
 };
 
 template <>
 struct Table<EntropyMeasure> {
   static constexpr std::string_view what = "entropy measure";
-  static constexpr Name<EntropyMeasure> names[] = {{EntropyMeasure::histogram, "histogram", "histogram"},
-                                                   {EntropyMeasure::intensity, "intensity", "intensity"},
-                                                   {EntropyMeasure::off, "off", "off"}};
+  static constexpr Name<EntropyMeasure> names[] = {
+      {EntropyMeasure::histogram, "histogram", "histogram"},
+      {EntropyMeasure::intensity, "intensity", "intensity"},
+      {EntropyMeasure::off, "off", "off"}};
 };
 
 template <>
 struct Table<KernelSet> {
   static constexpr std::string_view what = "kernel set";
-  static constexpr Name<KernelSet> names[] = {{KernelSet::auto_select, "auto", "auto_select"},
-                                              {KernelSet::scalar, "scalar", "scalar"},
-                                              {KernelSet::sse4_2, "sse4.2", "sse4_2"},
-                                              {KernelSet::avx2, "avx2", "avx2"},
-                                              {KernelSet::avx512bw, "avx512", "avx512bw"},
-                                              {KernelSet::neon64, "neon64", "neon64"}};
+  static constexpr Name<KernelSet> names[] = {
+      {KernelSet::auto_select, "auto", "auto_select"}, {KernelSet::scalar, "scalar", "scalar"},
+      {KernelSet::sse4_2, "sse4.2", "sse4_2"},         {KernelSet::avx2, "avx2", "avx2"},
+      {KernelSet::avx512bw, "avx512", "avx512bw"},     {KernelSet::neon64, "neon64", "neon64"}};
 };
 
 template <>
 struct Table<CoordinateMap> {
   static constexpr std::string_view what = "coordinate map";
-  static constexpr Name<CoordinateMap> names[] = {{CoordinateMap::pixel_centre, "pixel-centre", "pixel_centre"},
-                                                  {CoordinateMap::scaled, "scaled", "scaled"}};
+  static constexpr Name<CoordinateMap> names[] = {
+      {CoordinateMap::pixel_centre, "pixel-centre", "pixel_centre"},
+      {CoordinateMap::scaled, "scaled", "scaled"}};
 };
 
 template <>
@@ -76,8 +78,9 @@ struct Table<StarvationGuard> {
 template <>
 struct Table<CandidateRanking> {
   static constexpr std::string_view what = "candidate ranking";
-  static constexpr Name<CandidateRanking> names[] = {{CandidateRanking::cross_score, "cross", "cross_score"},
-                                                     {CandidateRanking::peak_score, "peak", "peak_score"}};
+  static constexpr Name<CandidateRanking> names[] = {
+      {CandidateRanking::cross_score, "cross", "cross_score"},
+      {CandidateRanking::peak_score, "peak", "peak_score"}};
 };
 
 // The name of `value`; "?" for a value outside the table (an invalid cast).
@@ -108,12 +111,13 @@ std::string expected_names(std::string_view last_separator = " or ") {
   return out;
 }
 
-// Throws aief::Error "unknown mode 'orb' (expected aief, aief-paper, orbslam2 or quadtree-entropy)".
+// Throws aief::Error "unknown mode 'orb' (expected aief, aief-paper, orbslam2 or
+// quadtree-entropy)".
 template <class Enum>
 Enum parse(std::string_view text) {
   if (const Name<Enum>* n = find<Enum>(text)) return n->value;
-  throw Error("unknown " + std::string(Table<Enum>::what) + " '" + std::string(text) + "' (expected " +
-              expected_names<Enum>() + ")");
+  throw Error("unknown " + std::string(Table<Enum>::what) + " '" + std::string(text) +
+              "' (expected " + expected_names<Enum>() + ")");
 }
 
 }  // namespace aief::option_names

@@ -1,7 +1,7 @@
 #include "core/option_table.hpp"
 
-#include <charconv>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -34,28 +34,40 @@ template <auto Member>
 OptionValue get_field(const ExtractorOptions& options) {
   const auto& value = options.*Member;
   using T = std::decay_t<decltype(value)>;
-  if constexpr (std::is_enum_v<T>) return option_names::name_of(value);
-  else if constexpr (std::is_same_v<T, bool>) return value;
-  else if constexpr (std::is_integral_v<T>) return static_cast<long long>(value);
-  else return static_cast<double>(value);
+  if constexpr (std::is_enum_v<T>)
+    return option_names::name_of(value);
+  else if constexpr (std::is_same_v<T, bool>)
+    return value;
+  else if constexpr (std::is_integral_v<T>)
+    return static_cast<long long>(value);
+  else
+    return static_cast<double>(value);
 }
 
 template <auto Member>
 void set_field(ExtractorOptions& options, const OptionValue& value) {
   auto& field = options.*Member;
   using T = std::decay_t<decltype(field)>;
-  if constexpr (std::is_enum_v<T>) field = option_names::parse<T>(std::get<std::string_view>(value));
-  else if constexpr (std::is_same_v<T, bool>) field = std::get<bool>(value);
-  else if constexpr (std::is_integral_v<T>) field = static_cast<T>(std::get<long long>(value));
-  else field = std::get<double>(value);
+  if constexpr (std::is_enum_v<T>)
+    field = option_names::parse<T>(std::get<std::string_view>(value));
+  else if constexpr (std::is_same_v<T, bool>)
+    field = std::get<bool>(value);
+  else if constexpr (std::is_integral_v<T>)
+    field = static_cast<T>(std::get<long long>(value));
+  else
+    field = std::get<double>(value);
 }
 
 template <class T>
 constexpr ValueKind kind_of() {
-  if constexpr (std::is_enum_v<T>) return ValueKind::choice;
-  else if constexpr (std::is_same_v<T, bool>) return ValueKind::toggle;
-  else if constexpr (std::is_integral_v<T>) return ValueKind::integer;
-  else return ValueKind::number;
+  if constexpr (std::is_enum_v<T>)
+    return ValueKind::choice;
+  else if constexpr (std::is_same_v<T, bool>)
+    return ValueKind::toggle;
+  else if constexpr (std::is_integral_v<T>)
+    return ValueKind::integer;
+  else
+    return ValueKind::number;
 }
 
 // A field's access, from its member pointer: kind, get, set and (enums) names.
@@ -82,7 +94,8 @@ void set_threshold(ExtractorOptions& options, const OptionValue& value) {
 
 // P, or "inf" / "off": no pool.
 void set_pool(ExtractorOptions& options, const OptionValue& value) {
-  options.candidate_pool = std::holds_alternative<std::string_view>(value) ? kInfinity : std::get<double>(value);
+  options.candidate_pool =
+      std::holds_alternative<std::string_view>(value) ? kInfinity : std::get<double>(value);
 }
 
 using M = ExtractorOptions;
@@ -93,84 +106,208 @@ constexpr std::string_view kDefault = "default";
 // The table. Record order is this order.
 std::vector<OptionRow> make_rows() {
   return {
-    {.key = "mode", .field = kPreset, .cli_flag = "--mode", .cli_value = "M", .python_keyword = "mode",
-     .python_position = 2, .yaml_key = "ORBextractor.mode",
-     .help = "named preset; aief-paper is the published algorithm to the byte (x * scale, no sub-pixel, no pool, "
-             "frame-wide guard); orbslam2 keeps x * scale too"},
-    {.key = "n_features", .field = access<&M::n_features>, .cli_flag = "--features", .cli_value = "N",
-     .python_keyword = "n_features", .python_position = 1, .yaml_key = "ORBextractor.nFeatures",
-     .help = "keypoints wanted over all levels", .low = 1, .high = 1'000'000},
-    {.key = "scale_factor", .field = access<&M::scale_factor>, .cli_flag = "--scale", .cli_value = "S",
-     .python_keyword = "scale", .python_position = 5, .yaml_key = "ORBextractor.scaleFactor",
-     .help = "scale factor between levels", .low = 1, .high = 4, .low_is_open = true},
-    {.key = "n_levels", .field = access<&M::n_levels>, .cli_flag = "--levels", .cli_value = "L",
-     .python_keyword = "levels", .python_position = 4, .yaml_key = "ORBextractor.nLevels", .help = "pyramid levels",
-     .low = 1, .high = 32},
-    {.key = "fast_threshold", .field = access<&M::fast_threshold>, .cli_flag = "--fast-threshold", .cli_value = "T",
-     .python_keyword = "fast_threshold", .yaml_key = "ORBextractor.iniThFAST",
-     .help = "FAST threshold tried first in a block", .low = 1, .high = 254},
-    {.key = "fast_min_threshold", .field = access<&M::fast_min_threshold>, .cli_flag = "--fast-min-threshold",
-     .cli_value = "T", .python_keyword = "fast_min_threshold", .yaml_key = "ORBextractor.minThFAST",
-     .help = "retry threshold for a block without corners (at most the FAST threshold)", .low = 1, .high = 254},
-    {.key = "block_size", .field = access<&M::block_size>, .cli_flag = "--block", .cli_value = "B",
-     .python_keyword = "block_size", .yaml_key = "ORBextractor.blockSize",
-     .help = "entropy / distribution block side, pixels", .low = 8, .high = 1024},
-    {.key = "distribution", .field = access<&M::distribution>, .help = "set by the mode",
-     .per_mode = {kDefault, "proportional", "quadtree", "quadtree"}},
-    {.key = "entropy", .field = access<&M::entropy>, .cli_flag = "--entropy", .cli_value = "E",
-     .python_keyword = "entropy", .yaml_key = "ORBextractor.entropy", .help = "what a block's entropy measures; off: no mask",
-     .per_mode = {"", "", "=off", ""}},
-    {.key = "entropy_threshold", .field = access<&M::entropy_threshold>.with_set(set_threshold),
-     .cli_flag = "--threshold", .cli_value = "F|auto", .python_keyword = "threshold", .python_position = 3,
-     .yaml_key = "ORBextractor.entropyThreshold",
-     .help = "entropy threshold F in bits (a block is kept when its entropy is > F), or auto: Otsu's split of the "
-             "frame's own block entropies",
-     .low = 0, .high = 64, .words = "auto", .needs_mask = "sets F of the entropy mask"},
-    {.key = "auto_threshold", .field = access<&M::auto_threshold>, .help = "set by --threshold auto", .words = "on|off"},
-    {.key = "coordinates", .field = access<&M::coordinates>, .cli_flag = "--coordinates", .cli_value = "C",
-     .python_keyword = "coordinates", .yaml_key = "ORBextractor.coordinates",
-     .help = "a keypoint's level-0 position: pixel-centre (x + 0.5) * W0 / Wn - 0.5, or scaled x * scale^n",
-     .per_mode = {kDefault, "scaled", "scaled", "scaled"}},
-    {.key = "subpixel", .field = access<&M::subpixel>, .cli_flag = "--subpixel", .cli_value = "on|off",
-     .python_keyword = "subpixel", .yaml_key = "ORBextractor.subpixel",
-     .help = "parabola peak of the FAST scores per axis", .words = "on|off", .per_mode = {kDefault, "off", "off", "off"}},
-    {.key = "candidate_pool", .field = access<&M::candidate_pool>.with_set(set_pool), .cli_flag = "--pool",
-     .cli_value = "P|inf", .python_keyword = "pool", .yaml_key = "ORBextractor.candidatePool",
-     .help = "candidate pool: each level keeps its best ceil(P x N_level) candidates before the water-level "
-             "distribution; inf (or off): none",
-     .low = 1, .high = kInfinity, .words = "inf|off", .per_mode = {kDefault, "inf", "inf", "inf"}},
-    {.key = "candidate_ranking", .field = access<&M::candidate_ranking>, .cli_flag = "--ranking", .cli_value = "R",
-     .python_keyword = "ranking", .yaml_key = "ORBextractor.ranking",
-     .help = "what the pool and the distribution rank candidates by: cross = FAST scores summed over the corner "
-             "and its 4 neighbours, peak = the corner's score",
-     .per_mode = {kDefault, "peak", "peak", "peak"}},
-    {.key = "starvation_guard", .field = access<&M::starvation_guard>, .cli_flag = "--starvation-guard",
-     .cli_value = "G", .python_keyword = "starvation_guard", .yaml_key = "ORBextractor.starvationGuard",
-     .help = "level: F lowered per level until it has its budget, what a level still lacks going to the levels "
-             "with candidates to spare, finest first; frame: F lowered for the whole frame until it has n_features",
-     .per_mode = {kDefault, "frame", "frame", "frame"}},
-    {.key = "auto_skips_uniform_blocks", .field = access<&M::auto_skips_uniform_blocks>,
-     .cli_flag = "--auto-uniform-blocks", .cli_value = "skip|count", .python_keyword = "auto_skips_uniform_blocks",
-     .yaml_key = "ORBextractor.autoUniformBlocks",
-     .help = "whether one-gray-level blocks take part in the automatic F", .words = "skip|count",
-     .per_mode = {kDefault, "count", "count", "count"}},
-    {.key = "auto_requires_two_classes", .field = access<&M::auto_requires_two_classes>,
-     .cli_flag = "--auto-two-classes", .cli_value = "on|off", .python_keyword = "auto_requires_two_classes",
-     .yaml_key = "ORBextractor.autoTwoClasses",
-     .help = "automatic F: split only when the block entropies form two classes (Otsu's effectiveness >= 0.75), "
-             "else F = 0 keeps every block",
-     .words = "on|off", .per_mode = {kDefault, "off", "off", "off"}},
-    {.key = "kernels", .field = access<&M::kernels>, .cli_flag = "--kernels", .cli_value = "K",
-     .python_keyword = "kernels", .python_position = 7, .yaml_key = "ORBextractor.kernels",
-     .help = "the pixel kernels' instruction set; every set gives the same output", .changes_output = false},
-    {.key = "threads", .field = access<&M::threads>, .cli_flag = "--threads", .cli_value = "T",
-     .python_keyword = "threads", .python_position = 6, .yaml_key = "ORBextractor.threads",
-     .help = "worker threads, 0 = all cores; any count gives the same output", .low = 0, .high = 256, .changes_output = false},
-    {.key = "max_image_pixels", .field = access<&M::max_image_pixels>, .cli_flag = "--max-image-pixels",
-     .cli_value = "N", .python_keyword = "max_image_pixels", .yaml_key = "ORBextractor.maxImagePixels",
-     .help = "largest image accepted, in pixels, refused before any allocation (at most 2^26: the exact entropy "
-             "sums)",
-     .low = 1, .high = static_cast<double>(kLargestMaxImagePixels), .changes_output = false},
+      {.key = "mode",
+       .field = kPreset,
+       .cli_flag = "--mode",
+       .cli_value = "M",
+       .python_keyword = "mode",
+       .python_position = 2,
+       .yaml_key = "ORBextractor.mode",
+       .help = "named preset; aief-paper is the published algorithm to the byte (x * scale, no "
+               "sub-pixel, no pool, "
+               "frame-wide guard); orbslam2 keeps x * scale too"},
+      {.key = "n_features",
+       .field = access<&M::n_features>,
+       .cli_flag = "--features",
+       .cli_value = "N",
+       .python_keyword = "n_features",
+       .python_position = 1,
+       .yaml_key = "ORBextractor.nFeatures",
+       .help = "keypoints wanted over all levels",
+       .low = 1,
+       .high = 1'000'000},
+      {.key = "scale_factor",
+       .field = access<&M::scale_factor>,
+       .cli_flag = "--scale",
+       .cli_value = "S",
+       .python_keyword = "scale",
+       .python_position = 5,
+       .yaml_key = "ORBextractor.scaleFactor",
+       .help = "scale factor between levels",
+       .low = 1,
+       .high = 4,
+       .low_is_open = true},
+      {.key = "n_levels",
+       .field = access<&M::n_levels>,
+       .cli_flag = "--levels",
+       .cli_value = "L",
+       .python_keyword = "levels",
+       .python_position = 4,
+       .yaml_key = "ORBextractor.nLevels",
+       .help = "pyramid levels",
+       .low = 1,
+       .high = 32},
+      {.key = "fast_threshold",
+       .field = access<&M::fast_threshold>,
+       .cli_flag = "--fast-threshold",
+       .cli_value = "T",
+       .python_keyword = "fast_threshold",
+       .yaml_key = "ORBextractor.iniThFAST",
+       .help = "FAST threshold tried first in a block",
+       .low = 1,
+       .high = 254},
+      {.key = "fast_min_threshold",
+       .field = access<&M::fast_min_threshold>,
+       .cli_flag = "--fast-min-threshold",
+       .cli_value = "T",
+       .python_keyword = "fast_min_threshold",
+       .yaml_key = "ORBextractor.minThFAST",
+       .help = "retry threshold for a block without corners (at most the FAST threshold)",
+       .low = 1,
+       .high = 254},
+      {.key = "block_size",
+       .field = access<&M::block_size>,
+       .cli_flag = "--block",
+       .cli_value = "B",
+       .python_keyword = "block_size",
+       .yaml_key = "ORBextractor.blockSize",
+       .help = "entropy / distribution block side, pixels",
+       .low = 8,
+       .high = 1024},
+      {.key = "distribution",
+       .field = access<&M::distribution>,
+       .help = "set by the mode",
+       .per_mode = {kDefault, "proportional", "quadtree", "quadtree"}},
+      {.key = "entropy",
+       .field = access<&M::entropy>,
+       .cli_flag = "--entropy",
+       .cli_value = "E",
+       .python_keyword = "entropy",
+       .yaml_key = "ORBextractor.entropy",
+       .help = "what a block's entropy measures; off: no mask",
+       .per_mode = {"", "", "=off", ""}},
+      {.key = "entropy_threshold",
+       .field = access<&M::entropy_threshold>.with_set(set_threshold),
+       .cli_flag = "--threshold",
+       .cli_value = "F|auto",
+       .python_keyword = "threshold",
+       .python_position = 3,
+       .yaml_key = "ORBextractor.entropyThreshold",
+       .help = "entropy threshold F in bits (a block is kept when its entropy is > F), or auto: "
+               "Otsu's split of the "
+               "frame's own block entropies",
+       .low = 0,
+       .high = 64,
+       .words = "auto",
+       .needs_mask = "sets F of the entropy mask"},
+      {.key = "auto_threshold",
+       .field = access<&M::auto_threshold>,
+       .help = "set by --threshold auto",
+       .words = "on|off"},
+      {.key = "coordinates",
+       .field = access<&M::coordinates>,
+       .cli_flag = "--coordinates",
+       .cli_value = "C",
+       .python_keyword = "coordinates",
+       .yaml_key = "ORBextractor.coordinates",
+       .help = "a keypoint's level-0 position: pixel-centre (x + 0.5) * W0 / Wn - 0.5, or scaled x "
+               "* scale^n",
+       .per_mode = {kDefault, "scaled", "scaled", "scaled"}},
+      {.key = "subpixel",
+       .field = access<&M::subpixel>,
+       .cli_flag = "--subpixel",
+       .cli_value = "on|off",
+       .python_keyword = "subpixel",
+       .yaml_key = "ORBextractor.subpixel",
+       .help = "parabola peak of the FAST scores per axis",
+       .words = "on|off",
+       .per_mode = {kDefault, "off", "off", "off"}},
+      {.key = "candidate_pool",
+       .field = access<&M::candidate_pool>.with_set(set_pool),
+       .cli_flag = "--pool",
+       .cli_value = "P|inf",
+       .python_keyword = "pool",
+       .yaml_key = "ORBextractor.candidatePool",
+       .help = "candidate pool: each level keeps its best ceil(P x N_level) candidates before the "
+               "water-level "
+               "distribution; inf (or off): none",
+       .low = 1,
+       .high = kInfinity,
+       .words = "inf|off",
+       .per_mode = {kDefault, "inf", "inf", "inf"}},
+      {.key = "candidate_ranking",
+       .field = access<&M::candidate_ranking>,
+       .cli_flag = "--ranking",
+       .cli_value = "R",
+       .python_keyword = "ranking",
+       .yaml_key = "ORBextractor.ranking",
+       .help = "what the pool and the distribution rank candidates by: cross = FAST scores summed "
+               "over the corner "
+               "and its 4 neighbours, peak = the corner's score",
+       .per_mode = {kDefault, "peak", "peak", "peak"}},
+      {.key = "starvation_guard",
+       .field = access<&M::starvation_guard>,
+       .cli_flag = "--starvation-guard",
+       .cli_value = "G",
+       .python_keyword = "starvation_guard",
+       .yaml_key = "ORBextractor.starvationGuard",
+       .help = "level: F lowered per level until it has its budget, what a level still lacks going "
+               "to the levels "
+               "with candidates to spare, finest first; frame: F lowered for the whole frame until "
+               "it has n_features",
+       .per_mode = {kDefault, "frame", "frame", "frame"}},
+      {.key = "auto_skips_uniform_blocks",
+       .field = access<&M::auto_skips_uniform_blocks>,
+       .cli_flag = "--auto-uniform-blocks",
+       .cli_value = "skip|count",
+       .python_keyword = "auto_skips_uniform_blocks",
+       .yaml_key = "ORBextractor.autoUniformBlocks",
+       .help = "whether one-gray-level blocks take part in the automatic F",
+       .words = "skip|count",
+       .per_mode = {kDefault, "count", "count", "count"}},
+      {.key = "auto_requires_two_classes",
+       .field = access<&M::auto_requires_two_classes>,
+       .cli_flag = "--auto-two-classes",
+       .cli_value = "on|off",
+       .python_keyword = "auto_requires_two_classes",
+       .yaml_key = "ORBextractor.autoTwoClasses",
+       .help = "automatic F: split only when the block entropies form two classes (Otsu's "
+               "effectiveness >= 0.75), "
+               "else F = 0 keeps every block",
+       .words = "on|off",
+       .per_mode = {kDefault, "off", "off", "off"}},
+      {.key = "kernels",
+       .field = access<&M::kernels>,
+       .cli_flag = "--kernels",
+       .cli_value = "K",
+       .python_keyword = "kernels",
+       .python_position = 7,
+       .yaml_key = "ORBextractor.kernels",
+       .help = "the pixel kernels' instruction set; every set gives the same output",
+       .changes_output = false},
+      {.key = "threads",
+       .field = access<&M::threads>,
+       .cli_flag = "--threads",
+       .cli_value = "T",
+       .python_keyword = "threads",
+       .python_position = 6,
+       .yaml_key = "ORBextractor.threads",
+       .help = "worker threads, 0 = all cores; any count gives the same output",
+       .low = 0,
+       .high = 256,
+       .changes_output = false},
+      {.key = "max_image_pixels",
+       .field = access<&M::max_image_pixels>,
+       .cli_flag = "--max-image-pixels",
+       .cli_value = "N",
+       .python_keyword = "max_image_pixels",
+       .yaml_key = "ORBextractor.maxImagePixels",
+       .help = "largest image accepted, in pixels, refused before any allocation (at most 2^26: "
+               "the exact entropy "
+               "sums)",
+       .low = 1,
+       .high = static_cast<double>(kLargestMaxImagePixels),
+       .changes_output = false},
   };
 }
 
@@ -193,7 +330,8 @@ std::string number_text(double value) {
 
 std::string range_text(const OptionRow& row) {
   const auto bound = [&](double v) {
-    return row.kind() == ValueKind::integer ? std::to_string(static_cast<long long>(v)) : number_text(v);
+    return row.kind() == ValueKind::integer ? std::to_string(static_cast<long long>(v))
+                                            : number_text(v);
   };
   if (std::isinf(row.high)) return (row.low_is_open ? "> " : ">= ") + bound(row.low);
   return std::string(row.low_is_open ? "(" : "[") + bound(row.low) + ", " + bound(row.high) + "]";
@@ -240,7 +378,8 @@ bool parse_integer(std::string_view text, long long& value) {
   if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
   if (digits.empty() || (digits[0] == '-' && digits.size() == 1)) return false;
   const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  return end == digits.data() + digits.size() && error == std::errc();  // overflow: not a value here
+  return end == digits.data() + digits.size() &&
+         error == std::errc();  // overflow: not a value here
 }
 
 bool parse_decimal(std::string_view text, double& value) {
@@ -277,7 +416,8 @@ std::string expected_values(const OptionRow& row) {
     case ValueKind::integer: return "an integer in " + range_text(row);
     case ValueKind::number: {
       std::vector<std::string_view> items;
-      const std::string number = "a number " + std::string(std::isinf(row.high) ? "" : "in ") + range_text(row);
+      const std::string number =
+          "a number " + std::string(std::isinf(row.high) ? "" : "in ") + range_text(row);
       items.push_back(number);
       items.insert(items.end(), words.begin(), words.end());
       return joined(items);
@@ -290,12 +430,14 @@ std::string expected_values(const OptionRow& row) {
 
 OptionValue parse_value(const OptionRow& row, std::string_view text, std::string_view named) {
   const auto refuse = [&]() -> OptionValue {
-    throw Error(std::string(named) + " expects " + expected_values(row) + ", got '" + std::string(text) + "'");
+    throw Error(std::string(named) + " expects " + expected_values(row) + ", got '" +
+                std::string(text) + "'");
   };
   switch (row.kind()) {
     case ValueKind::integer: {
       long long value = 0;
-      if (!parse_integer(text, value) || !in_range(row, static_cast<double>(value))) return refuse();
+      if (!parse_integer(text, value) || !in_range(row, static_cast<double>(value)))
+        return refuse();
       return value;
     }
     case ValueKind::number: {
@@ -309,8 +451,8 @@ OptionValue parse_value(const OptionRow& row, std::string_view text, std::string
       const ChoiceNames& choices = *row.field.choices();
       for (std::size_t i = 0; i < choices.names.size(); ++i)
         if (text == choices.names[i] || text == choices.enumerators[i]) return choices.names[i];
-      throw Error("unknown " + std::string(choices.what) + " '" + std::string(text) + "' for " + std::string(named) + " (expected " +
-                  joined(choices.names) + ")");
+      throw Error("unknown " + std::string(choices.what) + " '" + std::string(text) + "' for " +
+                  std::string(named) + " (expected " + joined(choices.names) + ")");
     }
     case ValueKind::toggle: {
       const std::vector<std::string_view> words = split_words(row.words);
@@ -323,7 +465,8 @@ OptionValue parse_value(const OptionRow& row, std::string_view text, std::string
 }
 
 std::string text_of(const OptionRow& row, const OptionValue& value) {
-  if (const bool* flag = std::get_if<bool>(&value)) return std::string(split_words(row.words)[*flag ? 0 : 1]);
+  if (const bool* flag = std::get_if<bool>(&value))
+    return std::string(split_words(row.words)[*flag ? 0 : 1]);
   if (const long long* integer = std::get_if<long long>(&value)) return std::to_string(*integer);
   if (const double* number = std::get_if<double>(&value)) return number_text(*number);
   return std::string(std::get<std::string_view>(value));
@@ -331,20 +474,25 @@ std::string text_of(const OptionRow& row, const OptionValue& value) {
 
 std::string defaults_text(const OptionRow& row) {
   const ExtractorOptions defaults;
-  std::string text = row.is_field() ? text_of(row, row.field.get(defaults)) : std::string(option_names::name_of(Mode::aief));
-  // The modes that set another value, grouped by value: "; scaled in aief-paper, orbslam2, quadtree-entropy".
+  std::string text = row.is_field() ? text_of(row, row.field.get(defaults))
+                                    : std::string(option_names::name_of(Mode::aief));
+  // The modes that set another value, grouped by value: "; scaled in aief-paper, orbslam2,
+  // quadtree-entropy".
   std::vector<std::pair<std::string, std::string>> others;  // value, modes
   for (const auto& mode : option_names::Table<Mode>::names) {
     OptionValue storage;
     bool fixed = false;
-    const OptionValue* value = row.is_field() ? mode_value(row, mode.value, storage, fixed) : nullptr;
+    const OptionValue* value =
+        row.is_field() ? mode_value(row, mode.value, storage, fixed) : nullptr;
     if (!value) continue;
     const std::string value_text = text_of(row, *value);
     if (value_text == text) continue;
     auto it = others.begin();
     while (it != others.end() && it->first != value_text) ++it;
-    if (it == others.end()) others.emplace_back(value_text, std::string(mode.name));
-    else it->second += ", " + std::string(mode.name);
+    if (it == others.end())
+      others.emplace_back(value_text, std::string(mode.name));
+    else
+      it->second += ", " + std::string(mode.name);
   }
   for (const auto& [value, modes] : others) text += "; " + value + " in " + modes;
   return text;
@@ -355,7 +503,8 @@ std::vector<std::pair<std::string_view, OptionValue>> record_of(const ExtractorO
   for (const OptionRow& r : rows()) {
     if (!r.is_field()) continue;
     OptionValue value = r.field.get(options);
-    if (const double* number = std::get_if<double>(&value); number && std::isinf(*number)) value = std::string_view("inf");
+    if (const double* number = std::get_if<double>(&value); number && std::isinf(*number))
+      value = std::string_view("inf");
     record.emplace_back(r.key, value);
   }
   return record;
@@ -367,7 +516,8 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
   const GivenOption* entropy_given = nullptr;
   for (const GivenOption& g : given) {
     if (g.row->key == "mode") {
-      mode = option_names::parse<Mode>(std::get<std::string_view>(parse_value(*g.row, g.text, g.named)));
+      mode = option_names::parse<Mode>(
+          std::get<std::string_view>(parse_value(*g.row, g.text, g.named)));
       mode_named = g.named;
     }
     if (g.row->key == "entropy") entropy_given = &g;
@@ -381,8 +531,8 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
     bool fixed = false;
     const OptionValue* by_mode = mode_value(*g.row, mode, storage, fixed);
     if (fixed && *by_mode != value)
-      throw Error(mode_named + " " + mode_name + " means " + g.named + " " + text_of(*g.row, *by_mode) + ", so " +
-                  g.named + " " + g.text + " cannot apply");
+      throw Error(mode_named + " " + mode_name + " means " + g.named + " " +
+                  text_of(*g.row, *by_mode) + ", so " + g.named + " " + g.text + " cannot apply");
     g.row->field.set(options, value);
   }
   if (options.entropy == EntropyMeasure::off)
@@ -418,14 +568,17 @@ void ExtractorOptions::validate() const {
     } else if (const std::string_view* name_of_value = std::get_if<std::string_view>(&value)) {
       if (*name_of_value == "?") throw Error(name + " has an unknown value");
     }
-    if (!ok) throw Error(name + " must be " + option_table::expected_values(row) + ", got " + shown);
+    if (!ok)
+      throw Error(name + " must be " + option_table::expected_values(row) + ", got " + shown);
   }
   // The pyramid computes in float (ORB-SLAM2's arithmetic, core/level_geometry.cpp): check the
   // value it will use, so 1.00000001 (1.0 as a float, which makes every level budget 0/0) is
   // refused rather than accepted and silently rounded.
   if (const float used = static_cast<float>(scale_factor); used <= 1.0f || used > 4.0f)
-    throw Error("scale_factor must be > 1 and <= 4 in single precision (the pyramid computes in float), got " +
-                option_table::number_text(scale_factor) + (used == 1.0f ? ", which is 1 as a float" : ""));
+    throw Error(
+        "scale_factor must be > 1 and <= 4 in single precision (the pyramid computes in float), "
+        "got " +
+        option_table::number_text(scale_factor) + (used == 1.0f ? ", which is 1 as a float" : ""));
   if (fast_min_threshold > fast_threshold)
     throw Error("fast_min_threshold must be in [1, " + std::to_string(fast_threshold) +
                 "] (at most fast_threshold), got " + std::to_string(fast_min_threshold));
@@ -437,7 +590,8 @@ ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
     if (!row.is_field()) continue;
     option_table::OptionValue storage;
     bool fixed = false;
-    if (const option_table::OptionValue* value = option_table::mode_value(row, mode, storage, fixed))
+    if (const option_table::OptionValue* value =
+            option_table::mode_value(row, mode, storage, fixed))
       row.field.set(base, *value);
   }
   return base;

@@ -9,7 +9,8 @@
 // How to add an option:
 //   1. a field with its default and one comment in ExtractorOptions (include/aief/options.hpp);
 //      an enum gets its name table in core/option_names.hpp;
-//   2. one row in make_rows() (core/option_table.cpp): record key, CLI flag, Python keyword, settings
+//   2. one row in make_rows() (core/option_table.cpp): record key, CLI flag, Python keyword,
+//   settings
 //      key, help, kind and range, the value each mode sets, whether it changes the output.
 // Nothing else: every front end, --help, validate() and the records pick the row up.
 //
@@ -60,23 +61,25 @@ struct FieldAccess {
 };
 
 struct OptionRow {
-  std::string_view key = {};             // ExtractorOptions' field and the record key ("mode": the preset)
+  std::string_view key = {};  // ExtractorOptions' field and the record key ("mode": the preset)
   FieldAccess field = {};
-  std::string_view cli_flag = {};        // "--features"; empty: set through another row (record only)
-  std::string_view cli_value = {};       // --help's placeholder: "N"
+  std::string_view cli_flag = {};   // "--features"; empty: set through another row (record only)
+  std::string_view cli_value = {};  // --help's placeholder: "N"
   std::string_view python_keyword = {};  // aief.Extractor(n_features=...)
-  int python_position = 0;          // 1, 2, ...: positional order in aief.Extractor(...); 0: keyword only
-  std::string_view yaml_key = {};        // the ORB-SLAM settings key
-  std::string_view help = {};            // one line; --help adds the default
-  double low = 0, high = 0;         // integer and number rows: the range [low, high]
-  bool low_is_open = false;         // (low, high]
-  std::string_view words = {};           // toggle: "on|off" (true first); number: words taken instead ("inf|off")
+  int python_position = 0;  // 1, 2, ...: positional order in aief.Extractor(...); 0: keyword only
+  std::string_view yaml_key = {};  // the ORB-SLAM settings key
+  std::string_view help = {};      // one line; --help adds the default
+  double low = 0, high = 0;        // integer and number rows: the range [low, high]
+  bool low_is_open = false;        // (low, high]
+  std::string_view words =
+      {};  // toggle: "on|off" (true first); number: words taken instead ("inf|off")
   // The value each mode sets, in Mode order (aief, aief-paper, orbslam2, quadtree-entropy), as a
   // front end would write it: "" leaves the option as it was, "default" takes ExtractorOptions{}'s
   // value, and a leading '=' marks the mode's definition: a different given value is refused.
   std::array<std::string_view, 4> per_mode = {};
-  bool changes_output = true;       // false: kernels, threads, limits (the bytes never depend on them)
-  std::string_view needs_mask = {};      // non-empty: refused with the entropy mask off; says what it does
+  bool changes_output = true;  // false: kernels, threads, limits (the bytes never depend on them)
+  std::string_view needs_mask =
+      {};  // non-empty: refused with the entropy mask off; says what it does
 
   ValueKind kind() const { return field.kind; }
   bool is_field() const { return field.get != nullptr; }

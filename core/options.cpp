@@ -15,13 +15,23 @@ std::string_view to_string(CoordinateMap value) { return option_names::name_of(v
 std::string_view to_string(StarvationGuard value) { return option_names::name_of(value); }
 std::string_view to_string(CandidateRanking value) { return option_names::name_of(value); }
 
-Distribution parse_distribution(std::string_view name) { return option_names::parse<Distribution>(name); }
-EntropyMeasure parse_entropy_measure(std::string_view name) { return option_names::parse<EntropyMeasure>(name); }
+Distribution parse_distribution(std::string_view name) {
+  return option_names::parse<Distribution>(name);
+}
+EntropyMeasure parse_entropy_measure(std::string_view name) {
+  return option_names::parse<EntropyMeasure>(name);
+}
 KernelSet parse_kernel_set(std::string_view name) { return option_names::parse<KernelSet>(name); }
 Mode parse_mode(std::string_view name) { return option_names::parse<Mode>(name); }
-CoordinateMap parse_coordinate_map(std::string_view name) { return option_names::parse<CoordinateMap>(name); }
-StarvationGuard parse_starvation_guard(std::string_view name) { return option_names::parse<StarvationGuard>(name); }
-CandidateRanking parse_candidate_ranking(std::string_view name) { return option_names::parse<CandidateRanking>(name); }
+CoordinateMap parse_coordinate_map(std::string_view name) {
+  return option_names::parse<CoordinateMap>(name);
+}
+StarvationGuard parse_starvation_guard(std::string_view name) {
+  return option_names::parse<StarvationGuard>(name);
+}
+CandidateRanking parse_candidate_ranking(std::string_view name) {
+  return option_names::parse<CandidateRanking>(name);
+}
 
 double parse_candidate_pool(std::string_view text) {
   ExtractorOptions options;

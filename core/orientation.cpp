@@ -28,7 +28,8 @@ const DiscTable kDisc;
 
 const int* orientation_disc_umax() { return kDisc.umax; }
 
-void ic_moments_scalar(ImageView level, const PixelPoint* points, int n, std::int32_t* m10, std::int32_t* m01) {
+void ic_moments_scalar(ImageView level, const PixelPoint* points, int n, std::int32_t* m10,
+                       std::int32_t* m01) {
   const int* umax = kDisc.umax;
   const std::ptrdiff_t step = level.stride;
   for (int i = 0; i < n; ++i) {

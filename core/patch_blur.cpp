@@ -41,8 +41,9 @@ int next_bit(const std::uint64_t* bits, int from, int words, std::uint64_t flip)
 
 }  // namespace
 
-void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageView dst, int y_begin, int y_end,
-                     const PixelPoint* points, int count, std::vector<std::uint64_t>& columns_scratch) {
+void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageView dst, int y_begin,
+                     int y_end, const PixelPoint* points, int count,
+                     std::vector<std::uint64_t>& columns_scratch) {
   constexpr int r = kEdgeBorder;
   const int width = level.width;
   // One bit per column: a point marks its patch's columns and the kSpanMergeGap after them, so
@@ -60,7 +61,8 @@ void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageVi
     while (near_end < count && points[near_end].y <= s1 - 1 + r) ++near_end;
     if (near_begin == near_end) continue;
     for (int i = near_begin; i < near_end; ++i)
-      mark_columns(bits.data(), std::max(0, points[i].x - r), std::min(width, points[i].x + r + 1) + kSpanMergeGap);
+      mark_columns(bits.data(), std::max(0, points[i].x - r),
+                   std::min(width, points[i].x + r + 1) + kSpanMergeGap);
     const MutableImageView strip{dst.row(s0 - y_begin), dst.width, s1 - s0, dst.stride};
     for (int x = next_bit(bits.data(), 0, words, 0); x >= 0;) {
       const int end = next_bit(bits.data(), x, words, ~std::uint64_t{0});

@@ -21,7 +21,8 @@ constexpr int kPatchBlurStripRows = 8;
 // KernelTable::gaussian7_rows), at least at every column an rBRIEF sample of one of the points
 // reads; other columns of dst are left as they are. points are in raster order (y ascending);
 // columns_scratch is reused storage (a bit per column).
-void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageView dst, int y_begin, int y_end,
-                     const PixelPoint* points, int count, std::vector<std::uint64_t>& columns_scratch);
+void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageView dst, int y_begin,
+                     int y_end, const PixelPoint* points, int count,
+                     std::vector<std::uint64_t>& columns_scratch);
 
 }  // namespace aief

@@ -17,10 +17,10 @@ namespace aief {
 
 struct ResizePlan {
   int src_width = 0, src_height = 0, dst_width = 0, dst_height = 0;
-  std::vector<std::int32_t> x_index;   // dst_width entries: left tap sx, sx + 1 < src_width
-  std::vector<std::uint16_t> x_weight; // dst_width entries: Q8 weight of the right tap
-  std::vector<std::int32_t> y_index;   // dst_height entries: top tap sy, sy + 1 < src_height
-  std::vector<std::uint16_t> y_weight; // dst_height entries: Q8 weight of the bottom tap
+  std::vector<std::int32_t> x_index;    // dst_width entries: left tap sx, sx + 1 < src_width
+  std::vector<std::uint16_t> x_weight;  // dst_width entries: Q8 weight of the right tap
+  std::vector<std::int32_t> y_index;    // dst_height entries: top tap sy, sy + 1 < src_height
+  std::vector<std::uint16_t> y_weight;  // dst_height entries: Q8 weight of the bottom tap
 
   // The x taps again, in the form the vector kernel (simd/pyramid_resize_x86.hpp) consumes, for
   // the outputs [0, 8 * x_groups): group g = outputs 8g .. 8g + 7, whose taps all lie in the 16
@@ -59,7 +59,8 @@ void resize_bilinear_rows_scalar(ImageView src, const ResizePlan& plan, MutableI
 
 // Outputs [x_begin, x_end) of one dst row from its source rows top, bottom and the row's weight
 // wy: the scalar formula, which the vector kernels call for the pixels after their last group.
-void resize_bilinear_span_scalar(const std::uint8_t* top, const std::uint8_t* bottom, const ResizePlan& plan,
-                                 std::uint32_t wy, int x_begin, int x_end, std::uint8_t* out);
+void resize_bilinear_span_scalar(const std::uint8_t* top, const std::uint8_t* bottom,
+                                 const ResizePlan& plan, std::uint32_t wy, int x_begin, int x_end,
+                                 std::uint8_t* out);
 
 }  // namespace aief

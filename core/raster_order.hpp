@@ -10,7 +10,8 @@
 namespace aief {
 
 // Sorts candidate indices by raster_before.
-void sort_in_raster_order(const std::vector<Candidate>& candidates, std::vector<std::int32_t>& indices);
+void sort_in_raster_order(const std::vector<Candidate>& candidates,
+                          std::vector<std::int32_t>& indices);
 
 // The candidates in raster order and each one's place in it, built by the first sort after
 // detection (clear() when the candidates change), with the buffers of that sort.
@@ -24,7 +25,7 @@ struct RasterRanks {
 
 // The same order as sort_in_raster_order, through the ranks: linear in the candidates. `width`,
 // `height`: the level's size (the counting sort's key ranges).
-void sort_by_raster_rank(const std::vector<Candidate>& candidates, int width, int height, RasterRanks& ranks,
-                         std::vector<std::int32_t>& indices);
+void sort_by_raster_rank(const std::vector<Candidate>& candidates, int width, int height,
+                         RasterRanks& ranks, std::vector<std::int32_t>& indices);
 
 }  // namespace aief

@@ -14,8 +14,8 @@ const std::int8_t kPattern[256][4] = {
 
 const std::int8_t (*orb_pattern_31())[4] { return kPattern; }
 
-void rbrief_describe_scalar(ImageView blurred, const PixelPoint* points, const float* angle_deg, int n,
-                            std::uint8_t* descriptors) {
+void rbrief_describe_scalar(ImageView blurred, const PixelPoint* points, const float* angle_deg,
+                            int n, std::uint8_t* descriptors) {
   const float kRadiansPerDegree = static_cast<float>(3.14159265358979323846 / 180.0);
   const std::ptrdiff_t step = blurred.stride;
   for (int i = 0; i < n; ++i) {

@@ -14,13 +14,14 @@ constexpr int kMinScoredRun = 128;
 void size_score_band(const LevelGeometry& geometry, GrayImage& band) {
   int tallest_block_row = 0;
   for (int r = 0; r < geometry.grid.rows(); ++r)
-    tallest_block_row = std::max(tallest_block_row, geometry.grid.row_edges[static_cast<std::size_t>(r) + 1] -
-                                                        geometry.grid.row_edges[static_cast<std::size_t>(r)]);
+    tallest_block_row =
+        std::max(tallest_block_row, geometry.grid.row_edges[static_cast<std::size_t>(r) + 1] -
+                                        geometry.grid.row_edges[static_cast<std::size_t>(r)]);
   band.resize(geometry.width, tallest_block_row + 2);
 }
 
-void compute_score_rows(ImageView pixels, const KernelTable& kernels, int fast_min_threshold, GrayImage& band,
-                        int top, int y_begin, int y_end, int x_begin, int x_end) {
+void compute_score_rows(ImageView pixels, const KernelTable& kernels, int fast_min_threshold,
+                        GrayImage& band, int top, int y_begin, int y_end, int x_begin, int x_end) {
   const int w = pixels.width, h = pixels.height;
   y_begin = std::max(y_begin, 3);
   y_end = std::min(y_end, h - 3);
@@ -33,7 +34,8 @@ void compute_score_rows(ImageView pixels, const KernelTable& kernels, int fast_m
   }
   const MutableImageView scores = band.mutable_view();
   for (int y = y_begin; y < y_end; ++y)
-    kernels.fast9_scores_row(pixels.row(y), pixels.stride, x_begin, x_end, fast_min_threshold, scores.row(y - top));
+    kernels.fast9_scores_row(pixels.row(y), pixels.stride, x_begin, x_end, fast_min_threshold,
+                             scores.row(y - top));
 }
 
 }  // namespace aief

@@ -15,7 +15,7 @@ void size_score_band(const LevelGeometry& geometry, GrayImage& band);
 // `top`, clipped to [3, size - 3) (suppression near the keypoint area never reads further). A
 // run narrower than two AVX-512 batches is widened within the level, so vector kernels see whole
 // batches: a few extra scores cost less than a short row's scalar tail.
-void compute_score_rows(ImageView pixels, const KernelTable& kernels, int fast_min_threshold, GrayImage& band,
-                        int top, int y_begin, int y_end, int x_begin, int x_end);
+void compute_score_rows(ImageView pixels, const KernelTable& kernels, int fast_min_threshold,
+                        GrayImage& band, int top, int y_begin, int y_end, int x_begin, int x_end);
 
 }  // namespace aief

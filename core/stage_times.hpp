@@ -32,13 +32,15 @@ class StageTimes {
   }
   // Makes room for `levels` levels, keeping what was added.
   void reserve_levels(int levels) {
-    if (static_cast<std::size_t>(levels) > levels_.size()) levels_.resize(static_cast<std::size_t>(levels), {});
+    if (static_cast<std::size_t>(levels) > levels_.size())
+      levels_.resize(static_cast<std::size_t>(levels), {});
   }
   // Milliseconds in `stage` since clear(), summed over the levels (and so over the threads
   // that ran them side by side).
   double total_ms(Stage stage) const {
     double total = frame_[static_cast<std::size_t>(stage)];
-    for (const std::array<double, kStageCount>& level : levels_) total += level[static_cast<std::size_t>(stage)];
+    for (const std::array<double, kStageCount>& level : levels_)
+      total += level[static_cast<std::size_t>(stage)];
     return total;
   }
 

@@ -42,7 +42,8 @@ bool SweepMatcher::renumber(Side& side, const std::vector<std::int32_t>& ids) {
   side.is_new.assign(ids.size(), 0);
   side.new_elements.clear();
   const std::int32_t max_id = ids.empty() ? -1 : *std::max_element(ids.begin(), ids.end());
-  if (!ids.empty() && *std::min_element(ids.begin(), ids.end()) < 0) throw Error("SweepMatcher: negative feature id");
+  if (!ids.empty() && *std::min_element(ids.begin(), ids.end()) < 0)
+    throw Error("SweepMatcher: negative feature id");
   if (static_cast<std::size_t>(max_id + 1) > side.index_of_id.size())
     side.index_of_id.resize(static_cast<std::size_t>(max_id + 1), -1);
 
@@ -60,7 +61,8 @@ bool SweepMatcher::renumber(Side& side, const std::vector<std::int32_t>& ids) {
     }
   }
   for (std::int32_t id : side.ids) side.index_of_id[static_cast<std::size_t>(id)] = -1;
-  for (std::size_t i = 0; i < ids.size(); ++i) side.index_of_id[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    side.index_of_id[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
   side.ids = ids;
   return order_kept;
 }
@@ -84,8 +86,9 @@ constexpr int kFirstChunk = 32, kLastChunk = 512;
 // The lists of the features that stayed move to their new index and forget the neighbours that
 // left; a new feature starts with the empty, complete list of an empty set, to be offered the
 // whole other set.
-void carry_lists(std::vector<NeighbourList>& lists, const std::vector<std::int32_t>& new_index_of_old,
-                 std::size_t new_count, const std::vector<std::int32_t>& other_new_index_of_old) {
+void carry_lists(std::vector<NeighbourList>& lists,
+                 const std::vector<std::int32_t>& new_index_of_old, std::size_t new_count,
+                 const std::vector<std::int32_t>& other_new_index_of_old) {
   std::vector<NeighbourList> carried(new_count);
   for (std::size_t old = 0; old < lists.size(); ++old) {
     const std::int32_t index = new_index_of_old[old];
@@ -104,14 +107,16 @@ void carry_lists(std::vector<NeighbourList>& lists, const std::vector<std::int32
 // row goes through the filter a chunk at a time, with the query's bound of the moment (bounds
 // only shrink: a stale one lets a few more through, which offer() refuses).
 void SweepMatcher::offer_row(Side& query_side, std::int32_t query, Side& train_side, int n_train) {
-  NeighbourList* query_list = keeps_lists(query_side) ? &query_side.lists[static_cast<std::size_t>(query)] : nullptr;
+  NeighbourList* query_list =
+      keeps_lists(query_side) ? &query_side.lists[static_cast<std::size_t>(query)] : nullptr;
   positions_.resize(kLastChunk);
   int chunk = kFirstChunk;
   for (int begin = 0; begin < n_train; begin += chunk, chunk = std::min(2 * chunk, kLastChunk)) {
     const int length = std::min(chunk, n_train - begin);
     const int query_bound = query_list != nullptr ? query_list->bound() : -1;
-    const int worth = kernels_->positions_within_bounds(row_.data() + begin, train_side.bounds.data() + begin, length,
-                                                        query_bound, positions_.data());
+    const int worth =
+        kernels_->positions_within_bounds(row_.data() + begin, train_side.bounds.data() + begin,
+                                          length, query_bound, positions_.data());
     // Each list is touched only when the pair is within its own bound (most pairs pass one).
     for (int w = 0; w < worth; ++w) {
       const std::int32_t train = begin + positions_[static_cast<std::size_t>(w)];
@@ -124,14 +129,17 @@ void SweepMatcher::offer_row(Side& query_side, std::int32_t query, Side& train_s
       train_bound = static_cast<std::int16_t>(train_list.bound());
     }
   }
-  if (query_list != nullptr) query_side.bounds[static_cast<std::size_t>(query)] = static_cast<std::int16_t>(query_list->bound());
+  if (query_list != nullptr)
+    query_side.bounds[static_cast<std::size_t>(query)] =
+        static_cast<std::int16_t>(query_list->bound());
 }
 
 // Offers each list exactly the pairs it has not seen: every pair with a new feature of B (rows of
 // the new features of B against all of A), then every pair of a new feature of A with an old one
 // of B (rows of the new features of A against all of B, the new ones of B excluded: offered
 // already). Old-old pairs were offered at an earlier call, when both features were there.
-void SweepMatcher::update_lists(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b) {
+void SweepMatcher::update_lists(const std::vector<Descriptor>& a,
+                                const std::vector<Descriptor>& b) {
   carry_lists(a_.lists, a_.new_index_of_old, a.size(), b_.new_index_of_old);
   if (mutual_) carry_lists(b_.lists, b_.new_index_of_old, b.size(), a_.new_index_of_old);
   for (Side* side : {&a_, &b_}) {
@@ -147,21 +155,24 @@ void SweepMatcher::update_lists(const std::vector<Descriptor>& a, const std::vec
   row_.resize(static_cast<std::size_t>(std::max(blocks_a, blocks_b) * kHammingBlock));
 
   for (std::int32_t j : b_.new_elements) {
-    kernels_->hamming_256_blocked(b[static_cast<std::size_t>(j)].data(), a_.blocked.data(), blocks_a, row_.data());
+    kernels_->hamming_256_blocked(b[static_cast<std::size_t>(j)].data(), a_.blocked.data(),
+                                  blocks_a, row_.data());
     distances_computed_ += static_cast<long long>(a.size());
     offer_row(b_, j, a_, static_cast<int>(a.size()));
   }
   if (b_.new_elements.size() == b.size()) return;  // every pair seen above
   constexpr std::uint16_t kExcluded = 0x7fff;      // above every bound (core/bound_filter.hpp)
   for (std::int32_t i : a_.new_elements) {
-    kernels_->hamming_256_blocked(a[static_cast<std::size_t>(i)].data(), b_.blocked.data(), blocks_b, row_.data());
+    kernels_->hamming_256_blocked(a[static_cast<std::size_t>(i)].data(), b_.blocked.data(),
+                                  blocks_b, row_.data());
     distances_computed_ += static_cast<long long>(b.size() - b_.new_elements.size());
     for (std::int32_t j : b_.new_elements) row_[static_cast<std::size_t>(j)] = kExcluded;
     offer_row(a_, i, b_, static_cast<int>(b.size()));
   }
 }
 
-void SweepMatcher::recompute(NeighbourList& list, const Descriptor& query, const std::vector<Descriptor>& others) {
+void SweepMatcher::recompute(NeighbourList& list, const Descriptor& query,
+                             const std::vector<Descriptor>& others) {
   list = NeighbourList{};
   const int n = static_cast<int>(others.size());
   row_.resize(std::max(row_.size(), others.size()));
@@ -172,8 +183,9 @@ void SweepMatcher::recompute(NeighbourList& list, const Descriptor& query, const
   positions_.resize(kLastChunk);
   int chunk = kFirstChunk;
   for (int begin = 0; begin < n; begin += chunk, chunk = std::min(2 * chunk, kLastChunk)) {
-    const int worth = kernels_->positions_within_bounds(row_.data() + begin, no_bounds_.data() + begin,
-                                                        std::min(chunk, n - begin), list.bound(), positions_.data());
+    const int worth = kernels_->positions_within_bounds(
+        row_.data() + begin, no_bounds_.data() + begin, std::min(chunk, n - begin), list.bound(),
+        positions_.data());
     for (int w = 0; w < worth; ++w) {
       const std::int32_t k = begin + positions_[static_cast<std::size_t>(w)];
       list.offer({row_[static_cast<std::size_t>(k)], k});
@@ -181,16 +193,20 @@ void SweepMatcher::recompute(NeighbourList& list, const Descriptor& query, const
   }
 }
 
-const NeighbourList& SweepMatcher::list_knowing(Side& side, int index, int wanted, const std::vector<Descriptor>& own,
+const NeighbourList& SweepMatcher::list_knowing(Side& side, int index, int wanted,
+                                                const std::vector<Descriptor>& own,
                                                 const std::vector<Descriptor>& others) {
   NeighbourList& list = side.lists[static_cast<std::size_t>(index)];
   if (!list.knows(wanted)) recompute(list, own[static_cast<std::size_t>(index)], others);
   return list;
 }
 
-std::vector<Match> SweepMatcher::match(const std::vector<Descriptor>& a, const std::vector<std::int32_t>& ids_a,
-                                       const std::vector<Descriptor>& b, const std::vector<std::int32_t>& ids_b) {
-  if (ids_a.size() != a.size() || ids_b.size() != b.size()) throw Error("SweepMatcher: one id per descriptor");
+std::vector<Match> SweepMatcher::match(const std::vector<Descriptor>& a,
+                                       const std::vector<std::int32_t>& ids_a,
+                                       const std::vector<Descriptor>& b,
+                                       const std::vector<std::int32_t>& ids_b) {
+  if (ids_a.size() != a.size() || ids_b.size() != b.size())
+    throw Error("SweepMatcher: one id per descriptor");
   const bool a_order_kept = renumber(a_, ids_a);
   const bool b_order_kept = renumber(b_, ids_b);
   if (!a_order_kept || !b_order_kept) {
@@ -211,7 +227,8 @@ std::vector<Match> SweepMatcher::match(const std::vector<Descriptor>& a, const s
   for (int i = 0; i < n_a; ++i) {
     const NeighbourList& list = list_knowing(a_, i, wanted, a, b);
     best[static_cast<std::size_t>(i)] = list.entries[0];
-    second_distance[static_cast<std::size_t>(i)] = list.count > 1 ? list.entries[1].distance : std::numeric_limits<int>::max();
+    second_distance[static_cast<std::size_t>(i)] =
+        list.count > 1 ? list.entries[1].distance : std::numeric_limits<int>::max();
     min_distance = std::min(min_distance, list.entries[0].distance);
   }
   const int paper_limit = std::max(2 * min_distance, 30);  // as match_descriptors
@@ -222,9 +239,12 @@ std::vector<Match> SweepMatcher::match(const std::vector<Descriptor>& a, const s
     bool keep = false;
     switch (options_.kind) {
       // The first entry of B's list is the nearest query of that train, ties to the lower query.
-      case MatcherKind::mutual: keep = list_knowing(b_, nearest.index, 1, b, a).entries[0].index == i; break;
+      case MatcherKind::mutual:
+        keep = list_knowing(b_, nearest.index, 1, b, a).entries[0].index == i;
+        break;
       case MatcherKind::ratio:
-        keep = static_cast<double>(nearest.distance) < options_.ratio * second_distance[static_cast<std::size_t>(i)];
+        keep = static_cast<double>(nearest.distance) <
+               options_.ratio * second_distance[static_cast<std::size_t>(i)];
         break;
       case MatcherKind::paper: keep = nearest.distance <= paper_limit; break;
     }

@@ -45,11 +45,15 @@ struct NeighbourList {
   // Learns one more element of the other set: kept when it ranks within the known prefix, or
   // anywhere while the list is complete.
   void offer(Neighbour neighbour) {
-    if (!complete && (count == 0 || !closer(neighbour, entries[static_cast<std::size_t>(count - 1)]))) return;
+    if (!complete &&
+        (count == 0 || !closer(neighbour, entries[static_cast<std::size_t>(count - 1)])))
+      return;
     insert(neighbour);
   }
   // Distances above this are never kept (a cheap filter before offer).
-  int bound() const { return complete ? 256 : count == 0 ? -1 : entries[static_cast<std::size_t>(count - 1)].distance; }
+  int bound() const {
+    return complete ? 256 : count == 0 ? -1 : entries[static_cast<std::size_t>(count - 1)].distance;
+  }
   // The other set changed: drops the elements that left it and renumbers the rest
   // (new_index_of_old[i] is the new index of old element i, -1 when it left).
   void renumber(const std::vector<std::int32_t>& new_index_of_old);
@@ -86,7 +90,8 @@ class SweepMatcher {
   // same relative order (the sweep's are: level, then raster order); if not, the lists are
   // rebuilt from scratch, so the answer is exact either way.
   std::vector<Match> match(const std::vector<Descriptor>& a, const std::vector<std::int32_t>& ids_a,
-                           const std::vector<Descriptor>& b, const std::vector<std::int32_t>& ids_b);
+                           const std::vector<Descriptor>& b,
+                           const std::vector<std::int32_t>& ids_b);
 
   // Forgets the previous calls (a new pair of images), keeping the buffers.
   void reset();
@@ -99,10 +104,10 @@ class SweepMatcher {
   // each list's bound() beside it (the filter's input), and this call's descriptors blocked.
   struct Side {
     std::vector<std::int32_t> ids;
-    std::vector<std::int32_t> index_of_id;       // index in the current set, -1 when absent
+    std::vector<std::int32_t> index_of_id;  // index in the current set, -1 when absent
     std::vector<NeighbourList> lists;
-    std::vector<std::int16_t> bounds;            // lists[i].bound(), or -1 where no list is kept
-    std::vector<std::uint32_t> blocked;          // this call's descriptors (core/hamming_blocked.hpp)
+    std::vector<std::int16_t> bounds;    // lists[i].bound(), or -1 where no list is kept
+    std::vector<std::uint32_t> blocked;  // this call's descriptors (core/hamming_blocked.hpp)
     std::vector<std::int32_t> new_index_of_old;  // this call: where each previous element went
     std::vector<std::uint8_t> is_new;            // this call: per element, new to the set
     std::vector<std::int32_t> new_elements;      // this call: their indices, ascending
@@ -113,17 +118,19 @@ class SweepMatcher {
   bool keeps_lists(const Side& side) const { return &side == &a_ || mutual_; }
   void update_lists(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b);
   void offer_row(Side& query_side, std::int32_t query, Side& train_side, int n_train);
-  void recompute(NeighbourList& list, const Descriptor& query, const std::vector<Descriptor>& others);
-  const NeighbourList& list_knowing(Side& side, int index, int wanted, const std::vector<Descriptor>& own,
+  void recompute(NeighbourList& list, const Descriptor& query,
+                 const std::vector<Descriptor>& others);
+  const NeighbourList& list_knowing(Side& side, int index, int wanted,
+                                    const std::vector<Descriptor>& own,
                                     const std::vector<Descriptor>& others);
 
   MatchOptions options_;
   const KernelTable* kernels_;
   bool mutual_;  // the cross check needs the lists of B too
   Side a_, b_;
-  std::vector<std::uint16_t> row_;         // one query's distances to the other set
-  std::vector<std::int32_t> positions_;    // the filter's output for one chunk of row_
-  std::vector<std::int16_t> no_bounds_;    // -1s: train bounds that take nothing (recompute)
+  std::vector<std::uint16_t> row_;       // one query's distances to the other set
+  std::vector<std::int32_t> positions_;  // the filter's output for one chunk of row_
+  std::vector<std::int16_t> no_bounds_;  // -1s: train bounds that take nothing (recompute)
   long long distances_computed_ = 0;
 };
 

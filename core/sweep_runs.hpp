@@ -11,6 +11,7 @@ namespace aief {
 // non-empty, so that the largest run cost is as small as possible; ties go to the earliest cuts.
 // A run [j, k) costs fresh[j] + incremental[j + 1] + ... + incremental[k - 1]. Returns runs + 1
 // boundaries: run r is [begin[r], begin[r + 1]), begin[0] = 0, begin[runs] = n.
-std::vector<int> balanced_runs(const std::vector<double>& fresh, const std::vector<double>& incremental, int runs);
+std::vector<int> balanced_runs(const std::vector<double>& fresh,
+                               const std::vector<double>& incremental, int runs);
 
 }  // namespace aief

@@ -35,8 +35,8 @@ double ThresholdFallback::detect_level(CandidateSource& frame, int n, double thr
   return threshold;
 }
 
-bool ThresholdFallback::settle_frame(CandidateSource& frame, double requested, std::vector<double>& thresholds,
-                                     std::vector<int>& budgets) {
+bool ThresholdFallback::settle_frame(CandidateSource& frame, double requested,
+                                     std::vector<double>& thresholds, std::vector<int>& budgets) {
   bool changed = false;
   if (frame_rule_ && requested > 0.0 && frame_candidates(frame, requested) < n_features_) {
     double threshold = requested;
@@ -59,7 +59,8 @@ bool ThresholdFallback::settle_frame(CandidateSource& frame, double requested, s
   return changed;
 }
 
-bool raise_budgets_for_shortfall(const std::vector<int>& budgets, const std::vector<std::int64_t>& available,
+bool raise_budgets_for_shortfall(const std::vector<int>& budgets,
+                                 const std::vector<std::int64_t>& available,
                                  std::vector<int>& raised) {
   assert(budgets.size() == available.size());
   raised.assign(budgets.begin(), budgets.end());

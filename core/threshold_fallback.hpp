@@ -69,7 +69,8 @@ class ThresholdFallback {
 // is handed out finest level first, each level taking at most available_n - N_n more. `raised`
 // gets the new budgets (equal to `budgets` when there is no shortfall or no level can take it).
 // Returns whether any budget was raised.
-bool raise_budgets_for_shortfall(const std::vector<int>& budgets, const std::vector<std::int64_t>& available,
+bool raise_budgets_for_shortfall(const std::vector<int>& budgets,
+                                 const std::vector<std::int64_t>& available,
                                  std::vector<int>& raised);
 
 }  // namespace aief

@@ -22,7 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return aief::Extractor(options);
   }();
   try {
-    const aief::GrayImage image = aief::io::decode_gray_image(std::vector<std::uint8_t>(data, data + size), "fuzz input");
+    const aief::GrayImage image =
+        aief::io::decode_gray_image(std::vector<std::uint8_t>(data, data + size), "fuzz input");
     aief::Features features;
     extractor.extract(image.view(), features);
     if (features.keypoints.size() != features.descriptors.size()) std::abort();

@@ -14,14 +14,15 @@ namespace fs = std::filesystem;
 namespace {
 
 // The images below `folder`, named by their path below the batch root (`prefix`).
-void list_folder(const fs::path& folder, const std::string& prefix, std::vector<fs::path>& open_folders,
-                 std::vector<BatchInput>& out) {
+void list_folder(const fs::path& folder, const std::string& prefix,
+                 std::vector<fs::path>& open_folders, std::vector<BatchInput>& out) {
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     const std::string name = prefix + entry.path().filename().string();
     std::error_code ec;
     if (entry.is_directory(ec)) {
       const fs::path real = fs::canonical(entry.path(), ec);
-      if (ec || std::find(open_folders.begin(), open_folders.end(), real) != open_folders.end()) continue;
+      if (ec || std::find(open_folders.begin(), open_folders.end(), real) != open_folders.end())
+        continue;
       open_folders.push_back(real);
       list_folder(entry.path(), name + "/", open_folders, out);
       open_folders.pop_back();
@@ -44,9 +45,12 @@ std::vector<BatchInput> list_file_inputs(const std::string& list) {
 
 bool is_image_file_name(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  static const char* const kExtensions[] = {".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pbm", ".bmp", ".tif", ".tiff", ".webp"};
-  return std::any_of(std::begin(kExtensions), std::end(kExtensions), [&](const char* e) { return ext == e; });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  static const char* const kExtensions[] = {".png", ".jpg", ".jpeg", ".pgm",  ".ppm",
+                                            ".pbm", ".bmp", ".tif",  ".tiff", ".webp"};
+  return std::any_of(std::begin(kExtensions), std::end(kExtensions),
+                     [&](const char* e) { return ext == e; });
 }
 
 std::string name_of_listed_path(const std::string& line) {
@@ -75,15 +79,18 @@ std::vector<BatchInput> list_batch_inputs(const std::string& folder_or_list) {
   } else {
     all = list_file_inputs(folder_or_list);
   }
-  std::sort(all.begin(), all.end(), [](const BatchInput& a, const BatchInput& b) { return a.name < b.name; });
-  all.erase(std::unique(all.begin(), all.end(), [](const BatchInput& a, const BatchInput& b) { return a.name == b.name; }),
+  std::sort(all.begin(), all.end(),
+            [](const BatchInput& a, const BatchInput& b) { return a.name < b.name; });
+  all.erase(std::unique(all.begin(), all.end(),
+                        [](const BatchInput& a, const BatchInput& b) { return a.name == b.name; }),
             all.end());
   return all;
 }
 
 std::vector<BatchInput> shard_of(const std::vector<BatchInput>& inputs, int index, int count) {
   std::vector<BatchInput> mine;
-  for (std::size_t i = static_cast<std::size_t>(index); i < inputs.size(); i += static_cast<std::size_t>(count))
+  for (std::size_t i = static_cast<std::size_t>(index); i < inputs.size();
+       i += static_cast<std::size_t>(count))
     mine.push_back(inputs[i]);
   return mine;
 }

@@ -11,11 +11,12 @@
 namespace aief::io {
 
 // The output file of the input named `name`. One function for every file-per-image format.
-std::string batch_output_path(const std::string& output_dir, const std::string& name, const std::string& format);
+std::string batch_output_path(const std::string& output_dir, const std::string& name,
+                              const std::string& format);
 
 // Distinct names give distinct files, but one can still be the folder of another (an image
 // `a.png` beside a folder `a.png.json/`): throws aief::Error naming both before any work.
-void check_batch_outputs_do_not_nest(const std::vector<BatchInput>& inputs, const std::string& output_dir,
-                                     const std::string& format);
+void check_batch_outputs_do_not_nest(const std::vector<BatchInput>& inputs,
+                                     const std::string& output_dir, const std::string& format);
 
 }  // namespace aief::io

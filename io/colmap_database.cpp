@@ -37,10 +37,10 @@ CREATE TABLE two_view_geometries (pair_id INTEGER PRIMARY KEY NOT NULL, rows INT
   cols INTEGER NOT NULL, data BLOB, config INTEGER NOT NULL, F BLOB, E BLOB, H BLOB, qvec BLOB, tvec BLOB);
 )sql";
 
-constexpr int kSimpleRadial = 2;                 // COLMAP's camera model id
-constexpr long long kMaxImageId = 2147483647;    // pair_id = id1 * kMaxImageId + id2 (COLMAP)
-constexpr double kFocalGuess = 1.2;              // COLMAP's focal prior without EXIF, times max(w, h)
-constexpr float kColmapOrigin = 0.5f;            // pixel centre in COLMAP's corner-origin pixels
+constexpr int kSimpleRadial = 2;               // COLMAP's camera model id
+constexpr long long kMaxImageId = 2147483647;  // pair_id = id1 * kMaxImageId + id2 (COLMAP)
+constexpr double kFocalGuess = 1.2;            // COLMAP's focal prior without EXIF, times max(w, h)
+constexpr float kColmapOrigin = 0.5f;          // pixel centre in COLMAP's corner-origin pixels
 
 class Database {
  public:
@@ -75,21 +75,23 @@ class Database {
 
 template <class T>
 void bind_blob(sqlite3_stmt* statement, int column, const std::vector<T>& values) {
-  sqlite3_bind_blob(statement, column, values.data(), static_cast<int>(values.size() * sizeof(T)), SQLITE_TRANSIENT);
+  sqlite3_bind_blob(statement, column, values.data(), static_cast<int>(values.size() * sizeof(T)),
+                    SQLITE_TRANSIENT);
 }
 
 void write_database(Database& db, const Hdf5File& features, const Hdf5File& matches_file,
                     const std::vector<ImagePair>& pairs, ColmapExport& summary) {
   db.exec(kSchema);
   db.exec("BEGIN TRANSACTION");
-  std::unordered_map<std::string, std::pair<long long, int>> images;  // name -> (image id, keypoints)
+  std::unordered_map<std::string, std::pair<long long, int>>
+      images;  // name -> (image id, keypoints)
   for (const std::string& name : features.feature_names()) {
     const Features f = features.read_features(name);
     const long long id = static_cast<long long>(images.size()) + 1;
     images[name] = {id, static_cast<int>(f.keypoints.size())};
     if (!is_valid_utf8(name)) summary.names_not_utf8.push_back(name);
-    const std::vector<double> params = {kFocalGuess * std::max(f.image_width, f.image_height), f.image_width / 2.0,
-                                        f.image_height / 2.0, 0.0};
+    const std::vector<double> params = {kFocalGuess * std::max(f.image_width, f.image_height),
+                                        f.image_width / 2.0, f.image_height / 2.0, 0.0};
     db.run("INSERT INTO cameras VALUES (?, ?, ?, ?, ?, 0)", [&](sqlite3_stmt* s) {
       sqlite3_bind_int64(s, 1, id);
       sqlite3_bind_int(s, 2, kSimpleRadial);
@@ -99,7 +101,8 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     });
     db.run("INSERT INTO images (image_id, name, camera_id) VALUES (?, ?, ?)", [&](sqlite3_stmt* s) {
       sqlite3_bind_int64(s, 1, id);
-      sqlite3_bind_text(s, 2, name.data(), static_cast<int>(name.size()), SQLITE_TRANSIENT);  // the bytes, as COLMAP
+      sqlite3_bind_text(s, 2, name.data(), static_cast<int>(name.size()),
+                        SQLITE_TRANSIENT);  // the bytes, as COLMAP
       sqlite3_bind_int64(s, 3, id);
     });
     std::vector<float> xy;
@@ -126,8 +129,8 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
   for (const auto& [name0, name1] : pairs) {
     const auto a = images.find(name0), b = images.find(name1);
     if (a == images.end() || b == images.end())
-      throw Error("pair '" + name0 + " " + name1 + "': image '" + (a == images.end() ? name0 : name1) + "' is not in '" +
-                  features.path() + "'");
+      throw Error("pair '" + name0 + " " + name1 + "': image '" +
+                  (a == images.end() ? name0 : name1) + "' is not in '" + features.path() + "'");
     std::vector<Match> matches;
     bool swapped = false;
     if (matches_file.has_matches(name0, name1)) {
@@ -136,20 +139,23 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
       matches = matches_file.read_matches(name1, name0);
       swapped = true;
     } else {
-      throw Error("pair '" + name0 + " " + name1 + "' has no matches in '" + matches_file.path() + "'");
+      throw Error("pair '" + name0 + " " + name1 + "' has no matches in '" + matches_file.path() +
+                  "'");
     }
     const auto& query = swapped ? b : a;  // the image whose keypoints the matches' queries index
     const auto& train = swapped ? a : b;
     for (const Match& m : matches)
-      if (m.query < 0 || m.query >= query->second.second || m.train < 0 || m.train >= train->second.second) {
+      if (m.query < 0 || m.query >= query->second.second || m.train < 0 ||
+          m.train >= train->second.second) {
         const bool bad_query = m.query < 0 || m.query >= query->second.second;
         const auto& image = bad_query ? query : train;
-        throw Error("pair '" + name0 + " " + name1 + "': a match names keypoint " + std::to_string(bad_query ? m.query : m.train) +
-                    " of '" + image->first + "', which has " + std::to_string(image->second.second) + " in '" +
+        throw Error("pair '" + name0 + " " + name1 + "': a match names keypoint " +
+                    std::to_string(bad_query ? m.query : m.train) + " of '" + image->first +
+                    "', which has " + std::to_string(image->second.second) + " in '" +
                     features.path() + "' (features and matches from different runs?)");
       }
     long long id0 = query->second.first, id1 = train->second.first;  // id0: the queries' image
-    const bool flip = id0 > id1;       // COLMAP keys a pair by (smaller id, larger id)
+    const bool flip = id0 > id1;  // COLMAP keys a pair by (smaller id, larger id)
     const long long pair_id = std::min(id0, id1) * kMaxImageId + std::max(id0, id1);
     if (!written.insert(pair_id).second) continue;  // listed twice, or both ways
     std::vector<std::uint32_t> rows;
@@ -173,7 +179,8 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
 ColmapExport export_colmap_database(const std::string& database, const std::string& features_h5,
                                     const std::string& matches_h5, const std::string& pairs_txt) {
   std::error_code ec;
-  if (std::filesystem::exists(database, ec)) throw Error("COLMAP database '" + database + "' exists already (remove it first)");
+  if (std::filesystem::exists(database, ec))
+    throw Error("COLMAP database '" + database + "' exists already (remove it first)");
   const Hdf5File features(features_h5, Hdf5File::Mode::read);
   const Hdf5File matches(matches_h5, Hdf5File::Mode::read);
   PairsList pairs = read_pairs(pairs_txt);

@@ -23,10 +23,10 @@ namespace aief::io {
 
 struct ColmapExport {
   int images = 0;
-  int pairs = 0;             // pairs written (pairs.txt lines with matches in matches.h5)
+  int pairs = 0;  // pairs written (pairs.txt lines with matches in matches.h5)
   long long matches = 0;
   std::vector<std::string> names_not_utf8;  // stored as their bytes (see above)
-  std::vector<std::string> notes;  // pairs.txt lines left out, and why (io/pairs_file.hpp)
+  std::vector<std::string> notes;           // pairs.txt lines left out, and why (io/pairs_file.hpp)
 };
 
 // Creates `database` (it must not exist; written to a temporary name, then renamed). Throws

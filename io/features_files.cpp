@@ -28,7 +28,8 @@ void write_options(JsonWriter& json, const ExtractorOptions& options) {
   json.end_object();
 }
 
-void write_info(JsonWriter& json, const ExtractionInfo& info, const std::vector<std::string>* decoder_warnings) {
+void write_info(JsonWriter& json, const ExtractionInfo& info,
+                const std::vector<std::string>* decoder_warnings) {
   json.key("info").begin_object();
   json.field("entropy_threshold_requested", info.entropy_threshold_requested);
   json.field("entropy_threshold_used", info.entropy_threshold_used);
@@ -46,7 +47,9 @@ void write_info(JsonWriter& json, const ExtractionInfo& info, const std::vector<
 
 void write_source(JsonWriter& json, const SourceRecord& source) {
   json.key("source").begin_object();
-  json.field("name", source.name).field("bytes", static_cast<long long>(source.bytes)).field("mtime_ns", source.mtime_ns);
+  json.field("name", source.name)
+      .field("bytes", static_cast<long long>(source.bytes))
+      .field("mtime_ns", source.mtime_ns);
   json.end_object();
 }
 
@@ -106,15 +109,18 @@ std::string yaml_quoted(const std::string& value, const char* key) {
         if (byte < 0x20) {
           char hex[8];
           std::snprintf(hex, sizeof hex, "0x%02X", byte);
-          throw Error(std::string("YAML cannot hold the ") + key + " '" + value + "': OpenCV's FileStorage reads no control character " +
-                      hex + " back (write .json or .npz for such names)");
+          throw Error(std::string("YAML cannot hold the ") + key + " '" + value +
+                      "': OpenCV's FileStorage reads no control character " + hex +
+                      " back (write .json or .npz for such names)");
         }
         quoted += c;
     }
   }
   if (quoted.size() - 1 > kLongestString)
-    throw Error(std::string("YAML cannot hold the ") + key + " '" + value + "': OpenCV's FileStorage reads strings of at most " +
-                std::to_string(kLongestString) + " bytes, escapes counted (write .json or .npz for such names)");
+    throw Error(std::string("YAML cannot hold the ") + key + " '" + value +
+                "': OpenCV's FileStorage reads strings of at most " +
+                std::to_string(kLongestString) +
+                " bytes, escapes counted (write .json or .npz for such names)");
   return quoted + "\"";
 }
 
@@ -163,7 +169,8 @@ void check_features_file_can_hold(const std::string& output_path, const std::str
   yaml_quoted(source_name, "image name");
 }
 
-std::string features_json(const std::string& image_path, const Features& features, const ExtractorOptions& options,
+std::string features_json(const std::string& image_path, const Features& features,
+                          const ExtractorOptions& options,
                           const std::optional<SourceRecord>& source) {
   std::ostringstream out;
   JsonWriter json(out);
@@ -188,20 +195,23 @@ std::string features_json(const std::string& image_path, const Features& feature
   return out.str();
 }
 
-void write_features_json(const std::string& path, const std::string& image_path, const Features& features,
-                         const ExtractorOptions& options, const std::optional<SourceRecord>& source) {
+void write_features_json(const std::string& path, const std::string& image_path,
+                         const Features& features, const ExtractorOptions& options,
+                         const std::optional<SourceRecord>& source) {
   write_file_atomically(path, features_json(image_path, features, options, source));
 }
 
-void write_features_yaml(const std::string& path, const std::string& image_path, const Features& features,
-                         const std::optional<SourceRecord>& source) {
+void write_features_yaml(const std::string& path, const std::string& image_path,
+                         const Features& features, const std::optional<SourceRecord>& source) {
   std::vector<cv::KeyPoint> keypoints;
   keypoints.reserve(features.keypoints.size());
   for (const Keypoint& kp : features.keypoints)
-    keypoints.emplace_back(cv::Point2f(kp.x, kp.y), kp.size, kp.angle_deg, kp.response, kp.octave, -1);
+    keypoints.emplace_back(cv::Point2f(kp.x, kp.y), kp.size, kp.angle_deg, kp.response, kp.octave,
+                           -1);
   cv::Mat descriptors(static_cast<int>(features.descriptors.size()), kDescriptorBytes, CV_8U);
   for (int r = 0; r < descriptors.rows; ++r)
-    std::copy(features.descriptors[static_cast<std::size_t>(r)].begin(), features.descriptors[static_cast<std::size_t>(r)].end(),
+    std::copy(features.descriptors[static_cast<std::size_t>(r)].begin(),
+              features.descriptors[static_cast<std::size_t>(r)].end(),
               descriptors.ptr<std::uint8_t>(r));
   // Written in memory, then by write_file_atomically: one temporary-file rule for every format.
   std::string text;
@@ -224,11 +234,13 @@ void write_features_yaml(const std::string& path, const std::string& image_path,
   write_file_atomically(path, text);
 }
 
-void write_features(const std::string& path, const std::string& image_path, const Features& features,
-                    const ExtractorOptions& options, const std::optional<SourceRecord>& source) {
+void write_features(const std::string& path, const std::string& image_path,
+                    const Features& features, const ExtractorOptions& options,
+                    const std::optional<SourceRecord>& source) {
   const std::string ext = extension_of(path);
   if (ext == ".json") return write_features_json(path, image_path, features, options, source);
-  if (ext == ".yml" || ext == ".yaml") return write_features_yaml(path, image_path, features, source);
+  if (ext == ".yml" || ext == ".yaml")
+    return write_features_yaml(path, image_path, features, source);
   if (ext == ".npz") return write_features_npz(path, features, source);
   throw Error("output '" + path + "' must end in .json, .yml, .yaml or .npz");
 }

@@ -26,21 +26,27 @@ bool is_features_file_name(const std::string& path);
 void check_features_file_can_hold(const std::string& output_path, const std::string& image_path,
                                   const std::string& source_name);
 
-// JSON: {"image", "source": {"name", "bytes", "mtime_ns"} (when given), "width", "height", "options": {...}, "info": {...},
+// JSON: {"image", "source": {"name", "bytes", "mtime_ns"} (when given), "width", "height",
+// "options": {...}, "info": {...},
 //        "keypoints": [{"x", "y", "size", "angle", "response", "octave"}],
 //        "descriptors_hex": ["64 hex chars", ...]}
-std::string features_json(const std::string& image_path, const Features& features, const ExtractorOptions& options,
+std::string features_json(const std::string& image_path, const Features& features,
+                          const ExtractorOptions& options,
                           const std::optional<SourceRecord>& source = std::nullopt);
-void write_features_json(const std::string& path, const std::string& image_path, const Features& features,
-                         const ExtractorOptions& options, const std::optional<SourceRecord>& source = std::nullopt);
+void write_features_json(const std::string& path, const std::string& image_path,
+                         const Features& features, const ExtractorOptions& options,
+                         const std::optional<SourceRecord>& source = std::nullopt);
 
 // YAML: image, source_name / source_bytes / source_mtime_ns (strings: FileStorage integers are
 // 32-bit), width, height, keypoints, descriptors.
-void write_features_yaml(const std::string& path, const std::string& image_path, const Features& features,
+void write_features_yaml(const std::string& path, const std::string& image_path,
+                         const Features& features,
                          const std::optional<SourceRecord>& source = std::nullopt);
 
-// By extension: .json, .yml / .yaml, or .npz (io/npz_writer.hpp). Throws aief::Error for another extension.
-void write_features(const std::string& path, const std::string& image_path, const Features& features,
-                    const ExtractorOptions& options, const std::optional<SourceRecord>& source = std::nullopt);
+// By extension: .json, .yml / .yaml, or .npz (io/npz_writer.hpp). Throws aief::Error for another
+// extension.
+void write_features(const std::string& path, const std::string& image_path,
+                    const Features& features, const ExtractorOptions& options,
+                    const std::optional<SourceRecord>& source = std::nullopt);
 
 }  // namespace aief::io

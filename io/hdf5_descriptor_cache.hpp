@@ -19,7 +19,8 @@ namespace aief::io {
 class DescriptorCache {
  public:
   using Descriptors = std::vector<Descriptor>;
-  DescriptorCache(const Hdf5File& file, std::size_t budget_bytes) : file_(file), budget_(budget_bytes) {}
+  DescriptorCache(const Hdf5File& file, std::size_t budget_bytes)
+      : file_(file), budget_(budget_bytes) {}
 
   // The image's descriptors (throws as Hdf5File::read_descriptors). Valid while held: an entry
   // dropped from the cache lives on in the shared pointer.

@@ -81,31 +81,42 @@ bool exists(hid_t file, const std::string& path) {
 template <class T>
 hid_t native_type();
 template <>
-hid_t native_type<float>() { return H5T_NATIVE_FLOAT; }
+hid_t native_type<float>() {
+  return H5T_NATIVE_FLOAT;
+}
 template <>
-hid_t native_type<std::uint8_t>() { return H5T_NATIVE_UINT8; }
+hid_t native_type<std::uint8_t>() {
+  return H5T_NATIVE_UINT8;
+}
 template <>
-hid_t native_type<std::int32_t>() { return H5T_NATIVE_INT32; }
+hid_t native_type<std::int32_t>() {
+  return H5T_NATIVE_INT32;
+}
 template <>
-hid_t native_type<std::int64_t>() { return H5T_NATIVE_INT64; }
+hid_t native_type<std::int64_t>() {
+  return H5T_NATIVE_INT64;
+}
 
 // Creates and writes one dataset, closed here so that a failure of its last write (libhdf5 may
 // keep small data in its sieve buffer until the close) is an error, not a silent loss.
 template <class T>
-void write_dataset(hid_t group, const char* name, const std::vector<hsize_t>& dims, const std::vector<T>& values,
-                   const std::string& where) {
-  const Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
-  const hid_t set = H5Dcreate2(group, name, native_type<T>(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+void write_dataset(hid_t group, const char* name, const std::vector<hsize_t>& dims,
+                   const std::vector<T>& values, const std::string& where) {
+  const Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                     H5Sclose);
+  const hid_t set =
+      H5Dcreate2(group, name, native_type<T>(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   if (set < 0) throw Error(hdf5_reason() + " (creating '" + where + "/" + name + "')");
-  const bool written =
-      values.empty() || H5Dwrite(set, native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
+  const bool written = values.empty() || H5Dwrite(set, native_type<T>(), H5S_ALL, H5S_ALL,
+                                                  H5P_DEFAULT, values.data()) >= 0;
   const bool closed = H5Dclose(set) >= 0;
   if (!written || !closed) throw Error(hdf5_reason() + " (writing '" + where + "/" + name + "')");
 }
 
 // The dataset's dimensions and values, converted to T by libhdf5.
 template <class T>
-std::vector<T> read_dataset(hid_t group, const char* name, std::vector<hsize_t>& dims, const std::string& where) {
+std::vector<T> read_dataset(hid_t group, const char* name, std::vector<hsize_t>& dims,
+                            const std::string& where) {
   silence_hdf5();
   const Handle set(H5Dopen2(group, name, H5P_DEFAULT), H5Dclose);
   if (!set.ok()) throw Error("no dataset '" + where + "/" + name + "'");
@@ -116,7 +127,8 @@ std::vector<T> read_dataset(hid_t group, const char* name, std::vector<hsize_t>&
   hsize_t count = 1;
   for (hsize_t d : dims) count *= d;
   std::vector<T> values(static_cast<std::size_t>(count));
-  if (count > 0 && H5Dread(set.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+  if (count > 0 &&
+      H5Dread(set.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
     throw Error("cannot read dataset '" + where + "/" + name + "'");
   return values;
 }
@@ -124,8 +136,10 @@ std::vector<T> read_dataset(hid_t group, const char* name, std::vector<hsize_t>&
 Handle create_group(hid_t file, const std::string& name, const std::string& path) {
   const Handle intermediate(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
   H5Pset_create_intermediate_group(intermediate.get(), 1);
-  Handle group(H5Gcreate2(file, name.c_str(), intermediate.get(), H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  if (!group.ok()) throw Error(hdf5_reason() + " (creating group '" + name + "' in '" + path + "')");
+  Handle group(H5Gcreate2(file, name.c_str(), intermediate.get(), H5P_DEFAULT, H5P_DEFAULT),
+               H5Gclose);
+  if (!group.ok())
+    throw Error(hdf5_reason() + " (creating group '" + name + "' in '" + path + "')");
   return group;
 }
 
@@ -146,12 +160,18 @@ std::string open_failure(const std::string& path, bool creating, const std::stri
   const fs::path folder = fs::path(path).parent_path();
   if (creating && !folder.empty() && !fs::is_directory(folder, ec))
     return "cannot create '" + path + "': the folder '" + folder.string() + "' does not exist";
-  if (fs::is_directory(path, ec)) return "cannot open '" + path + "' as an HDF5 file: it is a directory";
-  if (hdf5_said.find("unable to lock file") != std::string::npos || hdf5_said == "Resource temporarily unavailable")
-    return "cannot open '" + path + "': another process holds it locked (another aief writing it? wait until it ends)";
-  if (!creating && H5Fis_hdf5(path.c_str()) == 0) return "cannot open '" + path + "': it is not an HDF5 file";
+  if (fs::is_directory(path, ec))
+    return "cannot open '" + path + "' as an HDF5 file: it is a directory";
+  if (hdf5_said.find("unable to lock file") != std::string::npos ||
+      hdf5_said == "Resource temporarily unavailable")
+    return "cannot open '" + path +
+           "': another process holds it locked (another aief writing it? wait until it ends)";
+  if (!creating && H5Fis_hdf5(path.c_str()) == 0)
+    return "cannot open '" + path + "': it is not an HDF5 file";
   const int fd = ::open(path.c_str(), creating ? O_RDWR | O_CREAT | O_EXCL : O_RDONLY, 0644);
-  if (fd < 0) return std::string("cannot ") + (creating ? "create '" : "open '") + path + "': " + std::strerror(errno);
+  if (fd < 0)
+    return std::string("cannot ") + (creating ? "create '" : "open '") + path +
+           "': " + std::strerror(errno);
   ::close(fd);
   if (creating) fs::remove(path, ec);
   return "cannot open '" + path + "' as an HDF5 file: it is damaged (libhdf5: " + hdf5_said + ")";
@@ -223,7 +243,8 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   if (mode == Mode::read_write) {
     void* handle = nullptr;
     const Handle access(H5Fget_access_plist(file_), H5Pclose);
-    if (H5Pget_driver(access.get()) == H5FD_SEC2 && H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) >= 0 && handle)
+    if (H5Pget_driver(access.get()) == H5FD_SEC2 &&
+        H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) >= 0 && handle)
       descriptor_ = *static_cast<int*>(handle);
     reserved_until_ = static_cast<std::uint64_t>(std::filesystem::file_size(path, ec));
   }
@@ -253,13 +274,17 @@ Hdf5File::~Hdf5File() {
 void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& name) {
   silence_hdf5();
   const std::uint64_t bytes = group_storage_bytes(source.file_, name);
-  write_guarded(bytes, "'" + name + "' from '" + source.path_ + "'", [&] {
-    remove_group(file_, name);  // an incomplete group of the same name
-    const Handle intermediate(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
-    H5Pset_create_intermediate_group(intermediate.get(), 1);
-    if (H5Ocopy(source.file_, name.c_str(), file_, name.c_str(), H5P_DEFAULT, intermediate.get()) < 0)
-      throw Error(hdf5_reason());
-  }, /*flush=*/false);
+  write_guarded(
+      bytes, "'" + name + "' from '" + source.path_ + "'",
+      [&] {
+        remove_group(file_, name);  // an incomplete group of the same name
+        const Handle intermediate(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+        H5Pset_create_intermediate_group(intermediate.get(), 1);
+        if (H5Ocopy(source.file_, name.c_str(), file_, name.c_str(), H5P_DEFAULT,
+                    intermediate.get()) < 0)
+          throw Error(hdf5_reason());
+      },
+      /*flush=*/false);
 }
 
 void Hdf5File::close() {
@@ -306,11 +331,13 @@ void Hdf5File::fence() {
 }
 
 template <class Write>
-void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write&& write, bool flush) {
+void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
+                             bool flush) {
   silence_hdf5();
   const std::lock_guard<std::mutex> lock(failure_mutex_);
   if (!failure_.empty())
-    throw Error("cannot write " + what + " to '" + path_ + "': an earlier write failed (" + failure_ + ")");
+    throw Error("cannot write " + what + " to '" + path_ + "': an earlier write failed (" +
+                failure_ + ")");
   try {
     reserve(bytes + kMetadataAllowance);
     write();
@@ -321,11 +348,14 @@ void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write
   } catch (const std::exception& e) {
     failure_ = e.what();
     fence();
-    throw Error("cannot write " + what + " to '" + path_ + "': " + failure_ + " (what was complete before is kept)");
+    throw Error("cannot write " + what + " to '" + path_ + "': " + failure_ +
+                " (what was complete before is kept)");
   }
 }
 
-bool Hdf5File::has_features(const std::string& name) const { return exists(file_, name + "/image_size"); }
+bool Hdf5File::has_features(const std::string& name) const {
+  return exists(file_, name + "/image_size");
+}
 
 namespace {
 
@@ -348,7 +378,8 @@ void write_string_attribute(hid_t object, const char* name, const std::string& v
   H5Tset_size(type.get(), H5T_VARIABLE);
   H5Tset_cset(type.get(), H5T_CSET_UTF8);
   const Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  const Handle attribute(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  const Handle attribute(
+      H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   const char* text = value.c_str();
   if (!attribute.ok() || H5Awrite(attribute.get(), type.get(), &text) < 0)
     throw Error(hdf5_reason() + " (attribute '" + name + "')");
@@ -356,14 +387,17 @@ void write_string_attribute(hid_t object, const char* name, const std::string& v
 
 }  // namespace
 
-void Hdf5File::check_pair_owner(const std::string& group_name, const std::string& name0, const std::string& name1) const {
+void Hdf5File::check_pair_owner(const std::string& group_name, const std::string& name0,
+                                const std::string& name1) const {
   const Handle group(H5Gopen2(file_, group_name.c_str(), H5P_DEFAULT), H5Gclose);
   if (!group.ok()) return;
-  const std::string stored0 = string_attribute(group.get(), "name0"), stored1 = string_attribute(group.get(), "name1");
+  const std::string stored0 = string_attribute(group.get(), "name0"),
+                    stored1 = string_attribute(group.get(), "name1");
   if (stored0.empty() && stored1.empty()) return;  // written before names were recorded
   if (stored0 != name0 || stored1 != name1)
-    throw Error("pair '" + name0 + " " + name1 + "' and pair '" + stored0 + " " + stored1 + "' share the group '" +
-                group_name + "' in '" + path_ + "' (hloc's names: '/' becomes '-'), which holds the second's matches");
+    throw Error("pair '" + name0 + " " + name1 + "' and pair '" + stored0 + " " + stored1 +
+                "' share the group '" + group_name + "' in '" + path_ +
+                "' (hloc's names: '/' becomes '-'), which holds the second's matches");
 }
 
 bool Hdf5File::has_matches(const std::string& name0, const std::string& name1) const {
@@ -377,15 +411,18 @@ bool Hdf5File::features_belong_to(const std::string& name, const SourceRecord& s
   if (!has_features(name) || !exists(file_, name + "/source")) return false;
   const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
   std::vector<hsize_t> dims;
-  const std::vector<std::int64_t> stored = read_dataset<std::int64_t>(group.get(), "source", dims, name);
-  return stored.size() == 2 && static_cast<std::uintmax_t>(stored[0]) == source.bytes && stored[1] == source.mtime_ns;
+  const std::vector<std::int64_t> stored =
+      read_dataset<std::int64_t>(group.get(), "source", dims, name);
+  return stored.size() == 2 && static_cast<std::uintmax_t>(stored[0]) == source.bytes &&
+         stored[1] == source.mtime_ns;
 }
 
 void Hdf5File::remove_features(const std::string& name) {
   write_guarded(0, "the removal of '" + name + "'", [&] { remove_group(file_, name); });
 }
 
-void Hdf5File::write_features(const std::string& name, const Features& features, const SourceRecord* source) {
+void Hdf5File::write_features(const std::string& name, const Features& features,
+                              const SourceRecord* source) {
   silence_hdf5();
   // A group being replaced goes first, flushed, so that no new data lands in its space while the
   // file on disk still holds it.
@@ -402,33 +439,41 @@ void Hdf5File::write_features(const std::string& name, const Features& features,
     angle[i] = kp.angle_deg;
     response[i] = kp.response;
     octave[i] = kp.octave;
-    for (std::size_t b = 0; b < kDescriptorBytes; ++b) descriptors[b * n + i] = features.descriptors[i][b];  // 32 x N
+    for (std::size_t b = 0; b < kDescriptorBytes; ++b)
+      descriptors[b * n + i] = features.descriptors[i][b];  // 32 x N
   }
   const hsize_t count = n;
-  const std::uint64_t bytes = n * (2 * sizeof(float) + kDescriptorBytes + 3 * sizeof(float) + sizeof(std::int32_t));
+  const std::uint64_t bytes =
+      n * (2 * sizeof(float) + kDescriptorBytes + 3 * sizeof(float) + sizeof(std::int32_t));
   write_guarded(bytes, "image '" + name + "'", [&] {
-  const Handle group = create_group(file_, name, path_);
-  write_dataset(group.get(), "keypoints", {count, 2}, xy, name);
-  write_dataset(group.get(), "descriptors", {kDescriptorBytes, count}, descriptors, name);
-  write_dataset(group.get(), "scores", {count}, response, name);
-  write_dataset(group.get(), "size", {count}, size, name);
-  write_dataset(group.get(), "angle", {count}, angle, name);
-  write_dataset(group.get(), "octave", {count}, octave, name);
-  if (source)
-    write_dataset(group.get(), "source", {2},
-                  std::vector<std::int64_t>{static_cast<std::int64_t>(source->bytes), source->mtime_ns}, name);
-  // Last: its presence marks the group complete (has_features).
-  write_dataset(group.get(), "image_size", {2}, std::vector<std::int64_t>{features.image_width, features.image_height}, name);
+    const Handle group = create_group(file_, name, path_);
+    write_dataset(group.get(), "keypoints", {count, 2}, xy, name);
+    write_dataset(group.get(), "descriptors", {kDescriptorBytes, count}, descriptors, name);
+    write_dataset(group.get(), "scores", {count}, response, name);
+    write_dataset(group.get(), "size", {count}, size, name);
+    write_dataset(group.get(), "angle", {count}, angle, name);
+    write_dataset(group.get(), "octave", {count}, octave, name);
+    if (source)
+      write_dataset(
+          group.get(), "source", {2},
+          std::vector<std::int64_t>{static_cast<std::int64_t>(source->bytes), source->mtime_ns},
+          name);
+    // Last: its presence marks the group complete (has_features).
+    write_dataset(group.get(), "image_size", {2},
+                  std::vector<std::int64_t>{features.image_width, features.image_height}, name);
   });
 }
 
 std::vector<Descriptor> Hdf5File::read_descriptors(const std::string& name) const {
-  if (!exists(file_, name + "/descriptors")) throw Error("no image '" + name + "' in '" + path_ + "'");
+  if (!exists(file_, name + "/descriptors"))
+    throw Error("no image '" + name + "' in '" + path_ + "'");
   const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
   std::vector<hsize_t> dims;
-  const std::vector<std::uint8_t> bytes = read_dataset<std::uint8_t>(group.get(), "descriptors", dims, name);
+  const std::vector<std::uint8_t> bytes =
+      read_dataset<std::uint8_t>(group.get(), "descriptors", dims, name);
   if (dims.size() != 2 || dims[0] != kDescriptorBytes)
-    throw Error("'" + name + "/descriptors' in '" + path_ + "' is not 32 x N (aief's binary descriptors)");
+    throw Error("'" + name + "/descriptors' in '" + path_ +
+                "' is not 32 x N (aief's binary descriptors)");
   const std::size_t n = dims[1];
   std::vector<Descriptor> descriptors(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -442,18 +487,23 @@ Features Hdf5File::read_features(const std::string& name) const {
   if (!group.ok()) throw Error("'" + name + "' in '" + path_ + "' is not a group");
   std::vector<hsize_t> dims;
   const std::vector<float> xy = read_dataset<float>(group.get(), "keypoints", dims, name);
-  if (dims.size() != 2 || dims[1] != 2) throw Error("'" + name + "/keypoints' in '" + path_ + "' is not N x 2");
+  if (dims.size() != 2 || dims[1] != 2)
+    throw Error("'" + name + "/keypoints' in '" + path_ + "' is not N x 2");
   const std::size_t n = dims[0];
-  const std::vector<std::uint8_t> descriptors = read_dataset<std::uint8_t>(group.get(), "descriptors", dims, name);
+  const std::vector<std::uint8_t> descriptors =
+      read_dataset<std::uint8_t>(group.get(), "descriptors", dims, name);
   if (dims.size() != 2 || dims[0] != kDescriptorBytes || dims[1] != n)
-    throw Error("'" + name + "/descriptors' in '" + path_ + "' is not 32 x " + std::to_string(n) + " (aief's binary descriptors)");
+    throw Error("'" + name + "/descriptors' in '" + path_ + "' is not 32 x " + std::to_string(n) +
+                " (aief's binary descriptors)");
   const auto optional = [&](const char* dataset) {
     std::vector<hsize_t> d;
-    return exists(group.get(), dataset) ? read_dataset<float>(group.get(), dataset, d, name) : std::vector<float>(n, 0.0f);
+    return exists(group.get(), dataset) ? read_dataset<float>(group.get(), dataset, d, name)
+                                        : std::vector<float>(n, 0.0f);
   };
-  const std::vector<float> scores = optional("scores"), size = optional("size"), angle = optional("angle"),
-                           octave = optional("octave");
-  const std::vector<std::int64_t> image_size = read_dataset<std::int64_t>(group.get(), "image_size", dims, name);
+  const std::vector<float> scores = optional("scores"), size = optional("size"),
+                           angle = optional("angle"), octave = optional("octave");
+  const std::vector<std::int64_t> image_size =
+      read_dataset<std::int64_t>(group.get(), "image_size", dims, name);
   Features features;
   if (image_size.size() == 2) {
     features.image_width = static_cast<int>(image_size[0]);
@@ -469,7 +519,8 @@ Features Hdf5File::read_features(const std::string& name) const {
     kp.angle_deg = i < angle.size() ? angle[i] : 0;
     kp.response = i < scores.size() ? scores[i] : 0;
     kp.octave = i < octave.size() ? static_cast<int>(octave[i]) : 0;
-    for (std::size_t b = 0; b < kDescriptorBytes; ++b) features.descriptors[i][b] = descriptors[b * n + i];
+    for (std::size_t b = 0; b < kDescriptorBytes; ++b)
+      features.descriptors[i][b] = descriptors[b * n + i];
   }
   return features;
 }
@@ -479,7 +530,8 @@ void Hdf5File::write_matches(const std::string& name0, const std::string& name1,
   silence_hdf5();
   const std::string pair_name = hloc_pair_name(name0, name1);
   if (exists(file_, pair_name)) check_pair_owner(pair_name, name0, name1);
-  if (exists(file_, pair_name)) write_guarded(0, "the removal of '" + pair_name + "'", [&] { remove_group(file_, pair_name); });
+  if (exists(file_, pair_name))
+    write_guarded(0, "the removal of '" + pair_name + "'", [&] { remove_group(file_, pair_name); });
   std::vector<std::int32_t> matches0(static_cast<std::size_t>(keypoints0), -1);
   std::vector<float> scores0(static_cast<std::size_t>(keypoints0), 0.0f);
   for (const Match& m : matches) {
@@ -492,24 +544,32 @@ void Hdf5File::write_matches(const std::string& name0, const std::string& name1,
     write_string_attribute(group.get(), "name0", name0);
     write_string_attribute(group.get(), "name1", name1);
     write_dataset(group.get(), "matches0", {n}, matches0, pair_name);
-    write_dataset(group.get(), "matching_scores0", {n}, scores0, pair_name);  // last: marks the pair complete
+    write_dataset(group.get(), "matching_scores0", {n}, scores0,
+                  pair_name);  // last: marks the pair complete
   });
 }
 
-std::vector<Match> Hdf5File::read_matches(const std::string& name0, const std::string& name1) const {
+std::vector<Match> Hdf5File::read_matches(const std::string& name0,
+                                          const std::string& name1) const {
   const std::string pair_name = hloc_pair_name(name0, name1);
-  if (!exists(file_, pair_name)) throw Error("no pair '" + name0 + " " + name1 + "' in '" + path_ + "'");
+  if (!exists(file_, pair_name))
+    throw Error("no pair '" + name0 + " " + name1 + "' in '" + path_ + "'");
   check_pair_owner(pair_name, name0, name1);
   const Handle group(H5Gopen2(file_, pair_name.c_str(), H5P_DEFAULT), H5Gclose);
   std::vector<hsize_t> dims;
-  const std::vector<std::int32_t> matches0 = read_dataset<std::int32_t>(group.get(), "matches0", dims, pair_name);
+  const std::vector<std::int32_t> matches0 =
+      read_dataset<std::int32_t>(group.get(), "matches0", dims, pair_name);
   std::vector<float> scores0(matches0.size(), 1.0f);
-  if (exists(group.get(), "matching_scores0")) scores0 = read_dataset<float>(group.get(), "matching_scores0", dims, pair_name);
-  if (scores0.size() != matches0.size()) throw Error("'" + pair_name + "' in '" + path_ + "': matches0 and matching_scores0 differ in length");
+  if (exists(group.get(), "matching_scores0"))
+    scores0 = read_dataset<float>(group.get(), "matching_scores0", dims, pair_name);
+  if (scores0.size() != matches0.size())
+    throw Error("'" + pair_name + "' in '" + path_ +
+                "': matches0 and matching_scores0 differ in length");
   std::vector<Match> matches;
   for (std::size_t i = 0; i < matches0.size(); ++i)
     if (matches0[i] >= 0)
-      matches.push_back({static_cast<int>(i), matches0[i], static_cast<int>(std::lround((1.0f - scores0[i]) * 256.0f))});
+      matches.push_back({static_cast<int>(i), matches0[i],
+                         static_cast<int>(std::lround((1.0f - scores0[i]) * 256.0f))});
   return matches;
 }
 
@@ -520,10 +580,12 @@ std::vector<std::string> Hdf5File::feature_names() const {
     const std::string path(name);
     const std::string suffix = "/image_size";
     if (info->type == H5O_TYPE_DATASET && path.size() > suffix.size() && path.ends_with(suffix))
-      static_cast<std::vector<std::string>*>(data)->push_back(path.substr(0, path.size() - suffix.size()));
+      static_cast<std::vector<std::string>*>(data)->push_back(
+          path.substr(0, path.size() - suffix.size()));
     return 0;
   };
-  if (H5Ovisit(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names) < 0) throw Error("cannot list the groups of '" + path_ + "'");
+  if (H5Ovisit(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names) < 0)
+    throw Error("cannot list the groups of '" + path_ + "'");
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -541,8 +603,8 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     for (const std::string& name : names.back()) {
       const auto [at, inserted] = first_shard.emplace(name, shards.size() - 1);
       if (!inserted)
-        throw Error("image '" + name + "' is in two of the files merged, '" + inputs[at->second] + "' and '" + input +
-                    "'; nothing was written");
+        throw Error("image '" + name + "' is in two of the files merged, '" + inputs[at->second] +
+                    "' and '" + input + "'; nothing was written");
     }
   }
   std::unordered_set<std::string> kept;  // images already in the output, from an earlier merge
@@ -550,8 +612,10 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
   if (extending) {
     const Hdf5File previous(output, Hdf5File::Mode::read);
     for (std::string& name : previous.feature_names()) kept.insert(std::move(name));
-  } else if (const fs::path folder = fs::path(output).parent_path(); !folder.empty() && !fs::is_directory(folder, ec)) {
-    throw Error("cannot create '" + output + "': the folder '" + folder.string() + "' does not exist");
+  } else if (const fs::path folder = fs::path(output).parent_path();
+             !folder.empty() && !fs::is_directory(folder, ec)) {
+    throw Error("cannot create '" + output + "': the folder '" + folder.string() +
+                "' does not exist");
   }
 
   // Then written to a temporary beside the output (a copy of it when extending), renamed over it

@@ -6,7 +6,8 @@
 //   make nested groups, as h5py's create_group does), holding
 //     keypoints    N x 2 float32, (x, y) with the centre of the top-left pixel at (0, 0): the
 //                  OpenCV convention hloc uses in its files (hloc adds 0.5 when it writes COLMAP's
-//                  database, whose origin is the top-left pixel's corner; io/colmap_database does too)
+//                  database, whose origin is the top-left pixel's corner; io/colmap_database does
+//                  too)
 //     descriptors  32 x N uint8 (hloc stores descriptors dimension-first)
 //     scores       N float32, the FAST response
 //     image_size   2 int64, (width, height)
@@ -62,7 +63,8 @@ class Hdf5File {
   // size and modification time; a group written without a source never is).
   bool features_belong_to(const std::string& name, const SourceRecord& source) const;
   // Writes one image's group, replacing any group of that name; with `source`, records it.
-  void write_features(const std::string& name, const Features& features, const SourceRecord* source = nullptr);
+  void write_features(const std::string& name, const Features& features,
+                      const SourceRecord* source = nullptr);
   // Removes an image's group, if there is one.
   void remove_features(const std::string& name);
   // Reads back what write_features wrote (keypoints, size, angle, octave, response, descriptors,
@@ -86,7 +88,8 @@ class Hdf5File {
 
  private:
   // Throws when the group of (name0, name1) records other names.
-  void check_pair_owner(const std::string& group, const std::string& name0, const std::string& name1) const;
+  void check_pair_owner(const std::string& group, const std::string& name0,
+                        const std::string& name1) const;
   // Room for a group's object headers and index entries beside its data; a flush's own growth is
   // reserved separately before it.
   static constexpr std::uint64_t kMetadataAllowance = 64 * 1024;
@@ -97,7 +100,8 @@ class Hdf5File {
   // Runs `write` (about `bytes` of data) and flushes (unless told not to), reserved before and
   // fenced on failure.
   template <class Write>
-  void write_guarded(std::uint64_t bytes, const std::string& what, Write&& write, bool flush = true);
+  void write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
+                     bool flush = true);
 
   std::string path_;
   long long file_ = -1;  // hid_t

@@ -27,7 +27,8 @@ class Bytes {
   std::optional<std::uint64_t> little_endian(std::size_t at, int count) const {
     if (at + static_cast<std::size_t>(count) > size_) return std::nullopt;
     std::uint64_t value = 0;
-    for (int i = count - 1; i >= 0; --i) value = (value << 8) | data_[at + static_cast<std::size_t>(i)];
+    for (int i = count - 1; i >= 0; --i)
+      value = (value << 8) | data_[at + static_cast<std::size_t>(i)];
     return value;
   }
   std::optional<std::uint8_t> at(std::size_t index) const {
@@ -40,10 +41,13 @@ class Bytes {
   std::size_t size_;
 };
 
-std::optional<ImageHeader> make(const char* format, std::optional<std::uint64_t> width, std::optional<std::uint64_t> height) {
+std::optional<ImageHeader> make(const char* format, std::optional<std::uint64_t> width,
+                                std::optional<std::uint64_t> height) {
   if (!width || !height) return std::nullopt;
-  constexpr std::uint64_t kAbsurd = 1ULL << 40;  // beyond any decoder: capped here, so no later product overflows
-  return ImageHeader{format, static_cast<long long>(std::min(*width, kAbsurd)), static_cast<long long>(std::min(*height, kAbsurd))};
+  constexpr std::uint64_t kAbsurd =
+      1ULL << 40;  // beyond any decoder: capped here, so no later product overflows
+  return ImageHeader{format, static_cast<long long>(std::min(*width, kAbsurd)),
+                     static_cast<long long>(std::min(*height, kAbsurd))};
 }
 
 std::optional<ImageHeader> png_header(const Bytes& b) {
@@ -60,7 +64,7 @@ std::optional<ImageHeader> jpeg_header(const Bytes& b) {
     const std::optional<std::uint8_t> marker = b.at(at++);
     if (!marker) return std::nullopt;
     if (*marker == 0x01 || (*marker >= 0xD0 && *marker <= 0xD7)) continue;  // no length
-    if (*marker == 0xD9 || *marker == 0xDA) return std::nullopt;            // EOI or scan before any frame
+    if (*marker == 0xD9 || *marker == 0xDA) return std::nullopt;  // EOI or scan before any frame
     const std::optional<std::uint64_t> length = b.big_endian(at, 2);
     if (!length || *length < 2) return std::nullopt;
     if (*marker >= 0xC0 && *marker <= 0xCF && *marker != 0xC4 && *marker != 0xC8 && *marker != 0xCC)
@@ -71,7 +75,9 @@ std::optional<ImageHeader> jpeg_header(const Bytes& b) {
 
 std::optional<ImageHeader> tiff_header(const Bytes& b) {
   const bool little = b.starts_with("II");
-  auto read = [&](std::size_t at, int count) { return little ? b.little_endian(at, count) : b.big_endian(at, count); };
+  auto read = [&](std::size_t at, int count) {
+    return little ? b.little_endian(at, count) : b.big_endian(at, count);
+  };
   const std::optional<std::uint64_t> version = read(2, 2);
   if (!version || (*version != 42 && *version != 43)) return std::nullopt;
   const bool big = *version == 43;  // BigTIFF: 8-byte offsets and counts
@@ -79,15 +85,16 @@ std::optional<ImageHeader> tiff_header(const Bytes& b) {
   if (!ifd || *ifd >= b.size()) return std::nullopt;
   const std::optional<std::uint64_t> entries = big ? read(*ifd, 8) : read(*ifd, 2);
   if (!entries) return std::nullopt;
-  const std::size_t first = *ifd + (big ? 8 : 2), entry_size = big ? 20 : 12, value_at = big ? 12 : 8;
+  const std::size_t first = *ifd + (big ? 8 : 2), entry_size = big ? 20 : 12,
+                    value_at = big ? 12 : 8;
   std::optional<std::uint64_t> width, height;
   for (std::uint64_t i = 0; i < *entries && first + i * entry_size + entry_size <= b.size(); ++i) {
     const std::size_t entry = first + static_cast<std::size_t>(i) * entry_size;
     const std::optional<std::uint64_t> tag = read(entry, 2), type = read(entry + 2, 2);
     if (!tag || !type || (*tag != 256 && *tag != 257)) continue;
     // SHORT (3) or LONG (4), or LONG8 (16) in BigTIFF; the value sits in the entry itself.
-    const std::optional<std::uint64_t> value = *type == 3 ? read(entry + value_at, 2)
-                                               : *type == 4 ? read(entry + value_at, 4)
+    const std::optional<std::uint64_t> value = *type == 3    ? read(entry + value_at, 2)
+                                               : *type == 4  ? read(entry + value_at, 4)
                                                : *type == 16 ? read(entry + value_at, 8)
                                                              : std::nullopt;
     (*tag == 256 ? width : height) = value;
@@ -102,7 +109,8 @@ std::optional<ImageHeader> webp_header(const Bytes& b) {
     return make("WebP", w ? std::optional<std::uint64_t>(*w & 0x3FFF) : std::nullopt,
                 h ? std::optional<std::uint64_t>(*h & 0x3FFF) : std::nullopt);
   }
-  if (b.starts_with("VP8L", 12)) {  // lossless: signature 0x2F, then 14 bits each of width-1, height-1
+  if (b.starts_with("VP8L",
+                    12)) {  // lossless: signature 0x2F, then 14 bits each of width-1, height-1
     if (b.at(20) != 0x2F) return std::nullopt;
     const auto bits = b.little_endian(21, 4);
     if (!bits) return std::nullopt;
@@ -119,7 +127,8 @@ std::optional<ImageHeader> webp_header(const Bytes& b) {
 std::optional<ImageHeader> bmp_header(const Bytes& b) {
   const std::optional<std::uint64_t> info_size = b.little_endian(14, 4);
   if (!info_size) return std::nullopt;
-  if (*info_size == 12) return make("BMP", b.little_endian(18, 2), b.little_endian(20, 2));  // OS/2 core header
+  if (*info_size == 12)
+    return make("BMP", b.little_endian(18, 2), b.little_endian(20, 2));  // OS/2 core header
   const auto w = b.little_endian(18, 4), h = b.little_endian(22, 4);
   if (!w || !h) return std::nullopt;
   // Signed 32-bit; a negative height means top-down rows.
@@ -149,7 +158,8 @@ std::optional<ImageHeader> netpbm_header(const Bytes& b) {
     skip_space();
     std::uint64_t value = 0;
     int digits = 0;
-    for (auto c = b.at(at); c && std::isdigit(*c) != 0 && digits < 12; c = b.at(++at), ++digits) value = value * 10 + (*c - '0');
+    for (auto c = b.at(at); c && std::isdigit(*c) != 0 && digits < 12; c = b.at(++at), ++digits)
+      value = value * 10 + (*c - '0');
     if (digits == 0 || digits == 12) return std::nullopt;
     return value;
   };
@@ -189,7 +199,8 @@ std::optional<ImageHeader> hdr_header(const Bytes& b) {
   while (b.at(at) && *b.at(at) != '\n' && line.size() < 64) line += static_cast<char>(*b.at(at++));
   char axis_1 = 0, axis_2 = 0, sign_1 = 0, sign_2 = 0;
   unsigned long long first = 0, second = 0;
-  if (std::sscanf(line.c_str(), "%c%c %llu %c%c %llu", &sign_1, &axis_1, &first, &sign_2, &axis_2, &second) != 6)
+  if (std::sscanf(line.c_str(), "%c%c %llu %c%c %llu", &sign_1, &axis_1, &first, &sign_2, &axis_2,
+                  &second) != 6)
     return std::nullopt;
   if (axis_1 == 'Y' && axis_2 == 'X') return make("HDR", second, first);
   if (axis_1 == 'X' && axis_2 == 'Y') return make("HDR", first, second);
@@ -199,8 +210,8 @@ std::optional<ImageHeader> hdr_header(const Bytes& b) {
 // J2K codestream: SOC, then the SIZ marker segment; the image area is Xsiz - XOsiz by Ysiz - YOsiz.
 std::optional<ImageHeader> j2k_header(const Bytes& b, std::size_t at) {
   if (b.big_endian(at, 4) != 0xFF4FFF51u) return std::nullopt;
-  const auto x = b.big_endian(at + 8, 4), y = b.big_endian(at + 12, 4), x0 = b.big_endian(at + 16, 4),
-             y0 = b.big_endian(at + 20, 4);
+  const auto x = b.big_endian(at + 8, 4), y = b.big_endian(at + 12, 4),
+             x0 = b.big_endian(at + 16, 4), y0 = b.big_endian(at + 20, 4);
   if (!x || !y || !x0 || !y0 || *x0 > *x || *y0 > *y) return std::nullopt;
   return make("JPEG 2000", *x - *x0, *y - *y0);
 }
@@ -215,7 +226,8 @@ std::optional<ImageHeader> jp2_header(const Bytes& b) {
       at += 8;  // into the super box
       continue;
     }
-    if (b.starts_with("ihdr", at + 4)) return make("JPEG 2000", b.big_endian(at + 12, 4), b.big_endian(at + 8, 4));
+    if (b.starts_with("ihdr", at + 4))
+      return make("JPEG 2000", b.big_endian(at + 12, 4), b.big_endian(at + 8, 4));
     if (*length < 8) return std::nullopt;
     at += *length;
   }
@@ -233,8 +245,11 @@ std::optional<ImageHeader> read_image_header(const std::uint8_t* bytes, std::siz
     return tiff_header(b);
   if (b.starts_with("RIFF") && b.starts_with("WEBP", 8)) return webp_header(b);
   if (b.starts_with("BM")) return bmp_header(b);
-  if (b.starts_with("P") && b.at(1) && std::strchr("1234567Ff", *b.at(1)) != nullptr && *b.at(1) != 0) return netpbm_header(b);
-  if (b.starts_with("\x59\xA6\x6A\x95")) return make("Sun raster", b.big_endian(4, 4), b.big_endian(8, 4));
+  if (b.starts_with("P") && b.at(1) && std::strchr("1234567Ff", *b.at(1)) != nullptr &&
+      *b.at(1) != 0)
+    return netpbm_header(b);
+  if (b.starts_with("\x59\xA6\x6A\x95"))
+    return make("Sun raster", b.big_endian(4, 4), b.big_endian(8, 4));
   if (b.starts_with("#?RADIANCE") || b.starts_with("#?RGBE")) return hdr_header(b);
   if (b.starts_with(std::string_view("\0\0\0\x0CjP  \r\n\x87\n", 12))) return jp2_header(b);
   if (b.starts_with("\xFF\x4F\xFF\x51")) return j2k_header(b, 0);

@@ -32,8 +32,9 @@ GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
   if (image.depth() == CV_16U) {
     image.convertTo(image, CV_8U, 1.0 / 256.0);
   } else if (image.depth() != CV_8U) {
-    throw Error("cannot use image '" + path + "': its pixels are " + depth_name(image.depth()) +
-                ", not 8- or 16-bit unsigned (no conversion is right for every use: convert it first)");
+    throw Error(
+        "cannot use image '" + path + "': its pixels are " + depth_name(image.depth()) +
+        ", not 8- or 16-bit unsigned (no conversion is right for every use: convert it first)");
   }
   // The conversion writes straight into the result: no second full-size gray copy at the peak.
   GrayImage out(image.cols, image.rows);
@@ -43,7 +44,8 @@ GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
     case 3: cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY); break;
     case 4: cv::cvtColor(image, gray, cv::COLOR_BGRA2GRAY); break;
     default:
-      throw Error("cannot use image '" + path + "': " + std::to_string(image.channels()) + " channels (expected 1, 3 or 4)");
+      throw Error("cannot use image '" + path + "': " + std::to_string(image.channels()) +
+                  " channels (expected 1, 3 or 4)");
   }
   CV_Assert(gray.data == out.data());  // OpenCV kept the buffer it was given
   return out;
@@ -51,22 +53,27 @@ GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
 
 // Refuses what cannot be decoded safely or used: an unknown format, more pixels than allowed, a
 // format of float pixels.
-void check_header_before_decoding(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels) {
+void check_header_before_decoding(const std::vector<std::uint8_t>& bytes, const std::string& name,
+                                  long long max_pixels) {
   const std::optional<ImageHeader> header = read_image_header(bytes.data(), bytes.size());
   if (!header)
     throw Error("cannot read image '" + name +
-                "': not an image aief can read (PNG, JPEG, TIFF, WebP, BMP, PNM/PAM, Sun raster, JPEG 2000; 8- or "
+                "': not an image aief can read (PNG, JPEG, TIFF, WebP, BMP, PNM/PAM, Sun raster, "
+                "JPEG 2000; 8- or "
                 "16-bit), or its header is damaged");
   // Compared by division: width x height may not fit in 64 bits.
   if (header->width > 0 && header->height > max_pixels / header->width)
-    throw Error("image '" + name + "' declares " + std::to_string(header->width) + "x" + std::to_string(header->height) +
-                " pixels in its " + header->format + " header, more than max_image_pixels = " +
-                std::to_string(max_pixels) + " (refused before decoding)");
+    throw Error("image '" + name + "' declares " + std::to_string(header->width) + "x" +
+                std::to_string(header->height) + " pixels in its " + header->format +
+                " header, more than max_image_pixels = " + std::to_string(max_pixels) +
+                " (refused before decoding)");
   // Formats of floating-point pixels only (their size is still read, so the limit holds): refused
   // by name before decoding.
   if (header->format == "HDR" || header->format == "PFM")
-    throw Error("cannot use image '" + name + "': a " + (header->format == "HDR" ? "Radiance HDR" : "PFM") +
-                " file holds floating-point pixels, which aief does not read (no conversion to 8 bits is right for "
+    throw Error("cannot use image '" + name + "': a " +
+                (header->format == "HDR" ? "Radiance HDR" : "PFM") +
+                " file holds floating-point pixels, which aief does not read (no conversion to 8 "
+                "bits is right for "
                 "every use: tone-map it first)");
 }
 
@@ -96,27 +103,33 @@ std::string kind_of(std::filesystem::file_type type) {
 
 }  // namespace
 
-GrayImage read_gray_image(const std::string& path, long long max_pixels, std::vector<std::string>* warnings) {
+GrayImage read_gray_image(const std::string& path, long long max_pixels,
+                          std::vector<std::string>* warnings) {
   // Asked before opening: opening a FIFO blocks until a writer comes, maybe forever.
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_type type = fs::status(path, ec).type();
-  if (type == fs::file_type::not_found) throw Error("cannot open image '" + path + "': no such file");
+  if (type == fs::file_type::not_found)
+    throw Error("cannot open image '" + path + "': no such file");
   if (ec) throw Error("cannot open image '" + path + "': " + ec.message());
-  if (type == fs::file_type::directory) throw Error("cannot open image '" + path + "': it is a directory");
-  if (type != fs::file_type::regular) throw Error("cannot open image '" + path + "': not a regular file (" + kind_of(type) + "), not opened");
+  if (type == fs::file_type::directory)
+    throw Error("cannot open image '" + path + "': it is a directory");
+  if (type != fs::file_type::regular)
+    throw Error("cannot open image '" + path + "': not a regular file (" + kind_of(type) +
+                "), not opened");
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw Error("cannot open image '" + path + "': permission denied");
   // The encoded bytes in memory (a fraction of the decoded size): the header is checked first.
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(std::max<std::streamoff>(in.tellg(), 0)));
+  std::vector<std::uint8_t> bytes(
+      static_cast<std::size_t>(std::max<std::streamoff>(in.tellg(), 0)));
   in.seekg(0);
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (!in) throw Error("cannot read image '" + path + "': read error");
   return decode_gray_image(bytes, path, max_pixels, warnings);
 }
 
-GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name, long long max_pixels,
-                            std::vector<std::string>* warnings) {
+GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name,
+                            long long max_pixels, std::vector<std::string>* warnings) {
   check_header_before_decoding(bytes, name, max_pixels);
   cv::Mat image;
   try {
@@ -125,23 +138,29 @@ GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::s
     // The decoder's own message only, not OpenCV's source location and assertion text.
     throw Error("cannot read image '" + name + "': the decoder failed (" + e.err + ")");
   }
-  if (image.empty()) throw Error("cannot read image '" + name + "': not an image OpenCV can decode, or a damaged file");
+  if (image.empty())
+    throw Error("cannot read image '" + name +
+                "': not an image OpenCV can decode, or a damaged file");
   if (warnings && jpeg_is_cut_short(bytes))
     warnings->push_back("image '" + name +
-                        "': the JPEG data ends before its end-of-image marker (a file cut short): the decoder filled "
+                        "': the JPEG data ends before its end-of-image marker (a file cut short): "
+                        "the decoder filled "
                         "the missing part with grey");
   return gray_from_decoded(image, name);
 }
 
-GrayImage gray_from_pixels(const std::uint8_t* pixels, int width, int height, int channels, std::ptrdiff_t row_stride,
-                           const std::string& name) {
+GrayImage gray_from_pixels(const std::uint8_t* pixels, int width, int height, int channels,
+                           std::ptrdiff_t row_stride, const std::string& name) {
   if (width <= 0 || height <= 0 || pixels == nullptr)
-    throw Error("cannot use image '" + name + "': it is empty (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    throw Error("cannot use image '" + name + "': it is empty (" + std::to_string(width) + "x" +
+                std::to_string(height) + ")");
   if (channels != 1 && channels != 3 && channels != 4)
-    throw Error("cannot use image '" + name + "': " + std::to_string(channels) + " channels (expected 1, 3 or 4)");
+    throw Error("cannot use image '" + name + "': " + std::to_string(channels) +
+                " channels (expected 1, 3 or 4)");
   // A header over the caller's bytes (OpenCV does not write through it): the conversion is the
   // one read_gray_image applies to a decoded file.
-  const cv::Mat image(height, width, CV_8UC(channels), const_cast<std::uint8_t*>(pixels), static_cast<std::size_t>(row_stride));
+  const cv::Mat image(height, width, CV_8UC(channels), const_cast<std::uint8_t*>(pixels),
+                      static_cast<std::size_t>(row_stride));
   return gray_from_decoded(image, name);
 }
 

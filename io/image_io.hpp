@@ -25,7 +25,8 @@ namespace aief::io {
 // Warnings: a file the decoder still turns into an image but not the whole of it (a JPEG cut short
 // before its end-of-image marker: libjpeg fills the rest with grey) adds a sentence to `warnings`
 // when given. Damaged data inside a JPEG scan is not detected (it would take a second decode).
-GrayImage read_gray_image(const std::string& path, long long max_pixels = ExtractorOptions{}.max_image_pixels,
+GrayImage read_gray_image(const std::string& path,
+                          long long max_pixels = ExtractorOptions{}.max_image_pixels,
                           std::vector<std::string>* warnings = nullptr);
 
 // The same conversion for an image already in memory as encoded bytes (PNG, JPEG, ...);
@@ -37,7 +38,7 @@ GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::s
 // The same conversion for 8-bit pixels already in memory (the Python module's BGR / BGRA
 // arrays): `channels` (1, 3 BGR or 4 BGRA) interleaved bytes per pixel, consecutive within a
 // row, rows `row_stride` bytes apart. `name` goes into the error messages.
-GrayImage gray_from_pixels(const std::uint8_t* pixels, int width, int height, int channels, std::ptrdiff_t row_stride,
-                           const std::string& name);
+GrayImage gray_from_pixels(const std::uint8_t* pixels, int width, int height, int channels,
+                           std::ptrdiff_t row_stride, const std::string& name);
 
 }  // namespace aief::io

@@ -21,7 +21,8 @@ void JsonWriter::before_value() {
   }
   if (!first_.empty()) {
     if (!first_.back()) out_ << ',';
-    if (static_cast<int>(first_.size()) <= newline_depth_) out_ << '\n' << std::string(first_.size() * 2, ' ');
+    if (static_cast<int>(first_.size()) <= newline_depth_)
+      out_ << '\n' << std::string(first_.size() * 2, ' ');
     first_.back() = false;
   }
 }
@@ -36,7 +37,8 @@ JsonWriter& JsonWriter::begin_object() {
 JsonWriter& JsonWriter::end_object() {
   const bool empty = first_.back();
   first_.pop_back();
-  if (!empty && static_cast<int>(first_.size()) < newline_depth_) out_ << '\n' << std::string(first_.size() * 2, ' ');
+  if (!empty && static_cast<int>(first_.size()) < newline_depth_)
+    out_ << '\n' << std::string(first_.size() * 2, ' ');
   out_ << '}';
   if (first_.empty()) out_ << '\n';
   return *this;
@@ -52,7 +54,8 @@ JsonWriter& JsonWriter::begin_array() {
 JsonWriter& JsonWriter::end_array() {
   const bool empty = first_.back();
   first_.pop_back();
-  if (!empty && static_cast<int>(first_.size()) < newline_depth_) out_ << '\n' << std::string(first_.size() * 2, ' ');
+  if (!empty && static_cast<int>(first_.size()) < newline_depth_)
+    out_ << '\n' << std::string(first_.size() * 2, ' ');
   out_ << ']';
   return *this;
 }
@@ -139,24 +142,29 @@ std::string hex_of(const std::uint8_t* bytes, std::size_t count) {
 std::string temporary_path_of(const std::string& path) {
   const std::filesystem::path file(path);
   std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits: stable across runs and builds
-  for (const char c : file.filename().string()) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  for (const char c : file.filename().string())
+    hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
   char name[32];
   std::snprintf(name, sizeof name, ".%016llx.tmp", static_cast<unsigned long long>(hash));
   return (file.parent_path() / name).string();
 }
 
-bool is_disk_failure(int code) { return code == ENOSPC || code == EDQUOT || code == EROFS || code == EIO; }
+bool is_disk_failure(int code) {
+  return code == ENOSPC || code == EDQUOT || code == EROFS || code == EIO;
+}
 
 void write_file_atomically(const std::string& path, const std::string& content) {
   const std::string temporary = temporary_path_of(path);
   const auto fail = [&](int code, const std::string& what) {
     ::unlink(temporary.c_str());
-    throw WriteError("cannot write '" + path + "': " + what + std::strerror(code), is_disk_failure(code));
+    throw WriteError("cannot write '" + path + "': " + what + std::strerror(code),
+                     is_disk_failure(code));
   };
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
     const int code = errno;
-    throw WriteError("cannot write '" + path + "': cannot create its temporary '" + temporary + "': " + std::strerror(code),
+    throw WriteError("cannot write '" + path + "': cannot create its temporary '" + temporary +
+                         "': " + std::strerror(code),
                      is_disk_failure(code));
   }
   for (std::size_t done = 0; done < content.size();) {

@@ -53,7 +53,8 @@ std::string hex_of(const std::uint8_t* bytes, std::size_t count);
 // file (no space, quota, read-only, I/O error): a batch stops rather than fail every image.
 class WriteError : public Error {
  public:
-  WriteError(const std::string& message, bool of_the_disk) : Error(message), of_the_disk_(of_the_disk) {}
+  WriteError(const std::string& message, bool of_the_disk)
+      : Error(message), of_the_disk_(of_the_disk) {}
   bool of_the_disk() const { return of_the_disk_; }
 
  private:

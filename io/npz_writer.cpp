@@ -24,16 +24,19 @@ struct NpyArray {
 
 template <class T>
 std::string raw_bytes(const std::vector<T>& values) {
-  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));  // x86-64 and AArch64: little-endian
+  return std::string(reinterpret_cast<const char*>(values.data()),
+                     values.size() * sizeof(T));  // x86-64 and AArch64: little-endian
 }
 
 // numpy's .npy format 1.0: magic, header length, a Python dict literal padded to 64 bytes.
 std::string npy_file(const NpyArray& array) {
   // As numpy writes it: "(n,)" for one dimension, "(n, m)" for two.
   std::string shape = "(";
-  for (std::size_t i = 0; i < array.shape.size(); ++i) shape += (i ? ", " : "") + std::to_string(array.shape[i]);
+  for (std::size_t i = 0; i < array.shape.size(); ++i)
+    shape += (i ? ", " : "") + std::to_string(array.shape[i]);
   shape += array.shape.size() == 1 ? ",)" : ")";
-  std::string header = "{'descr': '" + array.dtype + "', 'fortran_order': False, 'shape': " + shape + ", }";
+  std::string header =
+      "{'descr': '" + array.dtype + "', 'fortran_order': False, 'shape': " + shape + ", }";
   const std::size_t unpadded = 10 + header.size() + 1;
   header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";
   std::string out("\x93NUMPY\x01\x00", 8);
@@ -117,10 +120,14 @@ std::string zip_stored(const std::vector<std::pair<std::string, std::string>>& m
   return out;
 }
 
-// The members that record the source: stored uncompressed, so their bytes appear verbatim in the file.
+// The members that record the source: stored uncompressed, so their bytes appear verbatim in the
+// file.
 std::vector<NpyArray> source_arrays(const SourceRecord& source) {
   const std::vector<std::int64_t> stat = {static_cast<std::int64_t>(source.bytes), source.mtime_ns};
-  return {{"source_name", "|S" + std::to_string(std::max<std::size_t>(source.name.size(), 1)), {}, source.name.empty() ? std::string(1, '\0') : source.name},
+  return {{"source_name",
+           "|S" + std::to_string(std::max<std::size_t>(source.name.size(), 1)),
+           {},
+           source.name.empty() ? std::string(1, '\0') : source.name},
           {"source_stat", "<i8", {2}, raw_bytes(stat)}};
 }
 
@@ -148,7 +155,8 @@ std::string features_npz(const Features& features, const std::optional<SourceRec
     angle.push_back(kp.angle_deg);
     response.push_back(kp.response);
     octave.push_back(kp.octave);
-    descriptors.insert(descriptors.end(), features.descriptors[i].begin(), features.descriptors[i].end());
+    descriptors.insert(descriptors.end(), features.descriptors[i].begin(),
+                       features.descriptors[i].end());
   }
   const std::vector<std::int64_t> image_size = {features.image_width, features.image_height};
   std::vector<NpyArray> arrays = {
@@ -167,7 +175,8 @@ std::string features_npz(const Features& features, const std::optional<SourceRec
   return zip_stored(members);
 }
 
-void write_features_npz(const std::string& path, const Features& features, const std::optional<SourceRecord>& source) {
+void write_features_npz(const std::string& path, const Features& features,
+                        const std::optional<SourceRecord>& source) {
   write_file_atomically(path, features_npz(features, source));
 }
 

@@ -13,7 +13,8 @@
 
 namespace aief::io {
 
-std::string features_npz(const Features& features, const std::optional<SourceRecord>& source = std::nullopt);
+std::string features_npz(const Features& features,
+                         const std::optional<SourceRecord>& source = std::nullopt);
 // Written atomically (temporary file, then rename). Throws aief::Error naming the file.
 void write_features_npz(const std::string& path, const Features& features,
                         const std::optional<SourceRecord>& source = std::nullopt);

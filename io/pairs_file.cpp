@@ -24,14 +24,16 @@ PairsList read_pairs(const std::string& path) {
   };
   std::unordered_map<std::string, Seen> groups;  // hloc group -> the first pair and line naming it
   int number = 0;
-  for (const std::string& line : read_text_list(path, "pairs file", 2)) {  // a folder, a binary file: refused
+  for (const std::string& line :
+       read_text_list(path, "pairs file", 2)) {  // a folder, a binary file: refused
     ++number;
     const std::string where = "pairs file '" + path + "' line " + std::to_string(number);
     std::istringstream fields(line);
     std::string first, second, extra;
     if (!(fields >> first)) continue;
     if (first[0] == '#') {
-      list.notes.push_back(where + " skipped: it begins with '#', read as a comment ('" + line + "')");
+      list.notes.push_back(where + " skipped: it begins with '#', read as a comment ('" + line +
+                           "')");
       continue;
     }
     if (!(fields >> second) || (fields >> extra))
@@ -40,12 +42,15 @@ PairsList read_pairs(const std::string& path) {
       list.notes.push_back(where + " skipped: '" + first + "' paired with itself");
       continue;
     }
-    const auto [at, inserted] = groups.emplace(hloc_pair_name(first, second), Seen{{first, second}, number});
+    const auto [at, inserted] =
+        groups.emplace(hloc_pair_name(first, second), Seen{{first, second}, number});
     if (!inserted) {
       if (at->second.pair == ImagePair(first, second)) continue;  // listed again
-      throw Error(where + " ('" + first + " " + second + "') and line " + std::to_string(at->second.line) + " ('" +
-                  at->second.pair.first + " " + at->second.pair.second + "') name one pair group '" + at->first +
-                  "' in hloc's matches layout ('/' in a name becomes '-'): rename one of the images");
+      throw Error(
+          where + " ('" + first + " " + second + "') and line " + std::to_string(at->second.line) +
+          " ('" + at->second.pair.first + " " + at->second.pair.second +
+          "') name one pair group '" + at->first +
+          "' in hloc's matches layout ('/' in a name becomes '-'): rename one of the images");
     }
     list.pairs.emplace_back(first, second);
   }

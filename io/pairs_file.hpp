@@ -11,8 +11,8 @@ namespace aief::io {
 using ImagePair = std::pair<std::string, std::string>;
 
 struct PairsList {
-  std::vector<ImagePair> pairs;     // in file order; self-pairs and repeated lines left out
-  std::vector<std::string> notes;   // what was left out and why: "pairs file 'p' line 3: ..."
+  std::vector<ImagePair> pairs;    // in file order; self-pairs and repeated lines left out
+  std::vector<std::string> notes;  // what was left out and why: "pairs file 'p' line 3: ..."
 };
 
 // Throws aief::Error naming the file and the line that is not two names, or the two lines whose

@@ -24,7 +24,8 @@ struct Plot {
   std::string title;
   std::string x_label;  // with its unit
   std::vector<PlotPanel> panels;
-  std::optional<double> marker_x;  // a dashed vertical line across every panel, named in the first legend
+  std::optional<double>
+      marker_x;  // a dashed vertical line across every panel, named in the first legend
   std::string marker_label;
 };
 

@@ -8,7 +8,9 @@ namespace aief::io {
 
 std::string AxisTicks::label(double value) const {
   int decimals = 0;  // enough to tell two ticks apart: 2.5 x 10^k needs one more than 10^k
-  for (double s = step; decimals < 6 && std::abs(s - std::round(s)) > 1e-9 * std::max(1.0, std::abs(s)); s *= 10) ++decimals;
+  for (double s = step;
+       decimals < 6 && std::abs(s - std::round(s)) > 1e-9 * std::max(1.0, std::abs(s)); s *= 10)
+    ++decimals;
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value == 0 ? 0.0 : value);  // no "-0"
   return buffer;

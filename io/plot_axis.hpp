@@ -1,13 +1,14 @@
 #pragma once
-// Axis ticks a reader can read: round values (1, 2, 2.5 or 5 times a power of ten) spanning the data,
-// the axis stretched to the outer ticks, labels with no more decimals than the step needs.
+// Axis ticks a reader can read: round values (1, 2, 2.5 or 5 times a power of ten) spanning the
+// data, the axis stretched to the outer ticks, labels with no more decimals than the step needs.
 #include <string>
 #include <vector>
 
 namespace aief::io {
 
 struct AxisTicks {
-  std::vector<double> values;  // ascending, evenly spaced by step; front() <= data minimum, back() >= data maximum
+  std::vector<double>
+      values;  // ascending, evenly spaced by step; front() <= data minimum, back() >= data maximum
   double step = 1;
   std::string label(double value) const;  // "250", "0.5", "2.5": the decimals of the step
 };

@@ -8,7 +8,7 @@
 namespace aief::io {
 
 struct SourceRecord {
-  std::string name;          // the input's relative name as listed (the batch key), never symlink-resolved
+  std::string name;  // the input's relative name as listed (the batch key), never symlink-resolved
   std::uintmax_t bytes = 0;  // file size
   long long mtime_ns = 0;    // modification time, nanoseconds since the epoch
   // What reading the file reported (io::read_gray_image's warnings): written into the result's

@@ -30,13 +30,16 @@ std::size_t longest_path() {
 #endif
 }
 
-std::vector<std::string> read_text_list(const std::string& path, const std::string& what, int names_per_line) {
+std::vector<std::string> read_text_list(const std::string& path, const std::string& what,
+                                        int names_per_line) {
   const std::string named = what + " '" + path + "'";
   // PATH_MAX counts the terminating NUL; names on one line are one byte apart.
   const std::size_t longest_line = static_cast<std::size_t>(names_per_line) * longest_path() - 1;
   struct stat info {};
-  if (::stat(path.c_str(), &info) != 0) throw Error("cannot read " + named + ": " + std::strerror(errno));
-  if (S_ISDIR(info.st_mode)) throw Error(named + " is a folder, not a text file of names (one per line)");
+  if (::stat(path.c_str(), &info) != 0)
+    throw Error("cannot read " + named + ": " + std::strerror(errno));
+  if (S_ISDIR(info.st_mode))
+    throw Error(named + " is a folder, not a text file of names (one per line)");
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   if (!file) throw Error("cannot read " + named + ": " + std::strerror(errno));
 
@@ -44,10 +47,14 @@ std::vector<std::string> read_text_list(const std::string& path, const std::stri
   std::string line;
   char block[64 * 1024];
   bool first_block = true;
-  for (std::size_t got; (got = std::fread(block, 1, sizeof block, file.get())) > 0; first_block = false) {
+  for (std::size_t got; (got = std::fread(block, 1, sizeof block, file.get())) > 0;
+       first_block = false) {
     if (first_block && std::memchr(block, '\0', got)) {
-      const std::optional<ImageHeader> image = read_image_header(reinterpret_cast<const std::uint8_t*>(block), got);
-      throw Error(named + (image ? " is a " + image->format + " image" : " is a binary file (it holds a NUL byte)") +
+      const std::optional<ImageHeader> image =
+          read_image_header(reinterpret_cast<const std::uint8_t*>(block), got);
+      throw Error(named +
+                  (image ? " is a " + image->format + " image"
+                         : " is a binary file (it holds a NUL byte)") +
                   ", not a text file of names (one per line)");
     }
     for (std::size_t i = 0; i < got; ++i) {
@@ -61,9 +68,11 @@ std::vector<std::string> read_text_list(const std::string& path, const std::stri
         throw Error(named + " line " + std::to_string(lines.size() + 1) +
                     " holds a NUL byte: a binary file, not a text file of names (one per line)");
       if (line.size() >= longest_line)
-        throw Error(named + " line " + std::to_string(lines.size() + 1) + " is longer than " + std::to_string(longest_line) +
-                    " bytes, more than " + (names_per_line == 1 ? "a path" : std::to_string(names_per_line) + " paths") +
-                    " can be (PATH_MAX " + std::to_string(longest_path()) + "): not a text file of names");
+        throw Error(named + " line " + std::to_string(lines.size() + 1) + " is longer than " +
+                    std::to_string(longest_line) + " bytes, more than " +
+                    (names_per_line == 1 ? "a path" : std::to_string(names_per_line) + " paths") +
+                    " can be (PATH_MAX " + std::to_string(longest_path()) +
+                    "): not a text file of names");
       line += c;
     }
   }

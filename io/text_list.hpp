@@ -17,6 +17,7 @@ std::size_t longest_path();
 // file in errors ("batch list", "pairs file"); a line of `names_per_line` names separated by one
 // byte may be that many longest paths long. Throws aief::Error: missing, unreadable, a folder,
 // a NUL byte (with the image format when the bytes start like one), a line too long.
-std::vector<std::string> read_text_list(const std::string& path, const std::string& what, int names_per_line = 1);
+std::vector<std::string> read_text_list(const std::string& path, const std::string& what,
+                                        int names_per_line = 1);
 
 }  // namespace aief::io

@@ -28,6 +28,7 @@ void fill_cv_keypoints(const Features& features, std::vector<cv::KeyPoint>& keyp
 // descriptors := N x 32 CV_8U rows; Mat::create reuses the storage when N is unchanged.
 // With release_when_empty, no keypoint releases the matrix (ORB-SLAM2's behaviour), otherwise
 // it becomes 0 x 32.
-void fill_cv_descriptors(const Features& features, cv::OutputArray descriptors, bool release_when_empty);
+void fill_cv_descriptors(const Features& features, cv::OutputArray descriptors,
+                         bool release_when_empty);
 
 }  // namespace aief::detail

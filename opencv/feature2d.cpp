@@ -40,8 +40,9 @@ cv::Ptr<Feature2D> Feature2D::create(const ExtractorOptions& options, GivenAngle
 Feature2D::Feature2D(const ExtractorOptions& options, GivenAngles given_angles)
     : extractor_(options), given_angles_(given_angles) {}
 
-void Feature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask, std::vector<cv::KeyPoint>& keypoints,
-                                 cv::OutputArray descriptors, bool useProvidedKeypoints) {
+void Feature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
+                                 std::vector<cv::KeyPoint>& keypoints, cv::OutputArray descriptors,
+                                 bool useProvidedKeypoints) {
   const cv::Mat input = image.getMat();
   const cv::Mat& gray = detail::gray_of(input, gray_);
   if (useProvidedKeypoints) {
@@ -69,10 +70,13 @@ void Feature2D::write(cv::FileStorage& storage) const {
   // names and toggles as the text the table reads back.
   for (const auto& [key, value] : option_table::record_of(options())) {
     const std::string name(key);
-    if (const auto* number = std::get_if<double>(&value)) storage << name << *number;
-    else if (const auto* integer = std::get_if<long long>(&value); integer && *integer == static_cast<int>(*integer))
+    if (const auto* number = std::get_if<double>(&value))
+      storage << name << *number;
+    else if (const auto* integer = std::get_if<long long>(&value);
+             integer && *integer == static_cast<int>(*integer))
       storage << name << static_cast<int>(*integer);
-    else storage << name << option_table::text_of(option_table::row(key), value);
+    else
+      storage << name << option_table::text_of(option_table::row(key), value);
   }
 }
 

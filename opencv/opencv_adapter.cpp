@@ -14,12 +14,15 @@ namespace detail {
 
 const cv::Mat& gray_of(const cv::Mat& image, cv::Mat& buffer) {
   if (image.empty()) throw Error("image is empty");
-  if (image.depth() != CV_8U) throw Error("image depth " + std::to_string(image.depth()) + " is not 8-bit unsigned (CV_8U)");
+  if (image.depth() != CV_8U)
+    throw Error("image depth " + std::to_string(image.depth()) + " is not 8-bit unsigned (CV_8U)");
   switch (image.channels()) {
     case 1: return image;
     case 3: cv::cvtColor(image, buffer, cv::COLOR_BGR2GRAY); return buffer;
     case 4: cv::cvtColor(image, buffer, cv::COLOR_BGRA2GRAY); return buffer;
-    default: throw Error("image has " + std::to_string(image.channels()) + " channels (expected 1, 3 or 4)");
+    default:
+      throw Error("image has " + std::to_string(image.channels()) +
+                  " channels (expected 1, 3 or 4)");
   }
 }
 
@@ -29,7 +32,8 @@ void fill_cv_keypoints(const Features& features, std::vector<cv::KeyPoint>& keyp
   for (const Keypoint& kp : features.keypoints) keypoints.push_back(to_cv_keypoint(kp));
 }
 
-void fill_cv_descriptors(const Features& features, cv::OutputArray descriptors, bool release_when_empty) {
+void fill_cv_descriptors(const Features& features, cv::OutputArray descriptors,
+                         bool release_when_empty) {
   if (features.descriptors.empty() && release_when_empty) {
     descriptors.release();
     return;
@@ -58,14 +62,16 @@ cv::Mat to_cv_descriptors(const Features& features) {
 
 CvExtractor::CvExtractor(ExtractorOptions options) : extractor_(options) {}
 
-void CvExtractor::detect_and_compute(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) {
+void CvExtractor::detect_and_compute(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints,
+                                     cv::Mat& descriptors) {
   const cv::Mat& gray = detail::gray_of(image, gray_);
   extractor_.extract(view_of(gray), features_);
   detail::fill_cv_keypoints(features_, keypoints);
   detail::fill_cv_descriptors(features_, descriptors, false);
 }
 
-void cv_extract(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors, const ExtractorOptions& options) {
+void cv_extract(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
+                const ExtractorOptions& options) {
   CvExtractor(options).detect_and_compute(image, keypoints, descriptors);
 }
 

@@ -12,11 +12,13 @@ ORBextractor ORBextractor::from_settings(const cv::FileStorage& settings) {
   return ORBextractor(options_from_settings(settings));
 }
 
-int ORBextractor::operator()(cv::InputArray image, cv::InputArray /*mask: ignored, as ORB-SLAM3*/, std::vector<cv::KeyPoint>& keypoints,
-                             cv::OutputArray descriptors, std::vector<int>& vLappingArea) {
+int ORBextractor::operator()(cv::InputArray image, cv::InputArray /*mask: ignored, as ORB-SLAM3*/,
+                             std::vector<cv::KeyPoint>& keypoints, cv::OutputArray descriptors,
+                             std::vector<int>& vLappingArea) {
   if (image.empty()) return -1;  // ORB-SLAM3's answer, outputs untouched
   if (vLappingArea.size() < 2)
-    throw Error("vLappingArea must hold two bounds (x0, x1), got " + std::to_string(vLappingArea.size()) + " values");
+    throw Error("vLappingArea must hold two bounds (x0, x1), got " +
+                std::to_string(vLappingArea.size()) + " values");
   const Features& features = extract_frame(image);
   const std::size_t count = features.keypoints.size();
   keypoints.resize(count);
@@ -36,7 +38,8 @@ int ORBextractor::operator()(cv::InputArray image, cv::InputArray /*mask: ignore
     const bool in_lapping_area = kp.x >= lapping_first && kp.x <= lapping_last;
     const std::size_t slot = in_lapping_area ? --stereo_index : mono_index++;
     keypoints[slot] = detail::to_cv_keypoint(kp);
-    std::copy(features.descriptors[i].begin(), features.descriptors[i].end(), rows.ptr<std::uint8_t>(static_cast<int>(slot)));
+    std::copy(features.descriptors[i].begin(), features.descriptors[i].end(),
+              rows.ptr<std::uint8_t>(static_cast<int>(slot)));
   }
   return static_cast<int>(mono_index);
 }

@@ -25,7 +25,8 @@ ExtractorOptions with_orbslam_keypoint_convention(ExtractorOptions options) {
   return options;
 }
 
-ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST) {
+ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, int iniThFAST,
+                                 int minThFAST) {
   ExtractorOptions options = with_orbslam_keypoint_convention({});
   options.n_features = nfeatures;
   options.scale_factor = scaleFactor;
@@ -50,11 +51,15 @@ std::string text_of_node(const cv::FileNode& node, const std::string& key) {
 
 }  // namespace
 
-OrbSlamExtractorBase::OrbSlamExtractorBase(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
-    : OrbSlamExtractorBase(orbslam_options(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)) {}
+OrbSlamExtractorBase::OrbSlamExtractorBase(int nfeatures, float scaleFactor, int nlevels,
+                                           int iniThFAST, int minThFAST)
+    : OrbSlamExtractorBase(orbslam_options(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)) {
+}
 
 OrbSlamExtractorBase::OrbSlamExtractorBase(const ExtractorOptions& options)
-    : extractor_(options), nlevels(options.n_levels), scaleFactor(static_cast<float>(options.scale_factor)) {
+    : extractor_(options),
+      nlevels(options.n_levels),
+      scaleFactor(static_cast<float>(options.scale_factor)) {
   compute_scales();
 }
 
@@ -83,14 +88,18 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
   for (const option_table::OptionRow& row : option_table::rows()) {
     if (!row.has_front_ends()) continue;
     const std::string key(row.yaml_key);
-    if (const cv::FileNode node = settings[key]; !node.empty()) given.push_back({&row, text_of_node(node, key), key});
+    if (const cv::FileNode node = settings[key]; !node.empty())
+      given.push_back({&row, text_of_node(node, key), key});
   }
   // The drop-ins' own defaults over the mode's: ORB-SLAM's keypoint convention, unless set.
   const ExtractorOptions convention = with_orbslam_keypoint_convention({});
   for (const char* key : {"coordinates", "subpixel"}) {
     const option_table::OptionRow& row = option_table::row(key);
-    const bool set = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.row == &row; });
-    if (!set) given.push_back({&row, option_table::text_of(row, row.field.get(convention)), std::string(row.yaml_key)});
+    const bool set =
+        std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.row == &row; });
+    if (!set)
+      given.push_back(
+          {&row, option_table::text_of(row, row.field.get(convention)), std::string(row.yaml_key)});
   }
   ExtractorOptions options = option_table::resolve_options(given);
   // Both versions' Tracking read scaleFactor into a float: so do we, so that settings and the
@@ -111,7 +120,10 @@ const Features& OrbSlamExtractorBase::extract_frame(cv::InputArray image) {
   for (int n = 1; n < nlevels; ++n) {
     const ImageView level = extractor_.pyramid_level(n);
     mvImagePyramid[static_cast<std::size_t>(n)] =
-        level.empty() ? cv::Mat() : cv::Mat(level.height, level.width, CV_8UC1, const_cast<std::uint8_t*>(level.data), static_cast<std::size_t>(level.stride));
+        level.empty()
+            ? cv::Mat()
+            : cv::Mat(level.height, level.width, CV_8UC1, const_cast<std::uint8_t*>(level.data),
+                      static_cast<std::size_t>(level.stride));
   }
   return features_;
 }

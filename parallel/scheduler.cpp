@@ -4,8 +4,8 @@
 #include <atomic>
 
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "parallel/tsan_handoff.hpp"
 
@@ -42,14 +42,20 @@ void Scheduler::for_each(int count, IndexWork work) const {
     // (parallel/tsan_handoff.hpp); the bodies themselves are not ordered with each other.
     const char ended = 0;
     handoff_release(&kBodyStartTag);
-    tbb::parallel_for(0, workers, [&](int) {
-      handoff_acquire(&kBodyStartTag);
-      for (int i = next.fetch_add(1); i < count; i = next.fetch_add(1)) work(i);
-      handoff_release(&ended);
-    }, tbb::simple_partitioner{});
+    tbb::parallel_for(
+        0, workers,
+        [&](int) {
+          handoff_acquire(&kBodyStartTag);
+          for (int i = next.fetch_add(1); i < count; i = next.fetch_add(1)) work(i);
+          handoff_release(&ended);
+        },
+        tbb::simple_partitioner{});
     handoff_acquire(&ended);
   };
-  if (arena_) arena_->arena.execute(run); else run();
+  if (arena_)
+    arena_->arena.execute(run);
+  else
+    run();
 }
 
 void Scheduler::for_each_in_chain(int count, IndexWork make, IndexWork work) const {
@@ -88,7 +94,10 @@ void Scheduler::for_each_in_chain(int count, IndexWork make, IndexWork work) con
     group.wait();
     handoff_acquire(&step.ended);
   };
-  if (arena_) arena_->arena.execute(run); else run();
+  if (arena_)
+    arena_->arena.execute(run);
+  else
+    run();
 }
 
 }  // namespace aief::parallel

@@ -18,13 +18,17 @@ void bind_batch(py::module_& m) {
         }
         std::vector<std::pair<std::string, std::string>> out;
         out.reserve(inputs.size());
-        for (io::BatchInput& input : inputs) out.emplace_back(std::move(input.path), std::move(input.name));
+        for (io::BatchInput& input : inputs)
+          out.emplace_back(std::move(input.path), std::move(input.name));
         return out;
       },
       py::arg("folder_or_list"),
-      "The images `aief extract --batch FOLDER_OR_LIST` takes, as (path, name) pairs sorted by name: a folder's "
-      "image files recursively (folder symlinks followed, cycles not; broken links and other non-files listed so "
-      "that reading them reports them), or a list file's lines. The name is the group / output key.");
+      "The images `aief extract --batch FOLDER_OR_LIST` takes, as (path, name) pairs sorted by "
+      "name: a folder's "
+      "image files recursively (folder symlinks followed, cycles not; broken links and other "
+      "non-files listed so "
+      "that reading them reports them), or a list file's lines. The name is the group / output "
+      "key.");
 }
 
 }  // namespace aief::python

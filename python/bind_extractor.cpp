@@ -27,9 +27,11 @@ bool is_bool(const py::handle& value) {
   return py::isinstance<py::bool_>(value) || type == "bool_" || type == "bool";  // numpy.bool_ too
 }
 
-[[noreturn]] void wrong_type(const table::OptionRow& row, const py::handle& value, const char* wanted) {
-  throw py::type_error(std::string(row.python_keyword) + " must be " + wanted + ", got " + std::string(py::repr(value)) +
-                       " (" + py::type::of(value).attr("__name__").cast<std::string>() + ")");
+[[noreturn]] void wrong_type(const table::OptionRow& row, const py::handle& value,
+                             const char* wanted) {
+  throw py::type_error(std::string(row.python_keyword) + " must be " + wanted + ", got " +
+                       std::string(py::repr(value)) + " (" +
+                       py::type::of(value).attr("__name__").cast<std::string>() + ")");
 }
 
 // A keyword's value as the text the option table parses: integers by their digits, numbers by
@@ -65,10 +67,12 @@ ExtractorOptions options_from(const py::args& args, const py::kwargs& kwargs) {
   for (const table::OptionRow& row : table::rows())
     if (row.python_position > 0) positional.push_back(&row);
   std::sort(positional.begin(), positional.end(),
-            [](const table::OptionRow* a, const table::OptionRow* b) { return a->python_position < b->python_position; });
+            [](const table::OptionRow* a, const table::OptionRow* b) {
+              return a->python_position < b->python_position;
+            });
   if (args.size() > positional.size())
-    throw py::type_error("Extractor() takes at most " + std::to_string(positional.size()) + " positional arguments (" +
-                         std::to_string(args.size()) + " given)");
+    throw py::type_error("Extractor() takes at most " + std::to_string(positional.size()) +
+                         " positional arguments (" + std::to_string(args.size()) + " given)");
   std::vector<std::pair<const table::OptionRow*, py::handle>> values;
   for (std::size_t i = 0; i < args.size(); ++i) values.emplace_back(positional[i], args[i]);
   for (const auto& [key, value] : kwargs) {
@@ -76,14 +80,17 @@ ExtractorOptions options_from(const py::args& args, const py::kwargs& kwargs) {
     const table::OptionRow* row = nullptr;
     for (const table::OptionRow& r : table::rows())
       if (r.has_front_ends() && r.python_keyword == keyword) row = &r;
-    if (!row) throw py::type_error("Extractor() got an unexpected keyword argument '" + keyword + "'");
+    if (!row)
+      throw py::type_error("Extractor() got an unexpected keyword argument '" + keyword + "'");
     for (const auto& [given, unused] : values)
-      if (given == row) throw py::type_error("Extractor() got multiple values for argument '" + keyword + "'");
+      if (given == row)
+        throw py::type_error("Extractor() got multiple values for argument '" + keyword + "'");
     values.emplace_back(row, value);
   }
   std::vector<table::GivenOption> given;
   for (const auto& [row, value] : values)
-    if (!value.is_none()) given.push_back({row, text_of_keyword(*row, value), std::string(row->python_keyword)});
+    if (!value.is_none())
+      given.push_back({row, text_of_keyword(*row, value), std::string(row->python_keyword)});
   return table::resolve_options(given);
 }
 
@@ -96,8 +103,10 @@ py::dict options_dict(const ExtractorOptions& options) {
         [&](const auto& v) {
           using T = std::decay_t<decltype(v)>;
           if constexpr (std::is_same_v<T, std::string_view>) {
-            if (table::row(key).kind() == table::ValueKind::number) d[name.c_str()] = py::float_(std::stod(std::string(v)));
-            else d[name.c_str()] = std::string(v);
+            if (table::row(key).kind() == table::ValueKind::number)
+              d[name.c_str()] = py::float_(std::stod(std::string(v)));
+            else
+              d[name.c_str()] = std::string(v);
           } else {
             d[name.c_str()] = v;
           }
@@ -110,15 +119,20 @@ py::dict options_dict(const ExtractorOptions& options) {
 // The constructor's docstring: every keyword with its default, from the table.
 std::string extractor_doc() {
   std::string doc =
-      "ORB features with the AIEF entropy mask. Extractor(n_features, mode, threshold, levels, scale, threads, "
-      "kernels, **keywords): a mode sets its options first, the keywords given override them, and a keyword the "
-      "mode cannot honour is refused (as aief's CLI does). None keeps the mode's value. A wrong type raises "
+      "ORB features with the AIEF entropy mask. Extractor(n_features, mode, threshold, levels, "
+      "scale, threads, "
+      "kernels, **keywords): a mode sets its options first, the keywords given override them, and "
+      "a keyword the "
+      "mode cannot honour is refused (as aief's CLI does). None keeps the mode's value. A wrong "
+      "type raises "
       "TypeError, a wrong value aief.Error.\n\nKeywords:\n";
   for (const table::OptionRow& row : table::rows()) {
     if (!row.has_front_ends()) continue;
     doc += "  " + std::string(row.python_keyword) + ": " + std::string(row.help) + " (";
-    if (row.kind() == table::ValueKind::choice) doc += table::expected_values(row) + "; ";
-    else if (row.kind() == table::ValueKind::toggle) doc += "True / False; ";
+    if (row.kind() == table::ValueKind::choice)
+      doc += table::expected_values(row) + "; ";
+    else if (row.kind() == table::ValueKind::toggle)
+      doc += "True / False; ";
     doc += "default " + table::defaults_text(row) + ")\n";
   }
   return doc;
@@ -128,20 +142,30 @@ std::string extractor_doc() {
 
 void bind_extractor(py::module_& m) {
   py::class_<PyFeatures>(m, "Features", "Keypoints and descriptors of one image, as numpy arrays")
-      .def_readonly("keypoints", &PyFeatures::keypoints, "N x 2 float32, (x, y) in level-0 pixels, pixel centres at integers")
-      .def_readonly("size", &PyFeatures::size, "N float32, patch diameter at the keypoint's level, level-0 pixels")
+      .def_readonly("keypoints", &PyFeatures::keypoints,
+                    "N x 2 float32, (x, y) in level-0 pixels, pixel centres at integers")
+      .def_readonly("size", &PyFeatures::size,
+                    "N float32, patch diameter at the keypoint's level, level-0 pixels")
       .def_readonly("angle", &PyFeatures::angle, "N float32, orientation in degrees, [0, 360)")
       .def_readonly("response", &PyFeatures::response, "N float32, FAST score")
       .def_readonly("octave", &PyFeatures::octave, "N int32, pyramid level")
       .def_readonly("descriptors", &PyFeatures::descriptors, "N x 32 uint8, rBRIEF-256")
-      .def_readonly("info", &PyFeatures::info, "how the entropy mask went (threshold used, blocks kept)")
-      .def_readonly("image_width", &PyFeatures::image_width, "width of the image the features come from, pixels")
-      .def_readonly("image_height", &PyFeatures::image_height, "height of the image the features come from, pixels")
-      .def("__len__", [](const PyFeatures& f) { return f.keypoints.shape(0); }, "the number of keypoints N")
-      .def("__repr__", [](const PyFeatures& f) {
-        return "<aief.Features " + std::to_string(f.keypoints.shape(0)) + " keypoints, " + std::to_string(f.image_width) + "x" +
-               std::to_string(f.image_height) + ">";
-      }, "keypoint count and image size");
+      .def_readonly("info", &PyFeatures::info,
+                    "how the entropy mask went (threshold used, blocks kept)")
+      .def_readonly("image_width", &PyFeatures::image_width,
+                    "width of the image the features come from, pixels")
+      .def_readonly("image_height", &PyFeatures::image_height,
+                    "height of the image the features come from, pixels")
+      .def(
+          "__len__", [](const PyFeatures& f) { return f.keypoints.shape(0); },
+          "the number of keypoints N")
+      .def(
+          "__repr__",
+          [](const PyFeatures& f) {
+            return "<aief.Features " + std::to_string(f.keypoints.shape(0)) + " keypoints, " +
+                   std::to_string(f.image_width) + "x" + std::to_string(f.image_height) + ">";
+          },
+          "keypoint count and image size");
 
   static const std::string doc = extractor_doc();
   py::class_<PyExtractor>(m, "Extractor", doc.c_str())
@@ -149,25 +173,37 @@ void bind_extractor(py::module_& m) {
         return std::make_unique<PyExtractor>(options_from(args, kwargs));
       }))
       .def("extract", &PyExtractor::extract, py::arg("image"), py::arg("mask") = py::none(),
-           "Features of a 2-D uint8 gray image (any strides; not copied when its rows are contiguous) or an "
-           "H x W x 3 BGR / H x W x 4 BGRA uint8 image (converted to gray as the aief CLI converts files). "
-           "mask: None, or a 2-D uint8 / bool array of the image's height and width, non-zero where keypoints "
+           "Features of a 2-D uint8 gray image (any strides; not copied when its rows are "
+           "contiguous) or an "
+           "H x W x 3 BGR / H x W x 4 BGRA uint8 image (converted to gray as the aief CLI converts "
+           "files). "
+           "mask: None, or a 2-D uint8 / bool array of the image's height and width, non-zero "
+           "where keypoints "
            "may be; it acts before the distribution, so the n_features budget is filled inside it "
            "(docs/opencv.md). The GIL is released meanwhile.")
-      .def("describe", &PyExtractor::describe, py::arg("image"), py::arg("keypoints"), py::arg("octave") = py::none(),
-           py::arg("size") = py::none(), py::arg("angle") = py::none(), py::arg("response") = py::none(),
-           py::arg("keep_angles") = false,
-           "Descriptors of given keypoints, computed as for detected ones: (features, kept). keypoints: aief "
-           "Features (e.g. from extract(); describing them gives back their bytes) or an N x 2 array of (x, y) "
-           "level-0 pixels, with optional per-keypoint octave (pyramid level, default 0), size (default 31), "
-           "angle and response. The angle is recomputed (intensity centroid) unless keep_angles (then each must "
-           "be in [0, 360), as cv2.ORB keeps it). Keypoints closer than 19 pixels to their level's edge are "
-           "removed; kept: int32 indices of the kept keypoints in the given ones. An octave outside "
-           "[0, levels) raises aief.Error.")
-      .def_property_readonly("options", [](const PyExtractor& e) { return options_dict(e.options()); },
-                             "every option in effect, as a dict (the mode's values filled in)")
+      .def(
+          "describe", &PyExtractor::describe, py::arg("image"), py::arg("keypoints"),
+          py::arg("octave") = py::none(), py::arg("size") = py::none(),
+          py::arg("angle") = py::none(), py::arg("response") = py::none(),
+          py::arg("keep_angles") = false,
+          "Descriptors of given keypoints, computed as for detected ones: (features, kept). "
+          "keypoints: aief "
+          "Features (e.g. from extract(); describing them gives back their bytes) or an N x 2 "
+          "array of (x, y) "
+          "level-0 pixels, with optional per-keypoint octave (pyramid level, default 0), size "
+          "(default 31), "
+          "angle and response. The angle is recomputed (intensity centroid) unless keep_angles "
+          "(then each must "
+          "be in [0, 360), as cv2.ORB keeps it). Keypoints closer than 19 pixels to their level's "
+          "edge are "
+          "removed; kept: int32 indices of the kept keypoints in the given ones. An octave outside "
+          "[0, levels) raises aief.Error.")
+      .def_property_readonly(
+          "options", [](const PyExtractor& e) { return options_dict(e.options()); },
+          "every option in effect, as a dict (the mode's values filled in)")
       .def_property_readonly("kernel_name", &PyExtractor::kernel_name,
-                             "the SIMD kernel set this extractor runs (e.g. avx2), picked for this CPU or by `kernels`");
+                             "the SIMD kernel set this extractor runs (e.g. avx2), picked for this "
+                             "CPU or by `kernels`");
   m.def(
       "read_image",
       [](const std::string& path) {
@@ -176,44 +212,60 @@ void bind_extractor(py::module_& m) {
           py::gil_scoped_release no_gil;
           image = io::read_gray_image(path);
         }
-        py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(image.height()), static_cast<py::ssize_t>(image.width())});
-        std::copy(image.data(), image.data() + static_cast<std::size_t>(image.width()) * image.height(), out.mutable_data());
+        py::array_t<std::uint8_t> out(
+            {static_cast<py::ssize_t>(image.height()), static_cast<py::ssize_t>(image.width())});
+        std::copy(image.data(),
+                  image.data() + static_cast<std::size_t>(image.width()) * image.height(),
+                  out.mutable_data());
         return out;
       },
       py::arg("path"),
-      "An image file as the aief CLI reads it: 2-D uint8 gray (colour by OpenCV's BGR2GRAY, 16-bit divided by 256)");
-  m.def("default_options", [] { return options_dict(ExtractorOptions{}); }, "The C++ ExtractorOptions defaults, as a dict");
+      "An image file as the aief CLI reads it: 2-D uint8 gray (colour by OpenCV's BGR2GRAY, 16-bit "
+      "divided by 256)");
+  m.def(
+      "default_options", [] { return options_dict(ExtractorOptions{}); },
+      "The C++ ExtractorOptions defaults, as a dict");
 }
 
 void bind_testing(py::module_& m) {
-  m.def("_option_table", [] {
-    py::list rows;
-    for (const table::OptionRow& row : table::rows()) {
-      if (!row.has_front_ends()) continue;
-      py::dict r;
-      r["key"] = std::string(row.key);
-      r["keyword"] = std::string(row.python_keyword);
-      r["kind"] = std::string(row.kind() == table::ValueKind::integer  ? "integer"
-                              : row.kind() == table::ValueKind::number ? "number"
-                              : row.kind() == table::ValueKind::choice ? "choice"
-                                                                       : "toggle");
-      r["low"] = row.low;
-      r["high"] = row.high;
-      py::list names;
-      if (row.field.choices)
-        for (std::string_view name : row.field.choices()->names) names.append(std::string(name));
-      r["names"] = names;
-      rows.append(r);
-    }
-    return rows;
-  }, "Test hook: the option table's rows that have front ends (core/option_table.hpp)");
-  m.def("_arm_extraction_rendezvous", &arm_extraction_rendezvous, py::arg("parties"), py::arg("timeout_s"),
-        "Test hook: every extraction waits, GIL released, until `parties` are inside at once (0 disarms)");
-  m.def("_image_data_address", [](const py::object& image) {
-    const ImageInput input(image);
-    GrayImage buffer;
-    return reinterpret_cast<std::uintptr_t>(input.gray(buffer).data);
-  }, "Test hook: the address of the gray pixels extract() would read (the array's own when not copied)");
+  m.def(
+      "_option_table",
+      [] {
+        py::list rows;
+        for (const table::OptionRow& row : table::rows()) {
+          if (!row.has_front_ends()) continue;
+          py::dict r;
+          r["key"] = std::string(row.key);
+          r["keyword"] = std::string(row.python_keyword);
+          r["kind"] = std::string(row.kind() == table::ValueKind::integer  ? "integer"
+                                  : row.kind() == table::ValueKind::number ? "number"
+                                  : row.kind() == table::ValueKind::choice ? "choice"
+                                                                           : "toggle");
+          r["low"] = row.low;
+          r["high"] = row.high;
+          py::list names;
+          if (row.field.choices)
+            for (std::string_view name : row.field.choices()->names)
+              names.append(std::string(name));
+          r["names"] = names;
+          rows.append(r);
+        }
+        return rows;
+      },
+      "Test hook: the option table's rows that have front ends (core/option_table.hpp)");
+  m.def("_arm_extraction_rendezvous", &arm_extraction_rendezvous, py::arg("parties"),
+        py::arg("timeout_s"),
+        "Test hook: every extraction waits, GIL released, until `parties` are inside at once (0 "
+        "disarms)");
+  m.def(
+      "_image_data_address",
+      [](const py::object& image) {
+        const ImageInput input(image);
+        GrayImage buffer;
+        return reinterpret_cast<std::uintptr_t>(input.gray(buffer).data);
+      },
+      "Test hook: the address of the gray pixels extract() would read (the array's own when not "
+      "copied)");
 }
 
 }  // namespace aief::python

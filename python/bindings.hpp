@@ -22,7 +22,8 @@ class ImageInput {
   // (BGRA), of at most `max_pixels` pixels (ExtractorOptions::max_image_pixels, checked on the
   // shape before anything is copied); not a numpy.ma.MaskedArray that masks pixels. Throws
   // aief::Error naming what is wrong.
-  explicit ImageInput(const py::object& image, long long max_pixels = ExtractorOptions{}.max_image_pixels);
+  explicit ImageInput(const py::object& image,
+                      long long max_pixels = ExtractorOptions{}.max_image_pixels);
   // The gray plane to extract from: the caller's own memory when its rows are contiguous (no
   // copy), else `buffer` filled by a strided copy; colour is converted into `buffer` exactly as
   // the CLI converts a decoded file (io/image_io.hpp). Needs no GIL.
@@ -37,10 +38,10 @@ class ImageInput {
 
 // The result object of Extractor.extract: numpy arrays that own copies of the features.
 struct PyFeatures {
-  py::array_t<float> keypoints;          // N x 2, x then y, level-0 pixels (OpenCV convention)
+  py::array_t<float> keypoints;  // N x 2, x then y, level-0 pixels (OpenCV convention)
   py::array_t<float> size, angle, response;
   py::array_t<std::int32_t> octave;
-  py::array_t<std::uint8_t> descriptors; // N x 32
+  py::array_t<std::uint8_t> descriptors;  // N x 32
   py::dict info;
   int image_width = 0, image_height = 0;
 };

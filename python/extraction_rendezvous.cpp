@@ -46,8 +46,9 @@ void extraction_rendezvous() {
   }
   const auto timeout = std::chrono::duration<double>(r.timeout_s);
   if (!r.all_arrived.wait_for(lock, timeout, [&] { return r.arrived >= parties; }))
-    throw Error("extraction rendezvous: " + std::to_string(r.arrived) + " of " + std::to_string(parties) +
-                " extractions inside the GIL-free section within " + std::to_string(r.timeout_s) + " s");
+    throw Error("extraction rendezvous: " + std::to_string(r.arrived) + " of " +
+                std::to_string(parties) + " extractions inside the GIL-free section within " +
+                std::to_string(r.timeout_s) + " s");
 }
 
 }  // namespace aief::python

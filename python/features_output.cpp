@@ -31,7 +31,8 @@ PyFeatures to_python(const Features& features) {
     octave(i) = kp.octave;
   }
   std::uint8_t* descriptors = out.descriptors.mutable_data();
-  for (const Descriptor& d : features.descriptors) descriptors = std::copy(d.begin(), d.end(), descriptors);
+  for (const Descriptor& d : features.descriptors)
+    descriptors = std::copy(d.begin(), d.end(), descriptors);
   const ExtractionInfo& info = features.info;
   out.info["entropy_threshold_requested"] = info.entropy_threshold_requested;
   out.info["entropy_threshold_used"] = info.entropy_threshold_used;
@@ -46,19 +47,26 @@ PyFeatures to_python(const Features& features) {
 }
 
 std::vector<Descriptor> descriptors_from(const py::object& value, const char* name) {
-  py::object source = py::isinstance<PyFeatures>(value) ? py::object(value.cast<const PyFeatures&>().descriptors) : value;
+  py::object source = py::isinstance<PyFeatures>(value)
+                          ? py::object(value.cast<const PyFeatures&>().descriptors)
+                          : value;
   if (!py::isinstance<py::array>(source))
     throw Error(std::string(name) + " must be an N x 32 uint8 array or aief features, got " +
                 std::string(py::str(py::type::of(value).attr("__name__"))));
   const auto array = py::reinterpret_borrow<py::array>(source);
-  if (array.dtype().kind() != 'u' || array.dtype().itemsize() != 1 || array.ndim() != 2 || array.shape(1) != kDescriptorBytes)
-    throw Error(std::string(name) + " must be an N x 32 uint8 array, got dtype " + std::string(py::str(py::object(array.dtype()))) +
-                " and " + std::to_string(array.ndim()) + " dimensions" +
-                (array.ndim() == 2 ? " (" + std::to_string(array.shape(0)) + " x " + std::to_string(array.shape(1)) + ")" : ""));
+  if (array.dtype().kind() != 'u' || array.dtype().itemsize() != 1 || array.ndim() != 2 ||
+      array.shape(1) != kDescriptorBytes)
+    throw Error(std::string(name) + " must be an N x 32 uint8 array, got dtype " +
+                std::string(py::str(py::object(array.dtype()))) + " and " +
+                std::to_string(array.ndim()) + " dimensions" +
+                (array.ndim() == 2 ? " (" + std::to_string(array.shape(0)) + " x " +
+                                         std::to_string(array.shape(1)) + ")"
+                                   : ""));
   const auto rows = array.unchecked<std::uint8_t, 2>();
   std::vector<Descriptor> descriptors(static_cast<std::size_t>(array.shape(0)));
   for (py::ssize_t i = 0; i < array.shape(0); ++i)
-    for (int b = 0; b < kDescriptorBytes; ++b) descriptors[static_cast<std::size_t>(i)][static_cast<std::size_t>(b)] = rows(i, b);
+    for (int b = 0; b < kDescriptorBytes; ++b)
+      descriptors[static_cast<std::size_t>(i)][static_cast<std::size_t>(b)] = rows(i, b);
   return descriptors;
 }
 

@@ -18,9 +18,10 @@ namespace {
 
 // The build a state comes from: the version and the layout of every struct written as bytes.
 std::string layout_tag() {
-  return std::string("aief ") + kVersionString + " " + std::to_string(sizeof(ExtractorOptions)) + "." +
-         std::to_string(sizeof(Keypoint)) + "." + std::to_string(sizeof(ExtractionInfo)) + "." +
-         std::to_string(sizeof(SweepPoint)) + "." + std::to_string(sizeof(Match)) + "." + std::to_string(sizeof(Homography));
+  return std::string("aief ") + kVersionString + " " + std::to_string(sizeof(ExtractorOptions)) +
+         "." + std::to_string(sizeof(Keypoint)) + "." + std::to_string(sizeof(ExtractionInfo)) +
+         "." + std::to_string(sizeof(SweepPoint)) + "." + std::to_string(sizeof(Match)) + "." +
+         std::to_string(sizeof(Homography));
 }
 
 class StateWriter {
@@ -52,7 +53,8 @@ class StateReader {
   StateReader(const py::bytes& state, const char* what) : bytes_(state), what_(what) {
     const std::string tag = get_string();
     if (tag != layout_tag())
-      throw Error(std::string("cannot unpickle aief.") + what_ + ": it was pickled by '" + tag + "', this is '" + layout_tag() +
+      throw Error(std::string("cannot unpickle aief.") + what_ + ": it was pickled by '" + tag +
+                  "', this is '" + layout_tag() +
                   "' (pickles go between processes of one aief build)");
   }
   template <typename T>
@@ -76,7 +78,8 @@ class StateReader {
     return std::string(take(size), size);
   }
   void expect_end() const {
-    if (at_ != bytes_.size()) throw Error(std::string("cannot unpickle aief.") + what_ + ": trailing bytes");
+    if (at_ != bytes_.size())
+      throw Error(std::string("cannot unpickle aief.") + what_ + ": trailing bytes");
   }
 
  private:
@@ -86,7 +89,9 @@ class StateReader {
     at_ += size;
     return data;
   }
-  [[noreturn]] void cut_short() const { throw Error(std::string("cannot unpickle aief.") + what_ + ": the state is cut short"); }
+  [[noreturn]] void cut_short() const {
+    throw Error(std::string("cannot unpickle aief.") + what_ + ": the state is cut short");
+  }
 
   std::string bytes_;
   const char* what_;
@@ -171,11 +176,13 @@ void bind_pickling(py::module_& m) {
   auto features = py::reinterpret_borrow<py::class_<PyFeatures>>(m.attr("Features"));
   features.def(py::pickle(
       [](const PyFeatures& f) {
-        return py::make_tuple(f.keypoints, f.size, f.angle, f.response, f.octave, f.descriptors, f.info, f.image_width,
-                              f.image_height);
+        return py::make_tuple(f.keypoints, f.size, f.angle, f.response, f.octave, f.descriptors,
+                              f.info, f.image_width, f.image_height);
       },
       [](const py::tuple& t) {
-        if (t.size() != 9) throw Error("cannot unpickle aief.Features: expected 9 fields, got " + std::to_string(t.size()));
+        if (t.size() != 9)
+          throw Error("cannot unpickle aief.Features: expected 9 fields, got " +
+                      std::to_string(t.size()));
         PyFeatures f;
         f.keypoints = t[0].cast<py::array_t<float>>();
         f.size = t[1].cast<py::array_t<float>>();

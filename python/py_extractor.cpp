@@ -11,22 +11,27 @@ namespace aief::python {
 
 namespace {
 
-std::string dtype_text(const py::array& array) { return std::string(py::str(py::object(array.dtype()))); }
+std::string dtype_text(const py::array& array) {
+  return std::string(py::str(py::object(array.dtype())));
+}
 
 // A 2-D uint8 or bool numpy mask, C-contiguous (copied only when it is not).
 py::array_t<std::uint8_t, py::array::c_style> mask_array(const py::object& mask) {
   if (!py::isinstance<py::array>(mask))
-    throw Error("mask must be a 2-D numpy array of uint8 or bool, got " + std::string(py::str(py::type::of(mask).attr("__name__"))));
+    throw Error("mask must be a 2-D numpy array of uint8 or bool, got " +
+                std::string(py::str(py::type::of(mask).attr("__name__"))));
   auto array = py::reinterpret_borrow<py::array>(mask);
   const char kind = array.dtype().kind();
   if (!((kind == 'u' || kind == 'b') && array.dtype().itemsize() == 1))
     throw Error("mask must be uint8 or bool, got dtype " + dtype_text(array));
-  if (array.ndim() != 2) throw Error("mask must be 2-D, got " + std::to_string(array.ndim()) + " dimensions");
+  if (array.ndim() != 2)
+    throw Error("mask must be 2-D, got " + std::to_string(array.ndim()) + " dimensions");
   return py::array_t<std::uint8_t, py::array::c_style>::ensure(array.view("uint8"));
 }
 
 // A float32 column of n values from an optional array-like (None: `fallback` everywhere).
-std::vector<float> column(const py::object& values, py::ssize_t n, float fallback, const char* name) {
+std::vector<float> column(const py::object& values, py::ssize_t n, float fallback,
+                          const char* name) {
   std::vector<float> out(static_cast<std::size_t>(n), fallback);
   if (values.is_none()) return out;
   const auto array = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(values);
@@ -44,7 +49,8 @@ PyFeatures PyExtractor::extract(const py::object& image, const py::object& mask)
   ImageView mask_view;
   if (!mask.is_none()) {
     mask_pixels = mask_array(mask);
-    mask_view = {mask_pixels.data(), static_cast<int>(mask_pixels.shape(1)), static_cast<int>(mask_pixels.shape(0)),
+    mask_view = {mask_pixels.data(), static_cast<int>(mask_pixels.shape(1)),
+                 static_cast<int>(mask_pixels.shape(0)),
                  static_cast<std::ptrdiff_t>(mask_pixels.shape(1))};
   }
   Features features;
@@ -59,8 +65,9 @@ PyFeatures PyExtractor::extract(const py::object& image, const py::object& mask)
   return to_python(features);
 }
 
-py::tuple PyExtractor::describe(const py::object& image, const py::object& keypoints, const py::object& octave,
-                                const py::object& size, const py::object& angle, const py::object& response,
+py::tuple PyExtractor::describe(const py::object& image, const py::object& keypoints,
+                                const py::object& octave, const py::object& size,
+                                const py::object& angle, const py::object& response,
                                 bool keep_angles) {
   const ImageInput input(image, extractor_.options().max_image_pixels);
   std::vector<Keypoint> given;
@@ -68,9 +75,11 @@ py::tuple PyExtractor::describe(const py::object& image, const py::object& keypo
     const PyFeatures& f = keypoints.cast<const PyFeatures&>();
     const auto xy = f.keypoints.unchecked<2>();
     for (py::ssize_t i = 0; i < xy.shape(0); ++i)
-      given.push_back({xy(i, 0), xy(i, 1), f.size.at(i), f.angle.at(i), f.response.at(i), f.octave.at(i)});
+      given.push_back(
+          {xy(i, 0), xy(i, 1), f.size.at(i), f.angle.at(i), f.response.at(i), f.octave.at(i)});
   } else {
-    const auto xy = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(keypoints);
+    const auto xy =
+        py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(keypoints);
     if (!xy || xy.ndim() != 2 || xy.shape(1) != 2)
       throw Error("keypoints must be aief Features or an N x 2 array of (x, y) level-0 pixels");
     const py::ssize_t n = xy.shape(0);
@@ -79,8 +88,10 @@ py::tuple PyExtractor::describe(const py::object& image, const py::object& keypo
     const std::vector<float> responses = column(response, n, 0.0f, "response");
     std::vector<int> octaves(static_cast<std::size_t>(n), 0);
     if (!octave.is_none()) {
-      const auto o = py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>::ensure(octave);
-      if (!o || o.ndim() != 1 || o.shape(0) != n) throw Error("octave must be " + std::to_string(n) + " integers, one per keypoint");
+      const auto o =
+          py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>::ensure(octave);
+      if (!o || o.ndim() != 1 || o.shape(0) != n)
+        throw Error("octave must be " + std::to_string(n) + " integers, one per keypoint");
       std::copy(o.data(), o.data() + n, octaves.begin());
     }
     for (py::ssize_t i = 0; i < n; ++i) {
@@ -94,7 +105,8 @@ py::tuple PyExtractor::describe(const py::object& image, const py::object& keypo
     py::gil_scoped_release no_gil;
     const std::lock_guard lock(mutex_);
     GrayImage buffer;
-    extractor_.describe(input.gray(buffer), given, features, &kept, keep_angles ? GivenAngles::keep : GivenAngles::recompute);
+    extractor_.describe(input.gray(buffer), given, features, &kept,
+                        keep_angles ? GivenAngles::keep : GivenAngles::recompute);
   }
   py::array_t<std::int32_t> kept_array(static_cast<py::ssize_t>(kept.size()));
   std::copy(kept.begin(), kept.end(), kept_array.mutable_data());

@@ -18,7 +18,8 @@ class PyExtractor {
   PyFeatures extract(const py::object& image, const py::object& mask);
   // Extractor::describe: (features of the kept keypoints, their indices in the given ones).
   py::tuple describe(const py::object& image, const py::object& keypoints, const py::object& octave,
-                     const py::object& size, const py::object& angle, const py::object& response, bool keep_angles);
+                     const py::object& size, const py::object& angle, const py::object& response,
+                     bool keep_angles);
 
   const ExtractorOptions& options() const { return extractor_.options(); }
   std::string kernel_name() const { return std::string(extractor_.kernel_name()); }

@@ -14,8 +14,8 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
-int positions_within_bounds(const std::uint16_t* distances, const std::int16_t* train_bounds, int n, int query_bound,
-                            std::int32_t* positions) {
+int positions_within_bounds(const std::uint16_t* distances, const std::int16_t* train_bounds, int n,
+                            int query_bound, std::int32_t* positions) {
   int count = 0;
   int k = 0;
   const auto walk = [&](std::uint32_t within, int base) {
@@ -31,11 +31,14 @@ int positions_within_bounds(const std::uint16_t* distances, const std::int16_t* 
     const __m256i query = _mm256_set1_epi16(static_cast<short>(query_bound));
     for (; k + 32 <= n; k += 32) {
       const auto above = [&](int at) {
-        const __m256i bound = _mm256_max_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(train_bounds + at)), query);
-        return _mm256_cmpgt_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(distances + at)), bound);
+        const __m256i bound = _mm256_max_epi16(
+            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(train_bounds + at)), query);
+        return _mm256_cmpgt_epi16(
+            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(distances + at)), bound);
       };
       // packs interleaves the two halves per 128-bit lane; the permute restores position order.
-      const __m256i packed = _mm256_permute4x64_epi64(_mm256_packs_epi16(above(k), above(k + 16)), 0xD8);
+      const __m256i packed =
+          _mm256_permute4x64_epi64(_mm256_packs_epi16(above(k), above(k + 16)), 0xD8);
       walk(~static_cast<std::uint32_t>(_mm256_movemask_epi8(packed)), k);
     }
   }

@@ -28,22 +28,26 @@ inline namespace AIEF_SIMD_TARGET {
 // is used (a memory operand of the min/max), which keeps the 16 ring values out of registers.
 template <class Arch, bool Lower, class Ring>
 inline U8<Arch> best_arc9(const Ring& ring) {
-  const auto inner = [](const U8<Arch>& a, const U8<Arch>& b) { return Lower ? xsimd::min(a, b) : xsimd::max(a, b); };
-  const auto outer = [](const U8<Arch>& a, const U8<Arch>& b) { return Lower ? xsimd::max(a, b) : xsimd::min(a, b); };
+  const auto inner = [](const U8<Arch>& a, const U8<Arch>& b) {
+    return Lower ? xsimd::min(a, b) : xsimd::max(a, b);
+  };
+  const auto outer = [](const U8<Arch>& a, const U8<Arch>& b) {
+    return Lower ? xsimd::max(a, b) : xsimd::min(a, b);
+  };
   U8<Arch> m2[8], m4[8];
   for (int j = 0; j < 8; ++j) m2[j] = inner(ring(2 * j), ring(2 * j + 1));  // pixels 2j, 2j + 1
   for (int j = 0; j < 8; ++j) m4[j] = inner(m2[j], m2[(j + 1) & 7]);        // 2j .. 2j + 3
-  U8<Arch> best = inner(inner(m4[0], m4[2]), outer(ring(15), ring(8)));     // j = 0: arcs at 15 and 0
+  U8<Arch> best = inner(inner(m4[0], m4[2]), outer(ring(15), ring(8)));  // j = 0: arcs at 15 and 0
   for (int j = 1; j < 8; ++j) {
-    const U8<Arch> m8 = inner(m4[j], m4[(j + 2) & 7]);                       // 2j .. 2j + 7
+    const U8<Arch> m8 = inner(m4[j], m4[(j + 2) & 7]);  // 2j .. 2j + 7
     best = outer(best, inner(m8, outer(ring(2 * j - 1), ring((2 * j + 8) & 15))));
   }
   return best;
 }
 
 template <class Arch>
-void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_begin, int x_end, int min_threshold,
-                      std::uint8_t* scores) {
+void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_begin, int x_end,
+                      int min_threshold, std::uint8_t* scores) {
   constexpr int N = static_cast<int>(U8<Arch>::size);
   if (x_end - x_begin < N) {
     fast9_scores_row_scalar(center, stride, x_begin, x_end, min_threshold, scores);
@@ -56,7 +60,9 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
   const U8<Arch> one(std::uint8_t(1)), zero(std::uint8_t(0));
 
   const auto batch_at = [&](int x) {
-    const auto ring = [&](int k) { return U8<Arch>::load_unaligned(rows[kFastRingDy[k] + 3] + x + kFastRingDx[k]); };
+    const auto ring = [&](int k) {
+      return U8<Arch>::load_unaligned(rows[kFastRingDy[k] + 3] + x + kFastRingDx[k]);
+    };
     const U8<Arch> v = U8<Arch>::load_unaligned(rows[3] + x);
     const U8<Arch> brighter = xsimd::ssub(best_arc9<Arch, true>(ring), v);
     const U8<Arch> darker = xsimd::ssub(v, best_arc9<Arch, false>(ring));
@@ -86,23 +92,28 @@ struct narrower_arch<xsimd::avx2> {
 #endif
 
 template <class Arch>
-void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row, const std::uint8_t* below,
-                             int x_begin, int x_end, int strong_threshold, std::uint64_t* maxima,
-                             std::uint64_t* strong) {
-  constexpr int N = static_cast<int>(U8<Arch>::size);  // 16, 32 or 64: a batch never straddles a word
+void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row,
+                             const std::uint8_t* below, int x_begin, int x_end,
+                             int strong_threshold, std::uint64_t* maxima, std::uint64_t* strong) {
+  constexpr int N =
+      static_cast<int>(U8<Arch>::size);  // 16, 32 or 64: a batch never straddles a word
   if (x_end - x_begin < N) {  // a short run (a block or two): narrower vectors, else the reference
     using Narrower = typename narrower_arch<Arch>::type;
     if constexpr (!std::is_void_v<Narrower>)
-      fast9_local_maxima_bits<Narrower>(above, row, below, x_begin, x_end, strong_threshold, maxima, strong);
+      fast9_local_maxima_bits<Narrower>(above, row, below, x_begin, x_end, strong_threshold, maxima,
+                                        strong);
     else
-      fast9_local_maxima_bits_scalar(above, row, below, x_begin, x_end, strong_threshold, maxima, strong);
+      fast9_local_maxima_bits_scalar(above, row, below, x_begin, x_end, strong_threshold, maxima,
+                                     strong);
     return;
   }
   const int words = fast9_maxima_words(x_end - x_begin);
   for (int w = 0; w < words; ++w) maxima[w] = strong[w] = 0;
   const U8<Arch> zero(std::uint8_t(0));
   // Strong where s >= threshold, i.e. s - (threshold - 1) (saturating) is not 0.
-  const int strong_floor = strong_threshold < 1 ? 0 : strong_threshold > 256 ? 255 : strong_threshold - 1;
+  const int strong_floor = strong_threshold < 1     ? 0
+                           : strong_threshold > 256 ? 255
+                                                    : strong_threshold - 1;
   const U8<Arch> below_strong(static_cast<std::uint8_t>(strong_floor));
   const auto batch_at = [&](int x) {
     // s is a strict maximum where s - max(neighbours) (saturating) is not 0.
@@ -111,7 +122,8 @@ void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row,
     if (!any_nonzero<Arch>(xsimd::ssub(s, neighbours))) return;  // most of a score row is 0
     neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(row + x + 1));
     for (const std::uint8_t* line : {above, below})
-      for (int dx = -1; dx <= 1; ++dx) neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(line + x + dx));
+      for (int dx = -1; dx <= 1; ++dx)
+        neighbours = xsimd::max(neighbours, U8<Arch>::load_unaligned(line + x + dx));
     const U8<Arch> margin = xsimd::ssub(s, neighbours);
     const std::uint64_t kept = lane_bits<Arch>(margin != zero);
     if (kept == 0) return;

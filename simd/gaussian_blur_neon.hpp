@@ -27,17 +27,25 @@ struct Vec {
   static V set32(int v) { return vreinterpretq_s16_s32(vdupq_n_s32(v)); }
   static V add16(V a, V b) { return vaddq_s16(a, b); }
   static V mul16(V a, V b) { return vmulq_s16(a, b); }
-  static V opaque(V v) { __asm__("" : "+w"(v)); return v; }
+  static V opaque(V v) {
+    __asm__("" : "+w"(v));
+    return v;
+  }
   static V bias(V v) { return vsubq_s16(v, vdupq_n_s16(kBias)); }
   static V madd(V a, V b) { return vreinterpretq_s16_s32(multiply_add_pairs(a, b)); }
-  static V add32(V a, V b) { return vreinterpretq_s16_s32(vaddq_s32(vreinterpretq_s32_s16(a), vreinterpretq_s32_s16(b))); }
+  static V add32(V a, V b) {
+    return vreinterpretq_s16_s32(vaddq_s32(vreinterpretq_s32_s16(a), vreinterpretq_s32_s16(b)));
+  }
   // even = outputs x, x + 2, ...; odd = x + 1, x + 3, ..., each as S + 2^15 - 2^23 in int32
   // lanes: adding 2^23 and shifting down 16 gives the output (0..255). 8 bytes.
   static void store_outputs(std::uint8_t* out, V even, V odd) {
-    const uint32x4_t e = vshrq_n_u32(vaddq_u32(vreinterpretq_u32_s16(even), vdupq_n_u32(1u << 23)), 16);
-    const uint32x4_t o = vshrq_n_u32(vaddq_u32(vreinterpretq_u32_s16(odd), vdupq_n_u32(1u << 23)), 16);
+    const uint32x4_t e =
+        vshrq_n_u32(vaddq_u32(vreinterpretq_u32_s16(even), vdupq_n_u32(1u << 23)), 16);
+    const uint32x4_t o =
+        vshrq_n_u32(vaddq_u32(vreinterpretq_u32_s16(odd), vdupq_n_u32(1u << 23)), 16);
     const uint32x4_t pairs = vorrq_u32(e, vshlq_n_u32(o, 8));
-    vst1_u8(out, vreinterpret_u8_u16(vmovn_u32(pairs)));  // e | o << 8 fits 16 bits: exact narrowing
+    vst1_u8(out,
+            vreinterpret_u8_u16(vmovn_u32(pairs)));  // e | o << 8 fits 16 bits: exact narrowing
   }
 };
 

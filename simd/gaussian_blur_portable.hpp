@@ -5,7 +5,8 @@
 // Vertical first, per column: v = sum_k w_k src[y + k - 3][x] <= 65280, in u16 lanes, stored
 // biased as the int16 v - kBias, kBias = 32640 (|v - kBias| <= 32640). Horizontal: pmaddwd
 // multiplies pairs of int16 and adds each pair into an int32 lane, so with the pairs (v[x-3],
-// v[x-2]), (v[x-1], v[x]), (v[x+1], v[x+2]), (v[x+3], -) against (w0, w1), (w2, w3), (w4, w5), (w6, 0):
+// v[x-2]), (v[x-1], v[x]), (v[x+1], v[x+2]), (v[x+3], -) against (w0, w1), (w2, w3), (w4, w5), (w6,
+// 0):
 //   P = sum_t w_t (v_t - kBias) = S - 256 kBias = S + 2^15 - 2^23   (the taps sum to 256),
 //   dst = (S + 32768) >> 16 = (P + 2^23) >> 16,  i.e. P >> 16 (arithmetic) is dst - 128,
 // every step an exact integer operation (the rounding term is folded into the bias). A 32-bit
@@ -32,7 +33,8 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
-void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin, int x_end) {
+void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin,
+                    int x_end) {
   using Ops = blur_detail::Vec<Arch>;
   using V = typename Ops::V;
   constexpr int L = Ops::kColumns;
@@ -40,7 +42,9 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   const int width = src.width, height = src.height;
   const std::ptrdiff_t stride = src.stride;
   const auto& w = kGaussian7Q8;
-  const auto mirror = [](int i, int size) { return i < 0 ? -i : (i >= size ? 2 * size - 2 - i : i); };
+  const auto mirror = [](int i, int size) {
+    return i < 0 ? -i : (i >= size ? 2 * size - 2 - i : i);
+  };
   // Biased vertical sums of a chunk's columns x0 - 3 .. x1 + 3 at column[kSlack + q - (x0 - 3)];
   // the slack on both sides takes the vector loop's batches that start left of x0 - 3 or end
   // right of x1 + 3 (still inside the row).
@@ -52,8 +56,10 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   const V w0 = Ops::opaque(Ops::set16(w[0])), w1 = Ops::opaque(Ops::set16(w[1]));
   const V w2 = Ops::opaque(Ops::set16(w[2])), w3 = Ops::opaque(Ops::set16(w[3]));
   // (and constant pairs would become memory operands, the columns then needing loads of their own).
-  const V pair01 = Ops::opaque(Ops::set32(w[0] | w[1] << 16)), pair23 = Ops::opaque(Ops::set32(w[2] | w[3] << 16));
-  const V pair45 = Ops::opaque(Ops::set32(w[4] | w[5] << 16)), pair6 = Ops::opaque(Ops::set32(w[6]));
+  const V pair01 = Ops::opaque(Ops::set32(w[0] | w[1] << 16)),
+          pair23 = Ops::opaque(Ops::set32(w[2] | w[3] << 16));
+  const V pair45 = Ops::opaque(Ops::set32(w[4] | w[5] << 16)),
+          pair6 = Ops::opaque(Ops::set32(w[6]));
 
   // Chunks outside, rows inside: a chunk's bounds and edge handling are worked out once for all
   // rows. Rows go in bands of kBandRows: the vertical pass of the whole band first, then the
@@ -66,7 +72,9 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
     const int c0 = x0 > 3 ? x0 - 3 : 0, c1 = x1 + 4 < width ? x1 + 4 : width;
     const bool vector_columns = width >= L;
     const bool vector_outputs = x1 - x0 >= L;
-    const auto column_row = [&](int band_row) { return column_buffer[band_row] + kSlack - (x0 - 3); };  // [q]: column q
+    const auto column_row = [&](int band_row) {
+      return column_buffer[band_row] + kSlack - (x0 - 3);
+    };  // [q]: column q
 
     for (int y0 = y_begin; y0 < y_end; y0 += kBandRows) {
       const int y1 = y0 < y_end - kBandRows ? y0 + kBandRows : y_end;
@@ -83,10 +91,12 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
         // Vertical pass, symmetric taps: rows k and 6 - k share a weight, added first (<= 510).
         const auto vertical = [&](int c) {
           const V sum = Ops::add16(
-              Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[0] + c), Ops::columns(rows[6] + c)), w0),
-                         Ops::mul16(Ops::add16(Ops::columns(rows[1] + c), Ops::columns(rows[5] + c)), w1)),
-              Ops::add16(Ops::mul16(Ops::add16(Ops::columns(rows[2] + c), Ops::columns(rows[4] + c)), w2),
-                         Ops::mul16(Ops::columns(rows[3] + c), w3)));
+              Ops::add16(
+                  Ops::mul16(Ops::add16(Ops::columns(rows[0] + c), Ops::columns(rows[6] + c)), w0),
+                  Ops::mul16(Ops::add16(Ops::columns(rows[1] + c), Ops::columns(rows[5] + c)), w1)),
+              Ops::add16(
+                  Ops::mul16(Ops::add16(Ops::columns(rows[2] + c), Ops::columns(rows[4] + c)), w2),
+                  Ops::mul16(Ops::columns(rows[3] + c), w3)));
           Ops::store(column + c, Ops::bias(sum));
         };
         if (vector_columns) {
@@ -105,7 +115,8 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
         // Columns outside the row: mirror images (BORDER_REFLECT_101); width + 3 is read only
         // under a zero weight, and its mirror image may lie left of the row, so it is set to 0.
         for (int q = x0 - 3; q < c0; ++q) column[q] = column[-q];
-        for (int q = c1; q < x1 + 4; ++q) column[q] = q < width + 3 ? column[2 * width - 2 - q] : std::int16_t{0};
+        for (int q = c1; q < x1 + 4; ++q)
+          column[q] = q < width + 3 ? column[2 * width - 2 - q] : std::int16_t{0};
       }
 
       for (int y = y0; y < y1; ++y) {
@@ -113,17 +124,23 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
         std::uint8_t* out = dst.row(y - y_begin);
         // Horizontal pass, L outputs a step: L / 2 even ones and L / 2 odd ones, as P (above).
         const auto horizontal = [&](const std::int16_t* v) {  // v = column of the output's tap 0
-          return Ops::add32(Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
-                            Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6)));
+          return Ops::add32(
+              Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
+              Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6)));
         };
         if constexpr (Ops::kMaskedTail) {
           int x = x0;
-          for (; x <= x1 - L; x += L) Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
-          if (x < x1) Ops::store_outputs_masked(out + x, horizontal(column + x - 3), horizontal(column + x - 2), x1 - x);
+          for (; x <= x1 - L; x += L)
+            Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
+          if (x < x1)
+            Ops::store_outputs_masked(out + x, horizontal(column + x - 3),
+                                      horizontal(column + x - 2), x1 - x);
         } else if (vector_outputs) {
           // The last step overlaps the one before when the chunk is not a multiple of L: the
           // same bytes rewritten, and no column outside [x0, x1) is written.
-          const auto step = [&](int x) { Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2)); };
+          const auto step = [&](int x) {
+            Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
+          };
           int x = x0;
           for (; x <= x1 - L; x += L) step(x);
           if (x < x1) step(x1 - L);

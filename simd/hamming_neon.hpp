@@ -12,11 +12,13 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
-void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int n_train, std::uint16_t* distances) {
+void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int n_train,
+                      std::uint16_t* distances) {
   const uint8x16_t q0 = vld1q_u8(query), q1 = vld1q_u8(query + 16);
   for (int j = 0; j < n_train; ++j) {
     const std::uint8_t* t = train + 32 * j;
-    const uint8x16_t counts = vaddq_u8(vcntq_u8(veorq_u8(q0, vld1q_u8(t))), vcntq_u8(veorq_u8(q1, vld1q_u8(t + 16))));
+    const uint8x16_t counts =
+        vaddq_u8(vcntq_u8(veorq_u8(q0, vld1q_u8(t))), vcntq_u8(veorq_u8(q1, vld1q_u8(t + 16))));
     distances[j] = vaddlvq_u8(counts);
   }
 }

@@ -12,18 +12,25 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
-void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int n_train, std::uint16_t* distances) {
+void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int n_train,
+                      std::uint16_t* distances) {
   if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
-    const __m256i lut = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
+    const __m256i lut = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2,
+                                         1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
     const __m256i low_nibble = _mm256_set1_epi8(0x0f);
     const __m256i q = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(query));
     for (int j = 0; j < n_train; ++j) {
-      const __m256i x = _mm256_xor_si256(q, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(train + 32 * j)));
-      const __m256i counts = _mm256_add_epi8(_mm256_shuffle_epi8(lut, _mm256_and_si256(x, low_nibble)),
-                                             _mm256_shuffle_epi8(lut, _mm256_and_si256(_mm256_srli_epi16(x, 4), low_nibble)));
-      const __m256i sums = _mm256_sad_epu8(counts, _mm256_setzero_si256());  // four 64-bit partial sums
-      const __m128i half = _mm_add_epi64(_mm256_castsi256_si128(sums), _mm256_extracti128_si256(sums, 1));
-      distances[j] = static_cast<std::uint16_t>(_mm_cvtsi128_si64(half) + _mm_extract_epi64(half, 1));
+      const __m256i x =
+          _mm256_xor_si256(q, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(train + 32 * j)));
+      const __m256i counts = _mm256_add_epi8(
+          _mm256_shuffle_epi8(lut, _mm256_and_si256(x, low_nibble)),
+          _mm256_shuffle_epi8(lut, _mm256_and_si256(_mm256_srli_epi16(x, 4), low_nibble)));
+      const __m256i sums =
+          _mm256_sad_epu8(counts, _mm256_setzero_si256());  // four 64-bit partial sums
+      const __m128i half =
+          _mm_add_epi64(_mm256_castsi256_si128(sums), _mm256_extracti128_si256(sums, 1));
+      distances[j] =
+          static_cast<std::uint16_t>(_mm_cvtsi128_si64(half) + _mm_extract_epi64(half, 1));
     }
   } else {
     std::uint64_t q[4];
@@ -31,8 +38,9 @@ void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int 
     for (int j = 0; j < n_train; ++j) {
       std::uint64_t t[4];
       std::memcpy(t, train + 32 * j, 32);
-      distances[j] = static_cast<std::uint16_t>(__builtin_popcountll(q[0] ^ t[0]) + __builtin_popcountll(q[1] ^ t[1]) +
-                                                __builtin_popcountll(q[2] ^ t[2]) + __builtin_popcountll(q[3] ^ t[3]));
+      distances[j] = static_cast<std::uint16_t>(
+          __builtin_popcountll(q[0] ^ t[0]) + __builtin_popcountll(q[1] ^ t[1]) +
+          __builtin_popcountll(q[2] ^ t[2]) + __builtin_popcountll(q[3] ^ t[3]));
     }
   }
 }

@@ -29,7 +29,8 @@ constexpr int kMaxChunkPixels = 65535;  // a uint16 bank counter cannot count fu
 using Banks = std::uint16_t[kBanks][256];
 
 // Counts width x height pixels into the banks; width * height <= kMaxChunkPixels.
-inline void count_chunk(const std::uint8_t* data, std::ptrdiff_t stride, int width, int height, Banks& banks) {
+inline void count_chunk(const std::uint8_t* data, std::ptrdiff_t stride, int width, int height,
+                        Banks& banks) {
   for (int y = 0; y < height; ++y) {
     const std::uint8_t* row = data + y * stride;
     int x = 0;
@@ -66,7 +67,8 @@ void fold_banks(const Banks& banks, std::uint32_t* hist) {
 }  // namespace histogram_detail
 
 template <class Arch>
-void accumulate_histogram(const std::uint8_t* data, std::ptrdiff_t stride, int width, int height, std::uint32_t* hist) {
+void accumulate_histogram(const std::uint8_t* data, std::ptrdiff_t stride, int width, int height,
+                          std::uint32_t* hist) {
   using namespace histogram_detail;
   alignas(64) Banks banks;
   clear_banks<Arch>(banks);

@@ -18,6 +18,7 @@ std::vector<GrayImage> validation_images();
 
 // "" when `kernel` under `set` gives the same bytes as the scalar reference on every image;
 // otherwise where it first differs and both values, e.g. "65x37 row 5 x 17: scalar 23, avx2 0".
-std::string validate_kernel(const std::string& kernel, KernelSet set, const std::vector<GrayImage>& images);
+std::string validate_kernel(const std::string& kernel, KernelSet set,
+                            const std::vector<GrayImage>& images);
 
 }  // namespace aief

@@ -6,13 +6,23 @@
 #include "aief/error.hpp"
 
 #if AIEF_HAVE_X86_SIMD
-namespace aief::simd_sse4_2 { KernelTable kernel_table(); }
-namespace aief::simd_avx2 { KernelTable kernel_table(); }
-namespace aief::simd_avx512bw { KernelTable kernel_table(); }
-namespace aief::simd_avx512vpopcntdq { KernelEntry<decltype(&aief::hamming_256_blocked_scalar)> hamming_256_blocked(); }
+namespace aief::simd_sse4_2 {
+KernelTable kernel_table();
+}
+namespace aief::simd_avx2 {
+KernelTable kernel_table();
+}
+namespace aief::simd_avx512bw {
+KernelTable kernel_table();
+}
+namespace aief::simd_avx512vpopcntdq {
+KernelEntry<decltype(&aief::hamming_256_blocked_scalar)> hamming_256_blocked();
+}
 #endif
 #if AIEF_HAVE_NEON64
-namespace aief::simd_neon64 { KernelTable kernel_table(); }
+namespace aief::simd_neon64 {
+KernelTable kernel_table();
+}
 #endif
 
 namespace aief {
@@ -30,13 +40,16 @@ struct CpuKernels {
   CpuKernels() {
     __builtin_cpu_init();
     has_sse4_2 = __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("popcnt");
-    has_avx2 = has_sse4_2 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
-    has_avx512bw = has_avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
-                   __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
+    has_avx2 = has_sse4_2 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
+               __builtin_cpu_supports("bmi2");
+    has_avx512bw = has_avx2 && __builtin_cpu_supports("avx512f") &&
+                   __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
+                   __builtin_cpu_supports("avx512bw");
     if (has_sse4_2) sse4_2 = simd_sse4_2::kernel_table();
     if (has_avx2) avx2 = simd_avx2::kernel_table();
     if (has_avx512bw) avx512bw = simd_avx512bw::kernel_table();
-    if (has_avx512bw && __builtin_cpu_supports("avx512vpopcntdq")) avx512bw.hamming_256_blocked = simd_avx512vpopcntdq::hamming_256_blocked();
+    if (has_avx512bw && __builtin_cpu_supports("avx512vpopcntdq"))
+      avx512bw.hamming_256_blocked = simd_avx512vpopcntdq::hamming_256_blocked();
   }
 #endif
 #if AIEF_HAVE_NEON64
@@ -70,7 +83,8 @@ KernelSet best_kernel_set() { return available_kernel_sets().back(); }
 
 std::string available_kernel_set_names() {
   std::string names;
-  for (KernelSet set : available_kernel_sets()) names += (names.empty() ? "" : ", ") + std::string(to_string(set));
+  for (KernelSet set : available_kernel_sets())
+    names += (names.empty() ? "" : ", ") + std::string(to_string(set));
   return names;
 }
 
@@ -87,8 +101,8 @@ KernelSet default_kernel_set() {
   if (set == KernelSet::auto_select) return best_kernel_set();
   for (KernelSet available : available_kernel_sets())
     if (available == set) return set;
-  throw Error(where + "this CPU or build cannot run kernel set " + std::string(to_string(set)) + " (it runs " +
-              available_kernel_set_names() + ")");
+  throw Error(where + "this CPU or build cannot run kernel set " + std::string(to_string(set)) +
+              " (it runs " + available_kernel_set_names() + ")");
 }
 
 const KernelTable& kernel_table(KernelSet set) {
@@ -103,8 +117,9 @@ const KernelTable& kernel_table(KernelSet set) {
 #if AIEF_HAVE_NEON64
   if (set == KernelSet::neon64) return cpu.neon64;
 #endif
-  throw Error("kernel set " + std::string(to_string(set)) + " is not available on this CPU or build (it runs " +
-              available_kernel_set_names() + ")");
+  throw Error("kernel set " + std::string(to_string(set)) +
+              " is not available on this CPU or build (it runs " + available_kernel_set_names() +
+              ")");
 }
 
 }  // namespace aief

@@ -3,6 +3,8 @@
 
 namespace aief::simd_avx2 {
 
-KernelTable kernel_table() { return simd::make_kernel_table<xsimd::avx2>(KernelSet::avx2, "avx2", "avx2 256-bit"); }
+KernelTable kernel_table() {
+  return simd::make_kernel_table<xsimd::avx2>(KernelSet::avx2, "avx2", "avx2 256-bit");
+}
 
 }  // namespace aief::simd_avx2

@@ -12,14 +12,18 @@
 namespace aief::simd_avx512bw {
 
 KernelTable kernel_table() {
-  KernelTable table = simd::make_kernel_table<xsimd::avx2>(KernelSet::avx512bw, "avx512", "avx512bw 256-bit");
+  KernelTable table =
+      simd::make_kernel_table<xsimd::avx2>(KernelSet::avx512bw, "avx512", "avx512bw 256-bit");
   constexpr const char* k512 = "avx512bw 512-bit";
   table.fast9_scores_row = {&simd::fast9_scores_row<xsimd::avx512bw>, k512};
   table.fast9_local_maxima_bits = {&simd::fast9_local_maxima_bits<xsimd::avx512bw>, k512};
-  table.positions_within_bounds = {&simd::positions_within_bounds<xsimd::avx512bw>, k512};  // one mask compare per 32
+  table.positions_within_bounds = {&simd::positions_within_bounds<xsimd::avx512bw>,
+                                   k512};  // one mask compare per 32
   table.rbrief_describe = {&simd::rbrief_describe<xsimd::avx512bw>, k512};  // 16 offsets a step
-  table.resize_bilinear_rows = {&simd::resize_bilinear_rows_avx512<xsimd::avx512bw>, k512};  // vpermw: ~15 instructions per 16 outputs
-  table.gaussian7_rows = {&simd::gaussian7_rows<xsimd::avx512bw>, k512};  // 32 columns a step, masked last step
+  table.resize_bilinear_rows = {&simd::resize_bilinear_rows_avx512<xsimd::avx512bw>,
+                                k512};  // vpermw: ~15 instructions per 16 outputs
+  table.gaussian7_rows = {&simd::gaussian7_rows<xsimd::avx512bw>,
+                          k512};  // 32 columns a step, masked last step
   return table;
 }
 

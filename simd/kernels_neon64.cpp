@@ -4,6 +4,8 @@
 
 namespace aief::simd_neon64 {
 
-KernelTable kernel_table() { return simd::make_kernel_table<xsimd::neon64>(KernelSet::neon64, "neon64", "neon64 128-bit"); }
+KernelTable kernel_table() {
+  return simd::make_kernel_table<xsimd::neon64>(KernelSet::neon64, "neon64", "neon64 128-bit");
+}
 
 }  // namespace aief::simd_neon64

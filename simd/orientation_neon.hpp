@@ -17,7 +17,8 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
-void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* m10, std::int32_t* m01) {
+void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* m10,
+                std::int32_t* m01) {
   constexpr int kRows = 2 * kPatchRadius + 1;
   alignas(16) std::uint8_t in_disc[kRows][32], index[32];
   const int* umax = orientation_disc_umax();
@@ -49,7 +50,8 @@ void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* 
       sum_i = vaddq_u32(sum_i, row_sum);
       sum_vi = vmlaq_n_s32(sum_vi, vreinterpretq_s32_u32(row_sum), r - kPatchRadius);
     }
-    m10[k] = static_cast<std::int32_t>(vaddvq_u32(sum_ix)) - 16 * static_cast<std::int32_t>(vaddvq_u32(sum_i));
+    m10[k] = static_cast<std::int32_t>(vaddvq_u32(sum_ix)) -
+             16 * static_cast<std::int32_t>(vaddvq_u32(sum_i));
     m01[k] = vaddvq_s32(sum_vi);
   }
 }

@@ -13,7 +13,8 @@ namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 template <class Arch>
-void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* m10, std::int32_t* m01) {
+void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* m10,
+                std::int32_t* m01) {
   constexpr int kRows = 2 * kPatchRadius + 1;
   alignas(32) std::int8_t u_weight[kRows][32], in_disc[kRows][32];
   const int* umax = orientation_disc_umax();
@@ -37,14 +38,20 @@ void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* 
       const __m256i ones = _mm256_set1_epi16(1);
       __m256i sum_x = _mm256_setzero_si256(), sum_y = _mm256_setzero_si256();
       for (int r = 0; r < kRows; ++r) {
-        const __m256i pixels = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(top + r * level.stride));
-        const __m256i wx = _mm256_maddubs_epi16(pixels, _mm256_load_si256(reinterpret_cast<const __m256i*>(u_weight[r])));
-        const __m256i row = _mm256_maddubs_epi16(pixels, _mm256_load_si256(reinterpret_cast<const __m256i*>(in_disc[r])));
+        const __m256i pixels =
+            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(top + r * level.stride));
+        const __m256i wx = _mm256_maddubs_epi16(
+            pixels, _mm256_load_si256(reinterpret_cast<const __m256i*>(u_weight[r])));
+        const __m256i row = _mm256_maddubs_epi16(
+            pixels, _mm256_load_si256(reinterpret_cast<const __m256i*>(in_disc[r])));
         sum_x = _mm256_add_epi32(sum_x, _mm256_madd_epi16(wx, ones));
-        sum_y = _mm256_add_epi32(sum_y, _mm256_madd_epi16(row, _mm256_set1_epi16(static_cast<short>(r - kPatchRadius))));
+        sum_y = _mm256_add_epi32(
+            sum_y, _mm256_madd_epi16(row, _mm256_set1_epi16(static_cast<short>(r - kPatchRadius))));
       }
-      const __m128i x4 = _mm_add_epi32(_mm256_castsi256_si128(sum_x), _mm256_extracti128_si256(sum_x, 1));
-      const __m128i y4 = _mm_add_epi32(_mm256_castsi256_si128(sum_y), _mm256_extracti128_si256(sum_y, 1));
+      const __m128i x4 =
+          _mm_add_epi32(_mm256_castsi256_si128(sum_x), _mm256_extracti128_si256(sum_x, 1));
+      const __m128i y4 =
+          _mm_add_epi32(_mm256_castsi256_si128(sum_y), _mm256_extracti128_si256(sum_y, 1));
       const __m128i x2 = _mm_hadd_epi32(x4, y4);
       const __m128i x1 = _mm_hadd_epi32(x2, x2);
       m10[k] = _mm_cvtsi128_si32(x1);
@@ -55,9 +62,12 @@ void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* 
       for (int r = 0; r < kRows; ++r) {
         const __m128i v = _mm_set1_epi16(static_cast<short>(r - kPatchRadius));
         for (int half = 0; half < 2; ++half) {
-          const __m128i pixels = _mm_loadu_si128(reinterpret_cast<const __m128i*>(top + r * level.stride + 16 * half));
-          const __m128i wx = _mm_maddubs_epi16(pixels, _mm_load_si128(reinterpret_cast<const __m128i*>(u_weight[r] + 16 * half)));
-          const __m128i row = _mm_maddubs_epi16(pixels, _mm_load_si128(reinterpret_cast<const __m128i*>(in_disc[r] + 16 * half)));
+          const __m128i pixels =
+              _mm_loadu_si128(reinterpret_cast<const __m128i*>(top + r * level.stride + 16 * half));
+          const __m128i wx = _mm_maddubs_epi16(
+              pixels, _mm_load_si128(reinterpret_cast<const __m128i*>(u_weight[r] + 16 * half)));
+          const __m128i row = _mm_maddubs_epi16(
+              pixels, _mm_load_si128(reinterpret_cast<const __m128i*>(in_disc[r] + 16 * half)));
           sum_x = _mm_add_epi32(sum_x, _mm_madd_epi16(wx, ones));
           sum_y = _mm_add_epi32(sum_y, _mm_madd_epi16(row, v));
         }

@@ -17,24 +17,30 @@ namespace resize_neon_detail {
 
 // 4 outputs, in 32-bit lanes: (h0 (256 - wy) + h1 wy + 32768) >> 16 with h0, h1 the horizontal
 // sums of the top and bottom row, computed biased so every product fits int16 x int16.
-inline uint32x4_t bilinear4(uint8x16_t top, uint8x16_t bottom, uint8x16_t shuffle, int16x8_t wx, int16x8_t wy_pair) {
+inline uint32x4_t bilinear4(uint8x16_t top, uint8x16_t bottom, uint8x16_t shuffle, int16x8_t wx,
+                            int16x8_t wy_pair) {
   const int32x4_t h0 = multiply_add_pairs(vreinterpretq_s16_u8(vqtbl1q_u8(top, shuffle)), wx);
   const int32x4_t h1 = multiply_add_pairs(vreinterpretq_s16_u8(vqtbl1q_u8(bottom, shuffle)), wx);
   const uint32x4_t pair =
-      veorq_u32(vorrq_u32(vreinterpretq_u32_s32(h0), vshlq_n_u32(vreinterpretq_u32_s32(h1), 16)), vdupq_n_u32(0x80008000u));
-  const int32x4_t p = vaddq_s32(multiply_add_pairs(vreinterpretq_s16_u32(pair), wy_pair), vdupq_n_s32((1 << 23) + (1 << 15)));
+      veorq_u32(vorrq_u32(vreinterpretq_u32_s32(h0), vshlq_n_u32(vreinterpretq_u32_s32(h1), 16)),
+                vdupq_n_u32(0x80008000u));
+  const int32x4_t p = vaddq_s32(multiply_add_pairs(vreinterpretq_s16_u32(pair), wy_pair),
+                                vdupq_n_s32((1 << 23) + (1 << 15)));
   return vshrq_n_u32(vreinterpretq_u32_s32(p), 16);
 }
 
 }  // namespace resize_neon_detail
 
 template <class Arch>
-void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin, int y_end) {
+void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin,
+                          int y_end) {
   using resize_neon_detail::bilinear4;
   const int dst_width = plan.dst_width, groups = plan.x_groups;
   const std::int32_t* start = plan.x_group_start.data();
-  const std::uint8_t* shuffle[2] = {plan.x_group_shuffle.data(), plan.x_group_shuffle.data() + 16 * groups};
-  const std::int16_t* weight[2] = {plan.x_group_weight.data(), plan.x_group_weight.data() + 8 * groups};
+  const std::uint8_t* shuffle[2] = {plan.x_group_shuffle.data(),
+                                    plan.x_group_shuffle.data() + 16 * groups};
+  const std::int16_t* weight[2] = {plan.x_group_weight.data(),
+                                   plan.x_group_weight.data() + 8 * groups};
 
   for (int y = y_begin; y < y_end; ++y) {
     const int sy = plan.y_index[static_cast<std::size_t>(y)];
@@ -42,11 +48,14 @@ void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageVie
     const std::uint8_t* top = src.row(sy);
     const std::uint8_t* bottom = src.row(sy + 1);
     std::uint8_t* out = dst.row(y);
-    const int16x8_t wy_pair = vreinterpretq_s16_u32(vdupq_n_u32(wy << 16 | (256 - wy)));  // int16 (256 - wy, wy)
+    const int16x8_t wy_pair =
+        vreinterpretq_s16_u32(vdupq_n_u32(wy << 16 | (256 - wy)));  // int16 (256 - wy, wy)
     for (int g = 0; g < groups; ++g) {
       const uint8x16_t t = vld1q_u8(top + start[g]), b = vld1q_u8(bottom + start[g]);
-      const uint32x4_t low = bilinear4(t, b, vld1q_u8(shuffle[0] + 16 * g), vld1q_s16(weight[0] + 8 * g), wy_pair);
-      const uint32x4_t high = bilinear4(t, b, vld1q_u8(shuffle[1] + 16 * g), vld1q_s16(weight[1] + 8 * g), wy_pair);
+      const uint32x4_t low =
+          bilinear4(t, b, vld1q_u8(shuffle[0] + 16 * g), vld1q_s16(weight[0] + 8 * g), wy_pair);
+      const uint32x4_t high =
+          bilinear4(t, b, vld1q_u8(shuffle[1] + 16 * g), vld1q_s16(weight[1] + 8 * g), wy_pair);
       vst1_u8(out + 8 * g, vmovn_u16(vcombine_u16(vmovn_u32(low), vmovn_u32(high))));
     }
     resize_bilinear_span_scalar(top, bottom, plan, wy, 8 * groups, dst_width, out);

@@ -27,7 +27,9 @@ namespace resize_detail {
 
 // Arch only keeps each instruction set's copy of these helpers its own symbol.
 template <class Arch>
-inline __m128i load16(const void* p) { return _mm_loadu_si128(static_cast<const __m128i*>(p)); }
+inline __m128i load16(const void* p) {
+  return _mm_loadu_si128(static_cast<const __m128i*>(p));
+}
 
 // 4 outputs per 128-bit lane, in 32-bit lanes: (h0 (256 - wy) + h1 wy + 32768) >> 16 with
 // h0, h1 the horizontal sums of the top and bottom row (see the header comment).
@@ -35,28 +37,35 @@ template <class Arch>
 inline __m128i bilinear4(__m128i top, __m128i bottom, __m128i shuffle, __m128i wx, __m128i wy) {
   const __m128i h0 = _mm_madd_epi16(_mm_shuffle_epi8(top, shuffle), wx);
   const __m128i h1 = _mm_madd_epi16(_mm_shuffle_epi8(bottom, shuffle), wx);
-  const __m128i pair = _mm_xor_si128(_mm_or_si128(h0, _mm_slli_epi32(h1, 16)), _mm_set1_epi32(static_cast<int>(0x80008000u)));
-  return _mm_srli_epi32(_mm_add_epi32(_mm_madd_epi16(pair, wy), _mm_set1_epi32((1 << 23) + (1 << 15))), 16);
+  const __m128i pair = _mm_xor_si128(_mm_or_si128(h0, _mm_slli_epi32(h1, 16)),
+                                     _mm_set1_epi32(static_cast<int>(0x80008000u)));
+  return _mm_srli_epi32(
+      _mm_add_epi32(_mm_madd_epi16(pair, wy), _mm_set1_epi32((1 << 23) + (1 << 15))), 16);
 }
 
 template <class Arch>
 inline __m256i bilinear4(__m256i top, __m256i bottom, __m256i shuffle, __m256i wx, __m256i wy) {
   const __m256i h0 = _mm256_madd_epi16(_mm256_shuffle_epi8(top, shuffle), wx);
   const __m256i h1 = _mm256_madd_epi16(_mm256_shuffle_epi8(bottom, shuffle), wx);
-  const __m256i pair = _mm256_xor_si256(_mm256_or_si256(h0, _mm256_slli_epi32(h1, 16)), _mm256_set1_epi32(static_cast<int>(0x80008000u)));
-  return _mm256_srli_epi32(_mm256_add_epi32(_mm256_madd_epi16(pair, wy), _mm256_set1_epi32((1 << 23) + (1 << 15))), 16);
+  const __m256i pair = _mm256_xor_si256(_mm256_or_si256(h0, _mm256_slli_epi32(h1, 16)),
+                                        _mm256_set1_epi32(static_cast<int>(0x80008000u)));
+  return _mm256_srli_epi32(
+      _mm256_add_epi32(_mm256_madd_epi16(pair, wy), _mm256_set1_epi32((1 << 23) + (1 << 15))), 16);
 }
 
 }  // namespace resize_detail
 
 template <class Arch>
-void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin, int y_end) {
+void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin,
+                          int y_end) {
   using namespace resize_detail;
   constexpr bool kAvx2 = std::is_base_of_v<xsimd::avx2, Arch>;
   const int dst_width = plan.dst_width, groups = plan.x_groups;
   const std::int32_t* start = plan.x_group_start.data();
-  const std::uint8_t* shuffle[2] = {plan.x_group_shuffle.data(), plan.x_group_shuffle.data() + 16 * groups};
-  const std::int16_t* weight[2] = {plan.x_group_weight.data(), plan.x_group_weight.data() + 8 * groups};
+  const std::uint8_t* shuffle[2] = {plan.x_group_shuffle.data(),
+                                    plan.x_group_shuffle.data() + 16 * groups};
+  const std::int16_t* weight[2] = {plan.x_group_weight.data(),
+                                   plan.x_group_weight.data() + 8 * groups};
 
   for (int y = y_begin; y < y_end; ++y) {
     const int sy = plan.y_index[static_cast<std::size_t>(y)];
@@ -64,27 +73,36 @@ void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageVie
     const std::uint8_t* top = src.row(sy);
     const std::uint8_t* bottom = src.row(sy + 1);
     std::uint8_t* out = dst.row(y);
-    const __m128i wy_pair = _mm_set1_epi32(static_cast<int>(wy << 16 | (256 - wy)));  // int16 (256 - wy, wy)
+    const __m128i wy_pair =
+        _mm_set1_epi32(static_cast<int>(wy << 16 | (256 - wy)));  // int16 (256 - wy, wy)
     int g = 0;
     if constexpr (kAvx2) {
       const __m256i wy_pair2 = _mm256_broadcastsi128_si256(wy_pair);
       for (; g + 2 <= groups; g += 2) {  // groups g and g + 1, one per 128-bit lane
-        const __m256i t = _mm256_inserti128_si256(_mm256_castsi128_si256(load16<Arch>(top + start[g])), load16<Arch>(top + start[g + 1]), 1);
-        const __m256i b = _mm256_inserti128_si256(_mm256_castsi128_si256(load16<Arch>(bottom + start[g])), load16<Arch>(bottom + start[g + 1]), 1);
+        const __m256i t =
+            _mm256_inserti128_si256(_mm256_castsi128_si256(load16<Arch>(top + start[g])),
+                                    load16<Arch>(top + start[g + 1]), 1);
+        const __m256i b =
+            _mm256_inserti128_si256(_mm256_castsi128_si256(load16<Arch>(bottom + start[g])),
+                                    load16<Arch>(bottom + start[g + 1]), 1);
         __m256i r[2];
         for (int h = 0; h < 2; ++h)
-          r[h] = bilinear4<Arch>(t, b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(shuffle[h] + 16 * g)),
-                                 _mm256_loadu_si256(reinterpret_cast<const __m256i*>(weight[h] + 8 * g)), wy_pair2);
-        const __m256i r16 = _mm256_packs_epi32(r[0], r[1]);  // per lane: outputs 0..3, 4..7 of its group
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 8 * g),
-                         _mm_packus_epi16(_mm256_castsi256_si128(r16), _mm256_extracti128_si256(r16, 1)));
+          r[h] = bilinear4<Arch>(
+              t, b, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(shuffle[h] + 16 * g)),
+              _mm256_loadu_si256(reinterpret_cast<const __m256i*>(weight[h] + 8 * g)), wy_pair2);
+        const __m256i r16 =
+            _mm256_packs_epi32(r[0], r[1]);  // per lane: outputs 0..3, 4..7 of its group
+        _mm_storeu_si128(
+            reinterpret_cast<__m128i*>(out + 8 * g),
+            _mm_packus_epi16(_mm256_castsi256_si128(r16), _mm256_extracti128_si256(r16, 1)));
       }
     }
     for (; g < groups; ++g) {
       const __m128i t = load16<Arch>(top + start[g]), b = load16<Arch>(bottom + start[g]);
       __m128i r[2];
       for (int h = 0; h < 2; ++h)
-        r[h] = bilinear4<Arch>(t, b, load16<Arch>(shuffle[h] + 16 * g), load16<Arch>(weight[h] + 8 * g), wy_pair);
+        r[h] = bilinear4<Arch>(t, b, load16<Arch>(shuffle[h] + 16 * g),
+                               load16<Arch>(weight[h] + 8 * g), wy_pair);
       const __m128i r16 = _mm_packs_epi32(r[0], r[1]);
       _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 8 * g), _mm_packus_epi16(r16, r16));
     }

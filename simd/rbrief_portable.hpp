@@ -42,7 +42,7 @@ struct SamplePattern {
 inline const SamplePattern& sample_pattern() {
   static const SamplePattern interleaved = [] {
     SamplePattern s{};
-    const std::int8_t (*pattern)[4] = orb_pattern_31();
+    const std::int8_t(*pattern)[4] = orb_pattern_31();
     for (int i = 0; i < kTests; ++i) {
       s.x[2 * i] = pattern[i][0];
       s.y[2 * i] = pattern[i][1];
@@ -68,7 +68,8 @@ inline std::uint64_t shift_in(std::uint64_t bits, unsigned char bit) {
 }  // namespace rbrief_detail
 
 template <class Arch>
-void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* angle_deg, int n, std::uint8_t* descriptors) {
+void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* angle_deg, int n,
+                     std::uint8_t* descriptors) {
   using F32 = xsimd::batch<float, Arch>;
   using I32 = xsimd::batch<std::int32_t, Arch>;
   using rbrief_detail::kPatchReach;
@@ -88,7 +89,8 @@ void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* a
       const I32 dy = xsimd::nearbyint_as_int(x * b + y * a);
       (dy * step + dx + corner).store_aligned(reinterpret_cast<std::int32_t*>(offset) + i);
     }
-    const std::uint8_t* patch = blurred.row(points[k].y - kPatchReach) + (points[k].x - kPatchReach);
+    const std::uint8_t* patch =
+        blurred.row(points[k].y - kPatchReach) + (points[k].x - kPatchReach);
     std::uint64_t words[4];
     for (int w = 0; w < 4; ++w) {
       std::uint64_t bits = 0;
@@ -96,7 +98,8 @@ void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* a
       for (int t = 64 * w + 63; t >= 64 * w; --t) {
         std::uint64_t pair;  // offsets of p (low half) and q (high half) of test t
         std::memcpy(&pair, offset + 2 * t, sizeof pair);
-        bits = rbrief_detail::shift_in(bits, patch[static_cast<std::uint32_t>(pair)] < patch[pair >> 32]);
+        bits = rbrief_detail::shift_in(bits,
+                                       patch[static_cast<std::uint32_t>(pair)] < patch[pair >> 32]);
       }
       words[w] = bits;
     }

@@ -14,7 +14,8 @@ inline namespace AIEF_SIMD_TARGET {
 template <class Arch>
 inline std::uint64_t lane_bits(const xsimd::batch_bool<std::uint8_t, Arch>& b) {
   static_assert(sizeof(U8<Arch>) == 16, "NEON: 16 byte lanes");
-  static constexpr std::uint8_t kWeights[16] = {1, 2, 4, 8, 16, 32, 64, 128, 1, 2, 4, 8, 16, 32, 64, 128};
+  static constexpr std::uint8_t kWeights[16] = {1, 2, 4, 8, 16, 32, 64, 128,
+                                                1, 2, 4, 8, 16, 32, 64, 128};
   const uint8x16_t weighted = vandq_u8(static_cast<uint8x16_t>(b), vld1q_u8(kWeights));
   return static_cast<std::uint64_t>(vaddv_u8(vget_low_u8(weighted))) |
          static_cast<std::uint64_t>(vaddv_u8(vget_high_u8(weighted))) << 8;

@@ -15,21 +15,24 @@
 
 int main(int argc, char** argv) {
   if (argc < 2 || argc > 3) {
-    std::fprintf(stderr, "usage: aief_pipeline_hash IMAGE.pgm [auto|scalar|sse4.2|avx2|avx512|neon64]\n");
+    std::fprintf(stderr,
+                 "usage: aief_pipeline_hash IMAGE.pgm [auto|scalar|sse4.2|avx2|avx512|neon64]\n");
     return 2;
   }
   try {
     const aief::GrayImage image = aief::test::read_pgm(argv[1]);
     const aief::KernelSet set = aief::parse_kernel_set(argc == 3 ? argv[2] : "auto");
     std::fprintf(stderr, "kernels: %s\n", aief::kernel_table(set).name);
-    for (aief::Mode mode : {aief::Mode::aief, aief::Mode::aief_paper, aief::Mode::orbslam2, aief::Mode::quadtree_entropy}) {
+    for (aief::Mode mode : {aief::Mode::aief, aief::Mode::aief_paper, aief::Mode::orbslam2,
+                            aief::Mode::quadtree_entropy}) {
       for (int threads : {1, 2}) {
         aief::ExtractorOptions options = aief::options_for_mode(mode);
         options.kernels = set;
         options.threads = threads;
         const aief::Features features = aief::Extractor(options).extract(image.view());
-        std::printf("%s, %d thread(s): %zu keypoints, hash %016llx\n", std::string(aief::to_string(mode)).c_str(), threads,
-                    features.keypoints.size(), static_cast<unsigned long long>(aief::test::features_hash(features)));
+        std::printf("%s, %d thread(s): %zu keypoints, hash %016llx\n",
+                    std::string(aief::to_string(mode)).c_str(), threads, features.keypoints.size(),
+                    static_cast<unsigned long long>(aief::test::features_hash(features)));
       }
     }
   } catch (const std::exception& e) {

@@ -24,13 +24,15 @@ using test::load_sample_gray;
 
 // Scalar kernels that count their work.
 struct Counts {
-  std::atomic<long long> resized_rows{0}, blurred_rows{0}, histogram_pixels{0}, scored_pixels{0}, oriented{0}, described{0};
+  std::atomic<long long> resized_rows{0}, blurred_rows{0}, histogram_pixels{0}, scored_pixels{0},
+      oriented{0}, described{0};
 } counts;
 
 KernelTable counting_kernels() {
   KernelTable table;
   table.name = "counting";
-  table.resize_bilinear_rows = [](ImageView src, const ResizePlan& plan, MutableImageView dst, int y0, int y1) {
+  table.resize_bilinear_rows = [](ImageView src, const ResizePlan& plan, MutableImageView dst,
+                                  int y0, int y1) {
     counts.resized_rows += y1 - y0;
     resize_bilinear_rows_scalar(src, plan, dst, y0, y1);
   };
@@ -38,19 +40,23 @@ KernelTable counting_kernels() {
     counts.blurred_rows += y1 - y0;
     gaussian7_rows_scalar(src, dst, y0, y1, x0, x1);
   };
-  table.accumulate_histogram = [](const std::uint8_t* data, std::ptrdiff_t stride, int w, int h, std::uint32_t* hist) {
+  table.accumulate_histogram = [](const std::uint8_t* data, std::ptrdiff_t stride, int w, int h,
+                                  std::uint32_t* hist) {
     counts.histogram_pixels += static_cast<long long>(w) * h;
     accumulate_histogram_scalar(data, stride, w, h, hist);
   };
-  table.fast9_scores_row = [](const std::uint8_t* row, std::ptrdiff_t stride, int x0, int x1, int t, std::uint8_t* scores) {
+  table.fast9_scores_row = [](const std::uint8_t* row, std::ptrdiff_t stride, int x0, int x1, int t,
+                              std::uint8_t* scores) {
     counts.scored_pixels += x1 - x0;
     fast9_scores_row_scalar(row, stride, x0, x1, t, scores);
   };
-  table.ic_moments = [](ImageView level, const PixelPoint* points, int n, std::int32_t* m10, std::int32_t* m01) {
+  table.ic_moments = [](ImageView level, const PixelPoint* points, int n, std::int32_t* m10,
+                        std::int32_t* m01) {
     counts.oriented += n;
     ic_moments_scalar(level, points, n, m10, m01);
   };
-  table.rbrief_describe = [](ImageView blurred, const PixelPoint* points, const float* angles, int n, std::uint8_t* out) {
+  table.rbrief_describe = [](ImageView blurred, const PixelPoint* points, const float* angles,
+                             int n, std::uint8_t* out) {
     counts.described += n;
     rbrief_describe_scalar(blurred, points, angles, n, out);
   };
@@ -79,19 +85,22 @@ TEST(AdaptiveSweep, ChoosesTheBestEligibleThresholdOfItsCurve) {
     const SweepPoint& point = result.curve[i];
     EXPECT_NEAR(point.threshold, sweep.step * static_cast<double>(i), 1e-9);
     if (i > 0) {
-      EXPECT_LE(point.kept_blocks, result.curve[i - 1].kept_blocks) << "the mask only shrinks as F grows";
+      EXPECT_LE(point.kept_blocks, result.curve[i - 1].kept_blocks)
+          << "the mask only shrinks as F grows";
     }
     if (point.putative > 0) {
       EXPECT_DOUBLE_EQ(point.cmr, static_cast<double>(point.inliers) / point.putative);
     }
     if (!point.eligible) continue;
-    EXPECT_TRUE(point.cmr < chosen.cmr || (point.cmr == chosen.cmr && point.inliers <= chosen.inliers))
+    EXPECT_TRUE(point.cmr < chosen.cmr ||
+                (point.cmr == chosen.cmr && point.inliers <= chosen.inliers))
         << "threshold " << point.threshold << " beats the chosen " << chosen.threshold;
   }
   EXPECT_EQ(static_cast<int>(result.features_a.keypoints.size()), chosen.keypoints_a);
   EXPECT_EQ(static_cast<int>(result.matches.size()), chosen.putative);
   // The sweep matches through one distance matrix: the same matches as matching directly.
-  const std::vector<Match> direct = match_descriptors(result.features_a.descriptors, result.features_b.descriptors, sweep.match);
+  const std::vector<Match> direct =
+      match_descriptors(result.features_a.descriptors, result.features_b.descriptors, sweep.match);
   ASSERT_EQ(direct.size(), result.matches.size());
   for (std::size_t k = 0; k < direct.size(); ++k) {
     EXPECT_EQ(direct[k].query, result.matches[k].query);
@@ -113,7 +122,8 @@ TEST(AdaptiveSweep, EachThresholdEqualsAnIndependentExtraction) {
     options.entropy_threshold = point.threshold;
     const Features independent = extract(view_of(a), options);
     if (independent.info.threshold_lowered) continue;  // the single-frame rule changed F
-    EXPECT_EQ(static_cast<int>(independent.keypoints.size()), point.keypoints_a) << "F = " << point.threshold;
+    EXPECT_EQ(static_cast<int>(independent.keypoints.size()), point.keypoints_a)
+        << "F = " << point.threshold;
     EXPECT_EQ(independent.info.blocks_kept, point.kept_blocks) << "F = " << point.threshold;
     ++compared;
   }
@@ -150,48 +160,58 @@ TEST(AdaptiveSweep, ReadsEveryPixelOnceWhateverTheNumberOfThresholds) {
   // other levels once. Blur: each usable level at most once per image.
   long long expected_histogram = 0, level_rows = 0;
   for (const cv::Mat* image : {&a, &b}) {
-    const std::vector<LevelGeometry> levels = level_geometry(image->cols, image->rows, ExtractorOptions{});
+    const std::vector<LevelGeometry> levels =
+        level_geometry(image->cols, image->rows, ExtractorOptions{});
     for (std::size_t n = 0; n < levels.size(); ++n) {
       if (levels[n].grid.count() == 0) continue;
       level_rows += levels[n].height;
       expected_histogram += n == 0 ? static_cast<long long>(image->total())
-                                   : static_cast<long long>(levels[n].width - 2 * kEdgeBorder) * (levels[n].height - 2 * kEdgeBorder);
+                                   : static_cast<long long>(levels[n].width - 2 * kEdgeBorder) *
+                                         (levels[n].height - 2 * kEdgeBorder);
     }
   }
   EXPECT_EQ(counts.histogram_pixels, expected_histogram);
   EXPECT_LE(counts.blurred_rows, level_rows);
   EXPECT_EQ(counts.oriented, counts.described);
   long long distinct_upper_bound = 0;
-  for (const SweepPoint& point : fine.curve) distinct_upper_bound = std::max<long long>(distinct_upper_bound, point.keypoints_a + point.keypoints_b);
+  for (const SweepPoint& point : fine.curve)
+    distinct_upper_bound =
+        std::max<long long>(distinct_upper_bound, point.keypoints_a + point.keypoints_b);
   EXPECT_LE(counts.described, 4 * distinct_upper_bound) << "descriptors recomputed per threshold";
 }
 
 bool same_result(const AdaptResult& x, const AdaptResult& y) {
-  if (x.found != y.found || x.threshold != y.threshold || x.chosen_index != y.chosen_index || x.curve.size() != y.curve.size())
+  if (x.found != y.found || x.threshold != y.threshold || x.chosen_index != y.chosen_index ||
+      x.curve.size() != y.curve.size())
     return false;
   for (std::size_t i = 0; i < x.curve.size(); ++i) {
     const SweepPoint &p = x.curve[i], &q = y.curve[i];
-    if (p.threshold != q.threshold || p.kept_blocks != q.kept_blocks || p.kept_blocks_b != q.kept_blocks_b ||
-        p.keypoints_a != q.keypoints_a || p.keypoints_b != q.keypoints_b || p.putative != q.putative ||
-        p.inliers != q.inliers || p.cmr != q.cmr || p.eligible != q.eligible)
+    if (p.threshold != q.threshold || p.kept_blocks != q.kept_blocks ||
+        p.kept_blocks_b != q.kept_blocks_b || p.keypoints_a != q.keypoints_a ||
+        p.keypoints_b != q.keypoints_b || p.putative != q.putative || p.inliers != q.inliers ||
+        p.cmr != q.cmr || p.eligible != q.eligible)
       return false;
   }
-  if (!same_bytes(x.features_a, y.features_a) || !same_bytes(x.features_b, y.features_b)) return false;
+  if (!same_bytes(x.features_a, y.features_a) || !same_bytes(x.features_b, y.features_b))
+    return false;
   if (x.matches.size() != y.matches.size()) return false;
   for (std::size_t k = 0; k < x.matches.size(); ++k)
     if (x.matches[k].query != y.matches[k].query || x.matches[k].train != y.matches[k].train ||
         x.matches[k].distance != y.matches[k].distance)
       return false;
   return x.homography.found == y.homography.found && x.homography.H == y.homography.H &&
-         x.homography.inlier_mask == y.homography.inlier_mask && x.homography.inliers == y.homography.inliers;
+         x.homography.inlier_mask == y.homography.inlier_mask &&
+         x.homography.inliers == y.homography.inliers;
 }
 
 // One AdaptiveSweep run on pair after pair (two sizes, back and forth) answers each pair as a
 // fresh sweep does, under every kernel set and at one and two threads: nothing of one pair
 // leaks into the next, and the thread count changes nothing.
 TEST(AdaptiveSweep, ReusedOverPairsEqualsAFreshSweepAtEveryKernelSetAndThreadCount) {
-  const cv::Mat graf1 = load_sample_gray("graf", "img1.png"), graf2 = load_sample_gray("graf", "img2.png");
-  const cv::Mat boat1 = load_sample_gray("boat", "img1.png"), boat2 = load_sample_gray("boat", "img2.png");
+  const cv::Mat graf1 = load_sample_gray("graf", "img1.png"),
+                graf2 = load_sample_gray("graf", "img2.png");
+  const cv::Mat boat1 = load_sample_gray("boat", "img1.png"),
+                boat2 = load_sample_gray("boat", "img2.png");
   SweepOptions sweep;
   sweep.step = 0.8;  // a quarter of the thresholds (10 on graf), same code paths
   ExtractorOptions reference;
@@ -219,11 +239,13 @@ TEST(AdaptiveSweep, ReusedOverPairsEqualsAFreshSweepAtEveryKernelSetAndThreadCou
   }
 }
 
-double largest_run_cost(const std::vector<double>& fresh, const std::vector<double>& incremental, const std::vector<int>& begin) {
+double largest_run_cost(const std::vector<double>& fresh, const std::vector<double>& incremental,
+                        const std::vector<int>& begin) {
   double largest = 0;
   for (std::size_t r = 0; r + 1 < begin.size(); ++r) {
     double cost = fresh[static_cast<std::size_t>(begin[r])];
-    for (int k = begin[r] + 1; k < begin[r + 1]; ++k) cost += incremental[static_cast<std::size_t>(k)];
+    for (int k = begin[r] + 1; k < begin[r + 1]; ++k)
+      cost += incremental[static_cast<std::size_t>(k)];
     largest = std::max(largest, cost);
   }
   return largest;
@@ -240,10 +262,14 @@ TEST(BalancedRuns, CutsWhereTheWorkIsEvenNotTheCount) {
 
 TEST(BalancedRuns, EqualsTheBestOfEveryCutOnRandomCosts) {
   std::uint64_t state = 7;
-  const auto next = [&] { return static_cast<double>((state = state * 6364136223846793005ull + 1442695040888963407ull) >> 54); };
+  const auto next = [&] {
+    return static_cast<double>((state = state * 6364136223846793005ull + 1442695040888963407ull) >>
+                               54);
+  };
   for (int trial = 0; trial < 200; ++trial) {
     const int n = 1 + trial % 9;
-    std::vector<double> fresh(static_cast<std::size_t>(n)), incremental(static_cast<std::size_t>(n));
+    std::vector<double> fresh(static_cast<std::size_t>(n)),
+        incremental(static_cast<std::size_t>(n));
     for (int k = 0; k < n; ++k) {
       incremental[static_cast<std::size_t>(k)] = next();
       fresh[static_cast<std::size_t>(k)] = incremental[static_cast<std::size_t>(k)] + next();
@@ -253,7 +279,8 @@ TEST(BalancedRuns, EqualsTheBestOfEveryCutOnRandomCosts) {
       ASSERT_EQ(begin.size(), static_cast<std::size_t>(runs) + 1);
       EXPECT_EQ(begin.front(), 0);
       EXPECT_EQ(begin.back(), n);
-      for (int r = 0; r < runs; ++r) EXPECT_LT(begin[static_cast<std::size_t>(r)], begin[static_cast<std::size_t>(r) + 1]);
+      for (int r = 0; r < runs; ++r)
+        EXPECT_LT(begin[static_cast<std::size_t>(r)], begin[static_cast<std::size_t>(r) + 1]);
       // Every cut into `runs` non-empty runs, by bit mask of run starts.
       double best = std::numeric_limits<double>::infinity();
       for (unsigned mask = 0; mask < (1u << n); ++mask) {

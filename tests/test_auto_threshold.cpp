@@ -22,15 +22,17 @@ TEST(AutoThreshold, SplitsTwoPopulationsBetweenThem) {
   std::mt19937 rng(1);
   std::normal_distribution<double> flat(1.5, 0.3), textured(6.5, 0.4);
   std::vector<double> entropies;
-  for (int i = 0; i < 200; ++i) entropies.push_back(flat(rng));   // 20% flat blocks
+  for (int i = 0; i < 200; ++i) entropies.push_back(flat(rng));  // 20% flat blocks
   for (int i = 0; i < 800; ++i) entropies.push_back(textured(rng));
   for (const bool require_two_classes : {false, true}) {
     std::vector<double> copy = entropies;
     const AutoThreshold split = auto_entropy_threshold(copy, require_two_classes);
     const double threshold = split.threshold_bits;
     // Every flat block dropped, every textured one kept.
-    EXPECT_EQ(kept(std::vector<double>(entropies.begin(), entropies.begin() + 200), threshold), 0) << "F = " << threshold;
-    EXPECT_EQ(kept(std::vector<double>(entropies.begin() + 200, entropies.end()), threshold), 800) << "F = " << threshold;
+    EXPECT_EQ(kept(std::vector<double>(entropies.begin(), entropies.begin() + 200), threshold), 0)
+        << "F = " << threshold;
+    EXPECT_EQ(kept(std::vector<double>(entropies.begin() + 200, entropies.end()), threshold), 800)
+        << "F = " << threshold;
     EXPECT_GT(split.effectiveness, 0.9);  // two distinct populations
   }
 }
@@ -42,7 +44,7 @@ TEST(AutoThreshold, KeepsThreeQuartersOfAnEvenlyTexturedScene) {
   for (int i = 0; i < 1000; ++i) entropies.push_back(texture(rng));
   std::vector<double> copy = entropies;
   const double threshold = auto_entropy_threshold(copy, false).threshold_bits;
-  EXPECT_GT(threshold, 5.0);  // Otsu alone cuts through the texture ...
+  EXPECT_GT(threshold, 5.0);                   // Otsu alone cuts through the texture ...
   EXPECT_GE(kept(entropies, threshold), 750);  // ... a quarter at most
 }
 
@@ -132,7 +134,8 @@ TEST(AutoThreshold, FrameWithASmoothPartDropsIt) {
   cv::Mat gray = test::load_sample_gray("graf", "img1.png").clone();
   const int ramp_end = gray.cols / 5;
   for (int y = 0; y < gray.rows; ++y)
-    for (int x = 0; x < ramp_end; ++x) gray.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(60 + x / 8);
+    for (int x = 0; x < ramp_end; ++x)
+      gray.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(60 + x / 8);
   ExtractorOptions options;
   options.auto_threshold = true;
   const Features features = extract(view_of(gray), options);

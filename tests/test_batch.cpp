@@ -2,9 +2,9 @@
 // '..', '%'), resumes after kill -9 (no half-written output, nothing redone, stale temporaries
 // removed, an output of another input redone), skips a corrupt image with its reason, shards
 // split a collection exactly.
+#include <fcntl.h>
 #include <csignal>
 #include <cstdlib>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -13,10 +13,10 @@
 #include <thread>
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "io/features_files.hpp"
 #include "io/json_writer.hpp"
@@ -37,7 +37,8 @@ std::set<std::string> files_below(const fs::path& folder, const std::string& ext
   if (fs::exists(folder))
     for (const auto& entry : fs::recursive_directory_iterator(folder))
       if (entry.is_regular_file() && entry.path().string().size() > extension.size() &&
-          entry.path().string().compare(entry.path().string().size() - extension.size(), extension.size(), extension) == 0)
+          entry.path().string().compare(entry.path().string().size() - extension.size(),
+                                        extension.size(), extension) == 0)
         names.insert(entry.path().lexically_relative(folder).generic_string());
   return names;
 }
@@ -92,7 +93,8 @@ std::string text_of(const fs::path& path) {
 }
 
 // Runs a batch to the end; returns the exit status, and its stdout in `report`.
-int run_batch(const std::vector<std::string>& arguments, const fs::path& scratch, std::string* report = nullptr) {
+int run_batch(const std::vector<std::string>& arguments, const fs::path& scratch,
+              std::string* report = nullptr) {
   const fs::path log = scratch / "batch.log";
   const int status = wait_for(start(arguments, log));
   if (report) *report = text_of(log);
@@ -110,20 +112,24 @@ void expect_output_of(const fs::path& output, const std::string& name, const fs:
   EXPECT_EQ(static_cast<double>(file["source"]["bytes"]), static_cast<double>(fs::file_size(path)));
   EXPECT_GT(file["keypoints"].size(), 10u);
   EXPECT_EQ(file["keypoints"].size(), file["descriptors_hex"].size());
-  EXPECT_TRUE(aief::io::features_file_belongs_to(output.string(), aief::io::source_record_of(path.string(), name)));
+  EXPECT_TRUE(aief::io::features_file_belongs_to(output.string(),
+                                                 aief::io::source_record_of(path.string(), name)));
 }
 
 TEST(Batch, ResumesAfterBeingKilledHalfway) {
   BatchFolder folder;
-  const std::vector<std::string> args = {"extract", "--batch", folder.images.string(), "-o", folder.out.string(), "--threads", "1"};
+  const std::vector<std::string> args = {
+      "extract", "--batch", folder.images.string(), "-o", folder.out.string(), "--threads", "1"};
   const pid_t pid = start(args);
   ASSERT_GT(pid, 0);
-  for (int i = 0; i < 2000 && folder.outputs().size() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  for (int i = 0; i < 2000 && folder.outputs().size() < 3; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   kill(pid, SIGKILL);
   wait_for(pid);
   const std::set<std::string> before = folder.outputs();
   ASSERT_GE(before.size(), 3u);
-  ASSERT_LT(before.size(), static_cast<std::size_t>(folder.count)) << "the run finished before it could be killed";
+  ASSERT_LT(before.size(), static_cast<std::size_t>(folder.count))
+      << "the run finished before it could be killed";
   for (const std::string& name : before) {
     const std::string text = text_of(folder.out / name);
     EXPECT_EQ(text.rfind("]\n}\n"), text.size() - 4) << name << " is a half file";
@@ -131,11 +137,13 @@ TEST(Batch, ResumesAfterBeingKilledHalfway) {
   std::map<std::string, fs::file_time_type> stamps;
   for (const std::string& name : before) stamps[name] = fs::last_write_time(folder.out / name);
 
-  // The second run finishes the job, leaves the first run's outputs alone, reports the broken image.
+  // The second run finishes the job, leaves the first run's outputs alone, reports the broken
+  // image.
   EXPECT_EQ(run_batch(args, folder.root), 1) << "a failed image makes the exit status 1";
   const std::set<std::string> after = folder.outputs();
   EXPECT_EQ(after.size(), static_cast<std::size_t>(folder.count));
-  for (const auto& [name, stamp] : stamps) EXPECT_EQ(fs::last_write_time(folder.out / name), stamp) << name << " was redone";
+  for (const auto& [name, stamp] : stamps)
+    EXPECT_EQ(fs::last_write_time(folder.out / name), stamp) << name << " was redone";
   for (const auto& entry : fs::recursive_directory_iterator(folder.images)) {
     if (!entry.is_regular_file() || entry.path().filename() == "broken.png") continue;
     const std::string name = entry.path().lexically_relative(folder.images).generic_string();
@@ -151,20 +159,24 @@ TEST(Batch, CollidingSpellingsGetOneOutputEach) {
   // onto five outputs for twelve inputs, and called the missing ones "already done".
   const aief::test::TempFolder temp("aief_batch");
   const fs::path images = temp.path() / "images", out = temp.path() / "out";
-  const std::vector<std::string> names = {"a.png",     "a.jpg",       "a.PNG",      "sub/x.png", "sub__x.png", "_c.png",
-                                          "c.png",     ".c.png",      "__c.png",    "d/e/f.png", "d__e/f.png", "d/e__f.png"};
+  const std::vector<std::string> names = {"a.png",      "a.jpg",     "a.PNG",      "sub/x.png",
+                                          "sub__x.png", "_c.png",    "c.png",      ".c.png",
+                                          "__c.png",    "d/e/f.png", "d__e/f.png", "d/e__f.png"};
   const char* const sources[] = {"graf", "boat", "leuven"};
   for (std::size_t i = 0; i < names.size(); ++i) {
     fs::create_directories((images / names[i]).parent_path());
     const cv::Mat image = aief::test::load_sample_gray(sources[i % 3], "img1.png");
-    ASSERT_TRUE(cv::imwrite((images / names[i]).string(), image(cv::Rect(0, 0, 300 + 10 * static_cast<int>(i), 200))));
+    ASSERT_TRUE(cv::imwrite((images / names[i]).string(),
+                            image(cv::Rect(0, 0, 300 + 10 * static_cast<int>(i), 200))));
   }
   std::string report;
-  const std::vector<std::string> args = {"extract", "--batch", images.string(), "-o", out.string(), "--features", "100"};
+  const std::vector<std::string> args = {
+      "extract", "--batch", images.string(), "-o", out.string(), "--features", "100"};
   ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
   EXPECT_NE(report.find("12 extracted, 0 already done"), std::string::npos) << report;
   EXPECT_EQ(files_below(out, ".json").size(), names.size());
-  for (const std::string& name : names) expect_output_of(out / (name + ".json"), name, images / name);
+  for (const std::string& name : names)
+    expect_output_of(out / (name + ".json"), name, images / name);
   ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
   EXPECT_NE(report.find("0 extracted, 12 already done"), std::string::npos) << report;
 }
@@ -176,10 +188,11 @@ TEST(Batch, AnOutputFileThatWouldBeAnotherOutputsFolderIsRefusedBeforeAnyWork) {
   fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / "a.png");
   fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / "a.png.json" / "b.png");
   const fs::path log = temp.path() / "stderr.log";
-  const std::string command = std::string(AIEF_CLI_PATH) + " extract --batch " + images.string() + " -o " + out.string() +
-                              " 2> " + log.string();
+  const std::string command = std::string(AIEF_CLI_PATH) + " extract --batch " + images.string() +
+                              " -o " + out.string() + " 2> " + log.string();
   EXPECT_EQ(WEXITSTATUS(std::system(command.c_str())), 1);
-  EXPECT_NE(text_of(log).find("which is another input's output file"), std::string::npos) << text_of(log);
+  EXPECT_NE(text_of(log).find("which is another input's output file"), std::string::npos)
+      << text_of(log);
   EXPECT_TRUE(files_below(out, ".json").empty());
 }
 
@@ -187,14 +200,16 @@ TEST(Batch, SymlinksAreNamedAsListedNeverResolved) {
   // A symlink farm: links to files elsewhere, two links to one file, a linked folder, a link
   // back to the root (a cycle, not followed) and a broken link (reported).
   const aief::test::TempFolder temp("aief_batch");
-  const fs::path store = temp.path() / "store", farm = temp.path() / "farm", out = temp.path() / "out";
+  const fs::path store = temp.path() / "store", farm = temp.path() / "farm",
+                 out = temp.path() / "out";
   fs::create_directories(store / "deep");
   fs::create_directories(farm / "sub");
   const char* const sources[] = {"graf", "boat", "leuven"};
   for (int i = 0; i < 6; ++i) {
     const cv::Mat image = aief::test::load_sample_gray(sources[i % 3], "img2.png");
     const std::string number = std::to_string(i);
-    cv::imwrite((store / ("s" + number + ".png")).string(), image(cv::Rect(0, 0, 320 + 8 * i, 240)));
+    cv::imwrite((store / ("s" + number + ".png")).string(),
+                image(cv::Rect(0, 0, 320 + 8 * i, 240)));
     fs::create_symlink(store / ("s" + number + ".png"), farm / ("frame_" + number + ".png"));
   }
   fs::copy_file(store / "s0.png", store / "deep" / "s0.png");
@@ -205,13 +220,17 @@ TEST(Batch, SymlinksAreNamedAsListedNeverResolved) {
   fs::create_symlink(store / "gone.png", farm / "broken.png");
 
   std::string report;
-  EXPECT_EQ(run_batch({"extract", "--batch", farm.string(), "-o", out.string(), "--features", "100"}, temp.path(), &report), 1)
+  EXPECT_EQ(
+      run_batch({"extract", "--batch", farm.string(), "-o", out.string(), "--features", "100"},
+                temp.path(), &report),
+      1)
       << report;
   EXPECT_NE(report.find("9 extracted, 0 already done, 1 failed"), std::string::npos) << report;
   EXPECT_NE(report.find("broken.png"), std::string::npos) << report;
-  const std::set<std::string> expected = {"frame_0.png.json", "frame_1.png.json", "frame_2.png.json", "frame_3.png.json",
-                                          "frame_4.png.json", "frame_5.png.json", "sub/twin_a.png.json", "sub/twin_b.png.json",
-                                          "linked/s0.png.json"};
+  const std::set<std::string> expected = {
+      "frame_0.png.json",    "frame_1.png.json",    "frame_2.png.json",
+      "frame_3.png.json",    "frame_4.png.json",    "frame_5.png.json",
+      "sub/twin_a.png.json", "sub/twin_b.png.json", "linked/s0.png.json"};
   EXPECT_EQ(files_below(out, ".json"), expected);
   expect_output_of(out / "sub/twin_b.png.json", "sub/twin_b.png", farm / "sub" / "twin_b.png");
   expect_output_of(out / "linked/s0.png.json", "linked/s0.png", farm / "linked" / "s0.png");
@@ -225,18 +244,26 @@ TEST(Batch, ListNamesWithDotsAbsolutePathsAndPercentStayDistinctInsideTheOutputF
     fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / name);
   // Lines relative to the working folder and absolute ones; "./x" and "x" are one input.
   const fs::path list = temp.path() / "work" / "list.txt";
-  std::ofstream(list) << "images/a.png\n./images/a.png\nimages/%2E%2E/a.png\nimages/%25.png\nimages/%.png\n"
-                      << (images / "a.png").string() << "\nimages/../images/a.png\n";
+  std::ofstream(list)
+      << "images/a.png\n./images/a.png\nimages/%2E%2E/a.png\nimages/%25.png\nimages/%.png\n"
+      << (images / "a.png").string() << "\nimages/../images/a.png\n";
   std::string report;
   const fs::path previous = fs::current_path();
   fs::current_path(temp.path() / "work");
-  const int status = run_batch({"extract", "--batch", list.string(), "-o", out.string(), "--features", "100"}, temp.path(), &report);
+  const int status =
+      run_batch({"extract", "--batch", list.string(), "-o", out.string(), "--features", "100"},
+                temp.path(), &report);
   fs::current_path(previous);
   ASSERT_EQ(status, 0) << report;
   EXPECT_NE(report.find("6 extracted"), std::string::npos) << report;
-  const std::string absolute = (fs::path("%2F") / images.relative_path() / "a.png.json").generic_string();
-  const std::set<std::string> expected = {"images/a.png.json", "images/%252E%252E/a.png.json", "images/%2525.png.json",
-                                          "images/%25.png.json", absolute, "images/%2E%2E/images/a.png.json"};
+  const std::string absolute =
+      (fs::path("%2F") / images.relative_path() / "a.png.json").generic_string();
+  const std::set<std::string> expected = {"images/a.png.json",
+                                          "images/%252E%252E/a.png.json",
+                                          "images/%2525.png.json",
+                                          "images/%25.png.json",
+                                          absolute,
+                                          "images/%2E%2E/images/a.png.json"};
   EXPECT_EQ(files_below(out, ".json"), expected);
   for (const auto& entry : fs::recursive_directory_iterator(temp.path())) {
     if (entry.path().extension() == ".json") {
@@ -254,7 +281,8 @@ TEST(Batch, ResumeRedoesOutputsOfOtherInputsAndRemovesStaleTemporaries) {
   fs::copy_file(aief::test::sample_path("leuven", "img1.png"), images / "sub" / "cut.png");
   fs::copy_file(aief::test::sample_path("graf", "img2.png"), images / "planted.png");
   std::ofstream(images / "broken.png") << "not an image";
-  const std::vector<std::string> args = {"extract", "--batch", images.string(), "-o", out.string(), "--features", "100"};
+  const std::vector<std::string> args = {
+      "extract", "--batch", images.string(), "-o", out.string(), "--features", "100"};
   std::string report;
   ASSERT_EQ(run_batch(args, temp.path(), &report), 1) << report;
   ASSERT_NE(report.find("4 extracted"), std::string::npos) << report;
@@ -262,10 +290,12 @@ TEST(Batch, ResumeRedoesOutputsOfOtherInputsAndRemovesStaleTemporaries) {
 
   // A new image under an old name; an output cut short; an output of another input copied in;
   // an output from another run beside a now broken input; temporaries a killed run left.
-  fs::copy_file(aief::test::sample_path("leuven", "img2.png"), images / "changed.png", fs::copy_options::overwrite_existing);
+  fs::copy_file(aief::test::sample_path("leuven", "img2.png"), images / "changed.png",
+                fs::copy_options::overwrite_existing);
   const std::string cut = text_of(out / "sub" / "cut.png.json");
   std::ofstream(out / "sub" / "cut.png.json") << cut.substr(0, cut.size() / 2);
-  fs::copy_file(out / "kept.png.json", out / "planted.png.json", fs::copy_options::overwrite_existing);
+  fs::copy_file(out / "kept.png.json", out / "planted.png.json",
+                fs::copy_options::overwrite_existing);
   fs::copy_file(out / "kept.png.json", out / "broken.png.json");
   for (const char* stale : {"sub/cut.png.json", "broken.png.json", "kept.png.json"})
     std::ofstream(aief::io::temporary_path_of((out / stale).string())) << "half";
@@ -277,7 +307,8 @@ TEST(Batch, ResumeRedoesOutputsOfOtherInputsAndRemovesStaleTemporaries) {
   EXPECT_EQ(fs::last_write_time(out / "kept.png.json"), kept_stamp);
   for (const char* name : {"changed.png", "kept.png", "sub/cut.png", "planted.png"})
     expect_output_of(out / (std::string(name) + ".json"), name, images / name);
-  EXPECT_FALSE(fs::exists(out / "broken.png.json")) << "an output of another input beside a failure";
+  EXPECT_FALSE(fs::exists(out / "broken.png.json"))
+      << "an output of another input beside a failure";
   EXPECT_TRUE(files_below(out, ".tmp").empty());
 }
 
@@ -290,8 +321,9 @@ TEST(Batch, EveryFilePerImageFormatResumesOnlyItsOwnInput) {
   for (const char* format : {"json", "yml", "npz"}) {
     SCOPED_TRACE(format);
     const fs::path out = temp.path() / format;
-    const std::vector<std::string> args = {"extract", "--batch", images.string(), "-o", out.string(), "--format", format,
-                                           "--features", "100"};
+    const std::vector<std::string> args = {"extract", "--batch",    images.string(),
+                                           "-o",      out.string(), "--format",
+                                           format,    "--features", "100"};
     std::string report;
     ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
     EXPECT_NE(report.find("2 extracted, 0 already done"), std::string::npos) << report;
@@ -299,13 +331,17 @@ TEST(Batch, EveryFilePerImageFormatResumesOnlyItsOwnInput) {
     ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
     EXPECT_NE(report.find("0 extracted, 2 already done"), std::string::npos) << report;
     // The other image under the first one's name: its output no longer belongs, and is redone.
-    fs::copy_file(aief::test::sample_path("leuven", "img1.png"), images / "sub" / "a.png", fs::copy_options::overwrite_existing);
+    fs::copy_file(aief::test::sample_path("leuven", "img1.png"), images / "sub" / "a.png",
+                  fs::copy_options::overwrite_existing);
     ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
     EXPECT_NE(report.find("1 extracted (1 replacing"), std::string::npos) << report;
     const std::string output = (out / "sub" / (std::string("a.png.") + format)).string();
-    EXPECT_TRUE(aief::io::features_file_belongs_to(output, aief::io::source_record_of((images / "sub" / "a.png").string(), "sub/a.png")));
-    EXPECT_FALSE(aief::io::features_file_belongs_to(output, aief::io::source_record_of((images / "sub__a.png").string(), "sub/a.png")));
-    fs::copy_file(aief::test::sample_path("graf", "img1.png"), images / "sub" / "a.png", fs::copy_options::overwrite_existing);
+    EXPECT_TRUE(aief::io::features_file_belongs_to(
+        output, aief::io::source_record_of((images / "sub" / "a.png").string(), "sub/a.png")));
+    EXPECT_FALSE(aief::io::features_file_belongs_to(
+        output, aief::io::source_record_of((images / "sub__a.png").string(), "sub/a.png")));
+    fs::copy_file(aief::test::sample_path("graf", "img1.png"), images / "sub" / "a.png",
+                  fs::copy_options::overwrite_existing);
   }
 }
 
@@ -319,15 +355,16 @@ TEST(Batch, H5ResumeRedoesTheGroupOfAChangedFileAndDropsTheGroupOfABrokenOne) {
   fs::copy_file(aief::test::sample_path("graf", "img1.png"), images / "changed.png");
   fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / "kept.png");
   fs::copy_file(aief::test::sample_path("leuven", "img1.png"), images / "breaks.png");
-  const std::vector<std::string> args = {"extract", "--batch", images.string(), "-o", h5.string(), "--format", "h5",
-                                         "--features", "100"};
+  const std::vector<std::string> args = {"extract",  "--batch", images.string(), "-o", h5.string(),
+                                         "--format", "h5",      "--features",    "100"};
   std::string report;
   ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
   ASSERT_NE(report.find("3 extracted, 0 already done"), std::string::npos) << report;
   ASSERT_EQ(run_batch(args, temp.path(), &report), 0) << report;
   EXPECT_NE(report.find("0 extracted, 3 already done"), std::string::npos) << report;
 
-  fs::copy_file(aief::test::sample_path("leuven", "img2.png"), images / "changed.png", fs::copy_options::overwrite_existing);
+  fs::copy_file(aief::test::sample_path("leuven", "img2.png"), images / "changed.png",
+                fs::copy_options::overwrite_existing);
   std::ofstream(images / "breaks.png", std::ios::trunc) << "not an image any more";
   ASSERT_EQ(run_batch(args, temp.path(), &report), 1) << report;
   EXPECT_NE(report.find("1 extracted (1 replacing"), std::string::npos) << report;
@@ -336,7 +373,9 @@ TEST(Batch, H5ResumeRedoesTheGroupOfAChangedFileAndDropsTheGroupOfABrokenOne) {
   const aief::io::Hdf5File file(h5.string(), aief::io::Hdf5File::Mode::read);
   EXPECT_EQ(file.feature_names(), (std::vector<std::string>{"changed.png", "kept.png"}));
   for (const char* name : {"changed.png", "kept.png"})
-    EXPECT_TRUE(file.features_belong_to(name, aief::io::source_record_of((images / name).string(), name))) << name;
+    EXPECT_TRUE(
+        file.features_belong_to(name, aief::io::source_record_of((images / name).string(), name)))
+        << name;
   const cv::Mat changed = cv::imread((images / "changed.png").string(), cv::IMREAD_GRAYSCALE);
   const aief::Features features = file.read_features("changed.png");
   EXPECT_EQ(features.image_width, changed.cols);
@@ -350,8 +389,8 @@ TEST(Batch, ShardsSplitTheCollectionExactly) {
   std::size_t total = 0;
   for (int shard = 0; shard < 3; ++shard) {
     const fs::path out = folder.root / ("shard" + std::to_string(shard));
-    run_batch({"extract", "--batch", folder.images.string(), "-o", out.string(), "--shard", std::to_string(shard) + "/3",
-               "--features", "100"},
+    run_batch({"extract", "--batch", folder.images.string(), "-o", out.string(), "--shard",
+               std::to_string(shard) + "/3", "--features", "100"},
               folder.root);
     for (const std::string& name : files_below(out, ".json")) {
       seen.insert(name);

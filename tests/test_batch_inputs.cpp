@@ -8,8 +8,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <sys/types.h>
 #include <sys/stat.h>
+#include <sys/types.h>
 
 #include "aief/error.hpp"
 #include "io/batch_inputs.hpp"
@@ -46,13 +46,16 @@ TEST(BatchInputs, AFolderGivesItsImagesByPathBelowItFollowingFolderLinksButNotCy
   const fs::path root = temp.path() / "images", elsewhere = temp.path() / "elsewhere";
   fs::create_directories(root / "sub");
   fs::create_directories(elsewhere);
-  for (const char* name : {"b.PNG", "a.jpg", "sub/c.tiff", "notes.txt", "sub/d.json"}) touch(root / name);
+  for (const char* name : {"b.PNG", "a.jpg", "sub/c.tiff", "notes.txt", "sub/d.json"})
+    touch(root / name);
   touch(elsewhere / "e.png");
-  fs::create_directory_symlink(elsewhere, root / "linked");        // followed, named as listed
-  fs::create_directory_symlink(root, root / "sub" / "loop");       // a cycle: not followed
-  fs::create_symlink(temp.path() / "missing.png", root / "gone.png");  // broken: listed, reported when read
+  fs::create_directory_symlink(elsewhere, root / "linked");   // followed, named as listed
+  fs::create_directory_symlink(root, root / "sub" / "loop");  // a cycle: not followed
+  fs::create_symlink(temp.path() / "missing.png",
+                     root / "gone.png");  // broken: listed, reported when read
   const std::vector<BatchInput> inputs = aief::io::list_batch_inputs(root.string());
-  EXPECT_EQ(names_of(inputs), (std::vector<std::string>{"a.jpg", "b.PNG", "gone.png", "linked/e.png", "sub/c.tiff"}));
+  EXPECT_EQ(names_of(inputs),
+            (std::vector<std::string>{"a.jpg", "b.PNG", "gone.png", "linked/e.png", "sub/c.tiff"}));
   EXPECT_EQ(inputs[3].path, (root / "linked" / "e.png").string());
 }
 
@@ -61,9 +64,11 @@ TEST(BatchInputs, AListGivesItsLinesAsNamesSortedOnceEach) {
   const std::string list = temp.file("list.txt");
   std::ofstream(list) << "./z.png\r\n# a comment\n\nsub//./y.png  \n/abs/x.png\nz.png\nlast.png";
   const std::vector<BatchInput> inputs = aief::io::list_batch_inputs(list);
-  EXPECT_EQ(names_of(inputs), (std::vector<std::string>{"/abs/x.png", "last.png", "sub/y.png", "z.png"}));
+  EXPECT_EQ(names_of(inputs),
+            (std::vector<std::string>{"/abs/x.png", "last.png", "sub/y.png", "z.png"}));
   EXPECT_EQ(inputs[2].path, "sub//./y.png");
-  EXPECT_EQ(aief::io::name_of_listed_path("a/../b.png"), "a/../b.png");  // ".." stays: the output names escape it
+  EXPECT_EQ(aief::io::name_of_listed_path("a/../b.png"),
+            "a/../b.png");  // ".." stays: the output names escape it
 }
 
 TEST(BatchInputs, ShardsSplitTheSortedListExactly) {
@@ -80,15 +85,19 @@ TEST(BatchOutputNames, MirrorFoldersAndEscapeOneToOneInsideTheOutputFolder) {
   EXPECT_EQ(batch_output_path("out", "/abs/x.png", "npz"), "out/%2F/abs/x.png.npz");
   EXPECT_EQ(batch_output_path("out", "../x.png", "yml"), "out/%2E%2E/x.png.yml");
   EXPECT_EQ(batch_output_path("out", "%2E%2E/x.png", "yml"), "out/%252E%252E/x.png.yml");
-  EXPECT_NE(batch_output_path("out", "a/b.png", "json"), batch_output_path("out", "a__b.png", "json"));
+  EXPECT_NE(batch_output_path("out", "a/b.png", "json"),
+            batch_output_path("out", "a__b.png", "json"));
 }
 
 TEST(BatchOutputNames, AnOutputThatWouldBeAnotherOutputsFolderIsRefusedNamingBoth) {
-  const std::vector<BatchInput> nesting = {{"a.png", "a.png"}, {"a.png.json/b.png", "a.png.json/b.png"}};
-  const std::string message = error_of([&] { aief::io::check_batch_outputs_do_not_nest(nesting, "out", "json"); });
+  const std::vector<BatchInput> nesting = {{"a.png", "a.png"},
+                                           {"a.png.json/b.png", "a.png.json/b.png"}};
+  const std::string message =
+      error_of([&] { aief::io::check_batch_outputs_do_not_nest(nesting, "out", "json"); });
   EXPECT_NE(message.find("a.png.json/b.png"), std::string::npos) << message;
   EXPECT_NE(message.find("another input's output file"), std::string::npos) << message;
-  EXPECT_EQ(error_of([&] { aief::io::check_batch_outputs_do_not_nest(nesting, "out", "npz"); }), "");
+  EXPECT_EQ(error_of([&] { aief::io::check_batch_outputs_do_not_nest(nesting, "out", "npz"); }),
+            "");
 }
 
 TEST(TextList, AFolderABinaryFileAndEndlessLinesAreRefusedNamingTheReason) {
@@ -96,20 +105,26 @@ TEST(TextList, AFolderABinaryFileAndEndlessLinesAreRefusedNamingTheReason) {
   const auto refusal = [](const std::string& path) {
     return error_of([&] { aief::io::read_text_list(path, "batch list"); });
   };
-  EXPECT_NE(refusal(temp.path().string()).find("is a folder, not a text file of names"), std::string::npos);
+  EXPECT_NE(refusal(temp.path().string()).find("is a folder, not a text file of names"),
+            std::string::npos);
   const std::vector<std::uint8_t> png = aief::test::png_declaring(64, 48);
-  std::ofstream(temp.file("image.png"), std::ios::binary).write(reinterpret_cast<const char*>(png.data()),
-                                                                 static_cast<std::streamsize>(png.size()));
-  EXPECT_NE(refusal(temp.file("image.png")).find("is a PNG image, not a text file of names"), std::string::npos)
+  std::ofstream(temp.file("image.png"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  EXPECT_NE(refusal(temp.file("image.png")).find("is a PNG image, not a text file of names"),
+            std::string::npos)
       << refusal(temp.file("image.png"));
   EXPECT_NE(refusal("/dev/zero").find("binary file"), std::string::npos) << refusal("/dev/zero");
-  std::ofstream(temp.file("long.txt")) << "a.png\n" << std::string(aief::io::longest_path() + 1, 'x') << "\n";
-  EXPECT_NE(refusal(temp.file("long.txt")).find("line 2 is longer than"), std::string::npos) << refusal(temp.file("long.txt"));
+  std::ofstream(temp.file("long.txt")) << "a.png\n"
+                                       << std::string(aief::io::longest_path() + 1, 'x') << "\n";
+  EXPECT_NE(refusal(temp.file("long.txt")).find("line 2 is longer than"), std::string::npos)
+      << refusal(temp.file("long.txt"));
   std::ofstream(temp.file("nul.txt")) << "a.png\nb" << '\0' << ".png\n" << std::string(70000, 'c');
-  EXPECT_NE(refusal(temp.file("nul.txt")).find("NUL byte"), std::string::npos) << refusal(temp.file("nul.txt"));
+  EXPECT_NE(refusal(temp.file("nul.txt")).find("NUL byte"), std::string::npos)
+      << refusal(temp.file("nul.txt"));
   EXPECT_NE(refusal(temp.file("missing.txt")).find("cannot read batch list"), std::string::npos);
   // A pairs line holds two names: twice as long is still a list.
-  std::ofstream(temp.file("pairs.txt")) << std::string(aief::io::longest_path(), 'a') << " " << std::string(100, 'b') << "\n";
+  std::ofstream(temp.file("pairs.txt"))
+      << std::string(aief::io::longest_path(), 'a') << " " << std::string(100, 'b') << "\n";
   EXPECT_EQ(aief::io::read_text_list(temp.file("pairs.txt"), "pairs file", 2).size(), 1u);
   // The batch and the pairs reader go through it.
   EXPECT_THROW(aief::io::list_batch_inputs(temp.file("image.png")), aief::Error);

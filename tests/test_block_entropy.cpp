@@ -33,7 +33,8 @@ double direct_intensity_entropy(const std::vector<std::uint8_t>& pixels) {
   return h;
 }
 
-std::vector<std::uint32_t> histogram_of(const std::vector<std::uint8_t>& pixels, int width, int height) {
+std::vector<std::uint32_t> histogram_of(const std::vector<std::uint8_t>& pixels, int width,
+                                        int height) {
   std::vector<std::uint32_t> hist(256, 0);
   accumulate_histogram_scalar(pixels.data(), width, width, height, hist.data());
   return hist;
@@ -47,8 +48,10 @@ TEST(BlockEntropy, MatchesADirectDoubleComputation) {
     std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height);
     for (std::uint8_t& p : pixels) p = static_cast<std::uint8_t>(rng() % levels);
     const std::vector<std::uint32_t> hist = histogram_of(pixels, width, height);
-    EXPECT_NEAR(histogram_entropy_bits(hist.data()), direct_histogram_entropy(pixels), 1e-6) << width << "x" << height;
-    EXPECT_NEAR(intensity_entropy_bits(hist.data()), direct_intensity_entropy(pixels), 1e-6) << width << "x" << height;
+    EXPECT_NEAR(histogram_entropy_bits(hist.data()), direct_histogram_entropy(pixels), 1e-6)
+        << width << "x" << height;
+    EXPECT_NEAR(intensity_entropy_bits(hist.data()), direct_intensity_entropy(pixels), 1e-6)
+        << width << "x" << height;
   }
 }
 
@@ -106,17 +109,26 @@ TEST(BlockEntropy, ExactForTheLargestCountsABlockOrImageCanHold) {
   // One bright value filling the largest accepted image (2^26 pixels), and the largest block
   // (1535 x 1535: block_size 1024 plus a merged short last block): the intensity sum of c * k
   // log2 k passed 2^64 at about 2 Mpx of bright pixels, so these read 29.8 bits, not log2(n).
-  for (std::uint64_t n : {static_cast<std::uint64_t>(kLargestMaxImagePixels), std::uint64_t{1535} * 1535}) {
+  for (std::uint64_t n :
+       {static_cast<std::uint64_t>(kLargestMaxImagePixels), std::uint64_t{1535} * 1535}) {
     std::vector<std::uint32_t> hist(256, 0);
     hist[255] = static_cast<std::uint32_t>(n);
-    EXPECT_NEAR(intensity_entropy_bits(hist.data()), std::log2(static_cast<double>(n)), 1e-9) << n << " pixels";
+    EXPECT_NEAR(intensity_entropy_bits(hist.data()), std::log2(static_cast<double>(n)), 1e-9)
+        << n << " pixels";
     EXPECT_EQ(histogram_entropy_bits(hist.data()), 0.0) << n << " pixels";
     // Spread over the bright half of the bins, with uneven counts.
     std::vector<std::uint64_t> counts(256, 0);
-    for (int k = 128; k < 256; ++k) counts[static_cast<std::size_t>(k)] = n / 128 - static_cast<std::uint64_t>(k % 7);
-    for (int k = 0; k < 256; ++k) hist[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(counts[static_cast<std::size_t>(k)]);
-    EXPECT_NEAR(intensity_entropy_bits(hist.data()), static_cast<double>(exact_intensity_entropy(counts)), 1e-6) << n;
-    EXPECT_NEAR(histogram_entropy_bits(hist.data()), static_cast<double>(exact_histogram_entropy(counts)), 1e-6) << n;
+    for (int k = 128; k < 256; ++k)
+      counts[static_cast<std::size_t>(k)] = n / 128 - static_cast<std::uint64_t>(k % 7);
+    for (int k = 0; k < 256; ++k)
+      hist[static_cast<std::size_t>(k)] =
+          static_cast<std::uint32_t>(counts[static_cast<std::size_t>(k)]);
+    EXPECT_NEAR(intensity_entropy_bits(hist.data()),
+                static_cast<double>(exact_intensity_entropy(counts)), 1e-6)
+        << n;
+    EXPECT_NEAR(histogram_entropy_bits(hist.data()),
+                static_cast<double>(exact_histogram_entropy(counts)), 1e-6)
+        << n;
   }
 }
 
@@ -129,13 +141,16 @@ TEST(BlockEntropy, ImageEntropyExactAtTheLargestAcceptedSizeUnderEveryKernelSet)
   std::fill_n(image.data(), static_cast<std::size_t>(kSide) * kSide, std::uint8_t{255});
   std::mt19937 rng(11);
   for (int y = 1000; y < 1600; ++y)
-    for (int x = 2000; x < 2700; ++x) image.data()[static_cast<std::size_t>(y) * kSide + x] = static_cast<std::uint8_t>(rng());
+    for (int x = 2000; x < 2700; ++x)
+      image.data()[static_cast<std::size_t>(y) * kSide + x] = static_cast<std::uint8_t>(rng());
   std::vector<std::uint64_t> counts(256, 0);
-  for (std::size_t i = 0; i < static_cast<std::size_t>(kSide) * kSide; ++i) ++counts[image.data()[i]];
+  for (std::size_t i = 0; i < static_cast<std::size_t>(kSide) * kSide; ++i)
+    ++counts[image.data()[i]];
 
   for (EntropyMeasure measure : {EntropyMeasure::histogram, EntropyMeasure::intensity}) {
-    const long double expected =
-        measure == EntropyMeasure::histogram ? exact_histogram_entropy(counts) : exact_intensity_entropy(counts);
+    const long double expected = measure == EntropyMeasure::histogram
+                                     ? exact_histogram_entropy(counts)
+                                     : exact_intensity_entropy(counts);
     ExtractorOptions options;
     options.entropy = measure;
     options.n_levels = 1;
@@ -149,7 +164,8 @@ TEST(BlockEntropy, ImageEntropyExactAtTheLargestAcceptedSizeUnderEveryKernelSet)
           << to_string(measure) << " under " << to_string(set);
       for (double block_bits : analysis.blocks(0).entropy_bits) {
         EXPECT_GE(block_bits, 0.0);
-        EXPECT_LE(block_bits, measure == EntropyMeasure::histogram ? 8.0 : std::log2(1535.0 * 1535.0));
+        EXPECT_LE(block_bits,
+                  measure == EntropyMeasure::histogram ? 8.0 : std::log2(1535.0 * 1535.0));
       }
     }
   }
@@ -158,19 +174,27 @@ TEST(BlockEntropy, ImageEntropyExactAtTheLargestAcceptedSizeUnderEveryKernelSet)
 TEST(BlockEntropy, MeasureSelection) {
   std::vector<std::uint8_t> pixels = {0, 10, 10, 200};
   const std::vector<std::uint32_t> hist = histogram_of(pixels, 4, 1);
-  EXPECT_EQ(entropy_bits(hist.data(), EntropyMeasure::histogram), histogram_entropy_bits(hist.data()));
-  EXPECT_EQ(entropy_bits(hist.data(), EntropyMeasure::intensity), intensity_entropy_bits(hist.data()));
-  EXPECT_EQ(entropy_bits(hist.data(), 4, EntropyMeasure::histogram), histogram_entropy_bits(hist.data()));
-  EXPECT_EQ(entropy_bits(hist.data(), 4, EntropyMeasure::intensity), intensity_entropy_bits(hist.data()));
+  EXPECT_EQ(entropy_bits(hist.data(), EntropyMeasure::histogram),
+            histogram_entropy_bits(hist.data()));
+  EXPECT_EQ(entropy_bits(hist.data(), EntropyMeasure::intensity),
+            intensity_entropy_bits(hist.data()));
+  EXPECT_EQ(entropy_bits(hist.data(), 4, EntropyMeasure::histogram),
+            histogram_entropy_bits(hist.data()));
+  EXPECT_EQ(entropy_bits(hist.data(), 4, EntropyMeasure::intensity),
+            intensity_entropy_bits(hist.data()));
 }
 
 TEST(BlockEntropy, GivenPixelCountEqualsTheSummedOne) {
   // Blocks (counts in the table) and a histogram past the table's 4096 counts.
-  for (const auto& [width, height] : {std::pair{32, 32}, std::pair{63, 47}, std::pair{1, 1}, std::pair{300, 200}}) {
+  for (const auto& [width, height] :
+       {std::pair{32, 32}, std::pair{63, 47}, std::pair{1, 1}, std::pair{300, 200}}) {
     std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height);
-    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<std::uint8_t>((i * 7919 + i / 13) % 97);
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+      pixels[i] = static_cast<std::uint8_t>((i * 7919 + i / 13) % 97);
     const std::vector<std::uint32_t> hist = histogram_of(pixels, width, height);
-    EXPECT_EQ(histogram_entropy_bits(hist.data(), pixels.size()), histogram_entropy_bits(hist.data())) << width << "x" << height;
+    EXPECT_EQ(histogram_entropy_bits(hist.data(), pixels.size()),
+              histogram_entropy_bits(hist.data()))
+        << width << "x" << height;
   }
 }
 

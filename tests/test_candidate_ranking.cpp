@@ -21,9 +21,9 @@ namespace aief {
 namespace {
 
 TEST(CandidateRanking, StrengthFirstThenScoreThenPosition) {
-  Candidate lone_peak{10, 10, 60};                    // strength 60
-  Candidate broad{20, 10, 30, 20, 10, 5, 0, 35};      // strength 65: ranks above the higher peak
-  Candidate same_strength{5, 30, 40, 0, 0, 0, 0, 25}; // strength 65, higher score: above `broad`
+  Candidate lone_peak{10, 10, 60};                     // strength 60
+  Candidate broad{20, 10, 30, 20, 10, 5, 0, 35};       // strength 65: ranks above the higher peak
+  Candidate same_strength{5, 30, 40, 0, 0, 0, 0, 25};  // strength 65, higher score: above `broad`
   EXPECT_TRUE(stronger(broad, lone_peak));
   EXPECT_TRUE(stronger(same_strength, broad));
   Candidate twin = broad;
@@ -48,7 +48,8 @@ TEST(CandidateRanking, PoolKeepsTheStrongestByCrossStrength) {
       const std::int32_t begin = static_cast<std::int32_t>(candidates.size());
       const int count = static_cast<int>(rng() % 30);
       std::set<std::pair<int, int>> used;
-      while (static_cast<int>(used.size()) < count) used.insert({static_cast<int>(rng() % 32), b * 32 + static_cast<int>(rng() % 32)});
+      while (static_cast<int>(used.size()) < count)
+        used.insert({static_cast<int>(rng() % 32), b * 32 + static_cast<int>(rng() % 32)});
       for (const auto& [y, x] : used) {
         Candidate c{x, y, 7 + static_cast<int>(rng() % 6)};
         c.rank_extra = static_cast<std::int32_t>(rng() % 6);
@@ -59,7 +60,8 @@ TEST(CandidateRanking, PoolKeepsTheStrongestByCrossStrength) {
     std::vector<std::int32_t> order(candidates.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::int32_t>(i);
     std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-      return stronger(candidates[static_cast<std::size_t>(a)], candidates[static_cast<std::size_t>(b)]);
+      return stronger(candidates[static_cast<std::size_t>(a)],
+                      candidates[static_cast<std::size_t>(b)]);
     });
     const std::int64_t total = static_cast<std::int64_t>(candidates.size());
     for (const std::int64_t pool : {std::int64_t{1}, total / 3, total / 2, total - 1}) {
@@ -68,8 +70,9 @@ TEST(CandidateRanking, PoolKeepsTheStrongestByCrossStrength) {
       std::vector<std::int32_t> index;
       std::vector<BlockRange> pooled_blocks;
       pool_candidates(candidates, blocks, pool, pooled, index, pooled_blocks, scratch);
-      EXPECT_EQ(std::set<std::int32_t>(index.begin(), index.end()),
-                std::set<std::int32_t>(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(pool)))
+      EXPECT_EQ(
+          std::set<std::int32_t>(index.begin(), index.end()),
+          std::set<std::int32_t>(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(pool)))
           << "trial " << trial << ", pool " << pool << " of " << total;
     }
   }
@@ -80,7 +83,8 @@ TEST(CandidateRanking, PoolKeepsTheStrongestByCrossStrength) {
 TEST(CandidateRanking, DetectionCarriesTheCrossSum) {
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
   std::vector<std::vector<Candidate>> found;
-  for (const CandidateRanking ranking : {CandidateRanking::peak_score, CandidateRanking::cross_score}) {
+  for (const CandidateRanking ranking :
+       {CandidateRanking::peak_score, CandidateRanking::cross_score}) {
     ExtractorOptions options;
     options.entropy = EntropyMeasure::off;
     options.n_levels = 3;
@@ -115,7 +119,8 @@ TEST(CandidateRanking, DetectionCarriesTheCrossSum) {
 TEST(CandidateRanking, LevelKeepsItsStrongestByTheChosenRanking) {
   const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
   std::vector<std::set<std::pair<float, float>>> level0;
-  for (const CandidateRanking ranking : {CandidateRanking::peak_score, CandidateRanking::cross_score}) {
+  for (const CandidateRanking ranking :
+       {CandidateRanking::peak_score, CandidateRanking::cross_score}) {
     ExtractorOptions options;
     options.entropy = EntropyMeasure::off;
     options.candidate_pool = 1.0;
@@ -148,8 +153,10 @@ TEST(CandidateRanking, ModesAndNames) {
   EXPECT_EQ(ExtractorOptions{}.candidate_ranking, CandidateRanking::cross_score);
   EXPECT_EQ(options_for_mode(Mode::aief).candidate_ranking, CandidateRanking::cross_score);
   for (const Mode mode : {Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy})
-    EXPECT_EQ(options_for_mode(mode).candidate_ranking, CandidateRanking::peak_score) << to_string(mode);
-  for (const CandidateRanking ranking : {CandidateRanking::peak_score, CandidateRanking::cross_score})
+    EXPECT_EQ(options_for_mode(mode).candidate_ranking, CandidateRanking::peak_score)
+        << to_string(mode);
+  for (const CandidateRanking ranking :
+       {CandidateRanking::peak_score, CandidateRanking::cross_score})
     EXPECT_EQ(parse_candidate_ranking(to_string(ranking)), ranking);
   EXPECT_THROW(parse_candidate_ranking("harris"), Error);
 }

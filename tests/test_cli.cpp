@@ -1,8 +1,8 @@
 // The aief command line as a user meets it: help, every error path's message and exit status,
 // and the files it writes.
 #include <array>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -10,8 +10,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <opencv2/imgcodecs.hpp>
 #include <sys/wait.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "tests/test_support.hpp"
 
@@ -30,7 +30,8 @@ CliResult run(const std::string& arguments) {
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
   std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe))
+    result.output += buffer.data();
   const int status = pclose(pipe);
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
@@ -55,23 +56,30 @@ TEST(Cli, KernelsListedAndForcedByTheEnvironment) {
   } restore;
   const CliResult listing = run("--print-kernels");
   ASSERT_EQ(listing.status, 0) << listing.output;
-  for (const char* kernel : {"resize_bilinear_rows", "fast9_scores_row", "hamming_256_blocked", "positions_within_bounds"})
-    EXPECT_NE(listing.output.find(kernel), std::string::npos) << kernel << " missing from\n" << listing.output;
+  for (const char* kernel : {"resize_bilinear_rows", "fast9_scores_row", "hamming_256_blocked",
+                             "positions_within_bounds"})
+    EXPECT_NE(listing.output.find(kernel), std::string::npos) << kernel << " missing from\n"
+                                                              << listing.output;
 
   setenv("AIEF_KERNELS", "scalar", 1);
   const CliResult forced = run("--print-kernels");
   EXPECT_EQ(forced.status, 0);
-  EXPECT_NE(forced.output.find("default: scalar (AIEF_KERNELS=scalar)"), std::string::npos) << forced.output;
+  EXPECT_NE(forced.output.find("default: scalar (AIEF_KERNELS=scalar)"), std::string::npos)
+      << forced.output;
 
   setenv("AIEF_KERNELS", "fastest", 1);
   const CliResult refused = run("extract " + aief::test::sample_path("graf", "img1.png"));
   EXPECT_EQ(refused.status, 1);
-  EXPECT_NE(refused.output.find("aief: error: AIEF_KERNELS=fastest: unknown kernel set"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("aief: error: AIEF_KERNELS=fastest: unknown kernel set"),
+            std::string::npos)
+      << refused.output;
 }
 
 TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
   const std::string image = aief::test::sample_path("graf", "img1.png");
-  struct Case { std::string args, mention; };
+  struct Case {
+    std::string args, mention;
+  };
   const Case cases[] = {
       {"frobnicate", "unknown command"},
       {"extract " + image + " --features abc", "--features"},
@@ -97,8 +105,10 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"eval --dataset . --ranking harris", "unknown candidate ranking"},
       {"eval --dataset . --methods orb", "unknown method"},
       // Flags a mode cannot honour are refused with the conflict named, never dropped.
-      {"extract " + image + " --mode orbslam2 --threshold 7", "--threshold sets F of the entropy mask, which --mode orbslam2"},
-      {"extract " + image + " --mode orbslam2 --entropy intensity", "--mode orbslam2 means --entropy off, so --entropy intensity cannot apply"},
+      {"extract " + image + " --mode orbslam2 --threshold 7",
+       "--threshold sets F of the entropy mask, which --mode orbslam2"},
+      {"extract " + image + " --mode orbslam2 --entropy intensity",
+       "--mode orbslam2 means --entropy off, so --entropy intensity cannot apply"},
       {"extract " + image + " --entropy off --threshold 3", "which --entropy off turns off"},
       {"extract " + image + " --entropy off --threshold auto", "--threshold"},
       {"extract " + image + " --format yml", "--format applies to --batch only"},
@@ -123,7 +133,9 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
     EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find("aief: error:"), std::string::npos) << c.args;
     EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.args << "\n" << r.output;
-    EXPECT_EQ(r.output.find("keypoints"), std::string::npos) << c.args << " did work before refusing\n" << r.output;
+    EXPECT_EQ(r.output.find("keypoints"), std::string::npos)
+        << c.args << " did work before refusing\n"
+        << r.output;
   }
 }
 
@@ -139,7 +151,8 @@ TEST(Cli, FlagsGivenOverrideTheModeAndTakeEffect) {
       {"--mode orbslam2 --entropy off", {"\"distribution\":\"quadtree\"", "\"entropy\":\"off\""}},
       {"--mode quadtree-entropy --entropy intensity --threshold 7",
        {"\"distribution\":\"quadtree\"", "\"entropy\":\"intensity\"", "\"entropy_threshold\":7"}},
-      {"--mode aief --entropy intensity --threshold auto", {"\"entropy\":\"intensity\"", "\"auto_threshold\":true"}},
+      {"--mode aief --entropy intensity --threshold auto",
+       {"\"entropy\":\"intensity\"", "\"auto_threshold\":true"}},
   };
   for (const Case& c : cases) {
     const std::string output = folder.file("f.json");
@@ -147,14 +160,16 @@ TEST(Cli, FlagsGivenOverrideTheModeAndTakeEffect) {
     ASSERT_EQ(r.status, 0) << c.flags << "\n" << r.output;
     std::ifstream in(output);
     const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    for (const std::string& expected : c.in_json) EXPECT_NE(json.find(expected), std::string::npos) << c.flags << ": " << expected;
+    for (const std::string& expected : c.in_json)
+      EXPECT_NE(json.find(expected), std::string::npos) << c.flags << ": " << expected;
   }
   // More threads than the machine has: used as many as there are, said in aief's words.
   const CliResult many = run("extract " + image + " --features 200 --threads 256");
   EXPECT_EQ(many.status, 0) << many.output;
   EXPECT_EQ(many.output.find("TBB"), std::string::npos) << many.output;
   if (std::thread::hardware_concurrency() < 256) {
-    EXPECT_NE(many.output.find("aief: note: --threads 256 is more than the"), std::string::npos) << many.output;
+    EXPECT_NE(many.output.find("aief: note: --threads 256 is more than the"), std::string::npos)
+        << many.output;
   }
 }
 
@@ -165,7 +180,9 @@ TEST(Cli, EvalRefusesGroundTruthsThatAreNoHomography) {
   std::filesystem::create_directories(sequence);
   for (const char* image : {"img1.png", "img2.png"})
     std::filesystem::copy_file(aief::test::sample_path("graf", image), sequence / image);
-  struct Case { std::string numbers, mention; };
+  struct Case {
+    std::string numbers, mention;
+  };
   const Case cases[] = {
       {"1 0 0 0 nan 0 0 0 1", "'nan' is not a finite number"},
       {"1 0 0 0 1 0 0 0 inf", "'inf' is not a finite number"},
@@ -177,8 +194,9 @@ TEST(Cli, EvalRefusesGroundTruthsThatAreNoHomography) {
   };
   for (const Case& c : cases) {
     std::ofstream(sequence / "H1to2p") << c.numbers << "\n";
-    const CliResult r = run("eval --dataset " + folder.path().string() + " --pairs 1-2 --methods orbslam2 -o " +
-                            (folder.path() / "report.md").string());
+    const CliResult r =
+        run("eval --dataset " + folder.path().string() + " --pairs 1-2 --methods orbslam2 -o " +
+            (folder.path() / "report.md").string());
     EXPECT_EQ(r.status, 1) << c.numbers << "\n" << r.output;
     EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.numbers << "\n" << r.output;
     EXPECT_FALSE(std::filesystem::exists(folder.path() / "report.md")) << c.numbers;
@@ -195,26 +213,39 @@ TEST(Cli, MatchPairsRefusesPairsSharingAGroupAndSaysWhatItSkips) {
   std::filesystem::copy_file(aief::test::sample_path("boat", "img1.png"), images / "a" / "b.png");
   std::filesystem::copy_file(aief::test::sample_path("boat", "img2.png"), images / "a-b.png");
   std::filesystem::copy_file(aief::test::sample_path("graf", "img1.png"), images / "c.png");
-  const std::string features = (folder.path() / "f.h5").string(), matches = (folder.path() / "m.h5").string();
-  ASSERT_EQ(run("extract --batch " + images.string() + " -o " + features + " --format h5 --features 300").status, 0);
+  const std::string features = (folder.path() / "f.h5").string(),
+                    matches = (folder.path() / "m.h5").string();
+  ASSERT_EQ(
+      run("extract --batch " + images.string() + " -o " + features + " --format h5 --features 300")
+          .status,
+      0);
   const std::string pairs = (folder.path() / "pairs.txt").string();
   std::ofstream(pairs) << "a/b.png c.png\na-b.png c.png\n";
-  const CliResult collide = run("match --pairs " + pairs + " --features " + features + " -o " + matches);
+  const CliResult collide =
+      run("match --pairs " + pairs + " --features " + features + " -o " + matches);
   EXPECT_EQ(collide.status, 1) << collide.output;
-  EXPECT_NE(collide.output.find("line 2 ('a-b.png c.png') and line 1 ('a/b.png c.png') name one pair group"), std::string::npos)
+  EXPECT_NE(collide.output.find(
+                "line 2 ('a-b.png c.png') and line 1 ('a/b.png c.png') name one pair group"),
+            std::string::npos)
       << collide.output;
   EXPECT_FALSE(std::filesystem::exists(matches));
   std::ofstream(pairs) << "#a.png c.png\nc.png c.png\na/b.png c.png\n";
-  const CliResult noted = run("match --pairs " + pairs + " --features " + features + " -o " + matches);
+  const CliResult noted =
+      run("match --pairs " + pairs + " --features " + features + " -o " + matches);
   EXPECT_EQ(noted.status, 0) << noted.output;
-  EXPECT_NE(noted.output.find("line 1 skipped: it begins with '#'"), std::string::npos) << noted.output;
-  EXPECT_NE(noted.output.find("line 2 skipped: 'c.png' paired with itself"), std::string::npos) << noted.output;
+  EXPECT_NE(noted.output.find("line 1 skipped: it begins with '#'"), std::string::npos)
+      << noted.output;
+  EXPECT_NE(noted.output.find("line 2 skipped: 'c.png' paired with itself"), std::string::npos)
+      << noted.output;
   EXPECT_NE(noted.output.find("1 pairs matched"), std::string::npos) << noted.output;
   // A later run asking the other pair of that group is refused, never given the first's matches.
   std::ofstream(pairs) << "a-b.png c.png\n";
-  const CliResult later = run("match --pairs " + pairs + " --features " + features + " -o " + matches);
+  const CliResult later =
+      run("match --pairs " + pairs + " --features " + features + " -o " + matches);
   EXPECT_EQ(later.status, 1) << later.output;
-  EXPECT_NE(later.output.find("pair 'a-b.png c.png' and pair 'a/b.png c.png' share the group"), std::string::npos) << later.output;
+  EXPECT_NE(later.output.find("pair 'a-b.png c.png' and pair 'a/b.png c.png' share the group"),
+            std::string::npos)
+      << later.output;
 }
 #endif
 
@@ -228,8 +259,10 @@ TEST(Cli, InputErrorsExitOne) {
   const CliResult text = run("extract " + (dir / "notes.png").string());
   EXPECT_EQ(text.status, 1);
   EXPECT_NE(text.output.find("notes.png"), std::string::npos);
-  const CliResult bad_output = run("extract " + aief::test::sample_path("boat", "img1.png") + " -o " + (dir / "f.txt").string());
-  EXPECT_EQ(bad_output.status, 2) << "an unknown output format is a usage error, found before any work";
+  const CliResult bad_output = run("extract " + aief::test::sample_path("boat", "img1.png") +
+                                   " -o " + (dir / "f.txt").string());
+  EXPECT_EQ(bad_output.status, 2)
+      << "an unknown output format is a usage error, found before any work";
 }
 
 TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {
@@ -240,23 +273,27 @@ TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {
   const std::vector<std::uint8_t> bomb = aief::test::png_declaring(30000, 30000);
   for (const char* path : {"bomb.png", "eval/graf/img1.png", "batch/bomb.png"}) {
     std::filesystem::create_directories((dir / path).parent_path());
-    std::ofstream((dir / path).string(), std::ios::binary).write(reinterpret_cast<const char*>(bomb.data()),
-                                                                  static_cast<std::streamsize>(bomb.size()));
+    std::ofstream((dir / path).string(), std::ios::binary)
+        .write(reinterpret_cast<const char*>(bomb.data()),
+               static_cast<std::streamsize>(bomb.size()));
   }
-  const std::string good = aief::test::sample_path("graf", "img2.png"), bomb_path = (dir / "bomb.png").string();
+  const std::string good = aief::test::sample_path("graf", "img2.png"),
+                    bomb_path = (dir / "bomb.png").string();
   std::filesystem::copy_file(good, dir / "eval/graf/img2.png");
   std::filesystem::copy_file(aief::test::sample_path("graf", "H1to2p"), dir / "eval/graf/H1to2p");
-  const std::string commands[] = {"extract " + bomb_path,
-                                  "match " + bomb_path + " " + good,
-                                  "adapt " + good + " " + bomb_path,
-                                  "eval --dataset " + (dir / "eval").string() + " --sequences graf --pairs 1-2 -o " +
-                                      (dir / "report.md").string(),
-                                  "extract --batch " + (dir / "batch").string() + " -o " + (dir / "out").string()};
+  const std::string commands[] = {
+      "extract " + bomb_path, "match " + bomb_path + " " + good, "adapt " + good + " " + bomb_path,
+      "eval --dataset " + (dir / "eval").string() + " --sequences graf --pairs 1-2 -o " +
+          (dir / "report.md").string(),
+      "extract --batch " + (dir / "batch").string() + " -o " + (dir / "out").string()};
   for (const std::string& command : commands) {
     const CliResult r = run(command);
     EXPECT_EQ(r.status, 1) << command << "\n" << r.output;
-    EXPECT_NE(r.output.find("declares 30000x30000 pixels in its PNG header"), std::string::npos) << command << "\n" << r.output;
-    EXPECT_NE(r.output.find("refused before decoding"), std::string::npos) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("declares 30000x30000 pixels in its PNG header"), std::string::npos)
+        << command << "\n"
+        << r.output;
+    EXPECT_NE(r.output.find("refused before decoding"), std::string::npos) << command << "\n"
+                                                                           << r.output;
   }
 }
 
@@ -265,11 +302,14 @@ TEST(Cli, AJpegCutShortIsExtractedWithTheDecodersWarning) {
   std::vector<std::uint8_t> bytes;
   cv::imencode(".jpg", cv::imread(aief::test::sample_path("boat", "img1.png")), bytes);
   bytes.resize(bytes.size() / 3);
-  std::ofstream(folder.file("cut.jpg"), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                                               static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(folder.file("cut.jpg"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
   const CliResult r = run("extract " + folder.file("cut.jpg") + " -o " + folder.file("f.json"));
   EXPECT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("aief: warning: image '" + folder.file("cut.jpg") + "': the JPEG data ends before"), std::string::npos)
+  EXPECT_NE(r.output.find("aief: warning: image '" + folder.file("cut.jpg") +
+                          "': the JPEG data ends before"),
+            std::string::npos)
       << r.output;
   std::ifstream in(folder.file("f.json"));
   const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -280,12 +320,18 @@ TEST(Cli, AJpegCutShortIsExtractedWithTheDecodersWarning) {
 TEST(Cli, EvalRegeneratesItsReportAndKeepsTheHandWrittenSection) {
   const aief::test::TempFolder folder("aief_cli_eval");
   const std::filesystem::path report = folder.path() / "report.md";
-  const std::string marker = "<!-- hand-written below: aief eval keeps this line and all after it -->";
+  const std::string marker =
+      "<!-- hand-written below: aief eval keeps this line and all after it -->";
   std::ofstream(report) << "stale generated table\n" << marker << "\n## Notes\nmeasured by hand\n";
-  const std::string dataset = std::filesystem::path(aief::test::sample_path("graf", "img1.png")).parent_path().parent_path().string();
-  const std::string command = "eval --dataset " + dataset + " --sequences graf --pairs 1-2 --methods aief_auto --repeat 1 -o " +
+  const std::string dataset = std::filesystem::path(aief::test::sample_path("graf", "img1.png"))
+                                  .parent_path()
+                                  .parent_path()
+                                  .string();
+  const std::string command = "eval --dataset " + dataset +
+                              " --sequences graf --pairs 1-2 --methods aief_auto --repeat 1 -o " +
                               report.string();
-  for (int run_index = 0; run_index < 2; ++run_index) {  // twice: the section is kept once, not stacked
+  for (int run_index = 0; run_index < 2;
+       ++run_index) {  // twice: the section is kept once, not stacked
     const CliResult r = run(command);
     ASSERT_EQ(r.status, 0) << r.output;
     std::ifstream in(report);
@@ -302,15 +348,17 @@ TEST(Cli, ExtractWritesJsonYamlAndPicture) {
   const aief::test::TempFolder folder("aief_cli");
   const std::filesystem::path& dir = folder.path();
   const std::string image = aief::test::sample_path("graf", "img1.png");
-  const CliResult r = run("extract " + image + " -o " + (dir / "f.json").string() + " --draw " + (dir / "f.png").string());
+  const CliResult r = run("extract " + image + " -o " + (dir / "f.json").string() + " --draw " +
+                          (dir / "f.png").string());
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("1000 keypoints"), std::string::npos) << r.output;
   EXPECT_GT(std::filesystem::file_size(dir / "f.json"), 10000u);
   EXPECT_GT(std::filesystem::file_size(dir / "f.png"), 10000u);
   EXPECT_EQ(run("extract " + image + " --mode orbslam2 -o " + (dir / "f.yml").string()).status, 0);
   EXPECT_TRUE(std::filesystem::exists(dir / "f.yml"));
-  const CliResult adapt = run("adapt " + image + " " + aief::test::sample_path("graf", "img2.png") + " -o " + (dir / "a.json").string() +
-                        " --plot " + (dir / "a.png").string() + " --step 1");
+  const CliResult adapt =
+      run("adapt " + image + " " + aief::test::sample_path("graf", "img2.png") + " -o " +
+          (dir / "a.json").string() + " --plot " + (dir / "a.png").string() + " --step 1");
   EXPECT_EQ(adapt.status, 0) << adapt.output;
   std::ifstream in(dir / "a.json");
   const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -318,7 +366,8 @@ TEST(Cli, ExtractWritesJsonYamlAndPicture) {
   EXPECT_NE(json.find("\"curve\""), std::string::npos);
   EXPECT_NE(json.find("\"kept_blocks\""), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(dir / "a.png"));
-  const CliResult match = run("match " + image + " " + aief::test::sample_path("graf", "img2.png") + " --draw " + (dir / "m.png").string());
+  const CliResult match = run("match " + image + " " + aief::test::sample_path("graf", "img2.png") +
+                              " --draw " + (dir / "m.png").string());
   EXPECT_EQ(match.status, 0) << match.output;
   EXPECT_NE(match.output.find("inliers"), std::string::npos);
   const CliResult bench = run("bench " + image + " --repeat 2 --threads 1");
@@ -326,11 +375,13 @@ TEST(Cli, ExtractWritesJsonYamlAndPicture) {
   EXPECT_NE(bench.output.find("\"aief_ms\""), std::string::npos);
   EXPECT_NE(bench.output.find("\"opencv_orb_ms\""), std::string::npos);
   const std::string second = aief::test::sample_path("graf", "img2.png");
-  const CliResult bench_pair = run("bench " + image + " --pair " + second + " --repeat 1 --threads 1");
+  const CliResult bench_pair =
+      run("bench " + image + " --pair " + second + " --repeat 1 --threads 1");
   EXPECT_EQ(bench_pair.status, 0) << bench_pair.output;
   EXPECT_NE(bench_pair.output.find("\"sweep_ms\""), std::string::npos);
   EXPECT_NE(bench_pair.output.find("\"pair_ms\""), std::string::npos);
-  EXPECT_EQ(run("bench " + image + " --pair " + second + " --mode orbslam2 --repeat 1").status, 2);  // no entropy, no sweep
+  EXPECT_EQ(run("bench " + image + " --pair " + second + " --mode orbslam2 --repeat 1").status,
+            2);  // no entropy, no sweep
   const CliResult validate = run("validate");
   EXPECT_EQ(validate.status, 0) << validate.output;
   EXPECT_NE(validate.output.find("identical"), std::string::npos);

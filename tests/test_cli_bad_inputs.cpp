@@ -9,10 +9,10 @@
 #include <string>
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "tests/test_support.hpp"
 
@@ -21,23 +21,27 @@ namespace {
 namespace fs = std::filesystem;
 
 struct CliResult {
-  int status = -1;  // 124: killed by the timeout (it hung)
+  int status = -1;     // 124: killed by the timeout (it hung)
   std::string output;  // stdout and stderr
 };
 
 CliResult run(const std::string& arguments) {
   CliResult result;
-  const std::string command = "timeout 120 " + std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1 </dev/null";
+  const std::string command =
+      "timeout 120 " + std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1 </dev/null";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
   std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe))
+    result.output += buffer.data();
   const int status = pclose(pipe);
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
 
-bool says(const CliResult& result, const std::string& text) { return result.output.find(text) != std::string::npos; }
+bool says(const CliResult& result, const std::string& text) {
+  return result.output.find(text) != std::string::npos;
+}
 
 TEST(CliBadInputs, AFifoNamedLikeAnImageIsRefusedWithoutOpeningIt) {
   const aief::test::TempFolder folder("aief_cli_fifo");
@@ -50,10 +54,13 @@ TEST(CliBadInputs, AFifoNamedLikeAnImageIsRefusedWithoutOpeningIt) {
   EXPECT_EQ(single.status, 1) << single.output;
   EXPECT_TRUE(says(single, "not a regular file (a FIFO)")) << single.output;
 
-  const CliResult batch = run("extract --batch " + images.string() + " -o " + (folder.path() / "out").string());
+  const CliResult batch =
+      run("extract --batch " + images.string() + " -o " + (folder.path() / "out").string());
   EXPECT_EQ(batch.status, 1) << batch.output;
   EXPECT_TRUE(says(batch, "1 extracted") && says(batch, "1 failed")) << batch.output;
-  EXPECT_TRUE(says(batch, "fifo.png: cannot open image") && says(batch, "not a regular file (a FIFO)")) << batch.output;
+  EXPECT_TRUE(says(batch, "fifo.png: cannot open image") &&
+              says(batch, "not a regular file (a FIFO)"))
+      << batch.output;
   EXPECT_TRUE(fs::exists(folder.path() / "out" / "boat.png.json"));
 }
 
@@ -65,7 +72,8 @@ TEST(CliBadInputs, ListsThatAreNotTextFilesAreRefused) {
 
   const CliResult image_as_list = run("extract --batch " + image + " -o " + out);
   EXPECT_EQ(image_as_list.status, 1) << image_as_list.output;
-  EXPECT_TRUE(says(image_as_list, "is a PNG image, not a text file of names")) << image_as_list.output;
+  EXPECT_TRUE(says(image_as_list, "is a PNG image, not a text file of names"))
+      << image_as_list.output;
   EXPECT_FALSE(says(image_as_list, "failed:")) << "the PNG's bytes were taken for paths";
 
   const CliResult endless = run("extract --batch /dev/zero -o " + out);
@@ -79,9 +87,13 @@ TEST(CliBadInputs, ListsThatAreNotTextFilesAreRefused) {
 
 #ifdef AIEF_HAVE_HDF5
   const std::string features = (dir / "features.h5").string();
-  ASSERT_EQ(run("extract --batch " + fs::path(image).parent_path().string() + " -o " + features + " --format h5").status, 0);
+  ASSERT_EQ(run("extract --batch " + fs::path(image).parent_path().string() + " -o " + features +
+                " --format h5")
+                .status,
+            0);
   for (const std::string& pairs : {dir.string(), std::string("/dev/zero"), image}) {
-    const CliResult match = run("match --pairs " + pairs + " --features " + features + " -o " + (dir / "m.h5").string());
+    const CliResult match = run("match --pairs " + pairs + " --features " + features + " -o " +
+                                (dir / "m.h5").string());
     EXPECT_EQ(match.status, 1) << pairs << ": " << match.output;
     EXPECT_TRUE(says(match, "pairs file '" + pairs + "'")) << match.output;
     EXPECT_FALSE(says(match, "0 pairs matched")) << match.output;
@@ -97,37 +109,46 @@ TEST(CliBadInputs, AYamlBatchOfOddNamesResumesInsteadOfRedoingThem) {
     fs::copy_file(aief::test::sample_path("boat", "img1.png"), images / name);
   // A name YAML cannot hold is refused before its file is read (this one is no image at all).
   std::ofstream(images / "ctl\x01.png") << "not read";
-  const std::string batch = "extract --batch '" + images.string() + "' -o '" + (folder.path() / "out").string() +
-                            "' --format yml --features 100";
+  const std::string batch = "extract --batch '" + images.string() + "' -o '" +
+                            (folder.path() / "out").string() + "' --format yml --features 100";
   const CliResult first = run(batch);
   EXPECT_EQ(first.status, 1) << first.output;
   EXPECT_TRUE(says(first, "5 extracted") && says(first, "1 failed")) << first.output;
   EXPECT_TRUE(says(first, "YAML cannot hold the image name")) << first.output;
   const CliResult second = run(batch);
-  EXPECT_TRUE(says(second, "0 extracted, 5 already done, 1 failed")) << "outputs not read back as their own: " << second.output;
-  const CliResult single = run("extract '" + (images / "missing\x02.png").string() + "' -o '" + (folder.path() / "x.yml").string() + "'");
+  EXPECT_TRUE(says(second, "0 extracted, 5 already done, 1 failed"))
+      << "outputs not read back as their own: " << second.output;
+  const CliResult single = run("extract '" + (images / "missing\x02.png").string() + "' -o '" +
+                               (folder.path() / "x.yml").string() + "'");
   EXPECT_EQ(single.status, 1) << single.output;
-  EXPECT_TRUE(says(single, "YAML cannot hold the image name") && !says(single, "no such file")) << single.output;
+  EXPECT_TRUE(says(single, "YAML cannot hold the image name") && !says(single, "no such file"))
+      << single.output;
   cv::FileStorage yaml((folder.path() / "out" / "{b}.png.yml").string(), cv::FileStorage::READ);
   EXPECT_EQ(static_cast<std::string>(yaml["source_name"]), "{b}.png");
 }
 
 TEST(CliBadInputs, PicturePathsAreCheckedBeforeAnyWork) {
   const aief::test::TempFolder folder("aief_cli_pictures");
-  const std::string a = aief::test::sample_path("graf", "img1.png"), b = aief::test::sample_path("graf", "img2.png");
-  const std::string text = (folder.path() / "x.txt").string(), nowhere = (folder.path() / "missing" / "x.png").string();
-  for (const std::string& command : {"extract " + a + " --draw " + text, "match " + a + " " + b + " --draw " + text,
-                                     "adapt " + a + " " + b + " --plot " + text}) {
+  const std::string a = aief::test::sample_path("graf", "img1.png"),
+                    b = aief::test::sample_path("graf", "img2.png");
+  const std::string text = (folder.path() / "x.txt").string(),
+                    nowhere = (folder.path() / "missing" / "x.png").string();
+  for (const std::string& command :
+       {"extract " + a + " --draw " + text, "match " + a + " " + b + " --draw " + text,
+        "adapt " + a + " " + b + " --plot " + text}) {
     const CliResult result = run(command);
     EXPECT_EQ(result.status, 2) << command << "\n" << result.output;
     EXPECT_TRUE(says(result, "x.txt: a picture must end in .png")) << result.output;
-    EXPECT_FALSE(says(result, "keypoints") || says(result, "inliers") || says(result, "chosen")) << "worked first: " << result.output;
+    EXPECT_FALSE(says(result, "keypoints") || says(result, "inliers") || says(result, "chosen"))
+        << "worked first: " << result.output;
     EXPECT_FALSE(says(result, ".cpp:")) << "OpenCV's source location: " << result.output;
   }
   const CliResult missing_folder = run("extract " + a + " --draw " + nowhere);
   EXPECT_EQ(missing_folder.status, 1) << missing_folder.output;
-  EXPECT_TRUE(says(missing_folder, "does not exist") && !says(missing_folder, "keypoints")) << missing_folder.output;
-  EXPECT_EQ(run("extract " + a + " --draw " + (folder.path() / "x.JPG").string()).status, 0) << "any extension OpenCV writes";
+  EXPECT_TRUE(says(missing_folder, "does not exist") && !says(missing_folder, "keypoints"))
+      << missing_folder.output;
+  EXPECT_EQ(run("extract " + a + " --draw " + (folder.path() / "x.JPG").string()).status, 0)
+      << "any extension OpenCV writes";
 }
 
 }  // namespace

@@ -7,8 +7,8 @@
 #include <random>
 
 #include <gtest/gtest.h>
-#include <opencv2/imgproc.hpp>
 #include <tbb/global_control.h>
+#include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
@@ -18,12 +18,14 @@
 namespace aief {
 namespace {
 
-constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy};
+constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2,
+                               Mode::quadtree_entropy};
 
 bool same_bytes(const Features& a, const Features& b) {
   if (a.keypoints.size() != b.keypoints.size()) return false;
   for (std::size_t i = 0; i < a.keypoints.size(); ++i)
-    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0 || a.descriptors[i] != b.descriptors[i])
+    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0 ||
+        a.descriptors[i] != b.descriptors[i])
       return false;
   return true;
 }
@@ -34,7 +36,8 @@ bool allowed_at(const cv::Mat& mask, const Keypoint& kp) {
   return mask.at<std::uint8_t>(y, x) != 0;
 }
 
-Features extract_masked(const cv::Mat& image, const cv::Mat& mask, const ExtractorOptions& options) {
+Features extract_masked(const cv::Mat& image, const cv::Mat& mask,
+                        const ExtractorOptions& options) {
   Features out;
   Extractor(options).extract(view_of(image), view_of(mask), out);
   return out;
@@ -55,13 +58,18 @@ TEST(DetectionMask, TheBudgetIsFilledInsideTheMask) {
       int after_the_fact = 0;
       for (const Keypoint& kp : unmasked.keypoints) after_the_fact += allowed_at(mask, kp);
       const Features masked = extract_masked(image, mask, options);
-      std::printf("%s, %s, mask keeping the left half: %d of %d kept when masked after extraction, %zu with the mask in detection\n",
-                  sequence, std::string(to_string(mode)).c_str(), after_the_fact, options.n_features, masked.keypoints.size());
-      EXPECT_EQ(static_cast<int>(masked.keypoints.size()), options.n_features) << sequence << " " << to_string(mode);
+      std::printf(
+          "%s, %s, mask keeping the left half: %d of %d kept when masked after extraction, %zu "
+          "with the mask in detection\n",
+          sequence, std::string(to_string(mode)).c_str(), after_the_fact, options.n_features,
+          masked.keypoints.size());
+      EXPECT_EQ(static_cast<int>(masked.keypoints.size()), options.n_features)
+          << sequence << " " << to_string(mode);
       EXPECT_LT(after_the_fact, options.n_features * 3 / 4) << sequence << " " << to_string(mode);
       for (const Keypoint& kp : masked.keypoints)
-        ASSERT_TRUE(allowed_at(mask, kp)) << sequence << " " << to_string(mode) << ": keypoint at (" << kp.x << ", " << kp.y
-                                          << ") octave " << kp.octave << " outside the mask";
+        ASSERT_TRUE(allowed_at(mask, kp))
+            << sequence << " " << to_string(mode) << ": keypoint at (" << kp.x << ", " << kp.y
+            << ") octave " << kp.octave << " outside the mask";
     }
   }
 }
@@ -73,7 +81,8 @@ TEST(DetectionMask, AMaskAllowingEveryPixelIsNoMask) {
     const Features unmasked = extract(view_of(image), options);
     for (int value : {255, 1}) {
       const cv::Mat mask(image.size(), CV_8UC1, cv::Scalar(value));
-      EXPECT_TRUE(same_bytes(unmasked, extract_masked(image, mask, options))) << to_string(mode) << ", mask value " << value;
+      EXPECT_TRUE(same_bytes(unmasked, extract_masked(image, mask, options)))
+          << to_string(mode) << ", mask value " << value;
     }
   }
 }
@@ -85,8 +94,10 @@ TEST(DetectionMask, EveryKernelSetAndThreadCountGivesTheScalarBytes) {
   cv::circle(mask, {image.cols / 2, image.rows / 2}, image.rows / 3, cv::Scalar(7), cv::FILLED);
   std::mt19937 rng(11);
   for (int i = 0; i < 12; ++i) {  // ragged holes and islands, to cross block and word edges
-    const int x = static_cast<int>(rng() % static_cast<unsigned>(image.cols - 60)), y = static_cast<int>(rng() % static_cast<unsigned>(image.rows - 60));
-    mask(cv::Rect(x, y, 1 + static_cast<int>(rng() % 59), 1 + static_cast<int>(rng() % 59))).setTo(i % 2 ? 255 : 0);
+    const int x = static_cast<int>(rng() % static_cast<unsigned>(image.cols - 60)),
+              y = static_cast<int>(rng() % static_cast<unsigned>(image.rows - 60));
+    mask(cv::Rect(x, y, 1 + static_cast<int>(rng() % 59), 1 + static_cast<int>(rng() % 59)))
+        .setTo(i % 2 ? 255 : 0);
   }
   for (Mode mode : kEveryMode) {
     ExtractorOptions reference_options = options_for_mode(mode);
@@ -94,7 +105,8 @@ TEST(DetectionMask, EveryKernelSetAndThreadCountGivesTheScalarBytes) {
     reference_options.threads = 1;
     const Features reference = extract_masked(image, mask, reference_options);
     ASSERT_GT(reference.keypoints.size(), 100u);
-    for (const Keypoint& kp : reference.keypoints) ASSERT_TRUE(allowed_at(mask, kp)) << to_string(mode);
+    for (const Keypoint& kp : reference.keypoints)
+      ASSERT_TRUE(allowed_at(mask, kp)) << to_string(mode);
     for (KernelSet set : available_kernel_sets())
       for (int threads : {1, 2, 5}) {
         ExtractorOptions options = reference_options;

@@ -4,8 +4,8 @@
 // group complete before, leave no temporary behind, and resume once space is free.
 #include <array>
 #include <cerrno>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -35,7 +35,8 @@ CliResult run(const std::string& arguments) {
   FILE* pipe = popen((std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1").c_str(), "r");
   if (!pipe) return result;
   std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe))
+    result.output += buffer.data();
   const int status = pclose(pipe);
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
@@ -51,8 +52,10 @@ std::string numbered(const char* prefix, int n, const char* suffix) {
 // Exit 1 with aief's message for a full disk, and nothing from libhdf5.
 void expect_clean_stop(const CliResult& r, const std::string& what) {
   EXPECT_EQ(r.status, 1) << what << "\n" << r.output;
-  EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << what << "\n" << r.output;
-  EXPECT_EQ(r.output.find("HDF5-DIAG"), std::string::npos) << what << "\n" << r.output.substr(0, 2000);
+  EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << what << "\n"
+                                                                         << r.output;
+  EXPECT_EQ(r.output.find("HDF5-DIAG"), std::string::npos) << what << "\n"
+                                                           << r.output.substr(0, 2000);
 }
 
 // Files named like a temporary (io::temporary_path_of, SQLite's journal) or empty, below `folder`.
@@ -60,7 +63,8 @@ std::vector<std::string> leftovers(const fs::path& folder) {
   std::vector<std::string> found;
   for (const auto& entry : fs::recursive_directory_iterator(folder)) {
     const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && (name.find(".tmp") != std::string::npos || fs::file_size(entry.path()) == 0))
+    if (entry.is_regular_file() &&
+        (name.find(".tmp") != std::string::npos || fs::file_size(entry.path()) == 0))
       found.push_back(name);
   }
   return found;
@@ -70,7 +74,8 @@ std::vector<std::string> leftovers(const fs::path& folder) {
 class DiskFull : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (::geteuid() != 0) GTEST_SKIP() << "mounting a small tmpfs needs root (CI runs these as root)";
+    if (::geteuid() != 0)
+      GTEST_SKIP() << "mounting a small tmpfs needs root (CI runs these as root)";
     disk_ = work_.path() / "disk";
     fs::create_directories(disk_);
     if (::mount("tmpfs", disk_.c_str(), "tmpfs", 0, "size=8m") != 0)
@@ -96,7 +101,9 @@ class DiskFull : public ::testing::Test {
     const fs::space_info space = fs::space(disk_);
     std::ofstream filler(disk_ / "filler", std::ios::binary);
     const std::string block(4096, 'x');
-    for (std::uintmax_t written = 0; written + free_bytes + block.size() <= space.available; written += block.size()) filler << block;
+    for (std::uintmax_t written = 0; written + free_bytes + block.size() <= space.available;
+         written += block.size())
+      filler << block;
   }
   void free_space() { fs::remove(disk_ / "filler"); }
 
@@ -110,13 +117,16 @@ class DiskFull : public ::testing::Test {
 int readable_images(const fs::path& h5) {
   const aief::io::Hdf5File file(h5.string(), aief::io::Hdf5File::Mode::read);
   int n = 0;
-  for (const std::string& name : file.feature_names()) n += file.read_features(name).keypoints.empty() ? 0 : 1;
+  for (const std::string& name : file.feature_names())
+    n += file.read_features(name).keypoints.empty() ? 0 : 1;
   return n;
 }
 
 TEST_F(DiskFull, BatchH5StopsCleanlyKeepsWhatWasCompleteAndResumes) {
-  const std::string list = (work_.path() / "images.txt").string(), h5 = (disk_ / "features.h5").string();
-  const std::string batch = "extract --batch " + list + " -o " + h5 + " --format h5 --features 2000 --threads 2";
+  const std::string list = (work_.path() / "images.txt").string(),
+                    h5 = (disk_ / "features.h5").string();
+  const std::string batch =
+      "extract --batch " + list + " -o " + h5 + " --format h5 --features 2000 --threads 2";
   const std::string first = (work_.path() / "first.txt").string();
   {
     std::ifstream all(list);
@@ -124,7 +134,8 @@ TEST_F(DiskFull, BatchH5StopsCleanlyKeepsWhatWasCompleteAndResumes) {
     std::string line;
     for (int i = 0; i < 10 && std::getline(all, line); ++i) some << line << "\n";
   }
-  ASSERT_EQ(run("extract --batch " + first + " -o " + h5 + " --format h5 --features 2000").status, 0);
+  ASSERT_EQ(run("extract --batch " + first + " -o " + h5 + " --format h5 --features 2000").status,
+            0);
   fill_leaving(1 << 20);  // room for a few more images, not for 60
   const CliResult full = run(batch);
   expect_clean_stop(full, "batch into a full disk");
@@ -136,19 +147,24 @@ TEST_F(DiskFull, BatchH5StopsCleanlyKeepsWhatWasCompleteAndResumes) {
   free_space();
   const CliResult resumed = run(batch);
   EXPECT_EQ(resumed.status, 0) << resumed.output;
-  EXPECT_NE(resumed.output.find(std::to_string(kept) + " already done"), std::string::npos) << resumed.output;
+  EXPECT_NE(resumed.output.find(std::to_string(kept) + " already done"), std::string::npos)
+      << resumed.output;
   EXPECT_EQ(readable_images(h5), 60);
 }
 
 TEST_F(DiskFull, MatchPairsStopsCleanlyAndResumes) {
-  const std::string list = (work_.path() / "images.txt").string(), features = (work_.path() / "features.h5").string();
-  ASSERT_EQ(run("extract --batch " + list + " -o " + features + " --format h5 --features 2000").status, 0);
+  const std::string list = (work_.path() / "images.txt").string(),
+                    features = (work_.path() / "features.h5").string();
+  ASSERT_EQ(
+      run("extract --batch " + list + " -o " + features + " --format h5 --features 2000").status,
+      0);
   const std::string pairs = (work_.path() / "pairs.txt").string();
   {
     std::ofstream out(pairs);
     for (int i = 0; i < 60; ++i)
-      for (int j = i + 1; j < 60; j += 17) out << (work_.path() / "images" / numbered("i", i, ".png")).string().substr(1) << " "
-                                               << (work_.path() / "images" / numbered("i", j, ".png")).string().substr(1) << "\n";
+      for (int j = i + 1; j < 60; j += 17)
+        out << (work_.path() / "images" / numbered("i", i, ".png")).string().substr(1) << " "
+            << (work_.path() / "images" / numbered("i", j, ".png")).string().substr(1) << "\n";
   }
   const std::string matches = (disk_ / "matches.h5").string();
   const std::string match = "match --pairs " + pairs + " --features " + features + " -o " + matches;
@@ -159,20 +175,25 @@ TEST_F(DiskFull, MatchPairsStopsCleanlyAndResumes) {
   free_space();
   const CliResult resumed = run(match);
   EXPECT_EQ(resumed.status, 0) << resumed.output;
-  EXPECT_EQ(resumed.output.find(" 0 already in"), std::string::npos) << resumed.output;  // some were kept
+  EXPECT_EQ(resumed.output.find(" 0 already in"), std::string::npos)
+      << resumed.output;  // some were kept
 }
 
 TEST_F(DiskFull, MergeLeavesTheOutputAsItWas) {
   const std::string list = (work_.path() / "images.txt").string();
   for (int shard = 0; shard < 2; ++shard)
-    ASSERT_EQ(run("extract --batch " + list + " -o " + (work_.path() / numbered("s", shard, ".h5")).string() +
-                  " --format h5 --features 2000 --shard " + numbered("", shard, "/2")).status, 0);
+    ASSERT_EQ(run("extract --batch " + list + " -o " +
+                  (work_.path() / numbered("s", shard, ".h5")).string() +
+                  " --format h5 --features 2000 --shard " + numbered("", shard, "/2"))
+                  .status,
+              0);
   const fs::path merged = disk_ / "features.h5";
   ASSERT_EQ(run("merge -o " + merged.string() + " " + (work_.path() / "s0.h5").string()).status, 0);
   const std::uintmax_t size = fs::file_size(merged);
   const int before = readable_images(merged);
   fill_leaving(512 << 10);
-  expect_clean_stop(run("merge -o " + merged.string() + " " + (work_.path() / "s1.h5").string()), "merge into a full disk");
+  expect_clean_stop(run("merge -o " + merged.string() + " " + (work_.path() / "s1.h5").string()),
+                    "merge into a full disk");
   EXPECT_EQ(fs::file_size(merged), size);
   EXPECT_EQ(readable_images(merged), before);
   EXPECT_EQ(leftovers(disk_), std::vector<std::string>{});
@@ -180,15 +201,19 @@ TEST_F(DiskFull, MergeLeavesTheOutputAsItWas) {
 
 #ifdef AIEF_HAVE_COLMAP_EXPORT
 TEST_F(DiskFull, ColmapLeavesNoDatabaseNorTemporary) {
-  const std::string list = (work_.path() / "images.txt").string(), features = (work_.path() / "features.h5").string();
-  ASSERT_EQ(run("extract --batch " + list + " -o " + features + " --format h5 --features 2000").status, 0);
-  const std::string pairs = (work_.path() / "pairs.txt").string(), matches = (work_.path() / "matches.h5").string();
+  const std::string list = (work_.path() / "images.txt").string(),
+                    features = (work_.path() / "features.h5").string();
+  ASSERT_EQ(
+      run("extract --batch " + list + " -o " + features + " --format h5 --features 2000").status,
+      0);
+  const std::string pairs = (work_.path() / "pairs.txt").string(),
+                    matches = (work_.path() / "matches.h5").string();
   std::ofstream(pairs) << (work_.path() / "images/i0.png").string().substr(1) << " "
                        << (work_.path() / "images/i1.png").string().substr(1) << "\n";
   ASSERT_EQ(run("match --pairs " + pairs + " --features " + features + " -o " + matches).status, 0);
   fill_leaving(64 << 10);
-  const CliResult r = run("colmap --features " + features + " --matches " + matches + " --pairs " + pairs + " -o " +
-                          (disk_ / "db.db").string());
+  const CliResult r = run("colmap --features " + features + " --matches " + matches + " --pairs " +
+                          pairs + " -o " + (disk_ / "db.db").string());
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_FALSE(fs::exists(disk_ / "db.db"));
   EXPECT_EQ(leftovers(disk_), std::vector<std::string>{});

@@ -25,27 +25,34 @@ Level make_level(const std::vector<int>& counts, std::uint32_t seed) {
     BlockRange range{static_cast<std::int32_t>(level.candidates.size()), 0};
     std::set<std::pair<int, int>> used;
     while (static_cast<int>(used.size()) < counts[b]) {
-      const int x = static_cast<int>(b) * 32 + static_cast<int>(rng() % 32), y = static_cast<int>(rng() % 32);
+      const int x = static_cast<int>(b) * 32 + static_cast<int>(rng() % 32),
+                y = static_cast<int>(rng() % 32);
       used.insert({y, x});
     }
-    for (const auto& [y, x] : used) level.candidates.push_back({x, y, 7 + static_cast<int>(rng() % 20)});
+    for (const auto& [y, x] : used)
+      level.candidates.push_back({x, y, 7 + static_cast<int>(rng() % 20)});
     range.end = static_cast<std::int32_t>(level.candidates.size());
     level.blocks.push_back(range);
   }
   return level;
 }
 
-std::map<int, std::vector<std::int32_t>> kept_per_block(const Level& level, const std::vector<std::int32_t>& selected) {
+std::map<int, std::vector<std::int32_t>> kept_per_block(const Level& level,
+                                                        const std::vector<std::int32_t>& selected) {
   std::map<int, std::vector<std::int32_t>> per_block;
   for (std::int32_t index : selected)
     for (std::size_t b = 0; b < level.blocks.size(); ++b)
-      if (index >= level.blocks[b].begin && index < level.blocks[b].end) per_block[static_cast<int>(b)].push_back(index);
+      if (index >= level.blocks[b].begin && index < level.blocks[b].end)
+        per_block[static_cast<int>(b)].push_back(index);
   return per_block;
 }
 
 TEST(ProportionalDistribution, KeepsExactlyTheWantedCountWithAWaterLevel) {
-  const std::vector<std::vector<int>> layouts = {
-      {0, 1, 2, 50, 50, 3, 40, 0, 9}, {10, 10, 10, 10}, {100}, {1, 1, 1, 1, 200}, {5, 17, 33, 2, 0, 64, 12}};
+  const std::vector<std::vector<int>> layouts = {{0, 1, 2, 50, 50, 3, 40, 0, 9},
+                                                 {10, 10, 10, 10},
+                                                 {100},
+                                                 {1, 1, 1, 1, 200},
+                                                 {5, 17, 33, 2, 0, 64, 12}};
   for (std::size_t l = 0; l < layouts.size(); ++l) {
     const Level level = make_level(layouts[l], static_cast<std::uint32_t>(l));
     int total = 0;
@@ -57,17 +64,20 @@ TEST(ProportionalDistribution, KeepsExactlyTheWantedCountWithAWaterLevel) {
       distribute_proportional(level.candidates, level.blocks, wanted, selected, scratch);
       SCOPED_TRACE(testing::Message() << "layout " << l << ", wanted " << wanted);
       ASSERT_EQ(static_cast<int>(selected.size()), std::min(wanted, total));
-      EXPECT_EQ(std::set<std::int32_t>(selected.begin(), selected.end()).size(), selected.size()) << "duplicates";
+      EXPECT_EQ(std::set<std::int32_t>(selected.begin(), selected.end()).size(), selected.size())
+          << "duplicates";
 
       const auto per_block = kept_per_block(level, selected);
       int most = 0;
-      for (const auto& [block, kept] : per_block) most = std::max(most, static_cast<int>(kept.size()));
+      for (const auto& [block, kept] : per_block)
+        most = std::max(most, static_cast<int>(kept.size()));
       for (std::size_t b = 0; b < level.blocks.size(); ++b) {
         const int available = level.blocks[b].size();
         const auto it = per_block.find(static_cast<int>(b));
         const int kept = it == per_block.end() ? 0 : static_cast<int>(it->second.size());
         // Water level: every block keeps min(R_i, k) or k + 1, with k + 1 == most.
-        EXPECT_GE(kept, std::min(available, most - 1)) << "block " << b << " starved below the water level";
+        EXPECT_GE(kept, std::min(available, most - 1))
+            << "block " << b << " starved below the water level";
         if (available < most) {
           EXPECT_EQ(kept, available) << "block " << b << " under the level must keep all";
         }
@@ -75,7 +85,8 @@ TEST(ProportionalDistribution, KeepsExactlyTheWantedCountWithAWaterLevel) {
         if (it != per_block.end()) {
           const Candidate* weakest_kept = nullptr;
           for (std::int32_t i : it->second)
-            if (!weakest_kept || stronger(*weakest_kept, level.candidates[static_cast<std::size_t>(i)]))
+            if (!weakest_kept ||
+                stronger(*weakest_kept, level.candidates[static_cast<std::size_t>(i)]))
               weakest_kept = &level.candidates[static_cast<std::size_t>(i)];
           const std::set<std::int32_t> kept_set(it->second.begin(), it->second.end());
           for (std::int32_t i = level.blocks[b].begin; i < level.blocks[b].end; ++i)
@@ -128,7 +139,8 @@ TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
     std::vector<Candidate> candidates;
     std::set<std::pair<int, int>> used;
     const int count = 1 + static_cast<int>(rng() % 600);
-    const int width = 60 + static_cast<int>(rng() % 800), height = 60 + static_cast<int>(rng() % 600);
+    const int width = 60 + static_cast<int>(rng() % 800),
+              height = 60 + static_cast<int>(rng() % 600);
     while (static_cast<int>(used.size()) < count) {
       const int x = 19 + static_cast<int>(rng() % static_cast<unsigned>(width - 38));
       const int y = 19 + static_cast<int>(rng() % static_cast<unsigned>(height - 38));
@@ -137,7 +149,8 @@ TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
     for (int wanted : {1, 5, 50, 217, 1000}) {
       std::vector<std::int32_t> first, second;
       distribute_quadtree(candidates, 16, width - 16, 16, height - 16, wanted, first, scratch);
-      ASSERT_EQ(static_cast<int>(first.size()), std::min(wanted, count)) << "trial " << trial << " wanted " << wanted;
+      ASSERT_EQ(static_cast<int>(first.size()), std::min(wanted, count))
+          << "trial " << trial << " wanted " << wanted;
       EXPECT_EQ(std::set<std::int32_t>(first.begin(), first.end()).size(), first.size());
       // Same candidates in another order: the same points.
       std::vector<std::size_t> order(candidates.size());
@@ -147,8 +160,12 @@ TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
       for (std::size_t i : order) shuffled.push_back(candidates[i]);
       distribute_quadtree(shuffled, 16, width - 16, 16, height - 16, wanted, second, scratch);
       std::set<std::pair<int, int>> a, b;
-      for (std::int32_t i : first) a.insert({candidates[static_cast<std::size_t>(i)].x, candidates[static_cast<std::size_t>(i)].y});
-      for (std::int32_t i : second) b.insert({shuffled[static_cast<std::size_t>(i)].x, shuffled[static_cast<std::size_t>(i)].y});
+      for (std::int32_t i : first)
+        a.insert(
+            {candidates[static_cast<std::size_t>(i)].x, candidates[static_cast<std::size_t>(i)].y});
+      for (std::int32_t i : second)
+        b.insert(
+            {shuffled[static_cast<std::size_t>(i)].x, shuffled[static_cast<std::size_t>(i)].y});
       EXPECT_EQ(a, b) << "trial " << trial << ": result depends on the input order";
     }
   }

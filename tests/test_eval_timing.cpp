@@ -23,7 +23,8 @@ TEST(EvalTiming, EveryMethodTakesEveryPositionOfARound) {
 
 TEST(EvalTiming, RunsEachMethodOncePerRoundAlternating) {
   std::string order;
-  const std::vector<std::function<void()>> work = {[&] { order += 'a'; }, [&] { order += 'b'; }, [&] { order += 'c'; }};
+  const std::vector<std::function<void()>> work = {[&] { order += 'a'; }, [&] { order += 'b'; },
+                                                   [&] { order += 'c'; }};
   const std::vector<MethodTimes> times = time_interleaved(work, 3);
   EXPECT_EQ(order, "abcbcacab");
   ASSERT_EQ(times.size(), 3u);

@@ -65,11 +65,13 @@ TEST_P(ExtractorModes, BoundedCountsAndRepeatableOnSamples) {
       EXPECT_LT(y, level.height - kEdgeBorder);
       if (i > 0) {
         const Keypoint& prev = first.keypoints[i - 1];
-        EXPECT_TRUE(prev.octave < kp.octave || (prev.octave == kp.octave && level_pixel(prev) < level_pixel(kp)))
+        EXPECT_TRUE(prev.octave < kp.octave ||
+                    (prev.octave == kp.octave && level_pixel(prev) < level_pixel(kp)))
             << "keypoint " << i << " out of order";
       }
     }
-    for (std::size_t n = 0; n < geometry.size(); ++n) EXPECT_LE(per_level[n], geometry[n].n_features) << "level " << n;
+    for (std::size_t n = 0; n < geometry.size(); ++n)
+      EXPECT_LE(per_level[n], geometry[n].n_features) << "level " << n;
 
     // Same bytes on a second run, with the same extractor and with a new one.
     EXPECT_TRUE(same_bytes(first, extractor.extract(view_of(gray))));
@@ -77,7 +79,9 @@ TEST_P(ExtractorModes, BoundedCountsAndRepeatableOnSamples) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, ExtractorModes, testing::Values(Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy),
+INSTANTIATE_TEST_SUITE_P(Modes, ExtractorModes,
+                         testing::Values(Mode::aief, Mode::aief_paper, Mode::orbslam2,
+                                         Mode::quadtree_entropy),
                          [](const testing::TestParamInfo<Mode>& info) {
                            std::string name(to_string(info.param));
                            std::replace(name.begin(), name.end(), '-', '_');
@@ -124,13 +128,15 @@ TEST(Extractor, BadImagesGetClearErrors) {
   };
   EXPECT_NE(message(ImageView{}).find("empty"), std::string::npos);
   const std::uint8_t one = 0;
-  EXPECT_NE(message(ImageView{&one, 1, 1, 1}).find("smaller than the 19-pixel border"), std::string::npos);
+  EXPECT_NE(message(ImageView{&one, 1, 1, 1}).find("smaller than the 19-pixel border"),
+            std::string::npos);
   std::vector<std::uint8_t> small(38 * 200, 100);
   EXPECT_NE(message(ImageView{small.data(), 38, 200, 38}).find("38x200"), std::string::npos);
   EXPECT_NE(message(ImageView{small.data(), 200, 38, 200}).find("200x38"), std::string::npos);
   EXPECT_NE(message(ImageView{small.data(), 50, 50, 40}).find("stride"), std::string::npos);
   std::vector<std::uint8_t> line(500, 100);
-  EXPECT_NE(message(ImageView{line.data(), 500, 1, 500}).find("500x1 is smaller"), std::string::npos);
+  EXPECT_NE(message(ImageView{line.data(), 500, 1, 500}).find("500x1 is smaller"),
+            std::string::npos);
   EXPECT_NE(message(ImageView{line.data(), 1, 500, 1}).find("1x500 is smaller"), std::string::npos);
   EXPECT_NE(message(ImageView{line.data(), 0, 0, 0}).find("0x0 is empty"), std::string::npos);
   EXPECT_NE(message(ImageView{line.data(), -3, 10, 10}).find("empty"), std::string::npos);
@@ -143,14 +149,16 @@ TEST(Extractor, BadImagesGetClearErrors) {
 
 TEST(Extractor, SmallestImagesAndManyLevelsAnswer) {
   for (int size : {39, 40, 41, 57}) {
-    const cv::Mat image = test::random_textured_image(size, size + 3, static_cast<std::uint32_t>(size));
+    const cv::Mat image =
+        test::random_textured_image(size, size + 3, static_cast<std::uint32_t>(size));
     ExtractorOptions options;
     options.n_levels = 32;
     const Features features = extract(view_of(image), options);
     EXPECT_LE(static_cast<int>(features.keypoints.size()), options.n_features);
     const std::vector<LevelGeometry> levels = level_geometry(image.cols, image.rows, options);
     for (const Keypoint& kp : features.keypoints)
-      EXPECT_GT(levels[static_cast<std::size_t>(kp.octave)].grid.count(), 0) << "keypoint on a level too small at " << size;
+      EXPECT_GT(levels[static_cast<std::size_t>(kp.octave)].grid.count(), 0)
+          << "keypoint on a level too small at " << size;
   }
 }
 
@@ -190,14 +198,18 @@ TEST(Extractor, DescriptorsSurviveAnExactQuarterTurn) {
     const float rx = static_cast<float>(gray.rows - 1) - a.keypoints[i].y, ry = a.keypoints[i].x;
     for (std::size_t j = 0; j < b.keypoints.size(); ++j) {
       if (b.keypoints[j].x == rx && b.keypoints[j].y == ry) {
-        distances.push_back(static_cast<int>(hamming_256_scalar(a.descriptors[i].data(), b.descriptors[j].data())));
+        distances.push_back(
+            static_cast<int>(hamming_256_scalar(a.descriptors[i].data(), b.descriptors[j].data())));
         break;
       }
     }
   }
   ASSERT_GE(distances.size(), 100u) << "too few corresponding keypoints";
-  std::nth_element(distances.begin(), distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2), distances.end());
-  EXPECT_LE(distances[distances.size() / 2], 10) << "median Hamming distance over " << distances.size() << " pairs";
+  std::nth_element(distances.begin(),
+                   distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2),
+                   distances.end());
+  EXPECT_LE(distances[distances.size() / 2], 10)
+      << "median Hamming distance over " << distances.size() << " pairs";
 }
 
 }  // namespace
@@ -210,7 +222,8 @@ TEST(LevelGeometry, LevelsTooSmallHaveNoBlocks) {
   const std::vector<LevelGeometry> levels = level_geometry(39, 42, ExtractorOptions{});
   EXPECT_EQ(levels[0].grid.count(), 1);
   for (std::size_t n = 1; n < levels.size(); ++n) {
-    EXPECT_EQ(levels[n].grid.count(), 0) << "level " << n << " is " << levels[n].width << "x" << levels[n].height;
+    EXPECT_EQ(levels[n].grid.count(), 0)
+        << "level " << n << " is " << levels[n].width << "x" << levels[n].height;
     EXPECT_EQ(levels[n].grid.cols(), 0);
     EXPECT_EQ(levels[n].grid.rows(), 0);
   }
@@ -236,7 +249,8 @@ TEST(LevelGeometry, BudgetsNeverExceedTheFeaturesAskedFor) {
           EXPECT_GE(level.n_features, 0);
           total += level.n_features;
         }
-        EXPECT_EQ(total, features) << features << " features, " << levels << " levels, scale " << scale;
+        EXPECT_EQ(total, features)
+            << features << " features, " << levels << " levels, scale " << scale;
       }
 }
 
@@ -260,19 +274,24 @@ TEST(LevelGeometry, LevelsTooSmallToUseGiveTheirShareToTheUsableLevels) {
     const std::vector<LevelGeometry> levels = level_geometry(gray.cols, gray.rows, options);
     int usable_budget = 0, unusable = 0;
     for (const LevelGeometry& level : levels) {
-      if (level.grid.count() > 0) usable_budget += level.n_features;
-      else EXPECT_EQ(level.n_features, 0) << "a level without blocks keeps a budget";
+      if (level.grid.count() > 0)
+        usable_budget += level.n_features;
+      else
+        EXPECT_EQ(level.n_features, 0) << "a level without blocks keeps a budget";
       unusable += level.grid.count() == 0;
     }
     EXPECT_GT(unusable, 0) << "the case must have levels too small to use";
     EXPECT_EQ(usable_budget, options.n_features);
-    EXPECT_EQ(static_cast<int>(extract(view_of(gray), options).keypoints.size()), options.n_features)
+    EXPECT_EQ(static_cast<int>(extract(view_of(gray), options).keypoints.size()),
+              options.n_features)
         << options.n_levels << " levels at scale " << options.scale_factor;
   }
   // With every level usable, ORB-SLAM2's budgets are unchanged (graf, 8 levels at 1.2).
-  const std::vector<LevelGeometry> defaults = level_geometry(gray.cols, gray.rows, ExtractorOptions{});
+  const std::vector<LevelGeometry> defaults =
+      level_geometry(gray.cols, gray.rows, ExtractorOptions{});
   const int orbslam2_budgets[] = {217, 181, 151, 126, 105, 87, 73, 60};
-  for (std::size_t n = 0; n < defaults.size(); ++n) EXPECT_EQ(defaults[n].n_features, orbslam2_budgets[n]) << "level " << n;
+  for (std::size_t n = 0; n < defaults.size(); ++n)
+    EXPECT_EQ(defaults[n].n_features, orbslam2_budgets[n]) << "level " << n;
 }
 
 }  // namespace

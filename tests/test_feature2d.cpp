@@ -16,25 +16,32 @@ namespace aief {
 namespace {
 
 // "" when both hold the same keypoints (every field, bit for bit) and descriptor bytes.
-std::string first_difference(const std::vector<cv::KeyPoint>& a, const cv::Mat& da, const std::vector<cv::KeyPoint>& b,
-                             const cv::Mat& db) {
-  if (a.size() != b.size()) return std::to_string(a.size()) + " keypoints vs " + std::to_string(b.size());
-  if (da.rows != db.rows || da.cols != db.cols || da.type() != db.type()) return "descriptor matrices differ in shape";
+std::string first_difference(const std::vector<cv::KeyPoint>& a, const cv::Mat& da,
+                             const std::vector<cv::KeyPoint>& b, const cv::Mat& db) {
+  if (a.size() != b.size())
+    return std::to_string(a.size()) + " keypoints vs " + std::to_string(b.size());
+  if (da.rows != db.rows || da.cols != db.cols || da.type() != db.type())
+    return "descriptor matrices differ in shape";
   for (std::size_t i = 0; i < a.size(); ++i) {
     const cv::KeyPoint &p = a[i], &q = b[i];
-    if (std::memcmp(&p.pt, &q.pt, sizeof p.pt) != 0 || std::memcmp(&p.size, &q.size, sizeof(float)) != 0 ||
-        std::memcmp(&p.angle, &q.angle, sizeof(float)) != 0 || std::memcmp(&p.response, &q.response, sizeof(float)) != 0 ||
-        p.octave != q.octave || p.class_id != q.class_id)
-      return "keypoint " + std::to_string(i) + ": (" + std::to_string(p.pt.x) + ", " + std::to_string(p.pt.y) + ", angle " +
-             std::to_string(p.angle) + ") vs (" + std::to_string(q.pt.x) + ", " + std::to_string(q.pt.y) + ", angle " +
+    if (std::memcmp(&p.pt, &q.pt, sizeof p.pt) != 0 ||
+        std::memcmp(&p.size, &q.size, sizeof(float)) != 0 ||
+        std::memcmp(&p.angle, &q.angle, sizeof(float)) != 0 ||
+        std::memcmp(&p.response, &q.response, sizeof(float)) != 0 || p.octave != q.octave ||
+        p.class_id != q.class_id)
+      return "keypoint " + std::to_string(i) + ": (" + std::to_string(p.pt.x) + ", " +
+             std::to_string(p.pt.y) + ", angle " + std::to_string(p.angle) + ") vs (" +
+             std::to_string(q.pt.x) + ", " + std::to_string(q.pt.y) + ", angle " +
              std::to_string(q.angle) + ")";
-    if (!da.empty() && std::memcmp(da.ptr(static_cast<int>(i)), db.ptr(static_cast<int>(i)), static_cast<std::size_t>(da.cols)) != 0)
+    if (!da.empty() && std::memcmp(da.ptr(static_cast<int>(i)), db.ptr(static_cast<int>(i)),
+                                   static_cast<std::size_t>(da.cols)) != 0)
       return "descriptor " + std::to_string(i);
   }
   return "";
 }
 
-constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy};
+constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2,
+                               Mode::quadtree_entropy};
 
 TEST(Feature2D, IsACvFeature2DWithOrbsDescriptorShape) {
   const cv::Ptr<cv::Feature2D> detector = opencv::Feature2D::create();
@@ -61,7 +68,8 @@ TEST(Feature2D, OptionsGoThroughFileStorage) {
   EXPECT_EQ(read->options().distribution, options.distribution);
   EXPECT_EQ(read->options().entropy, options.entropy);
   EXPECT_EQ(read->options().coordinates, options.coordinates);
-  cv::FileStorage bad("%YAML:1.0\nn_features: -5\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  cv::FileStorage bad("%YAML:1.0\nn_features: -5\n",
+                      cv::FileStorage::READ | cv::FileStorage::MEMORY);
   EXPECT_THROW(read->read(bad.root()), Error);
   EXPECT_EQ(read->options().n_features, 777) << "a bad setting leaves the detector as it was";
 }
@@ -72,10 +80,13 @@ TEST(Feature2D, DetectAndComputeGivesTheEnginesFeatures) {
     const ExtractorOptions options = options_for_mode(mode);
     std::vector<cv::KeyPoint> keypoints, expected_keypoints;
     cv::Mat descriptors, expected_descriptors;
-    opencv::Feature2D::create(options)->detectAndCompute(gray, cv::noArray(), keypoints, descriptors);
+    opencv::Feature2D::create(options)->detectAndCompute(gray, cv::noArray(), keypoints,
+                                                         descriptors);
     cv_extract(gray, expected_keypoints, expected_descriptors, options);
     ASSERT_GT(keypoints.size(), 500u);
-    EXPECT_EQ(first_difference(keypoints, descriptors, expected_keypoints, expected_descriptors), "") << to_string(mode);
+    EXPECT_EQ(first_difference(keypoints, descriptors, expected_keypoints, expected_descriptors),
+              "")
+        << to_string(mode);
   }
 }
 
@@ -92,7 +103,8 @@ TEST(Feature2D, DetectThenComputeIsDetectAndComputeBitForBit) {
       const std::size_t detected = separate.size();
       detector->compute(gray, separate, separate_descriptors);
       EXPECT_EQ(separate.size(), detected) << "compute removed detected keypoints";
-      EXPECT_EQ(first_difference(both, both_descriptors, separate, separate_descriptors), "") << sequence << " " << to_string(mode);
+      EXPECT_EQ(first_difference(both, both_descriptors, separate, separate_descriptors), "")
+          << sequence << " " << to_string(mode);
     }
   }
 }
@@ -108,21 +120,27 @@ TEST(Feature2D, TheMaskIsTheEnginesDetectionMask) {
   detector->detect(gray, detected, mask);
   Features expected;
   Extractor().extract(view_of(gray), view_of(mask), expected);
-  EXPECT_EQ(first_difference(keypoints, descriptors, to_cv_keypoints(expected), to_cv_descriptors(expected)), "");
+  EXPECT_EQ(first_difference(keypoints, descriptors, to_cv_keypoints(expected),
+                             to_cv_descriptors(expected)),
+            "");
   EXPECT_EQ(keypoints.size(), 1000u);
   EXPECT_EQ(first_difference(keypoints, cv::Mat(), detected, cv::Mat()), "");
-  EXPECT_THROW(detector->detect(gray, detected, cv::Mat(gray.size(), CV_32F, cv::Scalar(1))), Error);
+  EXPECT_THROW(detector->detect(gray, detected, cv::Mat(gray.size(), CV_32F, cv::Scalar(1))),
+               Error);
 }
 
 TEST(Feature2D, ComputeKeepsEachKeypointsFieldsButTheAngleAndRemovesThoseNearTheEdge) {
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
   const int w = gray.cols, h = gray.rows;
   // Level 0 of the default mode maps x to the pixel round(x): 19 is the first pixel kept.
-  std::vector<cv::KeyPoint> keypoints = {
-      cv::KeyPoint(100.f, 100.f, 7.f, 42.f, 3.f, 0, 11),  cv::KeyPoint(18.4f, 200.f, 31.f, -1.f, 0.f, 0, 12),
-      cv::KeyPoint(18.6f, 200.f, 31.f, -1.f, 0.f, 0, 13),  cv::KeyPoint(w - 19.6f, 200.f, 31.f, -1.f, 0.f, 0, 14),
-      cv::KeyPoint(w - 19.4f, 200.f, 31.f, -1.f, 0.f, 0, 15), cv::KeyPoint(300.f, h - 19.6f, 31.f, -1.f, 0.f, 0, 16),
-      cv::KeyPoint(300.f, h - 19.4f, 31.f, -1.f, 0.f, 0, 17), cv::KeyPoint(300.f, 300.f, 31.f, -1.f, 0.f, 3, 18)};
+  std::vector<cv::KeyPoint> keypoints = {cv::KeyPoint(100.f, 100.f, 7.f, 42.f, 3.f, 0, 11),
+                                         cv::KeyPoint(18.4f, 200.f, 31.f, -1.f, 0.f, 0, 12),
+                                         cv::KeyPoint(18.6f, 200.f, 31.f, -1.f, 0.f, 0, 13),
+                                         cv::KeyPoint(w - 19.6f, 200.f, 31.f, -1.f, 0.f, 0, 14),
+                                         cv::KeyPoint(w - 19.4f, 200.f, 31.f, -1.f, 0.f, 0, 15),
+                                         cv::KeyPoint(300.f, h - 19.6f, 31.f, -1.f, 0.f, 0, 16),
+                                         cv::KeyPoint(300.f, h - 19.4f, 31.f, -1.f, 0.f, 0, 17),
+                                         cv::KeyPoint(300.f, 300.f, 31.f, -1.f, 0.f, 3, 18)};
   const std::vector<cv::KeyPoint> given = keypoints;
   cv::Mat descriptors;
   opencv::Feature2D::create()->compute(gray, keypoints, descriptors);
@@ -151,7 +169,8 @@ TEST(Feature2D, ComputeRefusesAnOctaveOutsideTheLevels) {
       opencv::Feature2D::create()->compute(gray, keypoints, descriptors);
       ADD_FAILURE() << "octave " << octave << " accepted";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("octave " + std::to_string(octave)), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("octave " + std::to_string(octave)), std::string::npos)
+          << e.what();
     }
   }
 }
@@ -184,8 +203,10 @@ TEST(Feature2D, ComputeAgreesWithCvOrbGivenTheSameAngles) {
   ASSERT_EQ(with_our_angles.size(), keypoints.size());
   ASSERT_EQ(ours.size(), theirs.size());
   int differing_bits = 0;
-  for (int r = 0; r < ours.rows; ++r) differing_bits += static_cast<int>(cv::norm(ours.row(r), theirs.row(r), cv::NORM_HAMMING));
-  EXPECT_LT(differing_bits, ours.rows * 256 / 500) << "over " << ours.rows << " descriptors";  // < 0.2%
+  for (int r = 0; r < ours.rows; ++r)
+    differing_bits += static_cast<int>(cv::norm(ours.row(r), theirs.row(r), cv::NORM_HAMMING));
+  EXPECT_LT(differing_bits, ours.rows * 256 / 500)
+      << "over " << ours.rows << " descriptors";  // < 0.2%
 }
 
 TEST(Feature2D, ColourImagesAreConvertedAsCvtColor) {

@@ -33,7 +33,8 @@ namespace {
 using OwnTempDir = test::TempFolder;
 
 Features sample_features(const char* sequence, int index) {
-  const GrayImage image = io::read_gray_image(test::sample_path(sequence, "img" + std::to_string(index) + ".png"));
+  const GrayImage image =
+      io::read_gray_image(test::sample_path(sequence, "img" + std::to_string(index) + ".png"));
   return extract(image.view());
 }
 
@@ -56,17 +57,20 @@ TEST(NpzWriter, ArchiveOfNpyArraysWithNumpyHeaders) {
   const Features features = sample_features("boat", 1);
   const std::string npz = io::features_npz(features);
   EXPECT_EQ(npz.substr(0, 4), std::string("PK\x03\x04", 4));
-  EXPECT_EQ(npz.substr(npz.size() - 22, 4), std::string("PK\x05\x06", 4));  // end of central directory, no comment
+  EXPECT_EQ(npz.substr(npz.size() - 22, 4),
+            std::string("PK\x05\x06", 4));  // end of central directory, no comment
   const std::string n = std::to_string(features.keypoints.size());
-  for (const std::string& header : {"{'descr': '<f4', 'fortran_order': False, 'shape': (" + n + ", 2), }",
-                                   "{'descr': '|u1', 'fortran_order': False, 'shape': (" + n + ", 32), }",
-                                   "{'descr': '<i4', 'fortran_order': False, 'shape': (" + n + ",), }",
-                                   std::string("{'descr': '<i8', 'fortran_order': False, 'shape': (2,), }")})
+  for (const std::string& header :
+       {"{'descr': '<f4', 'fortran_order': False, 'shape': (" + n + ", 2), }",
+        "{'descr': '|u1', 'fortran_order': False, 'shape': (" + n + ", 32), }",
+        "{'descr': '<i4', 'fortran_order': False, 'shape': (" + n + ",), }",
+        std::string("{'descr': '<i8', 'fortran_order': False, 'shape': (2,), }")})
     EXPECT_NE(npz.find(header), std::string::npos) << header;
   // Every .npy header is padded so its data starts 64-byte aligned within the member.
   const std::size_t magic = npz.find("\x93NUMPY");
   ASSERT_NE(magic, std::string::npos);
-  const std::size_t header_length = static_cast<unsigned char>(npz[magic + 8]) | (static_cast<unsigned char>(npz[magic + 9]) << 8);
+  const std::size_t header_length = static_cast<unsigned char>(npz[magic + 8]) |
+                                    (static_cast<unsigned char>(npz[magic + 9]) << 8);
   EXPECT_EQ((10 + header_length) % 64, 0u);
   EXPECT_EQ(npz[magic + 10 + header_length - 1], '\n');
 }
@@ -82,7 +86,8 @@ TEST(PairsFile, ReadsNamesSkipsCommentsAndNamesBadLines) {
     io::read_pairs(dir.file("bad.txt"));
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("line 2: expected two image names"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("line 2: expected two image names"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(io::read_pairs(dir.file("missing.txt")), Error);
 }
@@ -94,15 +99,19 @@ TEST(PairsFile, SaysWhatItSkipsAndRefusesPairsSharingAGroup) {
   const io::PairsList list = io::read_pairs(dir.file("pairs.txt"));
   ASSERT_EQ(list.pairs.size(), 1u);
   ASSERT_EQ(list.notes.size(), 2u);
-  EXPECT_NE(list.notes[0].find("line 1 skipped: it begins with '#'"), std::string::npos) << list.notes[0];
-  EXPECT_NE(list.notes[1].find("line 2 skipped: 'a.png' paired with itself"), std::string::npos) << list.notes[1];
+  EXPECT_NE(list.notes[0].find("line 1 skipped: it begins with '#'"), std::string::npos)
+      << list.notes[0];
+  EXPECT_NE(list.notes[1].find("line 2 skipped: 'a.png' paired with itself"), std::string::npos)
+      << list.notes[1];
   std::ofstream(dir.file("collide.txt")) << "a/b.png c.png\na-b.png c.png\n";
   try {
     io::read_pairs(dir.file("collide.txt"));
     FAIL() << "no error";
   } catch (const Error& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find("line 2 ('a-b.png c.png') and line 1 ('a/b.png c.png')"), std::string::npos) << message;
+    EXPECT_NE(message.find("line 2 ('a-b.png c.png') and line 1 ('a/b.png c.png')"),
+              std::string::npos)
+        << message;
   }
 }
 
@@ -114,12 +123,14 @@ TEST(AtomicWrite, LongNamesWorkAndAFailureLeavesNoTemporary) {
   io::write_file_atomically(long_name, "{}\n");
   EXPECT_TRUE(std::filesystem::exists(long_name));
   EXPECT_EQ(std::filesystem::path(io::temporary_path_of(long_name)).parent_path(), dir.path());
-  EXPECT_EQ(io::temporary_path_of(long_name), io::temporary_path_of(long_name));  // a rerun finds it
+  EXPECT_EQ(io::temporary_path_of(long_name),
+            io::temporary_path_of(long_name));  // a rerun finds it
   EXPECT_NE(io::temporary_path_of(dir.file("a.json")), io::temporary_path_of(dir.file("b.json")));
   std::filesystem::create_directories(dir.file("taken.json"));  // the rename onto a folder fails
   EXPECT_THROW(io::write_file_atomically(dir.file("taken.json"), "{}\n"), io::WriteError);
   std::size_t files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) files += entry.is_regular_file() ? 1 : 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    files += entry.is_regular_file() ? 1 : 0;
   EXPECT_EQ(files, 1u);  // the long-named output only
 }
 
@@ -137,23 +148,37 @@ TEST(Hdf5Features, OpenFailuresSayWhich) {
     return std::string("no error");
   };
   using Mode = io::Hdf5File::Mode;
-  EXPECT_NE(message([&] { io::Hdf5File(dir.file("none/f.h5"), Mode::read_write); }).find("the folder '" + dir.file("none") + "' does not exist"),
+  EXPECT_NE(message([&] {
+              io::Hdf5File(dir.file("none/f.h5"), Mode::read_write);
+            }).find("the folder '" + dir.file("none") + "' does not exist"),
             std::string::npos);
   std::filesystem::create_directories(dir.file("folder.h5"));
-  EXPECT_NE(message([&] { io::Hdf5File(dir.file("folder.h5"), Mode::read_write); }).find("it is a directory"), std::string::npos);
+  EXPECT_NE(message([&] {
+              io::Hdf5File(dir.file("folder.h5"), Mode::read_write);
+            }).find("it is a directory"),
+            std::string::npos);
   std::ofstream(dir.file("text.h5")) << "text";
-  EXPECT_NE(message([&] { io::Hdf5File(dir.file("text.h5"), Mode::read_write); }).find("it is not an HDF5 file"), std::string::npos);
-  io::Hdf5File(dir.file("good.h5"), Mode::read_write).write_features("a.png", sample_features("boat", 1));
+  EXPECT_NE(message([&] {
+              io::Hdf5File(dir.file("text.h5"), Mode::read_write);
+            }).find("it is not an HDF5 file"),
+            std::string::npos);
+  io::Hdf5File(dir.file("good.h5"), Mode::read_write)
+      .write_features("a.png", sample_features("boat", 1));
   {
-    const int held = ::open(dir.file("good.h5").c_str(), O_RDONLY);  // as libhdf5 locks a file it writes
+    const int held =
+        ::open(dir.file("good.h5").c_str(), O_RDONLY);  // as libhdf5 locks a file it writes
     ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
-    EXPECT_NE(message([&] { io::Hdf5File(dir.file("good.h5"), Mode::read_write); }).find("another process holds it locked"),
+    EXPECT_NE(message([&] {
+                io::Hdf5File(dir.file("good.h5"), Mode::read_write);
+              }).find("another process holds it locked"),
               std::string::npos);
     ::close(held);
   }
   std::filesystem::copy_file(dir.file("good.h5"), dir.file("cut.h5"));
-  std::filesystem::resize_file(dir.file("cut.h5"), std::filesystem::file_size(dir.file("cut.h5")) / 2);
-  EXPECT_NE(message([&] { io::Hdf5File(dir.file("cut.h5"), Mode::read); }).find("it is damaged"), std::string::npos);
+  std::filesystem::resize_file(dir.file("cut.h5"),
+                               std::filesystem::file_size(dir.file("cut.h5")) / 2);
+  EXPECT_NE(message([&] { io::Hdf5File(dir.file("cut.h5"), Mode::read); }).find("it is damaged"),
+            std::string::npos);
 }
 
 // A failed merge (an image in two inputs, a missing, cut or non-HDF5 input) leaves the output
@@ -165,7 +190,8 @@ TEST(Hdf5Features, FailedMergeLeavesTheOutputAsItWas) {
   io::Hdf5File(dir.file("s1.h5"), io::Hdf5File::Mode::read_write).write_features("b.png", b);
   io::Hdf5File(dir.file("s2.h5"), io::Hdf5File::Mode::read_write).write_features("b.png", b);
   std::filesystem::copy_file(dir.file("s1.h5"), dir.file("cut.h5"));
-  std::filesystem::resize_file(dir.file("cut.h5"), std::filesystem::file_size(dir.file("cut.h5")) / 2);
+  std::filesystem::resize_file(dir.file("cut.h5"),
+                               std::filesystem::file_size(dir.file("cut.h5")) / 2);
   std::ofstream(dir.file("text.h5")) << "text";
   ASSERT_EQ(io::merge_feature_files(dir.file("out.h5"), {dir.file("s0.h5")}), 1);
   const auto bytes_of = [](const std::string& path) {
@@ -174,9 +200,13 @@ TEST(Hdf5Features, FailedMergeLeavesTheOutputAsItWas) {
   };
   const std::string before = bytes_of(dir.file("out.h5"));
   for (const char* bad : {"s2.h5", "cut.h5", "text.h5", "missing.h5"}) {
-    EXPECT_THROW(io::merge_feature_files(dir.file("out.h5"), {dir.file("s1.h5"), dir.file(bad)}), Error) << bad;
+    EXPECT_THROW(io::merge_feature_files(dir.file("out.h5"), {dir.file("s1.h5"), dir.file(bad)}),
+                 Error)
+        << bad;
     EXPECT_EQ(bytes_of(dir.file("out.h5")), before) << bad;
-    EXPECT_THROW(io::merge_feature_files(dir.file("new.h5"), {dir.file("s1.h5"), dir.file(bad)}), Error) << bad;
+    EXPECT_THROW(io::merge_feature_files(dir.file("new.h5"), {dir.file("s1.h5"), dir.file(bad)}),
+                 Error)
+        << bad;
     EXPECT_FALSE(std::filesystem::exists(dir.file("new.h5"))) << bad;
   }
   EXPECT_FALSE(std::filesystem::exists(io::temporary_path_of(dir.file("out.h5"))));
@@ -214,14 +244,18 @@ TEST(Hdf5Features, MatchesInHlocPairGroups) {
   EXPECT_TRUE(file.has_matches("a/b.png", "c.png"));
   EXPECT_FALSE(file.has_matches("c.png", "a/b.png"));
   // Another pair of the same hloc group is refused, both pairs named, never given these matches.
-  for (const auto& ask : {std::function<void()>([&] { (void)file.has_matches("a-b.png", "c.png"); }),
-                          std::function<void()>([&] { (void)file.read_matches("a-b.png", "c.png"); })}) {
+  for (const auto& ask :
+       {std::function<void()>([&] { (void)file.has_matches("a-b.png", "c.png"); }),
+        std::function<void()>([&] { (void)file.read_matches("a-b.png", "c.png"); })}) {
     try {
       ask();
       ADD_FAILURE() << "no error";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("pair 'a-b.png c.png' and pair 'a/b.png c.png' share the group 'a-b.png/c.png'"),
-                std::string::npos) << e.what();
+      EXPECT_NE(
+          std::string(e.what()).find(
+              "pair 'a-b.png c.png' and pair 'a/b.png c.png' share the group 'a-b.png/c.png'"),
+          std::string::npos)
+          << e.what();
     }
   }
   const std::vector<Match> back = file.read_matches("a/b.png", "c.png");
@@ -239,13 +273,15 @@ TEST(Hdf5Features, MergeCopiesShardsAndRefusesAnImageTwice) {
   io::Hdf5File(dir.file("s0.h5"), io::Hdf5File::Mode::read_write).write_features("x/a.png", a);
   io::Hdf5File(dir.file("s1.h5"), io::Hdf5File::Mode::read_write).write_features("b.png", b);
   EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5"), dir.file("s1.h5")}), 2);
-  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}), 0);  // already there: kept
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}),
+            0);  // already there: kept
   {
     const io::Hdf5File all(dir.file("all.h5"), io::Hdf5File::Mode::read);
     expect_same(all.read_features("x/a.png"), a);
     expect_same(all.read_features("b.png"), b);
   }
-  EXPECT_THROW(io::merge_feature_files(dir.file("twice.h5"), {dir.file("s0.h5"), dir.file("s0.h5")}), Error);
+  EXPECT_THROW(
+      io::merge_feature_files(dir.file("twice.h5"), {dir.file("s0.h5"), dir.file("s0.h5")}), Error);
   EXPECT_THROW(io::merge_feature_files(dir.file("x.h5"), {dir.file("missing.h5")}), Error);
   std::ofstream(dir.file("not.h5")) << "text";
   EXPECT_THROW(io::Hdf5File(dir.file("not.h5"), io::Hdf5File::Mode::read), Error);
@@ -265,13 +301,19 @@ TEST(ColmapDatabase, WritesOnceAndNamesWhatIsMissing) {
                           match_descriptors(b.descriptors, a.descriptors));
   }
   std::ofstream(dir.file("pairs.txt")) << "a.png b.png\n";  // stored the other way round
-  const io::ColmapExport done = io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("pairs.txt"));
+  const io::ColmapExport done = io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"),
+                                                           dir.file("m.h5"), dir.file("pairs.txt"));
   EXPECT_EQ(done.images, 2);
   EXPECT_EQ(done.pairs, 1);
-  EXPECT_EQ(done.matches, static_cast<long long>(match_descriptors(b.descriptors, a.descriptors).size()));
-  EXPECT_THROW(io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("pairs.txt")), Error);
+  EXPECT_EQ(done.matches,
+            static_cast<long long>(match_descriptors(b.descriptors, a.descriptors).size()));
+  EXPECT_THROW(io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"),
+                                          dir.file("pairs.txt")),
+               Error);
   std::ofstream(dir.file("unknown.txt")) << "a.png c.png\n";
-  EXPECT_THROW(io::export_colmap_database(dir.file("db2.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("unknown.txt")), Error);
+  EXPECT_THROW(io::export_colmap_database(dir.file("db2.db"), dir.file("f.h5"), dir.file("m.h5"),
+                                          dir.file("unknown.txt")),
+               Error);
   EXPECT_FALSE(std::filesystem::exists(dir.file("db2.db")));
   EXPECT_FALSE(std::filesystem::exists(io::temporary_path_of(dir.file("db2.db"))));
 }
@@ -289,20 +331,24 @@ TEST(ColmapDatabase, RefusesMatchIndicesPastAnImagesKeypoints) {
     features.write_features("a.png", a);
     features.write_features("b.png", few_b);
     io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
-    matches.write_matches("a.png", "b.png", static_cast<int>(a.keypoints.size()), match_descriptors(a.descriptors, b.descriptors));
+    matches.write_matches("a.png", "b.png", static_cast<int>(a.keypoints.size()),
+                          match_descriptors(a.descriptors, b.descriptors));
   }
   std::ofstream(dir.file("pairs.txt")) << "a.png a.png\na.png b.png\n";
   try {
-    io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("pairs.txt"));
+    io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"),
+                               dir.file("pairs.txt"));
     FAIL() << "no error";
   } catch (const Error& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find("pair 'a.png b.png': a match names keypoint "), std::string::npos) << message;
+    EXPECT_NE(message.find("pair 'a.png b.png': a match names keypoint "), std::string::npos)
+        << message;
     EXPECT_NE(message.find("of 'b.png', which has 100 in"), std::string::npos) << message;
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("db.db")));
   std::ofstream(dir.file("self.txt")) << "a.png a.png\n";
-  const io::ColmapExport done = io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"), dir.file("m.h5"), dir.file("self.txt"));
+  const io::ColmapExport done = io::export_colmap_database(dir.file("db.db"), dir.file("f.h5"),
+                                                           dir.file("m.h5"), dir.file("self.txt"));
   EXPECT_EQ(done.pairs, 0);
   ASSERT_EQ(done.notes.size(), 1u);
   EXPECT_NE(done.notes[0].find("paired with itself"), std::string::npos);

@@ -41,8 +41,11 @@ cv::Mat blur_documented(const cv::Mat& src) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       std::uint32_t sum = 0;
-      for (int k = 0; k < 7; ++k) sum += taps[static_cast<std::size_t>(k)] * src.at<std::uint8_t>(y, reflect101(x + k - 3, width));
-      h[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = sum;
+      for (int k = 0; k < 7; ++k)
+        sum += taps[static_cast<std::size_t>(k)] *
+               src.at<std::uint8_t>(y, reflect101(x + k - 3, width));
+      h[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+        static_cast<std::size_t>(x)] = sum;
     }
   cv::Mat dst(height, width, CV_8UC1);
   for (int y = 0; y < height; ++y)
@@ -50,7 +53,9 @@ cv::Mat blur_documented(const cv::Mat& src) {
       std::uint32_t sum = 0;
       for (int k = 0; k < 7; ++k)
         sum += taps[static_cast<std::size_t>(k)] *
-               h[static_cast<std::size_t>(reflect101(y + k - 3, height)) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+               h[static_cast<std::size_t>(reflect101(y + k - 3, height)) *
+                     static_cast<std::size_t>(width) +
+                 static_cast<std::size_t>(x)];
       dst.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>((sum + 32768) >> 16);
     }
   return dst;
@@ -96,8 +101,10 @@ TEST(GaussianBlur, EqualsTheDocumentedFormula) {
   int checked = 0;
   for (int width : {4, 5, 6, 7, 8, 9, 15, 16, 17, 31, 32, 33, 63, 64, 65, 70, 127, 129})
     for (int height : {4, 5, 7, 8, 37}) {
-      const cv::Mat src = test::random_image(width, height, static_cast<std::uint32_t>(width * 100 + height));
-      EXPECT_EQ(first_difference(blur_ours(src), blur_documented(src), 0), "") << width << "x" << height;
+      const cv::Mat src =
+          test::random_image(width, height, static_cast<std::uint32_t>(width * 100 + height));
+      EXPECT_EQ(first_difference(blur_ours(src), blur_documented(src), 0), "")
+          << width << "x" << height;
       ++checked;
     }
   for (const char* sequence : {"graf", "boat"}) {
@@ -121,11 +128,13 @@ TEST(GaussianBlur, FlatAndSaturatedImagesStayFlat) {
 
 std::vector<std::pair<std::string, cv::Mat>> opencv_comparison_images() {
   std::vector<std::pair<std::string, cv::Mat>> images;
-  for (const char* sequence : {"graf", "boat"}) images.emplace_back(sequence, test::load_sample_gray(sequence, "img1.png"));
+  for (const char* sequence : {"graf", "boat"})
+    images.emplace_back(sequence, test::load_sample_gray(sequence, "img1.png"));
   images.emplace_back("textured 200x150", test::random_textured_image(200, 150, 3));
   images.emplace_back("textured 33x7", test::random_textured_image(33, 7, 4));
   for (int size : {4, 7, 31, 64, 129})
-    images.emplace_back("noise " + std::to_string(size), test::random_image(size, size + 3, 5u + static_cast<std::uint32_t>(size)));
+    images.emplace_back("noise " + std::to_string(size),
+                        test::random_image(size, size + 3, 5u + static_cast<std::uint32_t>(size)));
   return images;
 }
 
@@ -162,7 +171,9 @@ TEST(GaussianBlur, ColumnSpansEqualTheWholeAndLeaveTheRest) {
   cv::Mat canvas(src.size(), CV_8UC1, cv::Scalar(77));
   gaussian7_rows_scalar(view_of(src), mutable_view_of(canvas), 0, src.rows, 100, 139);
   EXPECT_EQ(first_difference(canvas.colRange(100, 139), whole.colRange(100, 139), 0), "");
-  EXPECT_EQ(cv::countNonZero(canvas.colRange(0, 100) != 77) + cv::countNonZero(canvas.colRange(139, src.cols) != 77), 0);
+  EXPECT_EQ(cv::countNonZero(canvas.colRange(0, 100) != 77) +
+                cv::countNonZero(canvas.colRange(139, src.cols) != 77),
+            0);
 }
 
 TEST(GaussianBlur, StridedViews) {

@@ -15,7 +15,8 @@ namespace {
 
 std::uint32_t hamming_bit_by_bit(const std::uint8_t* a, const std::uint8_t* b) {
   std::uint32_t distance = 0;
-  for (int bit = 0; bit < 256; ++bit) distance += ((a[bit / 8] >> (bit % 8)) & 1) != ((b[bit / 8] >> (bit % 8)) & 1);
+  for (int bit = 0; bit < 256; ++bit)
+    distance += ((a[bit / 8] >> (bit % 8)) & 1) != ((b[bit / 8] >> (bit % 8)) & 1);
   return distance;
 }
 
@@ -60,9 +61,11 @@ TEST(Hamming, ManyEqualsSingle) {
         std::vector<std::uint16_t> distances(static_cast<std::size_t>(n) + 1, 0xffff);
         hamming_256_many_scalar(query, base, n, distances.data());
         for (int j = 0; j < n; ++j)
-          ASSERT_EQ(distances[static_cast<std::size_t>(j)], hamming_bit_by_bit(query, base + j * 32))
+          ASSERT_EQ(distances[static_cast<std::size_t>(j)],
+                    hamming_bit_by_bit(query, base + j * 32))
               << "query " << q << ", train " << j << " of " << n;
-        EXPECT_EQ(distances[static_cast<std::size_t>(n)], 0xffff) << "wrote past " << n << " distances";
+        EXPECT_EQ(distances[static_cast<std::size_t>(n)], 0xffff)
+            << "wrote past " << n << " distances";
       }
     }
 }
@@ -76,11 +79,14 @@ TEST(Hamming, BlockedEqualsTheBitByBitCountAndPadsWithZeroDescriptors) {
     block_descriptors(train.data(), n, blocked);
     const int blocks = hamming_block_count(n);
     ASSERT_EQ(blocked.size(), static_cast<std::size_t>(blocks * kHammingBlock * kDescriptorWords));
-    std::vector<std::uint16_t> distances(static_cast<std::size_t>(blocks * kHammingBlock) + 1, 0xffff);
+    std::vector<std::uint16_t> distances(static_cast<std::size_t>(blocks * kHammingBlock) + 1,
+                                         0xffff);
     hamming_256_blocked_scalar(query.data(), blocked.data(), blocks, distances.data());
     for (int j = 0; j < blocks * kHammingBlock; ++j) {
       const std::uint8_t* expected_train = j < n ? train.data() + j * 32 : zeros.data();
-      ASSERT_EQ(distances[static_cast<std::size_t>(j)], hamming_bit_by_bit(query.data(), expected_train)) << "train " << j << " of " << n;
+      ASSERT_EQ(distances[static_cast<std::size_t>(j)],
+                hamming_bit_by_bit(query.data(), expected_train))
+          << "train " << j << " of " << n;
     }
     EXPECT_EQ(distances.back(), 0xffff) << "wrote past " << blocks << " blocks";
   }
@@ -93,16 +99,19 @@ TEST(BoundFilter, KeepsExactlyThePositionsWithinEitherBound) {
     std::vector<std::uint16_t> distances(static_cast<std::size_t>(n));
     std::vector<std::int16_t> bounds(static_cast<std::size_t>(n));
     for (int k = 0; k < n; ++k) {
-      distances[static_cast<std::size_t>(k)] = static_cast<std::uint16_t>(k % 9 == 0 ? 0x7fff : distance(rng));  // 0x7fff: excluded
+      distances[static_cast<std::size_t>(k)] =
+          static_cast<std::uint16_t>(k % 9 == 0 ? 0x7fff : distance(rng));  // 0x7fff: excluded
       bounds[static_cast<std::size_t>(k)] = static_cast<std::int16_t>(bound(rng));
     }
     for (int query_bound : {-1, 0, 100, 256}) {
       std::vector<std::int32_t> positions(static_cast<std::size_t>(n));
-      positions.resize(static_cast<std::size_t>(positions_within_bounds_scalar(distances.data(), bounds.data(), n, query_bound, positions.data())));
+      positions.resize(static_cast<std::size_t>(positions_within_bounds_scalar(
+          distances.data(), bounds.data(), n, query_bound, positions.data())));
       std::vector<std::int32_t> expected;
       for (int k = 0; k < n; ++k) {
         const int d = distances[static_cast<std::size_t>(k)];
-        if (d != 0x7fff && (d <= query_bound || d <= bounds[static_cast<std::size_t>(k)])) expected.push_back(k);
+        if (d != 0x7fff && (d <= query_bound || d <= bounds[static_cast<std::size_t>(k)]))
+          expected.push_back(k);
       }
       EXPECT_EQ(positions, expected) << "n " << n << ", query bound " << query_bound;
     }

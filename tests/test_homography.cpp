@@ -27,7 +27,8 @@ struct Synthetic {
   std::vector<Point2> src, dst;
 };
 
-Synthetic synthetic(const Homography& H, int inliers, int outliers, double noise, std::uint32_t seed) {
+Synthetic synthetic(const Homography& H, int inliers, int outliers, double noise,
+                    std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> x(0, 800), y(0, 640);
   std::normal_distribution<double> jitter(0, noise);
@@ -76,7 +77,8 @@ TEST(Homography, SameAnswerForAnyOrderOfTheMatches) {
     EXPECT_EQ(result.H, reference.H) << "trial " << trial;
     EXPECT_EQ(result.inliers, reference.inliers);
     for (std::size_t k = 0; k < order.size(); ++k)
-      ASSERT_EQ(result.inlier_mask[k], reference.inlier_mask[order[k]]) << "trial " << trial << ", match " << k;
+      ASSERT_EQ(result.inlier_mask[k], reference.inlier_mask[order[k]])
+          << "trial " << trial << ", match " << k;
   }
 }
 
@@ -113,14 +115,16 @@ TEST(Homography, AtLeastAsGoodAsOpenCvOnTheSamplePairs) {
     orb->detectAndCompute(b, cv::noArray(), kb, db);
     const auto to_descriptors = [](const cv::Mat& m) {
       std::vector<Descriptor> out(static_cast<std::size_t>(m.rows));
-      for (int r = 0; r < m.rows; ++r) std::copy_n(m.ptr<std::uint8_t>(r), 32, out[static_cast<std::size_t>(r)].begin());
+      for (int r = 0; r < m.rows; ++r)
+        std::copy_n(m.ptr<std::uint8_t>(r), 32, out[static_cast<std::size_t>(r)].begin());
       return out;
     };
     const std::vector<Match> matches = match_descriptors(to_descriptors(da), to_descriptors(db));
     std::vector<Point2> src, dst;
     std::vector<cv::Point2f> cv_src, cv_dst;
     for (const Match& m : matches) {
-      const cv::Point2f p = ka[static_cast<std::size_t>(m.query)].pt, q = kb[static_cast<std::size_t>(m.train)].pt;
+      const cv::Point2f p = ka[static_cast<std::size_t>(m.query)].pt,
+                        q = kb[static_cast<std::size_t>(m.train)].pt;
       src.push_back({p.x, p.y});
       dst.push_back({q.x, q.y});
       cv_src.push_back(p);
@@ -144,11 +148,15 @@ TEST(Homography, AtLeastAsGoodAsOpenCvOnTheSamplePairs) {
     const Homography truth = read_homography(test::sample_path(sequence, "H1to2p"));
     const double ours_error = mean_corner_error(ours.H, truth, a.cols, a.rows);
     const double theirs_error = mean_corner_error(theirs, truth, a.cols, a.rows);
-    EXPECT_LT(mean_corner_error(ours.H, theirs, a.cols, a.rows), 2.0 + std::max(0.0, theirs_error - 1.0)) << sequence;
+    EXPECT_LT(mean_corner_error(ours.H, theirs, a.cols, a.rows),
+              2.0 + std::max(0.0, theirs_error - 1.0))
+        << sequence;
     EXPECT_LE(ours_error, theirs_error + 0.25) << sequence;
     EXPECT_LT(ours_error, 1.5) << sequence;
-    std::printf("%s: %zu matches, ours %d inliers, OpenCV's model %d; corner error vs truth: ours %.2f, OpenCV %.2f\n", sequence,
-                src.size(), ours.inliers, theirs_inliers, ours_error, theirs_error);
+    std::printf(
+        "%s: %zu matches, ours %d inliers, OpenCV's model %d; corner error vs truth: ours %.2f, "
+        "OpenCV %.2f\n",
+        sequence, src.size(), ours.inliers, theirs_inliers, ours_error, theirs_error);
   }
 }
 

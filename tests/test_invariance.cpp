@@ -82,11 +82,13 @@ struct Rotated {
 // The image and its mask turned by `degrees` about the image centre, onto a square canvas of the
 // image's diagonal with the centre in the middle.
 Rotated rotate(const cv::Mat& image, const cv::Mat& mask, int degrees) {
-  const double diagonal = std::hypot(static_cast<double>(image.cols), static_cast<double>(image.rows));
+  const double diagonal =
+      std::hypot(static_cast<double>(image.cols), static_cast<double>(image.rows));
   const double a = degrees * kPi / 180, c = std::cos(a), s = std::sin(a);
   const double cx = image.cols / 2, cy = image.rows / 2;  // OpenCV's integer centre
   Rotated out;
-  out.H = (cv::Mat_<double>(3, 3) << c, -s, diagonal / 2 - (c * cx - s * cy), s, c, diagonal / 2 - (s * cx + c * cy), 0, 0, 1);
+  out.H = (cv::Mat_<double>(3, 3) << c, -s, diagonal / 2 - (c * cx - s * cy), s, c,
+           diagonal / 2 - (s * cx + c * cy), 0, 0, 1);
   const int side = static_cast<int>(std::lround(diagonal));
   cv::warpPerspective(image, out.image, out.H, {side, side});
   cv::warpPerspective(mask, out.mask, out.H, {side, side});
@@ -96,19 +98,22 @@ Rotated rotate(const cv::Mat& image, const cv::Mat& mask, int degrees) {
 cv::Point2f map_point(const cv::Mat& H, cv::Point2f p) {
   const double* h = H.ptr<double>();
   const double w = h[6] * p.x + h[7] * p.y + h[8];
-  return {static_cast<float>((h[0] * p.x + h[1] * p.y + h[2]) / w), static_cast<float>((h[3] * p.x + h[4] * p.y + h[5]) / w)};
+  return {static_cast<float>((h[0] * p.x + h[1] * p.y + h[2]) / w),
+          static_cast<float>((h[3] * p.x + h[4] * p.y + h[5]) / w)};
 }
 
 cv::Mat frame_mask(cv::Size size) {
   cv::Mat mask(size, CV_8UC1, cv::Scalar(0));
-  mask(cv::Rect(kMaskFrame, kMaskFrame, size.width - 2 * kMaskFrame, size.height - 2 * kMaskFrame)).setTo(255);
+  mask(cv::Rect(kMaskFrame, kMaskFrame, size.width - 2 * kMaskFrame, size.height - 2 * kMaskFrame))
+      .setTo(255);
   return mask;
 }
 
 // For each query keypoint (its centre mapped to `centres`), the index of the train keypoint it
 // overlaps most (-1 for none) and that overlap.
-void best_overlaps(const std::vector<cv::KeyPoint>& queries, const std::vector<cv::Point2f>& centres,
-                   const std::vector<cv::KeyPoint>& train, std::vector<int>& best, std::vector<double>& overlap) {
+void best_overlaps(const std::vector<cv::KeyPoint>& queries,
+                   const std::vector<cv::Point2f>& centres, const std::vector<cv::KeyPoint>& train,
+                   std::vector<int>& best, std::vector<double>& overlap) {
   best.assign(queries.size(), -1);
   overlap.assign(queries.size(), 0.0);
   for (std::size_t q = 0; q < queries.size(); ++q)
@@ -129,7 +134,8 @@ double circular_difference_deg(double a, double b) {
 struct Detector {
   std::string name;
   std::function<cv::Ptr<cv::Feature2D>()> make;
-  std::function<cv::Ptr<cv::Feature2D>()> make_recomputing;  // aief with GivenAngles::recompute; null for cv::ORB
+  std::function<cv::Ptr<cv::Feature2D>()>
+      make_recomputing;  // aief with GivenAngles::recompute; null for cv::ORB
 };
 
 struct Param {
@@ -174,17 +180,24 @@ TEST_P(Invariance, DetectorRotation) {
       if (best[i] < 0 || overlap[i] < kMinOverlap) continue;
       ++matched;
       const double expected = keypoints0[i].angle + degrees;
-      consistent += circular_difference_deg(expected, keypoints1[static_cast<std::size_t>(best[i])].angle) < kMaxAngleError;
+      consistent +=
+          circular_difference_deg(expected, keypoints1[static_cast<std::size_t>(best[i])].angle) <
+          kMaxAngleError;
     }
-    const double matched_ratio = static_cast<double>(matched) / static_cast<double>(keypoints0.size());
+    const double matched_ratio =
+        static_cast<double>(matched) / static_cast<double>(keypoints0.size());
     const double consistent_ratio = matched ? static_cast<double>(consistent) / matched : 0.0;
     EXPECT_GE(matched_ratio, kRotationMatched) << label() << " at " << degrees << " degrees";
-    EXPECT_GE(consistent_ratio, kRotationAngleConsistent) << label() << " at " << degrees << " degrees";
+    EXPECT_GE(consistent_ratio, kRotationAngleConsistent)
+        << label() << " at " << degrees << " degrees";
     worst_matched = std::min(worst_matched, matched_ratio);
     worst_consistent = std::min(worst_consistent, consistent_ratio);
   }
-  std::printf("detector rotation, %s: %zu keypoints, worst over the angles: matched %.3f (>= %.2f), angle consistent %.3f (>= %.2f)\n",
-              label().c_str(), keypoints0.size(), worst_matched, kRotationMatched, worst_consistent, kRotationAngleConsistent);
+  std::printf(
+      "detector rotation, %s: %zu keypoints, worst over the angles: matched %.3f (>= %.2f), angle "
+      "consistent %.3f (>= %.2f)\n",
+      label().c_str(), keypoints0.size(), worst_matched, kRotationMatched, worst_consistent,
+      kRotationAngleConsistent);
 }
 
 TEST_P(Invariance, DetectorScale) {
@@ -200,7 +213,8 @@ TEST_P(Invariance, DetectorScale) {
     std::vector<cv::KeyPoint> keypoints1;
     detector->detect(image1, keypoints1);
     ASSERT_GE(keypoints1.size(), 15u);
-    EXPECT_LE(keypoints1.size(), keypoints0.size()) << label() << ": more keypoints in the smaller image";
+    EXPECT_LE(keypoints1.size(), keypoints0.size())
+        << label() << ": more keypoints in the smaller image";
     std::vector<cv::KeyPoint> scaled_back = keypoints1;
     std::vector<cv::Point2f> centres;
     for (cv::KeyPoint& kp : scaled_back) {
@@ -218,21 +232,25 @@ TEST_P(Invariance, DetectorScale) {
       const float a = scaled_back[i].size, b = keypoints0[static_cast<std::size_t>(best[i])].size;
       consistent += std::min(a, b) > kMinSizeRatio * std::max(a, b);
     }
-    const double matched_ratio = static_cast<double>(matched) / static_cast<double>(keypoints1.size());
+    const double matched_ratio =
+        static_cast<double>(matched) / static_cast<double>(keypoints1.size());
     const double consistent_ratio = matched ? static_cast<double>(consistent) / matched : 0.0;
     EXPECT_GE(matched_ratio, kScaleMatched) << label() << " at scale " << scale;
     EXPECT_GE(consistent_ratio, kScaleSizeConsistent) << label() << " at scale " << scale;
     worst_matched = std::min(worst_matched, matched_ratio);
     worst_consistent = std::min(worst_consistent, consistent_ratio);
   }
-  std::printf("detector scale, %s: %zu keypoints, worst over the scales: matched %.3f (>= %.2f), size consistent %.3f (>= %.2f)\n",
-              label().c_str(), keypoints0.size(), worst_matched, kScaleMatched, worst_consistent, kScaleSizeConsistent);
+  std::printf(
+      "detector scale, %s: %zu keypoints, worst over the scales: matched %.3f (>= %.2f), size "
+      "consistent %.3f (>= %.2f)\n",
+      label().c_str(), keypoints0.size(), worst_matched, kScaleMatched, worst_consistent,
+      kScaleSizeConsistent);
 }
 
 // The descriptor rotation protocol with `detector`, each angle's ratio expected >= `threshold`;
 // prints the worst.
-void check_descriptor_rotation(const cv::Ptr<cv::Feature2D>& detector, const cv::Mat& image0, double threshold,
-                               const std::string& label) {
+void check_descriptor_rotation(const cv::Ptr<cv::Feature2D>& detector, const cv::Mat& image0,
+                               double threshold, const std::string& label) {
   const cv::Mat mask0 = frame_mask(image0.size());
   std::vector<cv::KeyPoint> keypoints0;
   cv::Mat descriptors0;
@@ -259,18 +277,20 @@ void check_descriptor_rotation(const cv::Ptr<cv::Feature2D>& detector, const cv:
     int right = 0;
     for (const cv::DMatch& m : matches) {
       const cv::KeyPoint& own = mapped[static_cast<std::size_t>(m.queryIdx)];
-      right += overlap_ratio(own, own.pt, keypoints1[static_cast<std::size_t>(m.trainIdx)]) >= kMinOverlap;
+      right += overlap_ratio(own, own.pt, keypoints1[static_cast<std::size_t>(m.trainIdx)]) >=
+               kMinOverlap;
     }
     const double right_ratio = static_cast<double>(right) / static_cast<double>(keypoints0.size());
-    EXPECT_GE(right_ratio, threshold) << label << " at " << degrees << " degrees (" << keypoints1.size() << " of "
-                                      << keypoints0.size() << " described)";
+    EXPECT_GE(right_ratio, threshold)
+        << label << " at " << degrees << " degrees (" << keypoints1.size() << " of "
+        << keypoints0.size() << " described)";
     if (right_ratio < worst_right) {
       worst_right = right_ratio;
       worst_degrees = degrees;
     }
   }
-  std::printf("descriptor rotation, %s: %zu keypoints, worst right %.3f at %d degrees (>= %.2f)\n", label.c_str(),
-              keypoints0.size(), worst_right, worst_degrees, threshold);
+  std::printf("descriptor rotation, %s: %zu keypoints, worst right %.3f at %d degrees (>= %.2f)\n",
+              label.c_str(), keypoints0.size(), worst_right, worst_degrees, threshold);
 }
 
 // As OpenCV runs it: compute() is given the true angles (each original angle plus the rotation),
@@ -289,13 +309,19 @@ constexpr double kDescriptorRotationRightAnglesRecomputed = 0.95;
 using InvarianceOfAief = Invariance;  // aief only: cv::ORB::compute always keeps the given angles
 
 TEST_P(InvarianceOfAief, DescriptorRotationWithAnglesRecomputed) {
-  check_descriptor_rotation(GetParam().detector.make_recomputing(), image(), kDescriptorRotationRightAnglesRecomputed,
+  check_descriptor_rotation(GetParam().detector.make_recomputing(), image(),
+                            kDescriptorRotationRightAnglesRecomputed,
                             label() + ", angles recomputed");
 }
 
 Detector aief_detector(const std::string& name, Mode mode) {
-  return {name, [mode] { return cv::Ptr<cv::Feature2D>(opencv::Feature2D::create(options_for_mode(mode), GivenAngles::keep)); },
-          [mode] { return cv::Ptr<cv::Feature2D>(opencv::Feature2D::create(options_for_mode(mode))); }};
+  return {
+      name,
+      [mode] {
+        return cv::Ptr<cv::Feature2D>(
+            opencv::Feature2D::create(options_for_mode(mode), GivenAngles::keep));
+      },
+      [mode] { return cv::Ptr<cv::Feature2D>(opencv::Feature2D::create(options_for_mode(mode))); }};
 }
 
 // cv::ORB as OpenCV tests it (500 features) and with aief's 1000.
@@ -315,7 +341,8 @@ std::vector<Param> params(bool aief_only) {
 }
 
 INSTANTIATE_TEST_SUITE_P(OpenCvProtocol, Invariance, testing::ValuesIn(params(false)), param_name);
-INSTANTIATE_TEST_SUITE_P(OpenCvProtocol, InvarianceOfAief, testing::ValuesIn(params(true)), param_name);
+INSTANTIATE_TEST_SUITE_P(OpenCvProtocol, InvarianceOfAief, testing::ValuesIn(params(true)),
+                         param_name);
 
 }  // namespace
 }  // namespace aief

@@ -44,7 +44,8 @@ TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
   ASSERT_EQ(gray.width(), 30);
   ASSERT_EQ(gray.height(), 20);
   EXPECT_EQ(0, std::memcmp(gray.data(), expected.data, 600));
-  // Not what the decoder's own gray conversion gives (docs/command_line.md, "Colour to gray"): libpng truncates.
+  // Not what the decoder's own gray conversion gives (docs/command_line.md, "Colour to gray"):
+  // libpng truncates.
   const cv::Mat decoder_gray = cv::imread(dir.file("c.png"), cv::IMREAD_GRAYSCALE);
   EXPECT_NE(0, std::memcmp(gray.data(), decoder_gray.data, 600));
 
@@ -54,19 +55,26 @@ TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
 
   cv::Mat real(8, 9, CV_32FC1, cv::Scalar(0.5));  // float images are refused with the depth named
   cv::imwrite(dir.file("f.tiff"), real);
-  EXPECT_NE(error_of(dir.file("f.tiff")).find("its pixels are 32-bit float, not 8- or 16-bit unsigned"), std::string::npos)
+  EXPECT_NE(
+      error_of(dir.file("f.tiff")).find("its pixels are 32-bit float, not 8- or 16-bit unsigned"),
+      std::string::npos)
       << error_of(dir.file("f.tiff"));
   // Formats of float pixels only: refused by name, before decoding, never listed as readable.
   cv::Mat radiance(8, 9, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
   cv::imwrite(dir.file("r.hdr"), radiance);
-  EXPECT_NE(error_of(dir.file("r.hdr")).find("a Radiance HDR file holds floating-point pixels"), std::string::npos)
+  EXPECT_NE(error_of(dir.file("r.hdr")).find("a Radiance HDR file holds floating-point pixels"),
+            std::string::npos)
       << error_of(dir.file("r.hdr"));
-  std::ofstream(dir.file("p.pfm"), std::ios::binary) << "Pf\n9 8\n-1.0\n" << std::string(9 * 8 * 4, '\0');
-  EXPECT_NE(error_of(dir.file("p.pfm")).find("a PFM file holds floating-point pixels"), std::string::npos)
+  std::ofstream(dir.file("p.pfm"), std::ios::binary) << "Pf\n9 8\n-1.0\n"
+                                                     << std::string(9 * 8 * 4, '\0');
+  EXPECT_NE(error_of(dir.file("p.pfm")).find("a PFM file holds floating-point pixels"),
+            std::string::npos)
       << error_of(dir.file("p.pfm"));
   std::ofstream(dir.file("unknown.png")) << "GIF89a";
-  EXPECT_EQ(error_of(dir.file("unknown.png")).find("HDR"), std::string::npos) << "listed as readable";
-  EXPECT_EQ(error_of(dir.file("unknown.png")).find("PFM"), std::string::npos) << "listed as readable";
+  EXPECT_EQ(error_of(dir.file("unknown.png")).find("HDR"), std::string::npos)
+      << "listed as readable";
+  EXPECT_EQ(error_of(dir.file("unknown.png")).find("PFM"), std::string::npos)
+      << "listed as readable";
 
   cv::Mat deep(8, 9, CV_16UC1, cv::Scalar(51200));  // 200 * 256
   cv::imwrite(dir.file("d.png"), deep);
@@ -99,12 +107,14 @@ TEST(ImageIo, ClearErrorsForBadFiles) {
     std::vector<std::uint8_t> bytes;
     cv::imencode(ext, test::random_image(64, 64, 3), bytes);
     std::ofstream out(dir.file(std::string("cut") + ext), std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size() / 3));
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size() / 3));
     out.close();
     std::string message;
     try {
       const GrayImage image = io::read_gray_image(dir.file(std::string("cut") + ext));
-      message = "decoded " + std::to_string(image.width());  // libjpeg pads a cut file: an image, no crash
+      message = "decoded " +
+                std::to_string(image.width());  // libjpeg pads a cut file: an image, no crash
     } catch (const Error& e) {
       message = e.what();
     }
@@ -114,7 +124,8 @@ TEST(ImageIo, ClearErrorsForBadFiles) {
 
 std::vector<std::uint8_t> bytes_of(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
 }
 
 TEST(ImageHeader, ReadsTheSizeEveryFormatDeclaresAndSurvivesEveryCut) {
@@ -129,11 +140,24 @@ TEST(ImageHeader, ReadsTheSizeEveryFormatDeclaresAndSurvivesEveryCut) {
     const cv::Mat* image;
     std::vector<int> params;
   };
-  const Case cases[] = {{".png", &gray, {}},   {".png", &colour, {}},  {".jpg", &gray, {}},  {".jpg", &colour, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}},
-                        {".tiff", &gray, {}},  {".webp", &colour, {}}, {".webp", &colour, {cv::IMWRITE_WEBP_QUALITY, 101}},
-                        {".bmp", &gray, {}},   {".bmp", &colour, {}},  {".pgm", &gray, {}},  {".pgm", &gray, {cv::IMWRITE_PXM_BINARY, 0}},
-                        {".ppm", &colour, {}}, {".pbm", &gray, {}},    {".pam", &gray, {}},  {".sr", &gray, {}},
-                        {".pfm", &real, {}},   {".hdr", &real, {}},    {".jp2", &colour, {}}};
+  const Case cases[] = {{".png", &gray, {}},
+                        {".png", &colour, {}},
+                        {".jpg", &gray, {}},
+                        {".jpg", &colour, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}},
+                        {".tiff", &gray, {}},
+                        {".webp", &colour, {}},
+                        {".webp", &colour, {cv::IMWRITE_WEBP_QUALITY, 101}},
+                        {".bmp", &gray, {}},
+                        {".bmp", &colour, {}},
+                        {".pgm", &gray, {}},
+                        {".pgm", &gray, {cv::IMWRITE_PXM_BINARY, 0}},
+                        {".ppm", &colour, {}},
+                        {".pbm", &gray, {}},
+                        {".pam", &gray, {}},
+                        {".sr", &gray, {}},
+                        {".pfm", &real, {}},
+                        {".hdr", &real, {}},
+                        {".jp2", &colour, {}}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.extension);
     std::vector<std::uint8_t> bytes;
@@ -142,14 +166,16 @@ TEST(ImageHeader, ReadsTheSizeEveryFormatDeclaresAndSurvivesEveryCut) {
     ASSERT_TRUE(header.has_value());
     EXPECT_EQ(header->width, 37);
     EXPECT_EQ(header->height, 33);
-    for (std::size_t cut = 0; cut < std::min<std::size_t>(bytes.size(), 200); ++cut) io::read_image_header(bytes.data(), cut);
+    for (std::size_t cut = 0; cut < std::min<std::size_t>(bytes.size(), 200); ++cut)
+      io::read_image_header(bytes.data(), cut);
   }
   const std::vector<std::uint8_t> bomb = test::png_declaring(30000, 30000);
   const std::optional<io::ImageHeader> header = io::read_image_header(bomb.data(), bomb.size());
   ASSERT_TRUE(header.has_value());
   EXPECT_EQ(header->width, 30000);
   EXPECT_EQ(header->format, "PNG");
-  EXPECT_FALSE(io::read_image_header(reinterpret_cast<const std::uint8_t*>("GIF89a"), 6).has_value());
+  EXPECT_FALSE(
+      io::read_image_header(reinterpret_cast<const std::uint8_t*>("GIF89a"), 6).has_value());
 }
 
 TEST(ImageIo, RefusesMorePixelsThanAllowedBeforeDecoding) {
@@ -158,8 +184,9 @@ TEST(ImageIo, RefusesMorePixelsThanAllowedBeforeDecoding) {
   // at 65535 x 65535, which OpenCV itself would refuse with its assertion text).
   for (const std::uint32_t side : {30000u, 65535u}) {
     const std::vector<std::uint8_t> bomb = test::png_declaring(side, side);
-    std::ofstream(dir.file("bomb.png"), std::ios::binary).write(reinterpret_cast<const char*>(bomb.data()),
-                                                               static_cast<std::streamsize>(bomb.size()));
+    std::ofstream(dir.file("bomb.png"), std::ios::binary)
+        .write(reinterpret_cast<const char*>(bomb.data()),
+               static_cast<std::streamsize>(bomb.size()));
     const std::string message = error_of(dir.file("bomb.png"));
     const std::string size = std::to_string(side) + "x" + std::to_string(side);
     EXPECT_NE(message.find("declares " + size), std::string::npos) << message;
@@ -168,7 +195,8 @@ TEST(ImageIo, RefusesMorePixelsThanAllowedBeforeDecoding) {
   }
   // The limit is exact, in every format: w x h pixels pass at w x h, and are refused one below.
   const cv::Mat gray = test::random_image(41, 33, 6);
-  for (const char* extension : {".png", ".jpg", ".tiff", ".webp", ".bmp", ".pgm", ".pam", ".sr", ".jp2"}) {
+  for (const char* extension :
+       {".png", ".jpg", ".tiff", ".webp", ".bmp", ".pgm", ".pam", ".sr", ".jp2"}) {
     SCOPED_TRACE(extension);
     const std::string path = dir.file(std::string("small") + extension);
     ASSERT_TRUE(cv::imwrite(path, gray));
@@ -177,7 +205,8 @@ TEST(ImageIo, RefusesMorePixelsThanAllowedBeforeDecoding) {
       io::read_gray_image(path, 41 * 33 - 1);
       ADD_FAILURE() << "not refused";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("refused before decoding"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("refused before decoding"), std::string::npos)
+          << e.what();
     }
     EXPECT_THROW(io::decode_gray_image(bytes_of(path), path, 41 * 33 - 1), Error);
   }
@@ -200,9 +229,11 @@ TEST(ImageIo, AJpegCutShortIsDecodedWithAWarning) {
   std::vector<std::uint8_t> bytes;
   cv::imencode(".jpg", colour, bytes);
   bytes.resize(bytes.size() / 2);
-  std::ofstream(dir.file("cut.jpg"), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                                            static_cast<std::streamsize>(bytes.size()));
-  const GrayImage image = io::read_gray_image(dir.file("cut.jpg"), ExtractorOptions{}.max_image_pixels, &warnings);
+  std::ofstream(dir.file("cut.jpg"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+  const GrayImage image =
+      io::read_gray_image(dir.file("cut.jpg"), ExtractorOptions{}.max_image_pixels, &warnings);
   EXPECT_EQ(image.width(), colour.cols);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("cut short"), std::string::npos) << warnings[0];
@@ -224,9 +255,12 @@ TEST(FeatureFiles, JsonAndYamlCarryEveryKeypointAndDescriptor) {
   EXPECT_NE(json.find("\"width\":850"), std::string::npos);
   EXPECT_NE(json.find("\"n_features\":200"), std::string::npos);
   std::size_t hex_strings = 0, keypoints = 0;
-  for (std::size_t at = json.find("\"octave\""); at != std::string::npos; at = json.find("\"octave\"", at + 1)) ++keypoints;
+  for (std::size_t at = json.find("\"octave\""); at != std::string::npos;
+       at = json.find("\"octave\"", at + 1))
+    ++keypoints;
   const std::size_t list = json.find("\"descriptors_hex\"");
-  for (std::size_t at = json.find('"', list + 18); at != std::string::npos; at = json.find('"', at + 66)) {
+  for (std::size_t at = json.find('"', list + 18); at != std::string::npos;
+       at = json.find('"', at + 66)) {
     ASSERT_EQ(json[at + 65], '"') << "descriptor string of 64 hex characters";
     ++hex_strings;
   }
@@ -248,7 +282,8 @@ TEST(FeatureFiles, JsonAndYamlCarryEveryKeypointAndDescriptor) {
   for (std::size_t i = 0; i < keypoints_back.size(); ++i) {
     EXPECT_EQ(keypoints_back[i].pt.x, features.keypoints[i].x);
     EXPECT_EQ(keypoints_back[i].octave, features.keypoints[i].octave);
-    EXPECT_EQ(0, std::memcmp(descriptors.ptr(static_cast<int>(i)), features.descriptors[i].data(), 32));
+    EXPECT_EQ(
+        0, std::memcmp(descriptors.ptr(static_cast<int>(i)), features.descriptors[i].data(), 32));
   }
   EXPECT_THROW(io::write_features(dir.file("f.txt"), "x", features, options), Error);
 }
@@ -265,7 +300,8 @@ TEST(FeatureFiles, YamlRoundTripsEveryOddNameAndRefusesControlCharactersClearly)
     for (const char* extension : {".yml", ".json", ".npz"}) {
       const std::string path = dir.file(std::to_string(file++) + extension);
       ASSERT_NO_THROW(io::write_features(path, name, features, options, source)) << name;
-      EXPECT_TRUE(io::features_file_belongs_to(path, source)) << extension << " '" << name << "' read back as another name";
+      EXPECT_TRUE(io::features_file_belongs_to(path, source))
+          << extension << " '" << name << "' read back as another name";
       source.bytes += 1;
       EXPECT_FALSE(io::features_file_belongs_to(path, source)) << name;
       source.bytes -= 1;
@@ -285,7 +321,8 @@ TEST(FeatureFiles, YamlRoundTripsEveryOddNameAndRefusesControlCharactersClearly)
       io::write_features(dir.file("control.yml"), name, features, options, source);
       ADD_FAILURE() << "YAML accepted a name it cannot read back";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("YAML cannot hold the image name"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("YAML cannot hold the image name"), std::string::npos)
+          << e.what();
     }
     EXPECT_FALSE(std::filesystem::exists(dir.file("control.yml")));
     io::write_features(dir.file("control.json"), name, features, options, source);
@@ -293,7 +330,8 @@ TEST(FeatureFiles, YamlRoundTripsEveryOddNameAndRefusesControlCharactersClearly)
   }
   // Longer than OpenCV's YAML strings (4094 bytes), escapes counted: refused, not cut.
   const std::string long_name = std::string(2100, 'a') + std::string(1000, '"') + ".png";
-  EXPECT_THROW(io::write_features(dir.file("long.yml"), long_name, features, options, io::SourceRecord{long_name, 1, 2, {}}),
+  EXPECT_THROW(io::write_features(dir.file("long.yml"), long_name, features, options,
+                                  io::SourceRecord{long_name, 1, 2, {}}),
                Error);
 }
 

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
 #include <tbb/global_control.h>
+#include <opencv2/core.hpp>
 
 #include "aief/extractor.hpp"
 #include "core/level_geometry.hpp"
@@ -37,7 +37,8 @@ TEST(LevelShortfall, GoesToTheFinestLevelsWithCandidatesToSpare) {
 cv::Mat sparse_squares() {
   cv::Mat image(480, 640, CV_8UC1, cv::Scalar(90));
   for (int y = 40; y + 16 < image.rows - 40; y += 48)
-    for (int x = 40; x + 16 < image.cols - 40; x += 48) image(cv::Rect(x, y, 16, 16)).setTo(cv::Scalar(200));
+    for (int x = 40; x + 16 < image.cols - 40; x += 48)
+      image(cv::Rect(x, y, 16, 16)).setTo(cv::Scalar(200));
   return image;
 }
 

@@ -24,18 +24,23 @@ void make_pair(int n, std::uint32_t seed, std::vector<Descriptor>& a, std::vecto
   a = random_descriptors(n, seed);
   b = a;
   for (Descriptor& d : b)
-    for (int flip = 0; flip < 20; ++flip) d[rng() % 32] ^= static_cast<std::uint8_t>(1u << (rng() % 8));
+    for (int flip = 0; flip < 20; ++flip)
+      d[rng() % 32] ^= static_cast<std::uint8_t>(1u << (rng() % 8));
   std::shuffle(b.begin(), b.end(), rng);
   const std::vector<Descriptor> extra = random_descriptors(n / 3, seed + 1);
   b.insert(b.end(), extra.begin(), extra.end());
 }
 
-int distance(const Descriptor& x, const Descriptor& y) { return static_cast<int>(hamming_256_scalar(x.data(), y.data())); }
+int distance(const Descriptor& x, const Descriptor& y) {
+  return static_cast<int>(hamming_256_scalar(x.data(), y.data()));
+}
 
 int nearest(const Descriptor& q, const std::vector<Descriptor>& set) {
   int best = 0;
   for (int j = 1; j < static_cast<int>(set.size()); ++j)
-    if (distance(q, set[static_cast<std::size_t>(j)]) < distance(q, set[static_cast<std::size_t>(best)])) best = j;
+    if (distance(q, set[static_cast<std::size_t>(j)]) <
+        distance(q, set[static_cast<std::size_t>(best)]))
+      best = j;
   return best;
 }
 
@@ -46,7 +51,9 @@ TEST(Matcher, MutualEqualsANaiveCrossCheck) {
   std::vector<Match> expected;
   for (int i = 0; i < static_cast<int>(a.size()); ++i) {
     const int j = nearest(a[static_cast<std::size_t>(i)], b);
-    if (nearest(b[static_cast<std::size_t>(j)], a) == i) expected.push_back({i, j, distance(a[static_cast<std::size_t>(i)], b[static_cast<std::size_t>(j)])});
+    if (nearest(b[static_cast<std::size_t>(j)], a) == i)
+      expected.push_back(
+          {i, j, distance(a[static_cast<std::size_t>(i)], b[static_cast<std::size_t>(j)])});
   }
   ASSERT_EQ(matches.size(), expected.size());
   for (std::size_t k = 0; k < matches.size(); ++k) {
@@ -70,7 +77,8 @@ TEST(Matcher, RatioAndPaperFiltersByTheirDefinitions) {
   const std::vector<Match> by_ratio = match_descriptors(a, b, ratio);
   const std::vector<Match> by_paper = match_descriptors(a, b, paper);
   int min_distance = 256;
-  for (const Descriptor& q : a) min_distance = std::min(min_distance, distance(q, b[static_cast<std::size_t>(nearest(q, b))]));
+  for (const Descriptor& q : a)
+    min_distance = std::min(min_distance, distance(q, b[static_cast<std::size_t>(nearest(q, b))]));
   std::size_t r = 0, p = 0;
   for (int i = 0; i < static_cast<int>(a.size()); ++i) {
     std::vector<int> d;

@@ -55,7 +55,9 @@ double sampled_source_position(const std::vector<ResizePlan>& plans, int n, doub
     const ResizePlan& plan = plans[static_cast<std::size_t>(k)];
     const auto& index = x_axis ? plan.x_index : plan.y_index;
     const auto& weight = x_axis ? plan.x_weight : plan.y_weight;
-    const auto tap = [&](int i) { return index[static_cast<std::size_t>(i)] + weight[static_cast<std::size_t>(i)] / 256.0; };
+    const auto tap = [&](int i) {
+      return index[static_cast<std::size_t>(i)] + weight[static_cast<std::size_t>(i)] / 256.0;
+    };
     const int i = static_cast<int>(std::floor(x));
     x = tap(i) + (x - i) * (tap(i + 1) - tap(i));
   }
@@ -63,25 +65,28 @@ double sampled_source_position(const std::vector<ResizePlan>& plans, int n, doub
 }
 
 TEST(CoordinateMap, PixelCentreMapIsWhereThePyramidSampledEveryLevel) {
-  for (const auto& [width, height] : {std::pair{800, 640}, std::pair{853, 479}, std::pair{1000, 700}, std::pair{641, 1023}}) {
+  for (const auto& [width, height] :
+       {std::pair{800, 640}, std::pair{853, 479}, std::pair{1000, 700}, std::pair{641, 1023}}) {
     const ExtractorOptions options;
     const std::vector<LevelGeometry> geometry = level_geometry(width, height, options);
     std::vector<ResizePlan> plans(geometry.size());
     for (std::size_t n = 1; n < geometry.size(); ++n)
-      plans[n] = make_resize_plan(geometry[n - 1].width, geometry[n - 1].height, geometry[n].width, geometry[n].height);
+      plans[n] = make_resize_plan(geometry[n - 1].width, geometry[n - 1].height, geometry[n].width,
+                                  geometry[n].height);
     for (int n = 0; n < static_cast<int>(geometry.size()); ++n) {
       const LevelGeometry& level = geometry[static_cast<std::size_t>(n)];
-      const LevelToImage centre =
-          level_to_image(CoordinateMap::pixel_centre, false, level.scale, width, height, level.width, level.height);
-      const LevelToImage scaled =
-          level_to_image(CoordinateMap::scaled, false, level.scale, width, height, level.width, level.height);
+      const LevelToImage centre = level_to_image(CoordinateMap::pixel_centre, false, level.scale,
+                                                 width, height, level.width, level.height);
+      const LevelToImage scaled = level_to_image(CoordinateMap::scaled, false, level.scale, width,
+                                                 height, level.width, level.height);
       // Q8 weights round each level's position by <= 1/512 of a source pixel, magnified below.
       const double tolerance = 0.002 + n * 0.01 * level.scale;
       for (int x = kEdgeBorder; x < level.width - kEdgeBorder; x += 7) {
         const int y = kEdgeBorder + (x % (level.height - 2 * kEdgeBorder));
         const Candidate c{x, y, 50};
         const ImagePoint p = keypoint_position(c, centre);
-        SCOPED_TRACE(testing::Message() << width << "x" << height << " level " << n << " at (" << x << ", " << y << ")");
+        SCOPED_TRACE(testing::Message() << width << "x" << height << " level " << n << " at (" << x
+                                        << ", " << y << ")");
         ASSERT_NEAR(p.x, sampled_source_position(plans, n, x, true), tolerance);
         ASSERT_NEAR(p.y, sampled_source_position(plans, n, y, false), tolerance);
         // The paper's map, kept by aief-paper and orbslam2, is x * scale to the bit.
@@ -94,7 +99,8 @@ TEST(CoordinateMap, PixelCentreMapIsWhereThePyramidSampledEveryLevel) {
 }
 
 TEST(CoordinateMap, SubpixelOffsetMovesThePointInLevelPixels) {
-  const LevelToImage mapping = level_to_image(CoordinateMap::pixel_centre, true, 1.2f * 1.2f, 1000, 700, 694, 486);
+  const LevelToImage mapping =
+      level_to_image(CoordinateMap::pixel_centre, true, 1.2f * 1.2f, 1000, 700, 694, 486);
   Candidate c{100, 50, 99, 75, 91, 91, 75};  // +0.25 in x, -0.25 in y
   const ImagePoint p = keypoint_position(c, mapping);
   EXPECT_NEAR(p.x, (100.25 + 0.5) * 1000.0 / 694.0 - 0.5, 1e-4);
@@ -114,8 +120,10 @@ Level make_level(const std::vector<int>& counts, std::uint32_t seed) {
     const std::int32_t begin = static_cast<std::int32_t>(level.candidates.size());
     std::set<std::pair<int, int>> used;
     while (static_cast<int>(used.size()) < counts[b])
-      used.insert({static_cast<int>(rng() % 32), static_cast<int>(b) * 32 + static_cast<int>(rng() % 32)});
-    for (const auto& [y, x] : used) level.candidates.push_back({x, y, 7 + static_cast<int>(rng() % 12)});
+      used.insert(
+          {static_cast<int>(rng() % 32), static_cast<int>(b) * 32 + static_cast<int>(rng() % 32)});
+    for (const auto& [y, x] : used)
+      level.candidates.push_back({x, y, 7 + static_cast<int>(rng() % 12)});
     level.blocks.push_back({begin, static_cast<std::int32_t>(level.candidates.size())});
   }
   return level;
@@ -131,7 +139,8 @@ TEST(CandidatePool, PoolSizeIsCeilOfPTimesTheBudget) {
 }
 
 TEST(CandidatePool, KeepsTheStrongestByScoreThenPositionBlockByBlock) {
-  const std::vector<std::vector<int>> layouts = {{0, 1, 2, 50, 50, 3, 40, 0, 9}, {10, 10, 10, 10}, {100}, {1, 1, 1, 1, 200}};
+  const std::vector<std::vector<int>> layouts = {
+      {0, 1, 2, 50, 50, 3, 40, 0, 9}, {10, 10, 10, 10}, {100}, {1, 1, 1, 1, 200}};
   CandidatePoolScratch scratch;
   for (std::size_t l = 0; l < layouts.size(); ++l) {
     const Level level = make_level(layouts[l], static_cast<std::uint32_t>(l) + 11);
@@ -139,10 +148,12 @@ TEST(CandidatePool, KeepsTheStrongestByScoreThenPositionBlockByBlock) {
     for (const BlockRange& block : level.blocks)
       for (std::int32_t i = block.begin; i < block.end; ++i) all.push_back(i);
     std::sort(all.begin(), all.end(), [&](std::int32_t a, std::int32_t b) {
-      return stronger(level.candidates[static_cast<std::size_t>(a)], level.candidates[static_cast<std::size_t>(b)]);
+      return stronger(level.candidates[static_cast<std::size_t>(a)],
+                      level.candidates[static_cast<std::size_t>(b)]);
     });
     const std::int64_t total = static_cast<std::int64_t>(all.size());
-    for (std::int64_t pool : {std::int64_t{0}, std::int64_t{1}, std::int64_t{5}, std::int64_t{23}, total / 2, total - 1, total, total + 4}) {
+    for (std::int64_t pool : {std::int64_t{0}, std::int64_t{1}, std::int64_t{5}, std::int64_t{23},
+                              total / 2, total - 1, total, total + 4}) {
       if (pool < 0) continue;
       std::vector<Candidate> pooled;
       std::vector<std::int32_t> index;
@@ -153,8 +164,9 @@ TEST(CandidatePool, KeepsTheStrongestByScoreThenPositionBlockByBlock) {
       ASSERT_EQ(pooled.size(), expected);
       ASSERT_EQ(index.size(), expected);
       // The same set as the brute force: the first `pool` by stronger().
-      EXPECT_EQ(std::set<std::int32_t>(index.begin(), index.end()),
-                std::set<std::int32_t>(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(expected)));
+      EXPECT_EQ(
+          std::set<std::int32_t>(index.begin(), index.end()),
+          std::set<std::int32_t>(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(expected)));
       // Copies of the right candidates, blocks contiguous, non-empty, in order, raster order kept.
       std::int32_t next = 0;
       for (const BlockRange& block : blocks) {
@@ -207,32 +219,39 @@ TEST(StarvationGuard, EveryLevelGetsItsBudgetWithAutoFOnATextureThatSmoothsOut) 
 
   ExtractorOptions paper = options_for_mode(Mode::aief_paper);
   paper.auto_threshold = true;
-  const std::vector<int> paper_counts = keypoints_per_level(Extractor(paper).extract(view_of(noise)), options.n_levels);
-  // The default mode, and its guard alone under Otsu's split (the two-class test may keep every block).
+  const std::vector<int> paper_counts =
+      keypoints_per_level(Extractor(paper).extract(view_of(noise)), options.n_levels);
+  // The default mode, and its guard alone under Otsu's split (the two-class test may keep every
+  // block).
   ExtractorOptions otsu_split = options;
   otsu_split.auto_requires_two_classes = false;
-  const std::vector<int> counts = keypoints_per_level(Extractor(options).extract(view_of(noise)), options.n_levels);
-  const std::vector<int> split_counts = keypoints_per_level(Extractor(otsu_split).extract(view_of(noise)), options.n_levels);
+  const std::vector<int> counts =
+      keypoints_per_level(Extractor(options).extract(view_of(noise)), options.n_levels);
+  const std::vector<int> split_counts =
+      keypoints_per_level(Extractor(otsu_split).extract(view_of(noise)), options.n_levels);
   int paper_starved = 0;
   for (std::size_t n = 0; n < geometry.size(); ++n) {
-    SCOPED_TRACE(testing::Message() << "level " << n << ": " << available[n] << " candidates at F = 0, budget "
-                                    << geometry[n].n_features);
+    SCOPED_TRACE(testing::Message() << "level " << n << ": " << available[n]
+                                    << " candidates at F = 0, budget " << geometry[n].n_features);
     if (available[n] < geometry[n].n_features) continue;
     EXPECT_EQ(counts[n], geometry[n].n_features);
     EXPECT_EQ(split_counts[n], geometry[n].n_features);
     paper_starved += paper_counts[n] < geometry[n].n_features ? 1 : 0;
   }
-  EXPECT_GT(paper_starved, 0) << "the texture no longer starves the frame-wide rule: the test proves nothing";
+  EXPECT_GT(paper_starved, 0)
+      << "the texture no longer starves the frame-wide rule: the test proves nothing";
 }
 
 TEST(StarvationGuard, EveryLevelGetsItsBudgetAtAFixedFAboveAllBlocks) {
   const cv::Mat gray = load_sample_gray("graf", "img1.png");
   ExtractorOptions options;
-  options.entropy_threshold = 7.9;  // above every block (at most 8 bits): every level must come down
+  options.entropy_threshold =
+      7.9;  // above every block (at most 8 bits): every level must come down
   const Features features = Extractor(options).extract(view_of(gray));
   const std::vector<LevelGeometry> geometry = level_geometry(gray.cols, gray.rows, options);
   const std::vector<int> counts = keypoints_per_level(features, options.n_levels);
-  for (std::size_t n = 0; n < geometry.size(); ++n) EXPECT_EQ(counts[n], geometry[n].n_features) << "level " << n;
+  for (std::size_t n = 0; n < geometry.size(); ++n)
+    EXPECT_EQ(counts[n], geometry[n].n_features) << "level " << n;
   EXPECT_TRUE(features.info.threshold_lowered);
   EXPECT_LT(features.info.entropy_threshold_used, 7.9);
   // At a threshold every level can meet, nothing is lowered.
@@ -249,9 +268,11 @@ TEST(AutoThreshold, UniformBlocksDoNotSteerTheSplit) {
   options.auto_threshold = true;
   // Otsu's split itself (graf alone is one class, which the two-class test would keep whole).
   options.auto_requires_two_classes = false;
-  const double skipping = Extractor(options).extract(view_of(framed)).info.entropy_threshold_requested;
+  const double skipping =
+      Extractor(options).extract(view_of(framed)).info.entropy_threshold_requested;
   options.auto_skips_uniform_blocks = false;
-  const double counting = Extractor(options).extract(view_of(framed)).info.entropy_threshold_requested;
+  const double counting =
+      Extractor(options).extract(view_of(framed)).info.entropy_threshold_requested;
   EXPECT_LT(counting, 1.0) << "the border no longer drags Otsu down: the test proves nothing";
   EXPECT_GT(skipping, 4.0);
 }

@@ -23,7 +23,8 @@ cv::Mat read_homography(const std::string& path) {
 }
 
 // Every field of every keypoint and every descriptor byte; the first difference is reported.
-void expect_same(const Features& features, const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& descriptors) {
+void expect_same(const Features& features, const std::vector<cv::KeyPoint>& keypoints,
+                 const cv::Mat& descriptors) {
   ASSERT_EQ(keypoints.size(), features.keypoints.size());
   ASSERT_EQ(descriptors.rows, static_cast<int>(features.descriptors.size()));
   ASSERT_EQ(descriptors.cols, kDescriptorBytes);
@@ -31,14 +32,17 @@ void expect_same(const Features& features, const std::vector<cv::KeyPoint>& keyp
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
     const Keypoint& want = features.keypoints[i];
     const cv::KeyPoint& got = keypoints[i];
-    ASSERT_TRUE(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size && got.angle == want.angle_deg &&
-                got.response == want.response && got.octave == want.octave && got.class_id == -1)
-        << "keypoint " << i << ": got (" << got.pt.x << ", " << got.pt.y << ") size " << got.size << " angle " << got.angle
-        << " response " << got.response << " octave " << got.octave << " class_id " << got.class_id << ", want (" << want.x
-        << ", " << want.y << ") size " << want.size << " angle " << want.angle_deg << " response " << want.response
-        << " octave " << want.octave << " class_id -1";
+    ASSERT_TRUE(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size &&
+                got.angle == want.angle_deg && got.response == want.response &&
+                got.octave == want.octave && got.class_id == -1)
+        << "keypoint " << i << ": got (" << got.pt.x << ", " << got.pt.y << ") size " << got.size
+        << " angle " << got.angle << " response " << got.response << " octave " << got.octave
+        << " class_id " << got.class_id << ", want (" << want.x << ", " << want.y << ") size "
+        << want.size << " angle " << want.angle_deg << " response " << want.response << " octave "
+        << want.octave << " class_id -1";
     for (int b = 0; b < kDescriptorBytes; ++b)
-      ASSERT_EQ(descriptors.at<std::uint8_t>(static_cast<int>(i), b), features.descriptors[i][static_cast<std::size_t>(b)])
+      ASSERT_EQ(descriptors.at<std::uint8_t>(static_cast<int>(i), b),
+                features.descriptors[i][static_cast<std::size_t>(b)])
           << "descriptor " << i << " byte " << b;
   }
 }
@@ -52,7 +56,8 @@ TEST(OpenCvAdapter, SameFeaturesAsTheEngineFromGrayBgrAndBgra) {
   cv_extract(gray, keypoints, descriptors);
   expect_same(features, keypoints, descriptors);
 
-  // Colour input is converted as cvtColor does; a gray image spread over the channels converts back exactly.
+  // Colour input is converted as cvtColor does; a gray image spread over the channels converts back
+  // exactly.
   cv::Mat bgr, bgra;
   cv::cvtColor(gray, bgr, cv::COLOR_GRAY2BGR);
   cv::cvtColor(gray, bgra, cv::COLOR_GRAY2BGRA);
@@ -111,12 +116,15 @@ TEST(OpenCvAdapter, RefusesWhatItCannotRead) {
   cv::Mat descriptors;
   EXPECT_THROW(cv_extract(cv::Mat(), keypoints, descriptors), Error);
   EXPECT_THROW(cv_extract(cv::Mat(100, 100, CV_32F, cv::Scalar(0)), keypoints, descriptors), Error);
-  EXPECT_THROW(cv_extract(cv::Mat(100, 100, CV_8UC2, cv::Scalar(0)), keypoints, descriptors), Error);
-  EXPECT_THROW(cv_extract(cv::Mat(10, 10, CV_8U, cv::Scalar(0)), keypoints, descriptors), Error);  // below the border
+  EXPECT_THROW(cv_extract(cv::Mat(100, 100, CV_8UC2, cv::Scalar(0)), keypoints, descriptors),
+               Error);
+  EXPECT_THROW(cv_extract(cv::Mat(10, 10, CV_8U, cv::Scalar(0)), keypoints, descriptors),
+               Error);  // below the border
 }
 
 TEST(OpenCvAdapter, DescriptorsWorkWithOpenCvsMatcher) {
-  const cv::Mat a = test::load_sample_gray("boat", "img1.png"), b = test::load_sample_gray("boat", "img2.png");
+  const cv::Mat a = test::load_sample_gray("boat", "img1.png"),
+                b = test::load_sample_gray("boat", "img2.png");
   std::vector<cv::KeyPoint> ka, kb;
   cv::Mat da, db;
   cv_extract(a, ka, da);
@@ -128,13 +136,15 @@ TEST(OpenCvAdapter, DescriptorsWorkWithOpenCvsMatcher) {
   const cv::Mat H = read_homography(test::sample_path("boat", "H1to2p"));
   int correct = 0;
   for (const cv::DMatch& m : matches) {
-    const cv::Point2f p = ka[static_cast<std::size_t>(m.queryIdx)].pt, q = kb[static_cast<std::size_t>(m.trainIdx)].pt;
+    const cv::Point2f p = ka[static_cast<std::size_t>(m.queryIdx)].pt,
+                      q = kb[static_cast<std::size_t>(m.trainIdx)].pt;
     const double w = H.at<double>(2, 0) * p.x + H.at<double>(2, 1) * p.y + H.at<double>(2, 2);
     const double x = (H.at<double>(0, 0) * p.x + H.at<double>(0, 1) * p.y + H.at<double>(0, 2)) / w;
     const double y = (H.at<double>(1, 0) * p.x + H.at<double>(1, 1) * p.y + H.at<double>(1, 2)) / w;
     if (std::hypot(x - q.x, y - q.y) <= 3.0) ++correct;
   }
-  EXPECT_GT(correct * 2, static_cast<int>(matches.size())) << correct << " of " << matches.size() << " matches within 3 px";
+  EXPECT_GT(correct * 2, static_cast<int>(matches.size()))
+      << correct << " of " << matches.size() << " matches within 3 px";
 }
 
 }  // namespace

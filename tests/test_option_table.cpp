@@ -13,8 +13,8 @@
 #include <variant>
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
 #include <sys/wait.h>
+#include <opencv2/core.hpp>
 
 #include "aief/error.hpp"
 #include "aief/orbslam2_extractor.hpp"
@@ -35,8 +35,10 @@ struct AnyValue {
 };
 template <class T, class... Values>
 constexpr std::size_t field_count() {
-  if constexpr (requires { T{Values{}..., AnyValue{}}; }) return field_count<T, Values..., AnyValue>();
-  else return sizeof...(Values);
+  if constexpr (requires { T{Values{}..., AnyValue{}}; })
+    return field_count<T, Values..., AnyValue>();
+  else
+    return sizeof...(Values);
 }
 
 std::vector<const table::OptionRow*> field_rows() {
@@ -60,11 +62,13 @@ std::string other_value(const table::OptionRow& row) {
     }
     case table::ValueKind::choice:
       for (std::string_view name : row.field.choices()->names)
-        if (name != std::get<std::string_view>(value) && name != "off" && name != "avx2" && name != "avx512" &&
-            name != "sse4.2" && name != "neon64")
-          return std::string(name);  // off is a conflict with --threshold; a kernel set may be missing here
+        if (name != std::get<std::string_view>(value) && name != "off" && name != "avx2" &&
+            name != "avx512" && name != "sse4.2" && name != "neon64")
+          return std::string(
+              name);  // off is a conflict with --threshold; a kernel set may be missing here
       break;
-    case table::ValueKind::toggle: return table::text_of(row, !std::get<bool>(value));  // the drop-ins' too
+    case table::ValueKind::toggle:
+      return table::text_of(row, !std::get<bool>(value));  // the drop-ins' too
   }
   return "";
 }
@@ -97,7 +101,8 @@ TEST(OptionTable, EveryRowHasEveryFrontEndOnce) {
     SCOPED_TRACE(std::string(row.key));
     EXPECT_FALSE(row.help.empty());
     if (!row.has_front_ends()) {
-      // Record-only rows are set through another row: distribution by the mode, auto_threshold by --threshold auto.
+      // Record-only rows are set through another row: distribution by the mode, auto_threshold by
+      // --threshold auto.
       EXPECT_TRUE(row.key == "distribution" || row.key == "auto_threshold");
       continue;
     }
@@ -121,7 +126,8 @@ CliResult run_cli(const std::string& arguments) {
   FILE* pipe = popen((std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1").c_str(), "r");
   if (!pipe) return result;
   std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe))
+    result.output += buffer.data();
   const int status = pclose(pipe);
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
@@ -133,11 +139,13 @@ std::string record_json(const table::OptionRow& row, const std::string& text) {
   row.field.set(options, table::parse_value(row, text, row.key));
   for (const auto& [key, value] : table::record_of(options))
     if (key == row.key) {
-      if (const auto* name = std::get_if<std::string_view>(&value)) return "\"" + std::string(*name) + "\"";
+      if (const auto* name = std::get_if<std::string_view>(&value))
+        return "\"" + std::string(*name) + "\"";
       if (const auto* flag = std::get_if<bool>(&value)) return *flag ? "true" : "false";
       if (const auto* integer = std::get_if<long long>(&value)) return std::to_string(*integer);
       char buffer[32];
-      std::snprintf(buffer, sizeof buffer, "%.17g", std::get<double>(value));  // io/json_writer.cpp's format
+      std::snprintf(buffer, sizeof buffer, "%.17g",
+                    std::get<double>(value));  // io/json_writer.cpp's format
       return buffer;
     }
   return "";
@@ -149,18 +157,21 @@ TEST(OptionTable, EveryCliFlagReachesTheOutputRecord) {
   for (const table::OptionRow& row : table::rows()) {
     if (!row.is_field() || !row.has_front_ends()) continue;
     const std::string value = other_value(row), output = folder.file("f.json");
-    const CliResult r = run_cli("extract " + image + " " + std::string(row.cli_flag) + " " + value + " -o " + output);
+    const CliResult r = run_cli("extract " + image + " " + std::string(row.cli_flag) + " " + value +
+                                " -o " + output);
     ASSERT_EQ(r.status, 0) << row.cli_flag << " " << value << "\n" << r.output;
     std::ifstream in(output);
     const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string expected = "\"" + std::string(row.key) + "\":" + record_json(row, value);
-    EXPECT_NE(json.find(expected), std::string::npos) << row.cli_flag << " " << value << ": no " << expected;
+    EXPECT_NE(json.find(expected), std::string::npos)
+        << row.cli_flag << " " << value << ": no " << expected;
   }
   // --help lists every flag.
   const CliResult help = run_cli("extract --help");
   for (const table::OptionRow& row : table::rows())
     if (row.has_front_ends()) {
-      EXPECT_NE(help.output.find(std::string(row.cli_flag) + " "), std::string::npos) << row.cli_flag;
+      EXPECT_NE(help.output.find(std::string(row.cli_flag) + " "), std::string::npos)
+          << row.cli_flag;
     }
 }
 
@@ -168,16 +179,21 @@ TEST(OptionTable, EverySettingsKeyReachesTheOptions) {
   for (const table::OptionRow& row : table::rows()) {
     if (!row.is_field() || !row.has_front_ends()) continue;
     const std::string value = other_value(row);
-    const bool is_text = row.kind() == table::ValueKind::choice || row.kind() == table::ValueKind::toggle;
-    const std::string yaml = "%YAML:1.0\n" + std::string(row.yaml_key) + ": " + (is_text ? "\"" + value + "\"" : value) + "\n";
+    const bool is_text =
+        row.kind() == table::ValueKind::choice || row.kind() == table::ValueKind::toggle;
+    const std::string yaml = "%YAML:1.0\n" + std::string(row.yaml_key) + ": " +
+                             (is_text ? "\"" + value + "\"" : value) + "\n";
     const cv::FileStorage settings(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     const ExtractorOptions options = ORBextractor::options_from_settings(settings);
     // The drop-ins' defaults (ORB-SLAM's keypoint convention) with the one key changed.
     ExtractorOptions expected = ORBextractor::options_from_settings(
-        cv::FileStorage("%YAML:1.0\nORBextractor.nFeatures: 1000\n", cv::FileStorage::READ | cv::FileStorage::MEMORY));
+        cv::FileStorage("%YAML:1.0\nORBextractor.nFeatures: 1000\n",
+                        cv::FileStorage::READ | cv::FileStorage::MEMORY));
     row.field.set(expected, table::parse_value(row, value, row.key));
-    expected.scale_factor = static_cast<float>(expected.scale_factor);  // read into a float, as Tracking.cc
-    EXPECT_EQ(table::record_of(options), table::record_of(expected)) << row.yaml_key << ": " << value;
+    expected.scale_factor =
+        static_cast<float>(expected.scale_factor);  // read into a float, as Tracking.cc
+    EXPECT_EQ(table::record_of(options), table::record_of(expected))
+        << row.yaml_key << ": " << value;
   }
 }
 
@@ -193,28 +209,35 @@ TEST(OptionTable, NumbersAreDecimalWithinTheRowsRange) {
   // Hex was read as 16 by --threshold and --pool (std::stod), refused by --features (std::stoll).
   for (std::string_view key : {"entropy_threshold", "candidate_pool", "n_features", "scale_factor"})
     EXPECT_NE(error_of(key, "0x10"), "") << key;
-  for (std::string_view text : {" 5", "5 ", "5.5.5", "1e", "e5", "+", "-", ".", "nan", "infinity", "1,5", "--5", "5f"})
+  for (std::string_view text :
+       {" 5", "5 ", "5.5.5", "1e", "e5", "+", "-", ".", "nan", "infinity", "1,5", "--5", "5f"})
     EXPECT_NE(error_of("entropy_threshold", text), "") << text;
   // 1e-320 (a subnormal) is inside [0, 64]; strtod's ERANGE refused it.
   EXPECT_EQ(error_of("entropy_threshold", "1e-320"), "");
   EXPECT_NE(error_of("entropy_threshold", "1e400"), "");
   // -0 is 0, never printed as -0.
-  const table::OptionValue zero = table::parse_value(table::row("entropy_threshold"), "-0", "--threshold");
+  const table::OptionValue zero =
+      table::parse_value(table::row("entropy_threshold"), "-0", "--threshold");
   EXPECT_FALSE(std::signbit(std::get<double>(zero)));
   for (std::string_view text : {"+5", "-0", ".5", "5.", "1E1", "2e+1", "3e-1"})
     EXPECT_EQ(error_of("entropy_threshold", text), "") << text;
   EXPECT_EQ(error_of("n_features", "+500"), "");
   EXPECT_NE(error_of("n_features", "5e2"), "");
   EXPECT_NE(error_of("n_features", "99999999999999999999"), "");
-  EXPECT_NE(error_of("n_features", "1000001").find("--x expects an integer in [1, 1000000], got '1000001'"), std::string::npos);
-  EXPECT_NE(error_of("scale_factor", "1").find("--x expects a number in (1, 4], got '1'"), std::string::npos);
-  EXPECT_NE(error_of("entropy_threshold", "x").find("a number in [0, 64] or auto"), std::string::npos);
+  EXPECT_NE(error_of("n_features", "1000001")
+                .find("--x expects an integer in [1, 1000000], got '1000001'"),
+            std::string::npos);
+  EXPECT_NE(error_of("scale_factor", "1").find("--x expects a number in (1, 4], got '1'"),
+            std::string::npos);
+  EXPECT_NE(error_of("entropy_threshold", "x").find("a number in [0, 64] or auto"),
+            std::string::npos);
   EXPECT_NE(error_of("candidate_pool", "0.5").find("a number >= 1, inf or off"), std::string::npos);
 }
 
 TEST(OptionTable, TheCliReadsNumbersByTheTable) {
   const std::string image = test::sample_path("boat", "img1.png");
-  for (const char* flags : {"--threshold 0x10", "--pool 0x10", "--features 0x10", "--scale 0x1.8p0", "--threshold inf"}) {
+  for (const char* flags : {"--threshold 0x10", "--pool 0x10", "--features 0x10", "--scale 0x1.8p0",
+                            "--threshold inf"}) {
     const CliResult r = run_cli("extract " + image + " " + flags);
     EXPECT_EQ(r.status, 2) << flags << "\n" << r.output;
   }
@@ -253,24 +276,31 @@ TEST(OptionTable, TheModeSetsTheOptionsGivenOverrideConflictsAreRefused) {
   // Given options apply after the mode, whatever the order they came in.
   EXPECT_EQ(resolve({{"entropy", "off"}}).entropy, EntropyMeasure::off);
   EXPECT_EQ(resolve({{"entropy", "off"}, {"mode", "aief-paper"}}).entropy, EntropyMeasure::off);
-  EXPECT_EQ(resolve({{"coordinates", "pixel-centre"}, {"mode", "orbslam2"}}).coordinates, CoordinateMap::pixel_centre);
-  EXPECT_EQ(resolve({{"mode", "quadtree-entropy"}, {"entropy", "intensity"}}).distribution, Distribution::quadtree);
+  EXPECT_EQ(resolve({{"coordinates", "pixel-centre"}, {"mode", "orbslam2"}}).coordinates,
+            CoordinateMap::pixel_centre);
+  EXPECT_EQ(resolve({{"mode", "quadtree-entropy"}, {"entropy", "intensity"}}).distribution,
+            Distribution::quadtree);
   EXPECT_TRUE(resolve({{"entropy_threshold", "auto"}}).auto_threshold);
   EXPECT_TRUE(std::isinf(resolve({{"candidate_pool", "off"}}).candidate_pool));
   // The mode's definition cannot be overridden; F cannot apply without the mask.
-  EXPECT_NE(resolve_error({{"mode", "orbslam2"}, {"entropy", "histogram"}}).find("mode orbslam2 means entropy off"),
+  EXPECT_NE(resolve_error({{"mode", "orbslam2"}, {"entropy", "histogram"}})
+                .find("mode orbslam2 means entropy off"),
             std::string::npos);
   EXPECT_EQ(resolve_error({{"mode", "orbslam2"}, {"entropy", "off"}}), "");
-  EXPECT_NE(resolve_error({{"entropy", "off"}, {"entropy_threshold", "7"}}).find("which entropy off turns off"),
+  EXPECT_NE(resolve_error({{"entropy", "off"}, {"entropy_threshold", "7"}})
+                .find("which entropy off turns off"),
             std::string::npos);
-  EXPECT_NE(resolve_error({{"mode", "orbslam2"}, {"entropy_threshold", "auto"}}).find("which mode orbslam2 turns off"),
+  EXPECT_NE(resolve_error({{"mode", "orbslam2"}, {"entropy_threshold", "auto"}})
+                .find("which mode orbslam2 turns off"),
             std::string::npos);
   // validate() still has the last word.
-  EXPECT_NE(resolve_error({{"fast_threshold", "10"}, {"fast_min_threshold", "11"}}).find("fast_min_threshold"),
+  EXPECT_NE(resolve_error({{"fast_threshold", "10"}, {"fast_min_threshold", "11"}})
+                .find("fast_min_threshold"),
             std::string::npos);
   // options_for_mode is the same table.
   for (const auto& mode : option_names::Table<Mode>::names)
-    EXPECT_EQ(table::record_of(resolve({{"mode", std::string(mode.name)}})), table::record_of(options_for_mode(mode.value)))
+    EXPECT_EQ(table::record_of(resolve({{"mode", std::string(mode.name)}})),
+              table::record_of(options_for_mode(mode.value)))
         << mode.name;
 }
 
@@ -283,7 +313,8 @@ TEST(OptionTable, EnumNamesAndTheirEnumeratorsRead) {
     parse_mode("orb");
     ADD_FAILURE();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "unknown mode 'orb' (expected aief, aief-paper, orbslam2 or quadtree-entropy)");
+    EXPECT_STREQ(e.what(),
+                 "unknown mode 'orb' (expected aief, aief-paper, orbslam2 or quadtree-entropy)");
   }
 }
 

@@ -15,7 +15,8 @@
 namespace aief {
 namespace {
 
-void expect_same(const Features& features, const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& descriptors) {
+void expect_same(const Features& features, const std::vector<cv::KeyPoint>& keypoints,
+                 const cv::Mat& descriptors) {
   ASSERT_EQ(keypoints.size(), features.keypoints.size());
   ASSERT_EQ(descriptors.rows, static_cast<int>(features.descriptors.size()));
   ASSERT_EQ(descriptors.cols, kDescriptorBytes);
@@ -23,12 +24,15 @@ void expect_same(const Features& features, const std::vector<cv::KeyPoint>& keyp
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
     const Keypoint& want = features.keypoints[i];
     const cv::KeyPoint& got = keypoints[i];
-    ASSERT_TRUE(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size && got.angle == want.angle_deg &&
-                got.response == want.response && got.octave == want.octave && got.class_id == -1)
-        << "keypoint " << i << ": got (" << got.pt.x << ", " << got.pt.y << ") octave " << got.octave << " angle "
-        << got.angle << ", want (" << want.x << ", " << want.y << ") octave " << want.octave << " angle " << want.angle_deg;
+    ASSERT_TRUE(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size &&
+                got.angle == want.angle_deg && got.response == want.response &&
+                got.octave == want.octave && got.class_id == -1)
+        << "keypoint " << i << ": got (" << got.pt.x << ", " << got.pt.y << ") octave "
+        << got.octave << " angle " << got.angle << ", want (" << want.x << ", " << want.y
+        << ") octave " << want.octave << " angle " << want.angle_deg;
     for (int b = 0; b < kDescriptorBytes; ++b)
-      ASSERT_EQ(descriptors.at<std::uint8_t>(static_cast<int>(i), b), features.descriptors[i][static_cast<std::size_t>(b)])
+      ASSERT_EQ(descriptors.at<std::uint8_t>(static_cast<int>(i), b),
+                features.descriptors[i][static_cast<std::size_t>(b)])
           << "descriptor " << i << " byte " << b;
   }
 }
@@ -40,7 +44,8 @@ TEST(OrbSlam2DropIn, AccessorsAsOrbSlam2) {
       const ORBextractor orb(1000, factor, levels, 20, 7);
       EXPECT_EQ(orb.GetLevels(), levels);
       EXPECT_EQ(orb.GetScaleFactor(), factor);
-      std::vector<float> scale(static_cast<std::size_t>(levels)), sigma2(static_cast<std::size_t>(levels));
+      std::vector<float> scale(static_cast<std::size_t>(levels)),
+          sigma2(static_cast<std::size_t>(levels));
       scale[0] = 1.0f;
       sigma2[0] = 1.0f;
       for (std::size_t i = 1; i < scale.size(); ++i) {
@@ -70,8 +75,10 @@ TEST(OrbSlam2DropIn, ConstructorArgumentsBecomeTheOptions) {
   EXPECT_EQ(o.n_levels, 6);
   EXPECT_EQ(o.fast_threshold, 25);
   EXPECT_EQ(o.fast_min_threshold, 9);
-  EXPECT_EQ(o.distribution, ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
-  EXPECT_EQ(o.coordinates, CoordinateMap::scaled);  // ORB-SLAM's keypoint convention (docs/slam.md, "Stereo")
+  EXPECT_EQ(o.distribution,
+            ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
+  EXPECT_EQ(o.coordinates,
+            CoordinateMap::scaled);  // ORB-SLAM's keypoint convention (docs/slam.md, "Stereo")
   EXPECT_FALSE(o.subpixel);
   EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
 }
@@ -84,7 +91,7 @@ TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeaturesAndPyramid) {
   orb(gray, cv::Mat(), keypoints, descriptors);
   ExtractorOptions options;
   options.n_features = 800;
-  options.scale_factor = 1.2f;  // the same options: ORB-SLAM2 passes a float
+  options.scale_factor = 1.2f;                  // the same options: ORB-SLAM2 passes a float
   options.coordinates = CoordinateMap::scaled;  // and ORB-SLAM's keypoint convention (docs/slam.md)
   options.subpixel = false;
   const Features features = extract(view_of(gray), options);
@@ -101,7 +108,8 @@ TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeaturesAndPyramid) {
     EXPECT_EQ(level.cols, cvRound(static_cast<float>(gray.cols) * inverse)) << "level " << n;
     EXPECT_EQ(level.rows, cvRound(static_cast<float>(gray.rows) * inverse)) << "level " << n;
     const ImageView view = orb.extractor().pyramid_level(n);
-    EXPECT_EQ(static_cast<const void*>(level.data), static_cast<const void*>(view.data)) << "level " << n;
+    EXPECT_EQ(static_cast<const void*>(level.data), static_cast<const void*>(view.data))
+        << "level " << n;
   }
 
   // Colour in, the same features out; the pyramid follows the latest frame.
@@ -120,7 +128,8 @@ TEST(OrbSlam2DropIn, MaskIsIgnoredAsOrbSlam2) {
   std::vector<cv::KeyPoint> without_mask, with_mask;
   cv::Mat d_without, d_with;
   orb(gray, cv::noArray(), without_mask, d_without);
-  orb(gray, cv::Mat::zeros(gray.size(), CV_8U), with_mask, d_with);  // a mask that would reject every pixel
+  orb(gray, cv::Mat::zeros(gray.size(), CV_8U), with_mask,
+      d_with);  // a mask that would reject every pixel
   ASSERT_EQ(with_mask.size(), without_mask.size());
   EXPECT_EQ(cv::norm(d_with, d_without, cv::NORM_INF), 0.0);
 }
@@ -129,18 +138,20 @@ TEST(OrbSlam2DropIn, NoKeypointReleasesTheDescriptorsAsOrbSlam2) {
   ORBextractor orb(500, 1.2f, 8, 20, 7);
   std::vector<cv::KeyPoint> keypoints(3);
   cv::Mat descriptors(3, 32, CV_8U, cv::Scalar(1));
-  orb(cv::Mat(120, 160, CV_8U, cv::Scalar(128)), cv::noArray(), keypoints, descriptors);  // flat: no corner
+  orb(cv::Mat(120, 160, CV_8U, cv::Scalar(128)), cv::noArray(), keypoints,
+      descriptors);  // flat: no corner
   EXPECT_TRUE(keypoints.empty());
   EXPECT_TRUE(descriptors.empty());
   EXPECT_THROW(orb(cv::Mat(), cv::noArray(), keypoints, descriptors), Error);
-  EXPECT_THROW(orb(cv::Mat(100, 100, CV_16U, cv::Scalar(0)), cv::noArray(), keypoints, descriptors), Error);
+  EXPECT_THROW(orb(cv::Mat(100, 100, CV_16U, cv::Scalar(0)), cv::noArray(), keypoints, descriptors),
+               Error);
 }
 
-// Settings files written as ORB-SLAM2's are: OpenCV's writer refuses dotted keys, its reader takes them.
+// Settings files written as ORB-SLAM2's are: OpenCV's writer refuses dotted keys, its reader takes
+// them.
 class SettingsFile {
  public:
-  explicit SettingsFile(const std::string& body)
-      : path_(folder_.file("settings.yaml")) {
+  explicit SettingsFile(const std::string& body) : path_(folder_.file("settings.yaml")) {
     std::ofstream(path_) << "%YAML:1.0\n" << body;
   }
   cv::FileStorage open() const { return cv::FileStorage(path_, cv::FileStorage::READ); }
@@ -153,8 +164,10 @@ class SettingsFile {
 TEST(OrbSlam2DropIn, ReadsItsSettingsKeys) {
   const SettingsFile file(
       "ORBextractor.nFeatures: 1500\nORBextractor.scaleFactor: 1.3\nORBextractor.nLevels: 6\n"
-      "ORBextractor.iniThFAST: 25\nORBextractor.minThFAST: 9\nORBextractor.mode: \"quadtree-entropy\"\n"
-      "ORBextractor.entropyThreshold: 3.5\nORBextractor.blockSize: 40\nORBextractor.candidatePool: 1.5\n");
+      "ORBextractor.iniThFAST: 25\nORBextractor.minThFAST: 9\nORBextractor.mode: "
+      "\"quadtree-entropy\"\n"
+      "ORBextractor.entropyThreshold: 3.5\nORBextractor.blockSize: 40\nORBextractor.candidatePool: "
+      "1.5\n");
   const ORBextractor orb = ORBextractor::from_settings(file.open());
   const ExtractorOptions& o = orb.extractor().options();
   EXPECT_EQ(o.n_features, 1500);
@@ -200,25 +213,29 @@ TEST(OrbSlam2DropIn, SettingsModesAndAutoThreshold) {
     EXPECT_EQ(o.n_features, ExtractorOptions{}.n_features);  // missing keys keep the defaults
   }
   {
-    const SettingsFile file("ORBextractor.mode: \"aief\"\nORBextractor.entropyThreshold: \"auto\"\n");
+    const SettingsFile file(
+        "ORBextractor.mode: \"aief\"\nORBextractor.entropyThreshold: \"auto\"\n");
     const ExtractorOptions o = ORBextractor::options_from_settings(file.open());
     EXPECT_EQ(o.distribution, Distribution::proportional);
     EXPECT_TRUE(o.auto_threshold);
   }
   {
-    const SettingsFile file("ORBextractor.mode: \"aief\"\n");  // the mode keeps ORB-SLAM's keypoint convention
+    const SettingsFile file(
+        "ORBextractor.mode: \"aief\"\n");  // the mode keeps ORB-SLAM's keypoint convention
     const ExtractorOptions o = ORBextractor::options_from_settings(file.open());
     EXPECT_EQ(o.coordinates, CoordinateMap::scaled);
     EXPECT_FALSE(o.subpixel);
   }
   {
-    const SettingsFile file("ORBextractor.coordinates: \"pixel-centre\"\nORBextractor.subpixel: 1\n");
+    const SettingsFile file(
+        "ORBextractor.coordinates: \"pixel-centre\"\nORBextractor.subpixel: 1\n");
     const ExtractorOptions o = ORBextractor::options_from_settings(file.open());
     EXPECT_EQ(o.coordinates, CoordinateMap::pixel_centre);
     EXPECT_TRUE(o.subpixel);
   }
   {
-    const SettingsFile file("ORBextractor.candidatePool: \"off\"\n");  // docs/slam.md: spread, as the quadtree
+    const SettingsFile file(
+        "ORBextractor.candidatePool: \"off\"\n");  // docs/slam.md: spread, as the quadtree
     EXPECT_TRUE(std::isinf(ORBextractor::options_from_settings(file.open()).candidate_pool));
   }
 }
@@ -233,20 +250,31 @@ TEST(OrbSlam2DropIn, SettingsErrorsNameTheKey) {
     }
     return "(no error)";
   };
-  EXPECT_NE(message_of("ORBextractor.nFeatures: \"many\"\n").find("ORBextractor.nFeatures"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.nLevels: 7.5\n").find("ORBextractor.nLevels"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.scaleFactor: \"big\"\n").find("ORBextractor.scaleFactor"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.entropyThreshold: \"high\"\n").find("ORBextractor.entropyThreshold"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.mode: \"sift\"\n").find("sift"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.subpixel: 2\n").find("ORBextractor.subpixel"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.coordinates: \"centre\"\n").find("centre"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.candidatePool: 0.5\n").find("ORBextractor.candidatePool expects"), std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.scaleFactor: 0.5\n").find("ORBextractor.scaleFactor expects a number in (1, 4]"),
+  EXPECT_NE(message_of("ORBextractor.nFeatures: \"many\"\n").find("ORBextractor.nFeatures"),
             std::string::npos);
-  EXPECT_NE(message_of("ORBextractor.scaleFactor: 1.00000001\n").find("scale_factor"), std::string::npos);  // validate()
+  EXPECT_NE(message_of("ORBextractor.nLevels: 7.5\n").find("ORBextractor.nLevels"),
+            std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.scaleFactor: \"big\"\n").find("ORBextractor.scaleFactor"),
+            std::string::npos);
+  EXPECT_NE(
+      message_of("ORBextractor.entropyThreshold: \"high\"\n").find("ORBextractor.entropyThreshold"),
+      std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.mode: \"sift\"\n").find("sift"), std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.subpixel: 2\n").find("ORBextractor.subpixel"),
+            std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.coordinates: \"centre\"\n").find("centre"), std::string::npos);
+  EXPECT_NE(
+      message_of("ORBextractor.candidatePool: 0.5\n").find("ORBextractor.candidatePool expects"),
+      std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.scaleFactor: 0.5\n")
+                .find("ORBextractor.scaleFactor expects a number in (1, 4]"),
+            std::string::npos);
+  EXPECT_NE(message_of("ORBextractor.scaleFactor: 1.00000001\n").find("scale_factor"),
+            std::string::npos);  // validate()
   // A mode's conflicts are refused as in the CLI, named by the keys.
   EXPECT_NE(message_of("ORBextractor.mode: \"orbslam2\"\nORBextractor.entropyThreshold: 5\n")
-                .find("ORBextractor.entropyThreshold sets F of the entropy mask, which ORBextractor.mode orbslam2 turns off"),
+                .find("ORBextractor.entropyThreshold sets F of the entropy mask, which "
+                      "ORBextractor.mode orbslam2 turns off"),
             std::string::npos);
   EXPECT_THROW(ORBextractor::from_settings(cv::FileStorage()), Error);
 }

@@ -23,20 +23,24 @@ void expect_at(const Features& features, std::size_t i, const std::vector<cv::Ke
                const cv::Mat& descriptors, std::size_t slot) {
   const Keypoint& want = features.keypoints[i];
   const cv::KeyPoint& got = keypoints[slot];
-  ASSERT_TRUE(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size && got.angle == want.angle_deg &&
-              got.response == want.response && got.octave == want.octave && got.class_id == -1)
-      << "engine keypoint " << i << " at slot " << slot << ": got (" << got.pt.x << ", " << got.pt.y << ") octave "
-      << got.octave << ", want (" << want.x << ", " << want.y << ") octave " << want.octave;
+  ASSERT_TRUE(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size &&
+              got.angle == want.angle_deg && got.response == want.response &&
+              got.octave == want.octave && got.class_id == -1)
+      << "engine keypoint " << i << " at slot " << slot << ": got (" << got.pt.x << ", " << got.pt.y
+      << ") octave " << got.octave << ", want (" << want.x << ", " << want.y << ") octave "
+      << want.octave;
   for (int b = 0; b < kDescriptorBytes; ++b)
-    ASSERT_EQ(descriptors.at<std::uint8_t>(static_cast<int>(slot), b), features.descriptors[i][static_cast<std::size_t>(b)])
+    ASSERT_EQ(descriptors.at<std::uint8_t>(static_cast<int>(slot), b),
+              features.descriptors[i][static_cast<std::size_t>(b)])
         << "engine keypoint " << i << " at slot " << slot << ", descriptor byte " << b;
 }
 
 // ORB-SLAM3's split, stated as positions: the keypoints outside [x0, x1] fill the front in the
 // engine's order, those inside fill the back from the end (the first inside is last), and the
 // returned count is the number outside.
-void expect_lapping_split(const Features& features, int x0, int x1, const std::vector<cv::KeyPoint>& keypoints,
-                          const cv::Mat& descriptors, int returned) {
+void expect_lapping_split(const Features& features, int x0, int x1,
+                          const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& descriptors,
+                          int returned) {
   const std::size_t count = features.keypoints.size();
   ASSERT_EQ(keypoints.size(), count);
   ASSERT_EQ(descriptors.rows, static_cast<int>(count));
@@ -56,7 +60,8 @@ ExtractorOptions options_of(int nfeatures, float scale_factor) {
   ExtractorOptions options;
   options.n_features = nfeatures;
   options.scale_factor = scale_factor;  // ORB-SLAM3 passes a float
-  options.coordinates = CoordinateMap::scaled;  // the drop-ins' keypoint convention (docs/slam.md, "Stereo")
+  options.coordinates =
+      CoordinateMap::scaled;  // the drop-ins' keypoint convention (docs/slam.md, "Stereo")
   options.subpixel = false;
   return options;
 }
@@ -70,7 +75,8 @@ TEST(OrbSlam3DropIn, AccessorsAsOrbSlam3) {
       const double orbslam3_scale_factor = factor;  // ORB-SLAM3: `double scaleFactor;`
       EXPECT_EQ(orb.GetLevels(), levels);
       EXPECT_EQ(orb.GetScaleFactor(), static_cast<float>(orbslam3_scale_factor));
-      std::vector<float> scale(static_cast<std::size_t>(levels)), sigma2(static_cast<std::size_t>(levels));
+      std::vector<float> scale(static_cast<std::size_t>(levels)),
+          sigma2(static_cast<std::size_t>(levels));
       scale[0] = 1.0f;
       sigma2[0] = 1.0f;
       for (std::size_t i = 1; i < scale.size(); ++i) {
@@ -100,7 +106,8 @@ TEST(OrbSlam3DropIn, ConstructorArgumentsBecomeTheOptions) {
   EXPECT_EQ(o.n_levels, 6);
   EXPECT_EQ(o.fast_threshold, 25);
   EXPECT_EQ(o.fast_min_threshold, 9);
-  EXPECT_EQ(o.distribution, ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
+  EXPECT_EQ(o.distribution,
+            ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
   EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
 }
 
@@ -135,8 +142,14 @@ TEST(OrbSlam3DropIn, LappingAreaSplitAndReturnedCount) {
   ASSERT_GT(features.keypoints.size(), 700u);
   const int x_of_first = static_cast<int>(features.keypoints.front().x);
   ASSERT_EQ(static_cast<float>(x_of_first), features.keypoints.front().x);
-  const std::vector<std::vector<int>> areas = {{0, 0},      {0, 1000},  {300, 600}, {-5, 5000}, {600, 300},
-                                               {x_of_first, x_of_first}, {0, x_of_first - 1}, {x_of_first + 1, 899}};
+  const std::vector<std::vector<int>> areas = {{0, 0},
+                                               {0, 1000},
+                                               {300, 600},
+                                               {-5, 5000},
+                                               {600, 300},
+                                               {x_of_first, x_of_first},
+                                               {0, x_of_first - 1},
+                                               {x_of_first + 1, 899}};
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   for (std::vector<int> area : areas) {
@@ -151,7 +164,8 @@ TEST(OrbSlam3DropIn, LappingAreaSplitAndReturnedCount) {
   std::vector<int> stereo_pinhole = {0, 0};
   EXPECT_EQ(orb(gray, cv::Mat(), keypoints, descriptors, stereo_pinhole), count);
   expect_at(features, 0, keypoints, descriptors, 0);
-  expect_at(features, features.keypoints.size() - 1, keypoints, descriptors, features.keypoints.size() - 1);
+  expect_at(features, features.keypoints.size() - 1, keypoints, descriptors,
+            features.keypoints.size() - 1);
   // Monocular frames pass {0, 1000}: on an image 1000 pixels wide or less every keypoint is
   // "in the area", so ORB-SLAM3 returns 0 and the order is reversed; Frame ignores both.
   std::vector<int> monocular = {0, 1000};
@@ -161,11 +175,14 @@ TEST(OrbSlam3DropIn, LappingAreaSplitAndReturnedCount) {
   // The bounds are inclusive: [x, x] takes the keypoints on column x and nothing else.
   std::vector<int> one_column = {x_of_first, x_of_first};
   int on_column = 0;
-  for (const Keypoint& kp : features.keypoints) on_column += kp.x == static_cast<float>(x_of_first) ? 1 : 0;
+  for (const Keypoint& kp : features.keypoints)
+    on_column += kp.x == static_cast<float>(x_of_first) ? 1 : 0;
   ASSERT_GE(on_column, 1);
   EXPECT_EQ(orb(gray, cv::Mat(), keypoints, descriptors, one_column), count - on_column);
-  expect_at(features, 0, keypoints, descriptors, features.keypoints.size() - 1);  // the first inside goes last
-  for (std::size_t slot = static_cast<std::size_t>(count - on_column); slot < keypoints.size(); ++slot)
+  expect_at(features, 0, keypoints, descriptors,
+            features.keypoints.size() - 1);  // the first inside goes last
+  for (std::size_t slot = static_cast<std::size_t>(count - on_column); slot < keypoints.size();
+       ++slot)
     EXPECT_EQ(keypoints[slot].pt.x, static_cast<float>(x_of_first)) << "slot " << slot;
   // Reversed bounds hold nothing.
   std::vector<int> reversed = {600, 300};
@@ -184,14 +201,16 @@ TEST(OrbSlam3DropIn, FractionalXAgainstIntegerBounds) {
   ORBextractor orb(1000, 1.2f, 8, 20, 7);
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
-  for (std::vector<int> area : std::vector<std::vector<int>>{{below, below}, {below + 1, below + 1}, {below, below + 1}}) {
+  for (std::vector<int> area :
+       std::vector<std::vector<int>>{{below, below}, {below + 1, below + 1}, {below, below + 1}}) {
     SCOPED_TRACE("lapping area [" + std::to_string(area[0]) + ", " + std::to_string(area[1]) + "]");
     const int returned = orb(gray, cv::noArray(), keypoints, descriptors, area);
     expect_lapping_split(features, area[0], area[1], keypoints, descriptors, returned);
     const bool holds_fractional = area[0] == below && area[1] == below + 1;
     bool found_in_back = false;
     for (std::size_t slot = static_cast<std::size_t>(returned); slot < keypoints.size(); ++slot)
-      found_in_back = found_in_back || (keypoints[slot].pt.x == fractional->x && keypoints[slot].pt.y == fractional->y);
+      found_in_back = found_in_back || (keypoints[slot].pt.x == fractional->x &&
+                                        keypoints[slot].pt.y == fractional->y);
     EXPECT_EQ(found_in_back, holds_fractional);
   }
 }
@@ -202,7 +221,8 @@ TEST(OrbSlam3DropIn, PyramidColourAndMaskAsOrbSlam3) {
   std::vector<int> area = {0, 0};
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
-  orb(gray, cv::Mat::zeros(gray.size(), CV_8U), keypoints, descriptors, area);  // a mask that would reject every pixel
+  orb(gray, cv::Mat::zeros(gray.size(), CV_8U), keypoints, descriptors,
+      area);  // a mask that would reject every pixel
   const Features features = extract(view_of(gray), options_of(500, 1.2f));
   expect_lapping_split(features, 0, 0, keypoints, descriptors, static_cast<int>(keypoints.size()));
 
@@ -215,7 +235,9 @@ TEST(OrbSlam3DropIn, PyramidColourAndMaskAsOrbSlam3) {
     const float inverse = orb.GetInverseScaleFactors()[static_cast<std::size_t>(n)];
     EXPECT_EQ(level.cols, cvRound(static_cast<float>(gray.cols) * inverse)) << "level " << n;
     EXPECT_EQ(level.rows, cvRound(static_cast<float>(gray.rows) * inverse)) << "level " << n;
-    EXPECT_EQ(static_cast<const void*>(level.data), static_cast<const void*>(orb.extractor().pyramid_level(n).data)) << "level " << n;
+    EXPECT_EQ(static_cast<const void*>(level.data),
+              static_cast<const void*>(orb.extractor().pyramid_level(n).data))
+        << "level " << n;
   }
 
   cv::Mat bgr;
@@ -230,26 +252,33 @@ TEST(OrbSlam3DropIn, EmptyImageReturnsMinusOneAndOtherBadInputThrows) {
   std::vector<cv::KeyPoint> keypoints(3);
   cv::Mat descriptors(3, 32, CV_8U, cv::Scalar(1));
   EXPECT_EQ(orb(cv::Mat(), cv::noArray(), keypoints, descriptors, area), -1);  // ORB-SLAM3's answer
-  EXPECT_EQ(keypoints.size(), 3u);                                             // outputs untouched, as ORB-SLAM3
+  EXPECT_EQ(keypoints.size(), 3u);  // outputs untouched, as ORB-SLAM3
   EXPECT_EQ(descriptors.rows, 3);
   EXPECT_TRUE(orb.mvImagePyramid.empty());
 
   // A flat image has no corner: no keypoint, descriptors released, count 0.
-  EXPECT_EQ(orb(cv::Mat(120, 160, CV_8U, cv::Scalar(128)), cv::noArray(), keypoints, descriptors, area), 0);
+  EXPECT_EQ(
+      orb(cv::Mat(120, 160, CV_8U, cv::Scalar(128)), cv::noArray(), keypoints, descriptors, area),
+      0);
   EXPECT_TRUE(keypoints.empty());
   EXPECT_TRUE(descriptors.empty());
 
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
   std::vector<int> one_bound = {0};
   EXPECT_THROW(orb(gray, cv::noArray(), keypoints, descriptors, one_bound), Error);
-  EXPECT_THROW(orb(cv::Mat(100, 100, CV_16U, cv::Scalar(0)), cv::noArray(), keypoints, descriptors, area), Error);
-  EXPECT_THROW(orb(cv::Mat(30, 300, CV_8U, cv::Scalar(0)), cv::noArray(), keypoints, descriptors, area), Error);  // too small
+  EXPECT_THROW(
+      orb(cv::Mat(100, 100, CV_16U, cv::Scalar(0)), cv::noArray(), keypoints, descriptors, area),
+      Error);
+  EXPECT_THROW(
+      orb(cv::Mat(30, 300, CV_8U, cv::Scalar(0)), cv::noArray(), keypoints, descriptors, area),
+      Error);  // too small
 }
 
 TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
   // EuRoC.yaml's ORB values; Tracking.cc reads scaleFactor into a float and calls the constructor.
   const cv::FileStorage settings(
-      "%YAML:1.0\nORBextractor.nFeatures: 1200\nORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
+      "%YAML:1.0\nORBextractor.nFeatures: 1200\nORBextractor.scaleFactor: "
+      "1.2\nORBextractor.nLevels: 8\n"
       "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\n",
       cv::FileStorage::READ | cv::FileStorage::MEMORY);
   ORBextractor from_file = ORBextractor::from_settings(settings);
@@ -268,16 +297,21 @@ TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
     ASSERT_TRUE(k1[i].pt == k2[i].pt && k1[i].octave == k2[i].octave) << "keypoint " << i;
   EXPECT_EQ(cv::norm(d1, d2, cv::NORM_INF), 0.0);
 
-  // Our keys too (threads: docs/orbslam3.md's advice for 2-core boards), and a wrong value names its key.
-  const cv::FileStorage ours("%YAML:1.0\nORBextractor.mode: \"orbslam2\"\nORBextractor.threads: 1\n",
-                             cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  // Our keys too (threads: docs/orbslam3.md's advice for 2-core boards), and a wrong value names
+  // its key.
+  const cv::FileStorage ours(
+      "%YAML:1.0\nORBextractor.mode: \"orbslam2\"\nORBextractor.threads: 1\n",
+      cv::FileStorage::READ | cv::FileStorage::MEMORY);
   const ExtractorOptions ours_options = ORBextractor::from_settings(ours).extractor().options();
   EXPECT_EQ(ours_options.distribution, Distribution::quadtree);
   EXPECT_EQ(ours_options.threads, 1);
-  EXPECT_EQ(ORBextractor::options_from_settings(settings).threads, ExtractorOptions{}.threads);  // missing: the default
-  const cv::FileStorage negative("%YAML:1.0\nORBextractor.threads: -1\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  EXPECT_EQ(ORBextractor::options_from_settings(settings).threads,
+            ExtractorOptions{}.threads);  // missing: the default
+  const cv::FileStorage negative("%YAML:1.0\nORBextractor.threads: -1\n",
+                                 cv::FileStorage::READ | cv::FileStorage::MEMORY);
   EXPECT_THROW(ORBextractor::from_settings(negative), Error);
-  const cv::FileStorage wrong("%YAML:1.0\nORBextractor.nLevels: 7.5\n", cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  const cv::FileStorage wrong("%YAML:1.0\nORBextractor.nLevels: 7.5\n",
+                              cv::FileStorage::READ | cv::FileStorage::MEMORY);
   try {
     ORBextractor::from_settings(wrong);
     ADD_FAILURE() << "nLevels 7.5 accepted";

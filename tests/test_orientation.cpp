@@ -48,7 +48,8 @@ TEST(Orientation, MomentsAreTheDefinition) {
 TEST(Orientation, BrighterToTheRightPointsAlongX) {
   cv::Mat ramp(64, 64, CV_8UC1);
   for (int y = 0; y < 64; ++y)
-    for (int x = 0; x < 64; ++x) ramp.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(2 * x + 20);
+    for (int x = 0; x < 64; ++x)
+      ramp.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(2 * x + 20);
   EXPECT_NEAR(angle_difference(angle_at(ramp, 32, 32), 0.0), 0.0, 1e-3);
   cv::Mat down;
   cv::transpose(ramp, down);  // brighter downwards: +y, 90 degrees in image coordinates
@@ -64,7 +65,8 @@ TEST(Orientation, QuarterTurnOfThePatchTurnsTheAngle) {
     for (int x = 20; x < 76; x += 7) {
       const float before = angle_at(image, x, y);
       const float after = angle_at(rotated, 95 - y, x);
-      EXPECT_NEAR(angle_difference(after, before + 90.0), 0.0, 1.0) << "at (" << x << ", " << y << ")";
+      EXPECT_NEAR(angle_difference(after, before + 90.0), 0.0, 1.0)
+          << "at (" << x << ", " << y << ")";
       ++checked;
     }
   EXPECT_GT(checked, 50);
@@ -77,19 +79,30 @@ TEST(Orientation, EveryQuarterTurnOfARealImage) {
     cv::RotateFlags flag;
     double degrees;  // image y points down, so clockwise on screen adds to the angle
   };
-  for (const Turn turn : {Turn{cv::ROTATE_90_CLOCKWISE, 90.0}, Turn{cv::ROTATE_180, 180.0}, Turn{cv::ROTATE_90_COUNTERCLOCKWISE, 270.0}}) {
+  for (const Turn turn : {Turn{cv::ROTATE_90_CLOCKWISE, 90.0}, Turn{cv::ROTATE_180, 180.0},
+                          Turn{cv::ROTATE_90_COUNTERCLOCKWISE, 270.0}}) {
     cv::Mat rotated;
     cv::rotate(image, rotated, turn.flag);
     int checked = 0;
     for (int y = 40; y < h - 40; y += 37)
       for (int x = 40; x < w - 40; x += 41) {
         int rx = 0, ry = 0;
-        if (turn.flag == cv::ROTATE_90_CLOCKWISE) { rx = h - 1 - y; ry = x; }
-        if (turn.flag == cv::ROTATE_180) { rx = w - 1 - x; ry = h - 1 - y; }
-        if (turn.flag == cv::ROTATE_90_COUNTERCLOCKWISE) { rx = y; ry = w - 1 - x; }
+        if (turn.flag == cv::ROTATE_90_CLOCKWISE) {
+          rx = h - 1 - y;
+          ry = x;
+        }
+        if (turn.flag == cv::ROTATE_180) {
+          rx = w - 1 - x;
+          ry = h - 1 - y;
+        }
+        if (turn.flag == cv::ROTATE_90_COUNTERCLOCKWISE) {
+          rx = y;
+          ry = w - 1 - x;
+        }
         const float before = angle_at(image, x, y), after = angle_at(rotated, rx, ry);
         EXPECT_NEAR(angle_difference(after, before + turn.degrees), 0.0, 1.0)
-            << "turn " << turn.degrees << " at (" << x << ", " << y << "): " << before << " -> " << after;
+            << "turn " << turn.degrees << " at (" << x << ", " << y << "): " << before << " -> "
+            << after;
         ++checked;
       }
     EXPECT_GT(checked, 200);

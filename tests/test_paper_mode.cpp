@@ -32,9 +32,9 @@ std::string hex(std::uint64_t value) {
 
 struct Pinned {
   const char* sequence;
-  const char* mode;      // the CLI's mode name
-  bool auto_threshold;   // --threshold auto
-  std::uint64_t hash;    // of img1's features
+  const char* mode;     // the CLI's mode name
+  bool auto_threshold;  // --threshold auto
+  std::uint64_t hash;   // of img1's features
 };
 
 // Recorded from commit 3b6aab1 (before the matching-quality options), default options otherwise.
@@ -65,10 +65,12 @@ TEST(PaperMode, ReproducesTheRecordedOutputToTheByte) {
     const cv::Mat gray = load_sample_gray(pinned.sequence, "img1.png");
     for (const KernelSet kernels : available_kernel_sets()) {
       for (const int threads : {1, 2}) {
-        const Features features = Extractor(pinned_options(pinned, kernels, threads)).extract(view_of(gray));
+        const Features features =
+            Extractor(pinned_options(pinned, kernels, threads)).extract(view_of(gray));
         EXPECT_EQ(hex(hash_of(features)), hex(pinned.hash))
-            << pinned.sequence << " --mode " << pinned.mode << (pinned.auto_threshold ? " --threshold auto" : "")
-            << " --kernels " << to_string(kernels) << " --threads " << threads;
+            << pinned.sequence << " --mode " << pinned.mode
+            << (pinned.auto_threshold ? " --threshold auto" : "") << " --kernels "
+            << to_string(kernels) << " --threads " << threads;
       }
     }
   }

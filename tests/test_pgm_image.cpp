@@ -25,15 +25,18 @@ TEST(PgmImage, RoundTripsAndSkipsComments) {
   ASSERT_EQ(back.width(), 5);
   ASSERT_EQ(back.height(), 3);
   EXPECT_TRUE(std::equal(image.data(), image.data() + 15, back.data()));
-  const GrayImage commented = parse_pgm("P5\n# a comment\n5 3 # another\n255\n" + bytes.substr(bytes.size() - 15));
+  const GrayImage commented =
+      parse_pgm("P5\n# a comment\n5 3 # another\n255\n" + bytes.substr(bytes.size() - 15));
   EXPECT_TRUE(std::equal(image.data(), image.data() + 15, commented.data()));
 }
 
 TEST(PgmImage, MalformedFilesAreRefusedWithAMessage) {
   const std::string pixels(6, '\x7f');
-  for (const std::string& bytes : {std::string(""), std::string("P2\n3 2\n255\n") + pixels, std::string("P5\n3 2\n65535\n") + pixels,
-                                   std::string("P5\n3 2\n255\n") + pixels.substr(1), std::string("P5\n0 2\n255\n"),
-                                   std::string("P5\n3\n"), std::string("P5\n99999999999 2\n255\n"), std::string("P5 3 2 255")}) {
+  for (const std::string& bytes :
+       {std::string(""), std::string("P2\n3 2\n255\n") + pixels,
+        std::string("P5\n3 2\n65535\n") + pixels, std::string("P5\n3 2\n255\n") + pixels.substr(1),
+        std::string("P5\n0 2\n255\n"), std::string("P5\n3\n"),
+        std::string("P5\n99999999999 2\n255\n"), std::string("P5 3 2 255")}) {
     EXPECT_THROW(parse_pgm(bytes), Error) << "input: " << bytes;
   }
   EXPECT_THROW(read_pgm(std::string(AIEF_SAMPLE_DIR) + "/no_such_file.pgm"), Error);

@@ -16,8 +16,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
 #include <tbb/global_control.h>
+#include <opencv2/core.hpp>
 
 #include "aief/extractor.hpp"
 #include "simd/kernels.hpp"
@@ -36,17 +36,23 @@ struct Case {
   std::string description;
 };
 
-double uniform(std::mt19937& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-int uniform_int(std::mt19937& rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+double uniform(std::mt19937& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+int uniform_int(std::mt19937& rng, int lo, int hi) {
+  return std::uniform_int_distribution<int>(lo, hi)(rng);
+}
 
 const cv::Mat& sample_image(int index) {
-  static const cv::Mat samples[] = {test::load_sample_gray("graf", "img1.png"), test::load_sample_gray("boat", "img1.png"),
+  static const cv::Mat samples[] = {test::load_sample_gray("graf", "img1.png"),
+                                    test::load_sample_gray("boat", "img1.png"),
                                     test::load_sample_gray("leuven", "img1.png")};
   return samples[index];
 }
 
 // Case `index` of the seeded sequence: every case depends only on the seed and its index.
-constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy};
+constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2,
+                               Mode::quadtree_entropy};
 
 Case make_case(int index) {
   std::mt19937 rng(kSeed + static_cast<std::uint32_t>(index) * 7919u);
@@ -54,14 +60,17 @@ Case make_case(int index) {
   c.mode = kEveryMode[uniform_int(rng, 0, static_cast<int>(std::size(kEveryMode)) - 1)];
   ExtractorOptions base;
   // Scale factors near 1 (and some far from it), where the pyramid has many small ratios.
-  base.scale_factor = uniform_int(rng, 0, 2) == 0 ? uniform(rng, 1.01, 1.1) : uniform(rng, 1.01, 4.0);
+  base.scale_factor =
+      uniform_int(rng, 0, 2) == 0 ? uniform(rng, 1.01, 1.1) : uniform(rng, 1.01, 4.0);
   base.n_levels = uniform_int(rng, 1, 14);
   // Block sides spread on a log scale over [8, 1024]: most small, some larger than the image.
   base.block_size = static_cast<int>(std::lround(std::exp2(uniform(rng, 3.0, 10.0))));
-  base.n_features = uniform_int(rng, 1, 3) == 1 ? uniform_int(rng, 1, 100) : uniform_int(rng, 100, 3000);
+  base.n_features =
+      uniform_int(rng, 1, 3) == 1 ? uniform_int(rng, 1, 100) : uniform_int(rng, 100, 3000);
   base.fast_threshold = uniform_int(rng, 5, 40);
   base.fast_min_threshold = uniform_int(rng, 1, base.fast_threshold);
-  base.entropy = uniform_int(rng, 0, 1) == 0 ? EntropyMeasure::histogram : EntropyMeasure::intensity;
+  base.entropy =
+      uniform_int(rng, 0, 1) == 0 ? EntropyMeasure::histogram : EntropyMeasure::intensity;
   base.entropy_threshold = uniform(rng, 0.0, 8.0);
   base.auto_threshold = uniform_int(rng, 0, 2) == 0;
   c.options = options_for_mode(c.mode, base);
@@ -79,11 +88,14 @@ Case make_case(int index) {
   }
 
   std::ostringstream out;
-  out << "case " << index << ": " << c.image.cols << "x" << c.image.rows << (source == 0 ? " random" : " sample crop")
-      << ", mode " << to_string(c.mode) << ", entropy " << to_string(c.options.entropy) << ", F "
-      << (c.options.auto_threshold ? std::string("auto") : std::to_string(c.options.entropy_threshold)) << ", scale "
-      << c.options.scale_factor << ", levels " << c.options.n_levels << ", block " << c.options.block_size << ", features "
-      << c.options.n_features << ", FAST " << c.options.fast_threshold << "/" << c.options.fast_min_threshold;
+  out << "case " << index << ": " << c.image.cols << "x" << c.image.rows
+      << (source == 0 ? " random" : " sample crop") << ", mode " << to_string(c.mode)
+      << ", entropy " << to_string(c.options.entropy) << ", F "
+      << (c.options.auto_threshold ? std::string("auto")
+                                   : std::to_string(c.options.entropy_threshold))
+      << ", scale " << c.options.scale_factor << ", levels " << c.options.n_levels << ", block "
+      << c.options.block_size << ", features " << c.options.n_features << ", FAST "
+      << c.options.fast_threshold << "/" << c.options.fast_min_threshold;
   c.description = out.str();
   return c;
 }
@@ -91,14 +103,16 @@ Case make_case(int index) {
 // "" when both results hold the same bytes, else the first difference.
 std::string first_difference(const Features& reference, const Features& other) {
   if (reference.keypoints.size() != other.keypoints.size())
-    return std::to_string(reference.keypoints.size()) + " keypoints with scalar at 1 thread, " + std::to_string(other.keypoints.size());
+    return std::to_string(reference.keypoints.size()) + " keypoints with scalar at 1 thread, " +
+           std::to_string(other.keypoints.size());
   for (std::size_t i = 0; i < reference.keypoints.size(); ++i) {
     const Keypoint &r = reference.keypoints[i], &o = other.keypoints[i];
     if (std::memcmp(&r, &o, sizeof r) != 0 || reference.descriptors[i] != other.descriptors[i]) {
       std::ostringstream out;
-      out << "keypoint " << i << ": reference (" << r.x << ", " << r.y << ", octave " << r.octave << ", angle " << r.angle_deg
-          << ", response " << r.response << "), other (" << o.x << ", " << o.y << ", octave " << o.octave << ", angle "
-          << o.angle_deg << ", response " << o.response << ")"
+      out << "keypoint " << i << ": reference (" << r.x << ", " << r.y << ", octave " << r.octave
+          << ", angle " << r.angle_deg << ", response " << r.response << "), other (" << o.x << ", "
+          << o.y << ", octave " << o.octave << ", angle " << o.angle_deg << ", response "
+          << o.response << ")"
           << (reference.descriptors[i] != other.descriptors[i] ? ", descriptors differ" : "");
       return out.str();
     }
@@ -106,12 +120,15 @@ std::string first_difference(const Features& reference, const Features& other) {
   const ExtractionInfo &r = reference.info, &o = other.info;
   if (std::memcmp(&r.entropy_threshold_used, &o.entropy_threshold_used, sizeof(double)) != 0 ||
       std::memcmp(&r.image_entropy_bits, &o.image_entropy_bits, sizeof(double)) != 0 ||
-      std::memcmp(&r.entropy_threshold_requested, &o.entropy_threshold_requested, sizeof(double)) != 0 ||
-      std::memcmp(&r.auto_threshold_effectiveness, &o.auto_threshold_effectiveness, sizeof(double)) != 0 ||
-      r.threshold_lowered != o.threshold_lowered || r.blocks_total != o.blocks_total || r.blocks_kept != o.blocks_kept)
-    return "extraction info differs (threshold used " + std::to_string(r.entropy_threshold_used) + " vs " +
-           std::to_string(o.entropy_threshold_used) + ", blocks kept " + std::to_string(r.blocks_kept) + " vs " +
-           std::to_string(o.blocks_kept) + ")";
+      std::memcmp(&r.entropy_threshold_requested, &o.entropy_threshold_requested, sizeof(double)) !=
+          0 ||
+      std::memcmp(&r.auto_threshold_effectiveness, &o.auto_threshold_effectiveness,
+                  sizeof(double)) != 0 ||
+      r.threshold_lowered != o.threshold_lowered || r.blocks_total != o.blocks_total ||
+      r.blocks_kept != o.blocks_kept)
+    return "extraction info differs (threshold used " + std::to_string(r.entropy_threshold_used) +
+           " vs " + std::to_string(o.entropy_threshold_used) + ", blocks kept " +
+           std::to_string(r.blocks_kept) + " vs " + std::to_string(o.blocks_kept) + ")";
   return "";
 }
 
@@ -152,7 +169,8 @@ TEST_P(PipelineDifferential, DescribingGivenKeypointsGivesTheScalarBytesAndTheEx
   Extractor reference_extractor(reference_options);
   Features extracted = reference_extractor.extract(view);
   extracted.info = ExtractionInfo{};  // describe() reports no extraction
-  EXPECT_EQ(first_difference(extracted, reference_extractor.describe(view, extracted.keypoints)), "")
+  EXPECT_EQ(first_difference(extracted, reference_extractor.describe(view, extracted.keypoints)),
+            "")
       << "describing the extracted keypoints";
 
   std::vector<Keypoint> given = extracted.keypoints;
@@ -206,7 +224,9 @@ TEST(PipelineDifferentialCases, CoverEveryModeMeasureAndBothKindsOfThreshold) {
   for (Mode mode : kEveryMode) EXPECT_GT(modes[mode], 0) << to_string(mode);
   EXPECT_GT(measures[static_cast<int>(EntropyMeasure::histogram)], 0);
   EXPECT_GT(measures[static_cast<int>(EntropyMeasure::intensity)], 0);
-  for (int count : {automatic, fixed, small_blocks, large_blocks, one_level, many_levels, near_one, large_scale}) EXPECT_GT(count, 0);
+  for (int count : {automatic, fixed, small_blocks, large_blocks, one_level, many_levels, near_one,
+                    large_scale})
+    EXPECT_GT(count, 0);
 }
 
 }  // namespace

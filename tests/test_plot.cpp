@@ -36,7 +36,8 @@ TEST(RoundTicks, AreRoundValuesSpanningTheData) {
 }
 
 TEST(RoundTicks, CoverTheDataWhateverItIs) {
-  for (const auto& [lo, hi] : std::vector<std::pair<double, double>>{{0, 0}, {5, 5}, {-3, 17}, {0.001, 0.0042}, {12, 1e6}}) {
+  for (const auto& [lo, hi] : std::vector<std::pair<double, double>>{
+           {0, 0}, {5, 5}, {-3, 17}, {0.001, 0.0042}, {12, 1e6}}) {
     const AxisTicks ticks = round_ticks(lo, hi);
     ASSERT_GE(ticks.values.size(), 2u) << lo << " " << hi;
     EXPECT_LE(ticks.values.front(), lo);

@@ -32,8 +32,14 @@ std::pair<int, int> documented_tap(int i, int src, int dst) {
   f = std::clamp(f, 0.0, static_cast<double>(src - 1));
   int s = static_cast<int>(std::floor(f));
   int w = static_cast<int>(std::lround((f - s) * 256.0));
-  if (w == 256) { ++s; w = 0; }
-  if (s == src - 1) { s = src - 2; w = 256; }
+  if (w == 256) {
+    ++s;
+    w = 0;
+  }
+  if (s == src - 1) {
+    s = src - 2;
+    w = 256;
+  }
   return {s, w};
 }
 
@@ -46,7 +52,8 @@ cv::Mat resize_documented(const cv::Mat& src, int dst_width, int dst_height) {
       const auto h = [&src, sx = sx, wx = wx](int row) {
         return src.at<std::uint8_t>(row, sx) * (256 - wx) + src.at<std::uint8_t>(row, sx + 1) * wx;
       };
-      dst.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>((h(sy) * (256 - wy) + h(sy + 1) * wy + 32768) >> 16);
+      dst.at<std::uint8_t>(y, x) =
+          static_cast<std::uint8_t>((h(sy) * (256 - wy) + h(sy + 1) * wy + 32768) >> 16);
     }
   }
   return dst;
@@ -70,7 +77,8 @@ std::string first_difference(const cv::Mat& a, const cv::Mat& b, int tolerance) 
 int scaled(int size) { return static_cast<int>(std::lround(size / 1.2)); }
 
 TEST(PyramidResize, PlanKeepsBothTapsInside) {
-  for (const auto& [src, dst] : std::vector<std::pair<int, int>>{{2, 1}, {2, 2}, {3, 2}, {5, 4}, {37, 31}, {640, 533}, {7, 19}}) {
+  for (const auto& [src, dst] : std::vector<std::pair<int, int>>{
+           {2, 1}, {2, 2}, {3, 2}, {5, 4}, {37, 31}, {640, 533}, {7, 19}}) {
     const ResizePlan plan = make_resize_plan(src, 2, dst, 1);
     for (int i = 0; i < dst; ++i) {
       const int s = plan.x_index[static_cast<std::size_t>(i)];
@@ -87,19 +95,26 @@ TEST(PyramidResize, PlanKeepsBothTapsInside) {
 
 TEST(PyramidResize, ConstantImageStaysConstant) {
   for (int value : {0, 1, 127, 254, 255})
-    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{2, 2}, {3, 5}, {37, 29}, {640, 480}}) {
+    for (const auto& [w, h] :
+         std::vector<std::pair<int, int>>{{2, 2}, {3, 5}, {37, 29}, {640, 480}}) {
       const cv::Mat src(h, w, CV_8UC1, cv::Scalar(value));
       const cv::Mat dst = resize_ours(src, std::max(1, scaled(w)), std::max(1, scaled(h)));
       const cv::Mat expected(dst.size(), CV_8UC1, cv::Scalar(value));
-      EXPECT_EQ(first_difference(dst, expected, 0), "") << "value " << value << ", " << w << "x" << h;
+      EXPECT_EQ(first_difference(dst, expected, 0), "")
+          << "value " << value << ", " << w << "x" << h;
     }
 }
 
 TEST(PyramidResize, EqualsTheDocumentedFormula) {
   int sizes_checked = 0;
-  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{2, 2}, {3, 3}, {5, 4}, {17, 9}, {37, 29}, {70, 3}, {127, 37}, {129, 37}}) {
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{
+           {2, 2}, {3, 3}, {5, 4}, {17, 9}, {37, 29}, {70, 3}, {127, 37}, {129, 37}}) {
     const cv::Mat src = test::random_image(w, h, static_cast<std::uint32_t>(w * 1000 + h));
-    for (const auto& [dw, dh] : std::vector<std::pair<int, int>>{{std::max(1, scaled(w)), std::max(1, scaled(h))}, {1, 1}, {w, h}, {w / 2 + 1, h / 2 + 1}}) {
+    for (const auto& [dw, dh] :
+         std::vector<std::pair<int, int>>{{std::max(1, scaled(w)), std::max(1, scaled(h))},
+                                          {1, 1},
+                                          {w, h},
+                                          {w / 2 + 1, h / 2 + 1}}) {
       EXPECT_EQ(first_difference(resize_ours(src, dw, dh), resize_documented(src, dw, dh), 0), "")
           << w << "x" << h << " -> " << dw << "x" << dh;
       ++sizes_checked;
@@ -107,7 +122,8 @@ TEST(PyramidResize, EqualsTheDocumentedFormula) {
   }
   const cv::Mat graf = test::load_sample_gray("graf", "img1.png");
   EXPECT_EQ(first_difference(resize_ours(graf, scaled(graf.cols), scaled(graf.rows)),
-                             resize_documented(graf, scaled(graf.cols), scaled(graf.rows)), 0), "");
+                             resize_documented(graf, scaled(graf.cols), scaled(graf.rows)), 0),
+            "");
   EXPECT_EQ(sizes_checked, 32);
 }
 
@@ -127,12 +143,15 @@ TEST(PyramidResize, WithinOneOfOpenCvOnRealImages) {
 }
 
 TEST(PyramidResize, WithinOneOfOpenCvOnOddRandomImages) {
-  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{3, 3}, {5, 7}, {33, 17}, {69, 37}, {129, 31}, {31, 129}}) {
+  for (const auto& [w, h] :
+       std::vector<std::pair<int, int>>{{3, 3}, {5, 7}, {33, 17}, {69, 37}, {129, 31}, {31, 129}}) {
     const cv::Mat src = test::random_image(w, h, static_cast<std::uint32_t>(7 * w + h));
-    for (const auto& [dw, dh] : std::vector<std::pair<int, int>>{{scaled(w), scaled(h)}, {w / 2, h / 2}, {w - 1, h - 1}}) {
+    for (const auto& [dw, dh] :
+         std::vector<std::pair<int, int>>{{scaled(w), scaled(h)}, {w / 2, h / 2}, {w - 1, h - 1}}) {
       cv::Mat opencv;
       cv::resize(src, opencv, cv::Size(dw, dh), 0, 0, cv::INTER_LINEAR);
-      EXPECT_EQ(first_difference(resize_ours(src, dw, dh), opencv, 1), "") << w << "x" << h << " -> " << dw << "x" << dh;
+      EXPECT_EQ(first_difference(resize_ours(src, dw, dh), opencv, 1), "")
+          << w << "x" << h << " -> " << dw << "x" << dh;
     }
   }
 }

@@ -41,7 +41,8 @@ cv::Mat blur_opencv(const cv::Mat& src) {
 cv::Mat blur_as_orb_does(const cv::Mat& src) {
   constexpr int kOrbBorder = 32;  // max(edgeThreshold 31, ceil(15 * sqrt(2)), 9 / 2) + 1
   cv::Mat padded;
-  cv::copyMakeBorder(src, padded, kOrbBorder, kOrbBorder, kOrbBorder, kOrbBorder, cv::BORDER_REFLECT_101);
+  cv::copyMakeBorder(src, padded, kOrbBorder, kOrbBorder, kOrbBorder, kOrbBorder,
+                     cv::BORDER_REFLECT_101);
   cv::Mat window = padded(cv::Rect(kOrbBorder, kOrbBorder, src.cols, src.rows));
   cv::GaussianBlur(window, window, cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
   return window.clone();
@@ -56,21 +57,24 @@ std::vector<float> ic_angles(const cv::Mat& raw, const std::vector<PixelPoint>& 
   return angles;
 }
 
-std::vector<std::uint8_t> describe_ours(const cv::Mat& blurred, const std::vector<PixelPoint>& points,
+std::vector<std::uint8_t> describe_ours(const cv::Mat& blurred,
+                                        const std::vector<PixelPoint>& points,
                                         const std::vector<float>& angles) {
   std::vector<std::uint8_t> descriptors(points.size() * kBytes);
-  rbrief_describe_scalar(view_of(blurred), points.data(), angles.data(), static_cast<int>(points.size()),
-                         descriptors.data());
+  rbrief_describe_scalar(view_of(blurred), points.data(), angles.data(),
+                         static_cast<int>(points.size()), descriptors.data());
   return descriptors;
 }
 
 // OpenCV's computeOrbDescriptors written out for one point: cvRound of the float-rotated pattern.
-std::vector<std::uint8_t> describe_by_formula(const cv::Mat& blurred, PixelPoint point, float angle_deg) {
+std::vector<std::uint8_t> describe_by_formula(const cv::Mat& blurred, PixelPoint point,
+                                              float angle_deg) {
   const float angle = angle_deg * static_cast<float>(CV_PI / 180.f);
   const float a = static_cast<float>(std::cos(angle)), b = static_cast<float>(std::sin(angle));
   const auto value = [&](int px, int py) {
     const float fx = static_cast<float>(px), fy = static_cast<float>(py);
-    return blurred.at<std::uint8_t>(point.y + cvRound(fx * b + fy * a), point.x + cvRound(fx * a - fy * b));
+    return blurred.at<std::uint8_t>(point.y + cvRound(fx * b + fy * a),
+                                    point.x + cvRound(fx * a - fy * b));
   };
   const auto pattern = orb_pattern_31();
   std::vector<std::uint8_t> descriptor(kBytes, 0);
@@ -83,11 +87,13 @@ std::vector<std::uint8_t> describe_by_formula(const cv::Mat& blurred, PixelPoint
 // cv::ORB's descriptors for level-0 keypoints with the given angles, in our order; rows of points
 // ORB dropped stay empty (kept[i] false). ORB blurs `raw` itself (7x7, sigma 2, REFLECT_101).
 std::vector<std::uint8_t> describe_opencv(const cv::Mat& raw, const std::vector<PixelPoint>& points,
-                                          const std::vector<float>& angles, std::vector<bool>& kept) {
+                                          const std::vector<float>& angles,
+                                          std::vector<bool>& kept) {
   std::vector<cv::KeyPoint> keypoints;
   for (std::size_t i = 0; i < points.size(); ++i)
-    keypoints.emplace_back(cv::Point2f(static_cast<float>(points[i].x), static_cast<float>(points[i].y)), 31.f,
-                           angles[i], 0.f, 0, static_cast<int>(i));
+    keypoints.emplace_back(
+        cv::Point2f(static_cast<float>(points[i].x), static_cast<float>(points[i].y)), 31.f,
+        angles[i], 0.f, 0, static_cast<int>(i));
   cv::Mat descriptors;
   cv::ORB::create()->compute(raw, keypoints, descriptors);
   std::vector<std::uint8_t> ordered(points.size() * kBytes, 0);
@@ -95,7 +101,8 @@ std::vector<std::uint8_t> describe_opencv(const cv::Mat& raw, const std::vector<
   for (std::size_t row = 0; row < keypoints.size(); ++row) {
     const auto i = static_cast<std::size_t>(keypoints[row].class_id);
     kept[i] = true;
-    std::copy_n(descriptors.ptr<std::uint8_t>(static_cast<int>(row)), kBytes, ordered.data() + i * kBytes);
+    std::copy_n(descriptors.ptr<std::uint8_t>(static_cast<int>(row)), kBytes,
+                ordered.data() + i * kBytes);
   }
   return ordered;
 }
@@ -107,7 +114,8 @@ std::vector<PixelPoint> corners(const cv::Mat& raw, int margin, std::size_t coun
   std::vector<cv::KeyPoint> inside;
   for (const auto& k : found) {
     const int x = static_cast<int>(k.pt.x), y = static_cast<int>(k.pt.y);
-    if (x >= margin && y >= margin && x < raw.cols - margin && y < raw.rows - margin) inside.push_back(k);
+    if (x >= margin && y >= margin && x < raw.cols - margin && y < raw.rows - margin)
+      inside.push_back(k);
   }
   std::sort(inside.begin(), inside.end(), [](const cv::KeyPoint& a, const cv::KeyPoint& b) {
     if (a.response != b.response) return a.response > b.response;
@@ -133,7 +141,8 @@ std::vector<float> test_angles(const cv::Mat& raw, const std::vector<PixelPoint>
 
 TEST(Rbrief, PatternIsOrbs) {
   const auto pattern = orb_pattern_31();
-  const std::int8_t first[4] = {8, -3, 9, 5}, second[4] = {4, 2, 7, -12}, last[4] = {-1, -6, 0, -11};
+  const std::int8_t first[4] = {8, -3, 9, 5}, second[4] = {4, 2, 7, -12},
+                    last[4] = {-1, -6, 0, -11};
   for (int k = 0; k < 4; ++k) {
     EXPECT_EQ(pattern[0][k], first[k]);
     EXPECT_EQ(pattern[1][k], second[k]);
@@ -150,18 +159,21 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
     for (int i = 0; i < 256; ++i)
       for (int p = 0; p < 4; p += 2) {
         const float fx = pattern[i][p], fy = pattern[i][p + 1];
-        widest = std::max({widest, std::abs(cvRound(fx * a - fy * b)), std::abs(cvRound(fx * b + fy * a))});
+        widest = std::max(
+            {widest, std::abs(cvRound(fx * a - fy * b)), std::abs(cvRound(fx * b + fy * a))});
       }
   }
-  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_portable.hpp) stores each sample as an
-  // unsigned offset from the patch corner 18 rows and columns up-left of the point.
+  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_portable.hpp) stores each sample as
+  // an unsigned offset from the patch corner 18 rows and columns up-left of the point.
   EXPECT_LT(widest, kEdgeBorder);
   EXPECT_LE(widest, 18);
   // Whatever the angle: no pattern point is farther than 18.5 from the centre, so no rotated
   // offset rounds past 18.
   double radius = 0;
   for (int i = 0; i < 256; ++i)
-    for (int p = 0; p < 4; p += 2) radius = std::max(radius, std::hypot(static_cast<double>(pattern[i][p]), static_cast<double>(pattern[i][p + 1])));
+    for (int p = 0; p < 4; p += 2)
+      radius = std::max(radius, std::hypot(static_cast<double>(pattern[i][p]),
+                                           static_cast<double>(pattern[i][p + 1])));
   EXPECT_LT(radius, kEdgeBorder - 0.5);
 }
 
@@ -175,8 +187,10 @@ TEST(Rbrief, EqualsTheFormulaOnAnyBlurredImage) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::vector<std::uint8_t> formula = describe_by_formula(blurred, points[i], angles[i]);
     for (int byte = 0; byte < kBytes; ++byte)
-      ASSERT_EQ(ours[i * kBytes + static_cast<std::size_t>(byte)], formula[static_cast<std::size_t>(byte)])
-          << "point " << i << " (" << points[i].x << ", " << points[i].y << ") angle " << angles[i] << " byte " << byte;
+      ASSERT_EQ(ours[i * kBytes + static_cast<std::size_t>(byte)],
+                formula[static_cast<std::size_t>(byte)])
+          << "point " << i << " (" << points[i].x << ", " << points[i].y << ") angle " << angles[i]
+          << " byte " << byte;
   }
 }
 
@@ -190,11 +204,13 @@ TEST(Rbrief, IdenticalToOpenCvOnTheImageOrbDescribes) {
     std::vector<bool> kept;
     const std::vector<std::uint8_t> opencv = describe_opencv(raw, points, angles, kept);
     for (std::size_t i = 0; i < points.size(); ++i) {
-      ASSERT_TRUE(kept[i]) << sequence << ": cv::ORB dropped point " << i << ", 32 px inside the image";
+      ASSERT_TRUE(kept[i]) << sequence << ": cv::ORB dropped point " << i
+                           << ", 32 px inside the image";
       for (int byte = 0; byte < kBytes; ++byte)
-        ASSERT_EQ(ours[i * kBytes + static_cast<std::size_t>(byte)], opencv[i * kBytes + static_cast<std::size_t>(byte)])
-            << sequence << ": point " << i << " (" << points[i].x << ", " << points[i].y << ") angle " << angles[i]
-            << " byte " << byte;
+        ASSERT_EQ(ours[i * kBytes + static_cast<std::size_t>(byte)],
+                  opencv[i * kBytes + static_cast<std::size_t>(byte)])
+            << sequence << ": point " << i << " (" << points[i].x << ", " << points[i].y
+            << ") angle " << angles[i] << " byte " << byte;
     }
   }
 }
@@ -211,7 +227,8 @@ TEST(Rbrief, CloseToOpenCvOnOurOwnBlur) {
     long bits = 0, differing = 0, identical_descriptors = 0, compared = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
       if (!kept[i]) continue;
-      const std::uint32_t d = hamming_256_scalar(ours.data() + i * kBytes, opencv.data() + i * kBytes);
+      const std::uint32_t d =
+          hamming_256_scalar(ours.data() + i * kBytes, opencv.data() + i * kBytes);
       bits += 256;
       differing += d;
       identical_descriptors += d == 0;
@@ -219,8 +236,8 @@ TEST(Rbrief, CloseToOpenCvOnOurOwnBlur) {
     }
     ASSERT_GT(compared, 400);
     const double agreement = 1.0 - static_cast<double>(differing) / static_cast<double>(bits);
-    std::cout << sequence << ": " << compared << " descriptors, bit agreement with cv::ORB " << agreement * 100
-              << "%, " << identical_descriptors << " identical\n";
+    std::cout << sequence << ": " << compared << " descriptors, bit agreement with cv::ORB "
+              << agreement * 100 << "%, " << identical_descriptors << " identical\n";
     EXPECT_GE(agreement, 0.95) << sequence;
   }
 }
@@ -240,9 +257,11 @@ TEST(Rbrief, QuarterTurnOfTheImageKeepsTheDescriptor) {
   cv::rotate(blurred, blurred_then_turned, cv::ROTATE_90_CLOCKWISE);
   EXPECT_EQ(cv::countNonZero(blurred_then_turned != turned_blurred), 0);
 
-  const std::vector<float> angles = ic_angles(raw, points), turned_angles = ic_angles(turned, turned_points);
+  const std::vector<float> angles = ic_angles(raw, points),
+                           turned_angles = ic_angles(turned, turned_points);
   const std::vector<std::uint8_t> before = describe_ours(blurred, points, angles);
-  const std::vector<std::uint8_t> after = describe_ours(turned_blurred, turned_points, turned_angles);
+  const std::vector<std::uint8_t> after =
+      describe_ours(turned_blurred, turned_points, turned_angles);
   std::vector<std::uint32_t> distances;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double turn = std::fmod(turned_angles[i] - angles[i] + 720.0, 360.0);

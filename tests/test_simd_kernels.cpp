@@ -31,7 +31,8 @@ std::vector<GrayImage> real_images() {
   for (const char* sequence : {"graf", "boat", "leuven"}) {
     const cv::Mat gray = test::load_sample_gray(sequence, "img1.png");
     GrayImage image(gray.cols, gray.rows);
-    for (int y = 0; y < gray.rows; ++y) std::copy_n(gray.ptr<std::uint8_t>(y), gray.cols, image.data() + y * gray.cols);
+    for (int y = 0; y < gray.rows; ++y)
+      std::copy_n(gray.ptr<std::uint8_t>(y), gray.cols, image.data() + y * gray.cols);
     images.push_back(std::move(image));
   }
 #endif
@@ -77,18 +78,23 @@ TEST(HistogramKernels, ExactPastSixteenBitCounters) {
   struct Case {
     int width, height;
   };
-  for (const Case size : {Case{256, 256}, Case{600, 600}, Case{300001, 1}, Case{65535 * 4 + 3, 2}, Case{17, 20000}}) {
+  for (const Case size :
+       {Case{256, 256}, Case{600, 600}, Case{300001, 1}, Case{65535 * 4 + 3, 2}, Case{17, 20000}}) {
     const std::ptrdiff_t stride = size.width + 5;
-    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(stride) * static_cast<std::size_t>(size.height), 200);
+    std::vector<std::uint8_t> pixels(
+        static_cast<std::size_t>(stride) * static_cast<std::size_t>(size.height), 200);
     // Every pixel is 200 except one column of 7s and the padding past each row, which is 0.
     for (int y = 0; y < size.height; ++y) {
       pixels[static_cast<std::size_t>(y * stride + size.width / 2)] = 7;
-      for (std::ptrdiff_t x = size.width; x < stride; ++x) pixels[static_cast<std::size_t>(y * stride + x)] = 0;
+      for (std::ptrdiff_t x = size.width; x < stride; ++x)
+        pixels[static_cast<std::size_t>(y * stride + x)] = 0;
     }
-    const std::uint32_t area = static_cast<std::uint32_t>(size.width) * static_cast<std::uint32_t>(size.height);
+    const std::uint32_t area =
+        static_cast<std::uint32_t>(size.width) * static_cast<std::uint32_t>(size.height);
     for (KernelSet set : available_kernel_sets()) {
       std::vector<std::uint32_t> hist(256, 1);  // accumulates onto what is there
-      kernel_table(set).accumulate_histogram(pixels.data(), stride, size.width, size.height, hist.data());
+      kernel_table(set).accumulate_histogram(pixels.data(), stride, size.width, size.height,
+                                             hist.data());
       std::vector<std::uint32_t> expected(256, 1);
       expected[200] += area - static_cast<std::uint32_t>(size.height);
       expected[7] += static_cast<std::uint32_t>(size.height);
@@ -99,7 +105,8 @@ TEST(HistogramKernels, ExactPastSixteenBitCounters) {
 
 TEST(KernelDispatch, NoCaseComparesTheScalarKernelsWithThemselves) {
   for (const auto& [set, kernel] : cases())
-    EXPECT_TRUE(set != KernelSet::scalar || kernel == "extract") << "scalar " << kernel << " against scalar " << kernel;
+    EXPECT_TRUE(set != KernelSet::scalar || kernel == "extract")
+        << "scalar " << kernel << " against scalar " << kernel;
 }
 
 TEST(KernelDispatch, ScalarAlwaysAvailableAndUnknownSetsRefused) {

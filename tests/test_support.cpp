@@ -27,7 +27,8 @@ cv::Mat random_image(int width, int height, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> value(0, 255);
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) image.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(value(rng));
+    for (int x = 0; x < width; ++x)
+      image.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(value(rng));
   return image;
 }
 
@@ -61,13 +62,15 @@ std::vector<std::uint8_t> png_declaring(std::uint32_t width, std::uint32_t heigh
     bytes[20 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(height >> (24 - 8 * i));
   }
   const std::uint32_t crc = png_crc(bytes.data() + 12, 17);  // over the chunk type and data
-  for (int i = 0; i < 4; ++i) bytes[29 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(crc >> (24 - 8 * i));
+  for (int i = 0; i < 4; ++i)
+    bytes[29 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(crc >> (24 - 8 * i));
   return bytes;
 }
 
 TempFolder::TempFolder(const std::string& prefix) {
   std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "_XXXXXX")).string();
-  if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
+  if (::mkdtemp(pattern.data()) == nullptr)
+    throw std::runtime_error("mkdtemp failed for " + pattern);
   path_ = pattern;
 }
 

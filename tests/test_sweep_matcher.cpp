@@ -45,8 +45,8 @@ Selection select_ids(const std::vector<Descriptor>& pool, const std::vector<std:
 }
 
 // Next set: each id of the pool toggled with probability `churn`, ascending; sometimes shuffled.
-std::vector<std::int32_t> next_ids(const std::vector<std::int32_t>& ids, int pool_size, double churn, bool shuffle,
-                                   std::mt19937& rng) {
+std::vector<std::int32_t> next_ids(const std::vector<std::int32_t>& ids, int pool_size,
+                                   double churn, bool shuffle, std::mt19937& rng) {
   std::vector<std::uint8_t> in(static_cast<std::size_t>(pool_size), 0);
   for (std::int32_t id : ids) in[static_cast<std::size_t>(id)] = 1;
   std::bernoulli_distribution toggle(churn);
@@ -59,7 +59,8 @@ std::vector<std::int32_t> next_ids(const std::vector<std::int32_t>& ids, int poo
   return out;
 }
 
-void expect_same(const std::vector<Match>& expected, const std::vector<Match>& actual, const std::string& where) {
+void expect_same(const std::vector<Match>& expected, const std::vector<Match>& actual,
+                 const std::string& where) {
   ASSERT_EQ(expected.size(), actual.size()) << where;
   for (std::size_t k = 0; k < expected.size(); ++k) {
     ASSERT_EQ(expected[k].query, actual[k].query) << where << " match " << k;
@@ -90,9 +91,11 @@ TEST(NeighbourList, HoldsAnExactPrefixOfTheOtherSet) {
   for (int k = kOffered - 1; k >= 0; --k) list.offer({100 + k, k});  // each closer than the last
   ASSERT_EQ(list.count, NeighbourList::kLength);
   EXPECT_FALSE(list.complete) << "the two farthest fell off";
-  for (int k = 0; k < list.count; ++k) EXPECT_EQ(list.entries[static_cast<std::size_t>(k)].index, k);
+  for (int k = 0; k < list.count; ++k)
+    EXPECT_EQ(list.entries[static_cast<std::size_t>(k)].index, k);
   list.offer({100 + kOffered, kOffered});  // past the last entry: unknown territory, not kept
-  EXPECT_EQ(list.entries[static_cast<std::size_t>(list.count - 1)].index, NeighbourList::kLength - 1);
+  EXPECT_EQ(list.entries[static_cast<std::size_t>(list.count - 1)].index,
+            NeighbourList::kLength - 1);
   list.offer({100, 99});  // ties to the lower index: after element 0
   EXPECT_EQ(list.entries[1].index, 99);
 
@@ -133,13 +136,18 @@ TEST(SweepMatcher, EqualsBruteForceOnTiedRandomSetsThatChange) {
         // and a call whose order changed.
         const double churn = call % 10 == 9 ? 0.5 : 0.03;
         const bool shuffle = call == 31;
-        ids_a = call == 20 ? std::vector<std::int32_t>{} : next_ids(ids_a, pool_size, call == 0 ? 0.6 : churn, shuffle, rng);
-        ids_b = call == 40 ? std::vector<std::int32_t>{0} : next_ids(ids_b, pool_size, call == 0 ? 0.6 : churn, false, rng);
+        ids_a = call == 20 ? std::vector<std::int32_t>{}
+                           : next_ids(ids_a, pool_size, call == 0 ? 0.6 : churn, shuffle, rng);
+        ids_b = call == 40 ? std::vector<std::int32_t>{0}
+                           : next_ids(ids_b, pool_size, call == 0 ? 0.6 : churn, false, rng);
         const Selection a = select_ids(pool_a, ids_a), b = select_ids(pool_b, ids_b);
-        const std::vector<Match> expected = match_descriptors(a.descriptors, b.descriptors, rule, scalar);
+        const std::vector<Match> expected =
+            match_descriptors(a.descriptors, b.descriptors, rule, scalar);
         const std::vector<Match> actual = matcher.match(a.descriptors, a.ids, b.descriptors, b.ids);
-        expect_same(expected, actual, std::string(to_string(set)) + " kind " + std::string(to_string(rule.kind)) + " max_distance " +
-                                          std::to_string(rule.max_distance) + " call " + std::to_string(call));
+        expect_same(expected, actual,
+                    std::string(to_string(set)) + " kind " + std::string(to_string(rule.kind)) +
+                        " max_distance " + std::to_string(rule.max_distance) + " call " +
+                        std::to_string(call));
       }
     }
   }
@@ -150,18 +158,23 @@ TEST(SweepMatcher, EqualsBruteForceAtEveryThresholdOfTheBundledPairs) {
   for (const char* sequence : {"graf", "boat", "leuven"}) {
     const cv::Mat a = test::load_sample_gray(sequence, "img1.png");
     const cv::Mat b = test::load_sample_gray(sequence, "img2.png");
-    const SweepFeatures sweep = sweep_features(view_of(a), view_of(b), ExtractorOptions{}, SweepOptions{}, kernels);
+    const SweepFeatures sweep =
+        sweep_features(view_of(a), view_of(b), ExtractorOptions{}, SweepOptions{}, kernels);
     ASSERT_GT(sweep.a.size(), 10u);
     for (const MatchOptions& rule : every_rule()) {
       SweepMatcher matcher(rule, kernels);
       long long brute_force_distances = 0;
       for (std::size_t c = 0; c < sweep.a.size(); ++c) {
         const ThresholdFeatures &fa = sweep.a[c], &fb = sweep.b[c];
-        const std::vector<Match> expected = match_descriptors(fa.features.descriptors, fb.features.descriptors, rule, kernels);
-        const std::vector<Match> actual = matcher.match(fa.features.descriptors, fa.ids, fb.features.descriptors, fb.ids);
-        expect_same(expected, actual, std::string(sequence) + " threshold " + std::to_string(c) + " kind " +
-                                          std::string(to_string(rule.kind)));
-        brute_force_distances += static_cast<long long>(fa.ids.size()) * static_cast<long long>(fb.ids.size());
+        const std::vector<Match> expected =
+            match_descriptors(fa.features.descriptors, fb.features.descriptors, rule, kernels);
+        const std::vector<Match> actual =
+            matcher.match(fa.features.descriptors, fa.ids, fb.features.descriptors, fb.ids);
+        expect_same(expected, actual,
+                    std::string(sequence) + " threshold " + std::to_string(c) + " kind " +
+                        std::string(to_string(rule.kind)));
+        brute_force_distances +=
+            static_cast<long long>(fa.ids.size()) * static_cast<long long>(fb.ids.size());
       }
       // The point of it: most distances are reused (the sweep itself skips repeated thresholds).
       EXPECT_LT(matcher.distances_computed(), brute_force_distances / 4) << sequence;

@@ -25,7 +25,9 @@ class TableSource final : public CandidateSource {
 
   int level_count() const override { return static_cast<int>(levels_.size()); }
   int level_budget(int n) const override { return budgets_[static_cast<std::size_t>(n)]; }
-  void detect_level(int n, double threshold) override { level_detections.push_back({n, threshold}); }
+  void detect_level(int n, double threshold) override {
+    level_detections.push_back({n, threshold});
+  }
   void detect_frame(double threshold) override { frame_detections.push_back(threshold); }
   std::int64_t level_candidates(int n, double threshold) const override {
     std::int64_t total = 0;
@@ -51,7 +53,9 @@ ExtractorOptions with_guard(StarvationGuard guard, int n_features) {
 }
 
 // Level 0 is rich above F = 3; level 1 has candidates only in blocks of entropy 2.5 and 0.9.
-TableSource two_levels() { return TableSource({{{4.0, 500}, {3.5, 200}}, {{2.5, 40}, {0.9, 100}}}, {500, 100}); }
+TableSource two_levels() {
+  return TableSource({{{4.0, 500}, {3.5, 200}}, {{2.5, 40}, {0.9, 100}}}, {500, 100});
+}
 
 TEST(ThresholdFallback, LevelRuleLowersOnlyTheStarvingLevelStepByStep) {
   TableSource frame = two_levels();
@@ -64,7 +68,8 @@ TEST(ThresholdFallback, LevelRuleLowersOnlyTheStarvingLevelStepByStep) {
   EXPECT_EQ(frame.level_detections.size(), 1u + 12u);  // the requested F, then every step
   for (std::size_t k = 2; k < frame.level_detections.size(); ++k) {
     EXPECT_EQ(frame.level_detections[k].first, 1);
-    EXPECT_NEAR(frame.level_detections[k - 1].second - frame.level_detections[k].second, ThresholdFallback::kStep, 1e-9);
+    EXPECT_NEAR(frame.level_detections[k - 1].second - frame.level_detections[k].second,
+                ThresholdFallback::kStep, 1e-9);
   }
 }
 
@@ -87,7 +92,8 @@ TEST(ThresholdFallback, FrameRuleLowersEveryLevelTogether) {
   TableSource frame = two_levels();
   ThresholdFallback fallback(with_guard(StarvationGuard::frame, 740));
   // Per level nothing is lowered: detect at the requested F only.
-  std::vector<double> thresholds{fallback.detect_level(frame, 0, 3.0), fallback.detect_level(frame, 1, 3.0)};
+  std::vector<double> thresholds{fallback.detect_level(frame, 0, 3.0),
+                                 fallback.detect_level(frame, 1, 3.0)};
   EXPECT_EQ(thresholds, (std::vector<double>{3.0, 3.0}));
   EXPECT_EQ(frame.level_detections.size(), 2u);
   // The frame holds 700 < 740 at F = 3, 740 from F = 2.4 on (level 1's 2.5 block).
@@ -95,7 +101,7 @@ TEST(ThresholdFallback, FrameRuleLowersEveryLevelTogether) {
   EXPECT_TRUE(fallback.settle_frame(frame, 3.0, thresholds, budgets));
   EXPECT_NEAR(thresholds[0], 2.4, 1e-9);
   EXPECT_EQ(thresholds[0], thresholds[1]);
-  EXPECT_EQ(frame.frame_detections.size(), 3u);  // 2.8, 2.6, 2.4
+  EXPECT_EQ(frame.frame_detections.size(), 3u);      // 2.8, 2.6, 2.4
   EXPECT_EQ(budgets, (std::vector<int>{500, 100}));  // no shortfall rule in this mode
 }
 
@@ -115,7 +121,8 @@ TEST(ThresholdFallback, ShortfallRaisesTheFinestLevelsWithCandidatesToSpare) {
   TableSource frame = two_levels();
   ThresholdFallback fallback(with_guard(StarvationGuard::level, 600));
   std::vector<double> thresholds{3.0, 0.8};
-  std::vector<int> budgets{500, 200};  // level 1 holds 140 at 0.8: 60 short, level 0 has 200 to spare
+  std::vector<int> budgets{500,
+                           200};  // level 1 holds 140 at 0.8: 60 short, level 0 has 200 to spare
   EXPECT_TRUE(fallback.settle_frame(frame, 3.0, thresholds, budgets));
   EXPECT_EQ(budgets, (std::vector<int>{560, 200}));
   EXPECT_EQ(thresholds, (std::vector<double>{3.0, 0.8}));  // the level rule already chose each F
@@ -130,7 +137,8 @@ TEST(ThresholdFallback, EntropyOffLowersNothingButHandsTheShortfallOn) {
   // With no mask the pipeline's F is 0 and every block is kept.
   TableSource frame({{{1.0, 900}}, {{1.0, 10}}}, {500, 100});
   ThresholdFallback fallback(options);
-  std::vector<double> thresholds{fallback.detect_level(frame, 0, 0.0), fallback.detect_level(frame, 1, 0.0)};
+  std::vector<double> thresholds{fallback.detect_level(frame, 0, 0.0),
+                                 fallback.detect_level(frame, 1, 0.0)};
   EXPECT_EQ(thresholds, (std::vector<double>{0.0, 0.0}));
   EXPECT_EQ(frame.level_detections.size(), 2u);
   std::vector<int> budgets{500, 100};

@@ -50,8 +50,9 @@ struct Item {
 };
 
 // Stage 2, parallel: is the output current? If not: read (decoding dominates) and extract.
-void extract_unless_current(Item& item, BatchSink& sink, const ExtractorOptions& options,
-                            tbb::enumerable_thread_specific<std::unique_ptr<Extractor>>& extractors) {
+void extract_unless_current(
+    Item& item, BatchSink& sink, const ExtractorOptions& options,
+    tbb::enumerable_thread_specific<std::unique_ptr<Extractor>>& extractors) {
   try {
     item.source = io::source_record_of(item.input.path, item.input.name);
     const BatchSink::Existing existing = sink.existing(item.input, item.source);
@@ -64,7 +65,8 @@ void extract_unless_current(Item& item, BatchSink& sink, const ExtractorOptions&
       per_thread.threads = 1;
       extractor = std::make_unique<Extractor>(per_thread);
     }
-    const GrayImage image = io::read_gray_image(item.input.path, options.max_image_pixels, &item.source.warnings);
+    const GrayImage image =
+        io::read_gray_image(item.input.path, options.max_image_pixels, &item.source.warnings);
     extractor->extract(image.view(), item.features);
   } catch (const std::exception& e) {
     item.error = e.what();
@@ -74,7 +76,8 @@ void extract_unless_current(Item& item, BatchSink& sink, const ExtractorOptions&
 // Stage 3, serial: write, or count the skip or the failure (an output of another or an older
 // input must not stay beside a failure). A failure of the sink itself stops the batch.
 void write_and_tally(Item& item, BatchSink& sink, BatchSummary& summary) {
-  for (const std::string& warning : item.source.warnings) std::cerr << "aief: warning: " << warning << "\n";
+  for (const std::string& warning : item.source.warnings)
+    std::cerr << "aief: warning: " << warning << "\n";
   if (item.skip) {
     ++summary.skipped;
     return;
@@ -106,17 +109,22 @@ void write_and_tally(Item& item, BatchSink& sink, BatchSummary& summary) {
 Shard parse_shard(const std::string& text) {
   const std::size_t slash = text.find('/');
   auto number = [&](const std::string& digits, long long& value) {
-    if (digits.empty() || digits.size() > 10 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
+    if (digits.empty() || digits.size() > 10 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      return false;
     value = std::stoll(digits);
     return value <= 2147483647LL;
   };
   long long index = -1, count = 0;
-  if (slash == std::string::npos || !number(text.substr(0, slash), index) || !number(text.substr(slash + 1), count) ||
-      count < 1)
-    throw Error("--shard expects i/n, two integers with 0 <= i < n <= 2147483647, got '" + text + "'");
+  if (slash == std::string::npos || !number(text.substr(0, slash), index) ||
+      !number(text.substr(slash + 1), count) || count < 1)
+    throw Error("--shard expects i/n, two integers with 0 <= i < n <= 2147483647, got '" + text +
+                "'");
   if (index >= count)
-    throw Error("--shard " + text + ": i counts from 0, so i < n (a 1-based Slurm array: --shard $((SLURM_ARRAY_TASK_ID - " +
-                "SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT)");
+    throw Error(
+        "--shard " + text +
+        ": i counts from 0, so i < n (a 1-based Slurm array: --shard $((SLURM_ARRAY_TASK_ID - " +
+        "SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT)");
   return {static_cast<int>(index), static_cast<int>(count)};
 }
 
@@ -138,7 +146,8 @@ BatchSummary run_batch(const BatchSettings& settings) {
   BatchSummary summary;
   summary.images = static_cast<int>(inputs.size());
   Progress progress("batch", summary.images);
-  const int threads = settings.options.threads > 0 ? settings.options.threads : tbb::this_task_arena::max_concurrency();
+  const int threads = settings.options.threads > 0 ? settings.options.threads
+                                                   : tbb::this_task_arena::max_concurrency();
   // Each worker thread keeps its own Extractor: buffers reused from image to image.
   tbb::enumerable_thread_specific<std::unique_ptr<Extractor>> extractors;
 
@@ -171,7 +180,9 @@ BatchSummary run_batch(const BatchSettings& settings) {
                                            [&](Item* item) {
                                              parallel::handoff_acquire(&kListStage);
                                              const HandoffOnExit release_extracted{&kExtractStage};
-                                             if (!stop.load()) extract_unless_current(*item, *sink, settings.options, extractors);
+                                             if (!stop.load())
+                                               extract_unless_current(*item, *sink,
+                                                                      settings.options, extractors);
                                              return item;
                                            }) &
             tbb::make_filter<Item*, void>(tbb::filter_mode::serial_out_of_order, [&](Item* item) {

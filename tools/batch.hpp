@@ -30,18 +30,19 @@
 namespace aief::cli {
 
 struct BatchSettings {
-  std::string input;        // a folder (its images, recursively) or a text file of paths, one per line
+  std::string input;  // a folder (its images, recursively) or a text file of paths, one per line
   std::string output_dir;       // for format h5: the HDF5 file
-  std::string format = "json";  // json | yml | npz (a file per image: the output extension) | h5 (one hloc file, io/hdf5_features.hpp)
+  std::string format = "json";  // json | yml | npz (a file per image: the output extension) | h5
+                                // (one hloc file, io/hdf5_features.hpp)
   int shard_index = 0, shard_count = 1;
   ExtractorOptions options;
 };
 
 struct BatchSummary {
-  int images = 0;     // in this shard
+  int images = 0;  // in this shard
   int extracted = 0;
-  int replaced = 0;   // of those extracted: the output was there but from another or changed input
-  int skipped = 0;    // output already complete and of this very input
+  int replaced = 0;  // of those extracted: the output was there but from another or changed input
+  int skipped = 0;   // output already complete and of this very input
   int failed = 0;
   long long keypoints = 0;
   std::vector<std::string> failures;  // "path: reason"
@@ -52,7 +53,8 @@ struct BatchSummary {
 
 using io::BatchInput;
 
-// "i/n" -> {i, n}; throws aief::Error naming the rule (0 <= i < n <= 2^31 - 1) and the 1-based recipe.
+// "i/n" -> {i, n}; throws aief::Error naming the rule (0 <= i < n <= 2^31 - 1) and the 1-based
+// recipe.
 struct Shard {
   int index = 0, count = 1;
 };

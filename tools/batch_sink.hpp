@@ -31,7 +31,8 @@ class BatchSink {
   virtual Existing existing(const BatchInput& input, const io::SourceRecord& source) = 0;
   // Writes one input's features. One call at a time. Throws SinkFailure when the output itself
   // failed, aief::Error when only this input's output did.
-  virtual void write(const BatchInput& input, const Features& features, const io::SourceRecord& source) = 0;
+  virtual void write(const BatchInput& input, const Features& features,
+                     const io::SourceRecord& source) = 0;
   // Removes `input`'s output (one from another or a changed input, beside a failure). One call
   // at a time; best effort: returns what went wrong, empty when nothing did.
   virtual std::string remove(const BatchInput& input) = 0;

@@ -17,14 +17,15 @@ class FilePerImageSink : public BatchSink {
   explicit FilePerImageSink(const BatchSettings& settings) : settings_(settings) {
     std::error_code ec;
     fs::create_directories(settings.output_dir, ec);
-    if (ec) throw Error("cannot create output folder '" + settings.output_dir + "': " + ec.message());
+    if (ec)
+      throw Error("cannot create output folder '" + settings.output_dir + "': " + ec.message());
   }
 
   Existing existing(const BatchInput& input, const io::SourceRecord& source) override {
     const std::string output = output_of(input);
     std::error_code ignored;
     fs::remove(io::temporary_path_of(output), ignored);  // a killed run's
-    fs::remove(output + ".tmp", ignored);                 // ... of an aief before the short names
+    fs::remove(output + ".tmp", ignored);                // ... of an aief before the short names
     Existing found;
     found.present = fs::exists(output, ignored);
     found.current = found.present && batch_output_is_current(output, source);
@@ -33,7 +34,8 @@ class FilePerImageSink : public BatchSink {
     return found;
   }
 
-  void write(const BatchInput& input, const Features& features, const io::SourceRecord& source) override {
+  void write(const BatchInput& input, const Features& features,
+             const io::SourceRecord& source) override {
     const std::string output = output_of(input);
     std::error_code ec;
     fs::create_directories(fs::path(output).parent_path(), ec);

@@ -17,7 +17,8 @@ namespace {
 // thread-safe option allows one caller at a time.
 class Hdf5Sink : public BatchSink {
  public:
-  explicit Hdf5Sink(const BatchSettings& settings) : file_(settings.output_dir, io::Hdf5File::Mode::read_write) {}
+  explicit Hdf5Sink(const BatchSettings& settings)
+      : file_(settings.output_dir, io::Hdf5File::Mode::read_write) {}
 
   Existing existing(const BatchInput& input, const io::SourceRecord& source) override {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -27,7 +28,8 @@ class Hdf5Sink : public BatchSink {
     return found;
   }
 
-  void write(const BatchInput& input, const Features& features, const io::SourceRecord& source) override {
+  void write(const BatchInput& input, const Features& features,
+             const io::SourceRecord& source) override {
     const std::lock_guard<std::mutex> lock(mutex_);
     try {
       file_.write_features(input.name, features, &source);
@@ -53,7 +55,9 @@ class Hdf5Sink : public BatchSink {
 
 }  // namespace
 
-std::unique_ptr<BatchSink> make_hdf5_sink(const BatchSettings& settings) { return std::make_unique<Hdf5Sink>(settings); }
+std::unique_ptr<BatchSink> make_hdf5_sink(const BatchSettings& settings) {
+  return std::make_unique<Hdf5Sink>(settings);
+}
 
 #else
 

@@ -15,13 +15,15 @@ namespace aief::cli {
 Args::Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& spec) {
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     const std::string& token = tokens[i];
-    if (token.size() < 2 || token[0] != '-' || (std::isdigit(static_cast<unsigned char>(token[1])) != 0)) {
+    if (token.size() < 2 || token[0] != '-' ||
+        (std::isdigit(static_cast<unsigned char>(token[1])) != 0)) {
       positionals_.push_back(token);
       continue;
     }
     std::string name = token, inline_value;
     bool has_inline = false;
-    if (const std::size_t eq = token.find('='); eq != std::string::npos && token.rfind("--", 0) == 0) {
+    if (const std::size_t eq = token.find('=');
+        eq != std::string::npos && token.rfind("--", 0) == 0) {
       name = token.substr(0, eq);
       inline_value = token.substr(eq + 1);
       has_inline = true;
@@ -62,12 +64,13 @@ int Args::get_int(const std::string& name, int fallback, int min, int max) const
   if (!text) return fallback;
   long long value = 0;
   if (!option_table::parse_integer(*text, value) || value < min || value > max)
-    throw UsageError(name + " expects an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" +
-                     *text + "'");
+    throw UsageError(name + " expects an integer in [" + std::to_string(min) + ", " +
+                     std::to_string(max) + "], got '" + *text + "'");
   return static_cast<int>(value);
 }
 
-double Args::get_double(const std::string& name, double fallback, double min, double max, bool min_is_exclusive) const {
+double Args::get_double(const std::string& name, double fallback, double min, double max,
+                        bool min_is_exclusive) const {
   const std::optional<std::string> text = get(name);
   if (!text) return fallback;
   double value = 0;
@@ -75,8 +78,8 @@ double Args::get_double(const std::string& name, double fallback, double min, do
   const bool below = min_is_exclusive ? value <= min : value < min;
   if (!parsed || below || value > max) {
     std::ostringstream message;
-    message << name << " expects a number in " << (min_is_exclusive ? "(" : "[") << min << ", " << max << "], got '" << *text
-            << "'";
+    message << name << " expects a number in " << (min_is_exclusive ? "(" : "[") << min << ", "
+            << max << "], got '" << *text << "'";
     throw UsageError(message.str());
   }
   return value;
@@ -93,7 +96,8 @@ ExtractorOptions extractor_options(const Args& args) {
   std::vector<option_table::GivenOption> given;
   for (const option_table::OptionRow& row : option_table::rows())
     if (row.has_front_ends())
-      if (const auto text = args.get(std::string(row.cli_flag))) given.push_back({&row, *text, std::string(row.cli_flag)});
+      if (const auto text = args.get(std::string(row.cli_flag)))
+        given.push_back({&row, *text, std::string(row.cli_flag)});
   ExtractorOptions options;
   try {
     options = option_table::resolve_options(given);
@@ -117,9 +121,11 @@ std::string extractor_flags_help() {
   for (const option_table::OptionRow& row : option_table::rows()) {
     if (!row.has_front_ends()) continue;
     std::string line = "  " + std::string(row.cli_flag) + " " + std::string(row.cli_value);
-    line += line.size() + 1 < kColumn ? std::string(kColumn - line.size(), ' ') : "\n" + std::string(kColumn, ' ');
+    line += line.size() + 1 < kColumn ? std::string(kColumn - line.size(), ' ')
+                                      : "\n" + std::string(kColumn, ' ');
     std::string text = std::string(row.help) + " (";
-    if (row.kind() == option_table::ValueKind::choice) text += option_table::expected_values(row) + "; ";
+    if (row.kind() == option_table::ValueKind::choice)
+      text += option_table::expected_values(row) + "; ";
     text += "default " + option_table::defaults_text(row) + ")";
     std::istringstream words(text);
     std::size_t used = kColumn;

@@ -33,7 +33,8 @@ class Args {
 
   int get_int(const std::string& name, int fallback, int min, int max) const;
   // The value must lie in [min, max], or in (min, max] when min_is_exclusive.
-  double get_double(const std::string& name, double fallback, double min, double max, bool min_is_exclusive = false) const;
+  double get_double(const std::string& name, double fallback, double min, double max,
+                    bool min_is_exclusive = false) const;
 
  private:
   std::vector<std::pair<std::string, std::string>> values_;  // flag name, value ("" for switches)

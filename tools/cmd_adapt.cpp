@@ -19,17 +19,21 @@ namespace {
 
 void print_help() {
   const SweepOptions d;
-  std::cout << "usage: aief adapt A B [-o OUT.json] [--plot OUT.png] [options]\n\n"
-            << "Sweeps the entropy threshold F = 0, " << d.step << ", ... up to the entropy of A (docs/design.md section 10)\n"
-            << "and keeps the F with the highest correct matching rate among those with at least\n"
-            << "--min-inliers RANSAC inliers.\n\n"
-            << "  -o, --output FILE     {\"threshold\", \"curve\": [{threshold, kept_blocks, keypoints_a, keypoints_b,\n"
-            << "                        putative, inliers, cmr}, ...]} as JSON\n"
-            << "  --plot FILE           CMR, inliers and keypoints against F, chosen F marked, PNG\n"
-            << "  --step S              sweep step S_p in bits (default " << d.step << ")\n"
-            << "  --min-inliers N       inliers a threshold needs to be chosen (default " << d.min_inliers << ")\n"
-            << "  --matcher K           mutual (default) | ratio | paper\n"
-            << extractor_flags_help();
+  std::cout
+      << "usage: aief adapt A B [-o OUT.json] [--plot OUT.png] [options]\n\n"
+      << "Sweeps the entropy threshold F = 0, " << d.step
+      << ", ... up to the entropy of A (docs/design.md section 10)\n"
+      << "and keeps the F with the highest correct matching rate among those with at least\n"
+      << "--min-inliers RANSAC inliers.\n\n"
+      << "  -o, --output FILE     {\"threshold\", \"curve\": [{threshold, kept_blocks, "
+         "keypoints_a, keypoints_b,\n"
+      << "                        putative, inliers, cmr}, ...]} as JSON\n"
+      << "  --plot FILE           CMR, inliers and keypoints against F, chosen F marked, PNG\n"
+      << "  --step S              sweep step S_p in bits (default " << d.step << ")\n"
+      << "  --min-inliers N       inliers a threshold needs to be chosen (default " << d.min_inliers
+      << ")\n"
+      << "  --matcher K           mutual (default) | ratio | paper\n"
+      << extractor_flags_help();
 }
 
 }  // namespace
@@ -47,10 +51,12 @@ int run_adapt(const Arguments& arguments) {
     print_help();
     return 0;
   }
-  if (args.positionals().size() != 2) throw UsageError("adapt expects two images A B (aief adapt --help)");
+  if (args.positionals().size() != 2)
+    throw UsageError("adapt expects two images A B (aief adapt --help)");
   check_picture_flag(args, "--plot");
   const ExtractorOptions options = extractor_options(args);
-  if (options.entropy == EntropyMeasure::off) throw UsageError("adapt needs an entropy mode (aief or quadtree-entropy)");
+  if (options.entropy == EntropyMeasure::off)
+    throw UsageError("adapt needs an entropy mode (aief or quadtree-entropy)");
   SweepOptions sweep;
   sweep.step = args.get_double("--step", sweep.step, 0.01, 8.0);
   sweep.min_inliers = args.get_int("--min-inliers", sweep.min_inliers, 4, 1'000'000);
@@ -61,18 +67,21 @@ int run_adapt(const Arguments& arguments) {
   }
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
-  const GrayImage a = read_image_reporting(path_a, options.max_image_pixels), b = read_image_reporting(path_b, options.max_image_pixels);
+  const GrayImage a = read_image_reporting(path_a, options.max_image_pixels),
+                  b = read_image_reporting(path_b, options.max_image_pixels);
   const AdaptResult result = adapt(a.view(), b.view(), options, sweep);
 
-  std::printf("%6s %8s %7s %7s %9s %8s %7s\n", "F", "blocks", "kps_a", "kps_b", "putative", "inliers", "CMR%");
+  std::printf("%6s %8s %7s %7s %9s %8s %7s\n", "F", "blocks", "kps_a", "kps_b", "putative",
+              "inliers", "CMR%");
   for (std::size_t i = 0; i < result.curve.size(); ++i) {
     const SweepPoint& p = result.curve[i];
-    std::printf("%6.2f %8d %7d %7d %9d %8d %7.2f%s\n", p.threshold, p.kept_blocks, p.keypoints_a, p.keypoints_b, p.putative,
-                p.inliers, 100.0 * p.cmr, static_cast<int>(i) == result.chosen_index ? "  <- chosen" : "");
+    std::printf("%6.2f %8d %7d %7d %9d %8d %7.2f%s\n", p.threshold, p.kept_blocks, p.keypoints_a,
+                p.keypoints_b, p.putative, p.inliers, 100.0 * p.cmr,
+                static_cast<int>(i) == result.chosen_index ? "  <- chosen" : "");
   }
   if (result.found)
-    std::printf("chosen F = %.2f bits (image entropy %.2f bits, %zu thresholds)\n", result.threshold, result.image_entropy_bits,
-                result.curve.size());
+    std::printf("chosen F = %.2f bits (image entropy %.2f bits, %zu thresholds)\n",
+                result.threshold, result.image_entropy_bits, result.curve.size());
   else
     std::printf("no threshold reached %d inliers; F = %.2f\n", sweep.min_inliers, result.threshold);
 
@@ -82,12 +91,22 @@ int run_adapt(const Arguments& arguments) {
     json.begin_object();
     json.field("image_a", path_a).field("image_b", path_b).field("threshold", result.threshold);
     json.field("found", result.found).field("image_entropy_bits", result.image_entropy_bits);
-    json.field("step", sweep.step).field("min_inliers", sweep.min_inliers).field("matcher", to_string(sweep.match.kind));
+    json.field("step", sweep.step)
+        .field("min_inliers", sweep.min_inliers)
+        .field("matcher", to_string(sweep.match.kind));
     json.key("curve").begin_array();
     for (const SweepPoint& p : result.curve) {
-      json.begin_object().field("threshold", p.threshold).field("kept_blocks", p.kept_blocks).field("kept_blocks_b", p.kept_blocks_b);
-      json.field("keypoints_a", p.keypoints_a).field("keypoints_b", p.keypoints_b).field("putative", p.putative);
-      json.field("inliers", p.inliers).field("cmr", p.cmr).field("eligible", p.eligible).end_object();
+      json.begin_object()
+          .field("threshold", p.threshold)
+          .field("kept_blocks", p.kept_blocks)
+          .field("kept_blocks_b", p.kept_blocks_b);
+      json.field("keypoints_a", p.keypoints_a)
+          .field("keypoints_b", p.keypoints_b)
+          .field("putative", p.putative);
+      json.field("inliers", p.inliers)
+          .field("cmr", p.cmr)
+          .field("eligible", p.eligible)
+          .end_object();
     }
     json.end_array();
     json.end_object();
@@ -98,7 +117,8 @@ int run_adapt(const Arguments& arguments) {
     io::Plot plot;
     plot.title = "aief adapt: " + path_a + " -> " + path_b;
     plot.x_label = "entropy threshold F (bits)";
-    io::PlotSeries cmr{"CMR", {}, {}}, inliers{"inliers", {}, {}}, kps_a{"keypoints A", {}, {}}, kps_b{"keypoints B", {}, {}};
+    io::PlotSeries cmr{"CMR", {}, {}}, inliers{"inliers", {}, {}}, kps_a{"keypoints A", {}, {}},
+        kps_b{"keypoints B", {}, {}};
     for (const SweepPoint& p : result.curve) {
       for (io::PlotSeries* s : {&cmr, &inliers, &kps_a, &kps_b}) s->x.push_back(p.threshold);
       cmr.y.push_back(100.0 * p.cmr);
@@ -106,7 +126,8 @@ int run_adapt(const Arguments& arguments) {
       kps_a.y.push_back(p.keypoints_a);
       kps_b.y.push_back(p.keypoints_b);
     }
-    plot.panels = {{"correct matching rate CMR (%)", {cmr}}, {"inliers and keypoints (count)", {inliers, kps_a, kps_b}}};
+    plot.panels = {{"correct matching rate CMR (%)", {cmr}},
+                   {"inliers and keypoints (count)", {inliers, kps_a, kps_b}}};
     if (result.found) {
       plot.marker_x = result.threshold;
       char label[32];

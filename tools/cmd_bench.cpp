@@ -48,21 +48,24 @@ int run_bench(const Arguments& arguments) {
   spec.push_back({"--help", "-h", false});
   const Args args(arguments, spec);
   if (args.has("--help")) {
-    std::cout << "usage: aief bench IMAGE [--pair IMAGE2] [--repeat N] [--threads T] [--kernels K] [options]\n\n"
-              << "Prints one JSON line: median milliseconds over N runs of the whole extract and of\n"
-              << "each of its stages, timed inside the same pipeline (pyramid_ms, entropy_ms, fast_ms,\n"
-              << "select_ms: distribution + description, frame_ms: automatic F, fallback, output; each\n"
-              << "summed over levels and threads), and of cv::ORB(1000, 1.2, 8).detectAndCompute on\n"
-              << "the same gray image, with their ratio.\n"
-              << "cv::ORB runs on one OpenCV thread, as in bench/RESULTS.md.\n"
-              << "With --pair: sweep_ms (the adaptive sweep on IMAGE, IMAGE2), pair_ms (extract both\n"
-              << "and one match) and sweep_ratio = sweep_ms / pair_ms.\n\n"
-              << "  --repeat N            runs per measurement (default 21)\n"
-              << "  --pair IMAGE2         also time the adaptive sweep on the pair\n"
-              << extractor_flags_help();
+    std::cout
+        << "usage: aief bench IMAGE [--pair IMAGE2] [--repeat N] [--threads T] [--kernels K] "
+           "[options]\n\n"
+        << "Prints one JSON line: median milliseconds over N runs of the whole extract and of\n"
+        << "each of its stages, timed inside the same pipeline (pyramid_ms, entropy_ms, fast_ms,\n"
+        << "select_ms: distribution + description, frame_ms: automatic F, fallback, output; each\n"
+        << "summed over levels and threads), and of cv::ORB(1000, 1.2, 8).detectAndCompute on\n"
+        << "the same gray image, with their ratio.\n"
+        << "cv::ORB runs on one OpenCV thread, as in bench/RESULTS.md.\n"
+        << "With --pair: sweep_ms (the adaptive sweep on IMAGE, IMAGE2), pair_ms (extract both\n"
+        << "and one match) and sweep_ratio = sweep_ms / pair_ms.\n\n"
+        << "  --repeat N            runs per measurement (default 21)\n"
+        << "  --pair IMAGE2         also time the adaptive sweep on the pair\n"
+        << extractor_flags_help();
     return 0;
   }
-  if (args.positionals().size() != 1) throw UsageError("bench expects one IMAGE (aief bench --help)");
+  if (args.positionals().size() != 1)
+    throw UsageError("bench expects one IMAGE (aief bench --help)");
   const int repeat = args.get_int("--repeat", 21, 1, 100000);
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
@@ -94,15 +97,19 @@ int run_bench(const Arguments& arguments) {
   for (int i = 0; i < repeat; ++i) {
     times.clear();
     pipeline.extract(image.view(), staged, &times);
-    for (std::size_t k = 0; k < kStageCount; ++k) stage_ms[k].push_back(times.total_ms(static_cast<Stage>(k)));
+    for (std::size_t k = 0; k < kStageCount; ++k)
+      stage_ms[k].push_back(times.total_ms(static_cast<Stage>(k)));
   }
-  const auto stage_median = [&](Stage stage) { return median(stage_ms[static_cast<std::size_t>(stage)]); };
+  const auto stage_median = [&](Stage stage) {
+    return median(stage_ms[static_cast<std::size_t>(stage)]);
+  };
 
   // cv::ORB on the same gray image, same process, on one OpenCV thread like bench/RESULTS.md
   // (OpenCV's own worker threads would otherwise share the cores with the timing).
   const int opencv_threads = cv::getNumThreads();
   cv::setNumThreads(1);
-  const cv::Mat gray(image.height(), image.width(), CV_8UC1, const_cast<std::uint8_t*>(image.data()));
+  const cv::Mat gray(image.height(), image.width(), CV_8UC1,
+                     const_cast<std::uint8_t*>(image.data()));
   cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 8);
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
@@ -140,17 +147,24 @@ int run_bench(const Arguments& arguments) {
   json.set_newline_depth(0);
   json.begin_object();
   json.field("image", path).field("width", image.width()).field("height", image.height());
-  json.field("kernels", std::string(extractor.kernel_name())).field("threads", options.threads).field("repeat", repeat);
+  json.field("kernels", std::string(extractor.kernel_name()))
+      .field("threads", options.threads)
+      .field("repeat", repeat);
   json.field("keypoints", static_cast<int>(features.keypoints.size()));
-  json.field("pyramid_ms", stage_median(Stage::pyramid)).field("entropy_ms", stage_median(Stage::entropy));
-  json.field("fast_ms", stage_median(Stage::detect)).field("select_ms", stage_median(Stage::select));
+  json.field("pyramid_ms", stage_median(Stage::pyramid))
+      .field("entropy_ms", stage_median(Stage::entropy));
+  json.field("fast_ms", stage_median(Stage::detect))
+      .field("select_ms", stage_median(Stage::select));
   json.field("frame_ms", stage_median(Stage::frame));
   json.field("aief_ms", median(total)).field("opencv_orb_ms", median(orb_ms));
   json.field("opencv_orb_keypoints", static_cast<int>(keypoints.size()));
   json.field("speedup_vs_opencv_orb", median(orb_ms) / median(total));
   if (pair_path) {
-    json.field("pair", *pair_path).field("sweep_ms", median(sweep_ms)).field("pair_ms", median(pair_ms));
-    json.field("sweep_ratio", median(sweep_ms) / median(pair_ms)).field("pair_matches", static_cast<int>(pair_matches));
+    json.field("pair", *pair_path)
+        .field("sweep_ms", median(sweep_ms))
+        .field("pair_ms", median(pair_ms));
+    json.field("sweep_ratio", median(sweep_ms) / median(pair_ms))
+        .field("pair_matches", static_cast<int>(pair_matches));
   }
   json.end_object();
   std::cout << text.str();

@@ -19,38 +19,54 @@ namespace aief::cli {
 namespace {
 
 void print_help() {
-  std::cout << "usage: aief extract IMAGE [-o OUT.json|OUT.yml|OUT.npz] [--draw OUT.png] [options]\n"
-            << "       aief extract --batch LIST|DIR -o OUTDIR [--format json|yml|npz] [--shard i/n] [options]\n"
-            << "       aief extract --batch LIST|DIR -o FEATURES.h5 --format h5 [--shard i/n] [options]\n\n"
-            << "Keypoints and 256-bit rBRIEF descriptors of one image. Without -o, prints a summary.\n\n"
-            << "  -o, --output FILE     features as JSON (.json), OpenCV FileStorage YAML (.yml) or numpy (.npz)\n"
-            << "  --draw FILE           the keypoints drawn over the image, PNG\n"
-            << "  --batch LIST|DIR      every image of a folder (recursively, symlinks followed) or of a list\n"
-            << "                        file (one path per line). Each image's name is its path below DIR as\n"
-            << "                        listed (or its line), never the symlink target; its output is\n"
-            << "                        OUTDIR/<name>.<format>, folders mirrored: sub/x.png -> OUTDIR/sub/x.png.json.\n"
-            << "                        Resumable: an output recording this image's name, size and time is\n"
-            << "                        kept, any other is redone; outputs appear atomically. A bad image is\n"
-            << "                        reported and skipped. Exit 1 if any failed.\n"
-            << "  --format F            json (default), yml or npz: a file per image in OUTDIR; h5: one HDF5 file\n"
-            << "                        in hloc's layout, a group per image named by its relative path (resumes\n"
-            << "                        at the first image not complete in it; one file per shard, then aief merge)\n"
-            << "  --shard i/n           this run takes images i, i+n, i+2n ... of the list sorted by name,\n"
-            << "                        0 <= i < n: machines split a collection, no coordinator. Slurm:\n"
-            << "                        --shard $((SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT\n"
-            << "                        (right for 0- and 1-based arrays alike)\n"
-            << extractor_flags_help();
+  std::cout
+      << "usage: aief extract IMAGE [-o OUT.json|OUT.yml|OUT.npz] [--draw OUT.png] [options]\n"
+      << "       aief extract --batch LIST|DIR -o OUTDIR [--format json|yml|npz] [--shard i/n] "
+         "[options]\n"
+      << "       aief extract --batch LIST|DIR -o FEATURES.h5 --format h5 [--shard i/n] "
+         "[options]\n\n"
+      << "Keypoints and 256-bit rBRIEF descriptors of one image. Without -o, prints a summary.\n\n"
+      << "  -o, --output FILE     features as JSON (.json), OpenCV FileStorage YAML (.yml) or "
+         "numpy (.npz)\n"
+      << "  --draw FILE           the keypoints drawn over the image, PNG\n"
+      << "  --batch LIST|DIR      every image of a folder (recursively, symlinks followed) or of a "
+         "list\n"
+      << "                        file (one path per line). Each image's name is its path below "
+         "DIR as\n"
+      << "                        listed (or its line), never the symlink target; its output is\n"
+      << "                        OUTDIR/<name>.<format>, folders mirrored: sub/x.png -> "
+         "OUTDIR/sub/x.png.json.\n"
+      << "                        Resumable: an output recording this image's name, size and time "
+         "is\n"
+      << "                        kept, any other is redone; outputs appear atomically. A bad "
+         "image is\n"
+      << "                        reported and skipped. Exit 1 if any failed.\n"
+      << "  --format F            json (default), yml or npz: a file per image in OUTDIR; h5: one "
+         "HDF5 file\n"
+      << "                        in hloc's layout, a group per image named by its relative path "
+         "(resumes\n"
+      << "                        at the first image not complete in it; one file per shard, then "
+         "aief merge)\n"
+      << "  --shard i/n           this run takes images i, i+n, i+2n ... of the list sorted by "
+         "name,\n"
+      << "                        0 <= i < n: machines split a collection, no coordinator. Slurm:\n"
+      << "                        --shard $((SLURM_ARRAY_TASK_ID - "
+         "SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT\n"
+      << "                        (right for 0- and 1-based arrays alike)\n"
+      << extractor_flags_help();
 }
 
 int run_extract_batch(const Args& args) {
-  if (!args.positionals().empty()) throw UsageError("--batch takes its images from LIST|DIR, not from positional arguments");
+  if (!args.positionals().empty())
+    throw UsageError("--batch takes its images from LIST|DIR, not from positional arguments");
   BatchSettings settings;
   settings.input = *args.get("--batch");
   const auto output = args.get("--output");
   if (!output) throw UsageError("--batch needs -o OUTDIR");
   settings.output_dir = *output;
   settings.format = args.get("--format").value_or("json");
-  if (settings.format != "json" && settings.format != "yml" && settings.format != "npz" && settings.format != "h5")
+  if (settings.format != "json" && settings.format != "yml" && settings.format != "npz" &&
+      settings.format != "h5")
     throw UsageError("--format expects json, yml, npz or h5, got '" + settings.format + "'");
   if (const auto shard = args.get("--shard")) {
     try {
@@ -64,12 +80,17 @@ int run_extract_batch(const Args& args) {
   settings.options = extractor_options(args);
   const BatchSummary summary = run_batch(settings);
   std::printf("batch: %d images in this shard: %d extracted", summary.images, summary.extracted);
-  if (summary.replaced > 0) std::printf(" (%d replacing the output of another or a changed image)", summary.replaced);
-  std::printf(", %d already done, %d failed; %lld keypoints\n", summary.skipped, summary.failed, summary.keypoints);
-  for (const std::string& failure : summary.failures) std::printf("  failed: %s\n", failure.c_str());
+  if (summary.replaced > 0)
+    std::printf(" (%d replacing the output of another or a changed image)", summary.replaced);
+  std::printf(", %d already done, %d failed; %lld keypoints\n", summary.skipped, summary.failed,
+              summary.keypoints);
+  for (const std::string& failure : summary.failures)
+    std::printf("  failed: %s\n", failure.c_str());
   if (!summary.stopped.empty())
-    throw Error(summary.stopped + "\nbatch stopped: " + std::to_string(summary.extracted + summary.skipped) + " of " +
-                std::to_string(summary.images) + " images are done; run the same command again to resume");
+    throw Error(summary.stopped +
+                "\nbatch stopped: " + std::to_string(summary.extracted + summary.skipped) + " of " +
+                std::to_string(summary.images) +
+                " images are done; run the same command again to resume");
   return summary.failed > 0 ? 1 : 0;
 }
 
@@ -89,14 +110,18 @@ int run_extract(const Arguments& arguments) {
     return 0;
   }
   // Flags that belong to the other form are refused, never dropped.
-  if (args.has("--batch") && args.has("--draw")) throw UsageError("--draw pictures one image; --batch writes features only");
+  if (args.has("--batch") && args.has("--draw"))
+    throw UsageError("--draw pictures one image; --batch writes features only");
   for (const char* flag : {"--format", "--shard"})
-    if (!args.has("--batch") && args.has(flag)) throw UsageError(std::string(flag) + " applies to --batch only");
+    if (!args.has("--batch") && args.has(flag))
+      throw UsageError(std::string(flag) + " applies to --batch only");
   if (args.has("--batch")) return run_extract_batch(args);
-  if (args.positionals().size() != 1) throw UsageError("extract expects one IMAGE (aief extract --help)");
+  if (args.positionals().size() != 1)
+    throw UsageError("extract expects one IMAGE (aief extract --help)");
   if (const auto output = args.get("--output"); output && !io::is_features_file_name(*output))
     throw UsageError("-o " + *output + ": the output must end in .json, .yml, .yaml or .npz");
-  if (const auto output = args.get("--output")) io::check_features_file_can_hold(*output, args.positionals()[0], args.positionals()[0]);
+  if (const auto output = args.get("--output"))
+    io::check_features_file_can_hold(*output, args.positionals()[0], args.positionals()[0]);
   check_picture_flag(args, "--draw");
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
@@ -108,9 +133,11 @@ int run_extract(const Arguments& arguments) {
   Extractor extractor(options);
   const auto start = std::chrono::steady_clock::now();
   const Features features = extractor.extract(image.view());
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-  if (const auto output = args.get("--output")) io::write_features(*output, path, features, options, source);
+  if (const auto output = args.get("--output"))
+    io::write_features(*output, path, features, options, source);
   if (const auto draw = args.get("--draw")) io::draw_keypoints_png(*draw, image.view(), features);
 
   std::string per_octave;
@@ -120,14 +147,16 @@ int run_extract(const Arguments& arguments) {
     if (n > 0) per_octave += ' ';
     per_octave += std::to_string(count);
   }
-  std::printf("%s: %zu keypoints (per octave %s) in %.2f ms, kernels %s", path.c_str(), features.keypoints.size(),
-              per_octave.c_str(), ms, std::string(extractor.kernel_name()).c_str());
+  std::printf("%s: %zu keypoints (per octave %s) in %.2f ms, kernels %s", path.c_str(),
+              features.keypoints.size(), per_octave.c_str(), ms,
+              std::string(extractor.kernel_name()).c_str());
   if (options.entropy != EntropyMeasure::off)
     std::printf(", F = %.2f bits%s, %d of %d blocks kept", features.info.entropy_threshold_used,
                 features.info.threshold_lowered ? " (lowered: the mask left too few corners)" : "",
                 features.info.blocks_kept, features.info.blocks_total);
   std::printf("\n");
-  if (const auto output = args.get("--output")) std::printf("features written to %s\n", output->c_str());
+  if (const auto output = args.get("--output"))
+    std::printf("features written to %s\n", output->c_str());
   if (const auto draw = args.get("--draw")) std::printf("picture written to %s\n", draw->c_str());
   return 0;
 }

@@ -23,20 +23,29 @@ namespace aief::cli {
 namespace {
 
 void print_help() {
-  std::cout << "usage: aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o OUT.json] [--draw OUT.png]\n"
-            << "       aief match --pairs PAIRS.txt --features FEATURES.h5 -o MATCHES.h5 [--matcher K]\n\n"
-            << "Extracts both images, matches them, estimates the homography A -> B with RANSAC (3 px).\n\n"
-            << "  --adaptive            choose the entropy threshold F by the sweep over this pair (aief adapt)\n"
-            << "  --matcher K           mutual (default) | ratio | paper\n"
-            << "  --ratio R             Lowe ratio for --matcher ratio (default " << MatchOptions{}.ratio << ")\n"
-            << "  -o, --output FILE     matches, inliers and homography as JSON\n"
-            << "  --draw FILE           both images side by side, inliers green, outliers red, PNG\n"
-            << "  --pairs FILE          hloc pairs (\"name0 name1\" per line) matched from --features (aief extract\n"
-            << "                        --format h5) into -o MATCHES.h5, hloc's matches0 / matching_scores0 layout\n"
-            << extractor_flags_help();
+  std::cout
+      << "usage: aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o OUT.json] [--draw "
+         "OUT.png]\n"
+      << "       aief match --pairs PAIRS.txt --features FEATURES.h5 -o MATCHES.h5 [--matcher "
+         "K]\n\n"
+      << "Extracts both images, matches them, estimates the homography A -> B with RANSAC (3 "
+         "px).\n\n"
+      << "  --adaptive            choose the entropy threshold F by the sweep over this pair (aief "
+         "adapt)\n"
+      << "  --matcher K           mutual (default) | ratio | paper\n"
+      << "  --ratio R             Lowe ratio for --matcher ratio (default " << MatchOptions{}.ratio
+      << ")\n"
+      << "  -o, --output FILE     matches, inliers and homography as JSON\n"
+      << "  --draw FILE           both images side by side, inliers green, outliers red, PNG\n"
+      << "  --pairs FILE          hloc pairs (\"name0 name1\" per line) matched from --features "
+         "(aief extract\n"
+      << "                        --format h5) into -o MATCHES.h5, hloc's matches0 / "
+         "matching_scores0 layout\n"
+      << extractor_flags_help();
 }
 
-std::vector<Point2> points_of(const Features& features, const std::vector<Match>& matches, bool query) {
+std::vector<Point2> points_of(const Features& features, const std::vector<Match>& matches,
+                              bool query) {
   std::vector<Point2> points;
   points.reserve(matches.size());
   for (const Match& m : matches) {
@@ -63,7 +72,8 @@ int run_match(const Arguments& arguments) {
     return 0;
   }
   std::optional<double> ratio;
-  if (args.has("--ratio")) ratio = args.get_double("--ratio", 0.0, 0.0, 1.0, /*min_is_exclusive=*/true);
+  if (args.has("--ratio"))
+    ratio = args.get_double("--ratio", 0.0, 0.0, 1.0, /*min_is_exclusive=*/true);
   MatchOptions match_options;
   try {
     match_options = match_options_given(args.get("--matcher"), ratio, "--ratio", "--matcher");
@@ -71,12 +81,14 @@ int run_match(const Arguments& arguments) {
     throw UsageError(e.what());
   }
   if (args.has("--pairs")) return run_match_pairs(args, match_options);
-  if (args.positionals().size() != 2) throw UsageError("match expects two images A B (aief match --help)");
+  if (args.positionals().size() != 2)
+    throw UsageError("match expects two images A B (aief match --help)");
   check_picture_flag(args, "--draw");
   const ExtractorOptions options = extractor_options(args);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
-  const GrayImage a = read_image_reporting(path_a, options.max_image_pixels), b = read_image_reporting(path_b, options.max_image_pixels);
+  const GrayImage a = read_image_reporting(path_a, options.max_image_pixels),
+                  b = read_image_reporting(path_b, options.max_image_pixels);
 
   Features features_a, features_b;
   std::vector<Match> matches;
@@ -86,7 +98,8 @@ int run_match(const Arguments& arguments) {
     SweepOptions sweep;
     sweep.match = match_options;
     ExtractorOptions sweep_options = options;
-    if (sweep_options.entropy == EntropyMeasure::off) throw UsageError("--adaptive needs an entropy mode (not orbslam2)");
+    if (sweep_options.entropy == EntropyMeasure::off)
+      throw UsageError("--adaptive needs an entropy mode (not orbslam2)");
     AdaptResult result = adapt(a.view(), b.view(), sweep_options, sweep);
     threshold = result.threshold;
     features_a = std::move(result.features_a);
@@ -98,15 +111,17 @@ int run_match(const Arguments& arguments) {
     features_a = extractor.extract(a.view());
     features_b = extractor.extract(b.view());
     matches = match_descriptors(features_a.descriptors, features_b.descriptors, match_options);
-    homography = find_homography_ransac(points_of(features_a, matches, true), points_of(features_b, matches, false));
+    homography = find_homography_ransac(points_of(features_a, matches, true),
+                                        points_of(features_b, matches, false));
     threshold = features_a.info.entropy_threshold_used;
   }
   const int inliers = homography.found ? homography.inliers : 0;
-  const double cmr = matches.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(matches.size());
+  const double cmr =
+      matches.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(matches.size());
 
-  std::printf("%zu + %zu keypoints, %zu putative matches (%s), %d inliers, CMR %.2f%%", features_a.keypoints.size(),
-              features_b.keypoints.size(), matches.size(), std::string(to_string(match_options.kind)).c_str(), inliers,
-              100.0 * cmr);
+  std::printf("%zu + %zu keypoints, %zu putative matches (%s), %d inliers, CMR %.2f%%",
+              features_a.keypoints.size(), features_b.keypoints.size(), matches.size(),
+              std::string(to_string(match_options.kind)).c_str(), inliers, 100.0 * cmr);
   if (options.entropy != EntropyMeasure::off) std::printf(", F = %.2f", threshold);
   if (!homography.found) std::printf(" (no homography: %s)", homography.failure.c_str());
   std::printf("\n");
@@ -115,10 +130,15 @@ int run_match(const Arguments& arguments) {
     std::ostringstream text;
     io::JsonWriter json(text);
     json.begin_object();
-    json.field("image_a", path_a).field("image_b", path_b).field("matcher", to_string(match_options.kind));
-    json.field("entropy_threshold", threshold).field("keypoints_a", static_cast<int>(features_a.keypoints.size()));
+    json.field("image_a", path_a)
+        .field("image_b", path_b)
+        .field("matcher", to_string(match_options.kind));
+    json.field("entropy_threshold", threshold)
+        .field("keypoints_a", static_cast<int>(features_a.keypoints.size()));
     json.field("keypoints_b", static_cast<int>(features_b.keypoints.size()));
-    json.field("putative", static_cast<int>(matches.size())).field("inliers", inliers).field("cmr", cmr);
+    json.field("putative", static_cast<int>(matches.size()))
+        .field("inliers", inliers)
+        .field("cmr", cmr);
     json.field("homography_found", homography.found);
     json.key("homography").begin_array();
     for (double v : homography.H) json.value(v);
@@ -128,7 +148,11 @@ int run_match(const Arguments& arguments) {
       const Keypoint& ka = features_a.keypoints[static_cast<std::size_t>(matches[i].query)];
       const Keypoint& kb = features_b.keypoints[static_cast<std::size_t>(matches[i].train)];
       json.begin_object().field("query", matches[i].query).field("train", matches[i].train);
-      json.field("distance", matches[i].distance).field("xa", ka.x).field("ya", ka.y).field("xb", kb.x).field("yb", kb.y);
+      json.field("distance", matches[i].distance)
+          .field("xa", ka.x)
+          .field("ya", ka.y)
+          .field("xb", kb.x)
+          .field("yb", kb.y);
       json.field("inlier", homography.found && homography.inlier_mask[i] != 0).end_object();
     }
     json.end_array();
@@ -137,7 +161,8 @@ int run_match(const Arguments& arguments) {
     std::printf("matches written to %s\n", output->c_str());
   }
   if (const auto draw = args.get("--draw")) {
-    io::draw_matches_png(*draw, a.view(), features_a, b.view(), features_b, matches, homography.inlier_mask);
+    io::draw_matches_png(*draw, a.view(), features_a, b.view(), features_b, matches,
+                         homography.inlier_mask);
     std::printf("picture written to %s\n", draw->c_str());
   }
   return 0;

@@ -23,7 +23,8 @@ namespace aief::cli {
 
 namespace {
 
-[[maybe_unused]] const char* const kNoHdf5 = "this aief was built without HDF5 (install libhdf5-dev and rebuild)";
+[[maybe_unused]] const char* const kNoHdf5 =
+    "this aief was built without HDF5 (install libhdf5-dev and rebuild)";
 // Descriptors kept in memory by match --pairs: about 16k images of 2000 features.
 [[maybe_unused]] constexpr std::size_t kDescriptorCacheBytes = std::size_t{1} << 30;
 
@@ -33,8 +34,10 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
 #ifdef AIEF_HAVE_HDF5
   const auto features_path = args.get("--features");
   const auto output = args.get("--output");
-  if (!features_path || !output) throw UsageError("--pairs needs --features FEATURES.h5 and -o MATCHES.h5");
-  if (!args.positionals().empty()) throw UsageError("--pairs takes its images from the pairs file, not from positional arguments");
+  if (!features_path || !output)
+    throw UsageError("--pairs needs --features FEATURES.h5 and -o MATCHES.h5");
+  if (!args.positionals().empty())
+    throw UsageError("--pairs takes its images from the pairs file, not from positional arguments");
   const io::PairsList pairs = io::read_pairs(*args.get("--pairs"));
   for (const std::string& note : pairs.notes) std::cerr << "aief: note: " << note << "\n";
   const io::Hdf5File features(*features_path, io::Hdf5File::Mode::read);
@@ -54,7 +57,8 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
     total += static_cast<long long>(matches.size());
   }
   std::printf("%d pairs matched (%s), %lld matches, %d already in %s; %zu images read\n", written,
-              std::string(to_string(match_options.kind)).c_str(), total, skipped, output->c_str(), descriptors.reads());
+              std::string(to_string(match_options.kind)).c_str(), total, skipped, output->c_str(),
+              descriptors.reads());
   return 0;
 #else
   (void)args;
@@ -66,13 +70,16 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
 int run_merge(const Arguments& arguments) {
   const Args args(arguments, {{"--output", "-o", true}, {"--help", "-h", false}});
   if (args.has("--help")) {
-    std::cout << "usage: aief merge -o FEATURES.h5 SHARD.h5...\n\n"
-              << "Copies the image groups of the shards' feature files (aief extract --batch --format h5 --shard i/n)\n"
-              << "into one file; images already in it are kept, an image in two shards is an error.\n";
+    std::cout
+        << "usage: aief merge -o FEATURES.h5 SHARD.h5...\n\n"
+        << "Copies the image groups of the shards' feature files (aief extract --batch --format h5 "
+           "--shard i/n)\n"
+        << "into one file; images already in it are kept, an image in two shards is an error.\n";
     return 0;
   }
   const auto output = args.get("--output");
-  if (!output || args.positionals().empty()) throw UsageError("merge expects -o FEATURES.h5 and one or more shard files");
+  if (!output || args.positionals().empty())
+    throw UsageError("merge expects -o FEATURES.h5 and one or more shard files");
 #ifdef AIEF_HAVE_HDF5
   const int copied = io::merge_feature_files(*output, args.positionals());
   std::printf("%d images merged into %s\n", copied, output->c_str());
@@ -83,31 +90,45 @@ int run_merge(const Arguments& arguments) {
 }
 
 int run_colmap(const Arguments& arguments) {
-  const Args args(arguments, {{"--features", "", true}, {"--matches", "", true}, {"--pairs", "", true},
-                              {"--output", "-o", true}, {"--help", "-h", false}});
+  const Args args(arguments, {{"--features", "", true},
+                              {"--matches", "", true},
+                              {"--pairs", "", true},
+                              {"--output", "-o", true},
+                              {"--help", "-h", false}});
   if (args.has("--help")) {
-    std::cout << "usage: aief colmap --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o DATABASE.db\n\n"
-              << "A COLMAP database (cameras, images, keypoints, descriptors, matches) from aief's hloc files, for\n"
-              << "  colmap matches_importer --database_path DATABASE.db --match_list_path PAIRS.txt --match_type pairs\n"
-              << "  colmap mapper --database_path DATABASE.db --image_path IMAGES --output_path SPARSE\n"
-              << "Keypoints are shifted by +0.5 px to COLMAP's origin (the top-left pixel's corner).\n";
+    std::cout
+        << "usage: aief colmap --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o "
+           "DATABASE.db\n\n"
+        << "A COLMAP database (cameras, images, keypoints, descriptors, matches) from aief's hloc "
+           "files, for\n"
+        << "  colmap matches_importer --database_path DATABASE.db --match_list_path PAIRS.txt "
+           "--match_type pairs\n"
+        << "  colmap mapper --database_path DATABASE.db --image_path IMAGES --output_path SPARSE\n"
+        << "Keypoints are shifted by +0.5 px to COLMAP's origin (the top-left pixel's corner).\n";
     return 0;
   }
-  const auto features = args.get("--features"), matches = args.get("--matches"), pairs = args.get("--pairs"),
-             output = args.get("--output");
+  const auto features = args.get("--features"), matches = args.get("--matches"),
+             pairs = args.get("--pairs"), output = args.get("--output");
   if (!features || !matches || !pairs || !output)
-    throw UsageError("colmap expects --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o DATABASE.db");
+    throw UsageError(
+        "colmap expects --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o "
+        "DATABASE.db");
 #ifdef AIEF_HAVE_COLMAP_EXPORT
   const io::ColmapExport done = io::export_colmap_database(*output, *features, *matches, *pairs);
   for (const std::string& note : done.notes) std::cerr << "aief: note: " << note << "\n";
-  std::printf("COLMAP database %s: %d images, %d pairs, %lld matches\n", output->c_str(), done.images, done.pairs, done.matches);
+  std::printf("COLMAP database %s: %d images, %d pairs, %lld matches\n", output->c_str(),
+              done.images, done.pairs, done.matches);
   if (!done.names_not_utf8.empty())
-    std::cerr << "aief: note: " << done.names_not_utf8.size() << " image name(s) are not UTF-8 (the first: '"
-              << io::escape_non_utf8(done.names_not_utf8.front()) << "'): stored as their bytes, as COLMAP stores them; Python's sqlite3 "
+    std::cerr << "aief: note: " << done.names_not_utf8.size()
+              << " image name(s) are not UTF-8 (the first: '"
+              << io::escape_non_utf8(done.names_not_utf8.front())
+              << "'): stored as their bytes, as COLMAP stores them; Python's sqlite3 "
               << "reads them with connection.text_factory = bytes\n";
   return 0;
 #else
-  throw Error("this aief was built without SQLite or HDF5 (install libsqlite3-dev libhdf5-dev and rebuild)");
+  throw Error(
+      "this aief was built without SQLite or HDF5 (install libsqlite3-dev libhdf5-dev and "
+      "rebuild)");
 #endif
 }
 

@@ -15,10 +15,11 @@ namespace aief::cli {
 int run_validate(const Arguments& arguments) {
   const Args args(arguments, {{"--help", "-h", false}});
   if (args.has("--help")) {
-    std::cout << "usage: aief validate [IMAGE...]\n\n"
-              << "Runs every kernel of every kernel set this CPU supports against the scalar reference\n"
-              << "(bit for bit) on the images given, or on seeded random images of awkward sizes, and\n"
-              << "the whole extraction under each set. Exit status 1 on any mismatch.\n";
+    std::cout
+        << "usage: aief validate [IMAGE...]\n\n"
+        << "Runs every kernel of every kernel set this CPU supports against the scalar reference\n"
+        << "(bit for bit) on the images given, or on seeded random images of awkward sizes, and\n"
+        << "the whole extraction under each set. Exit status 1 on any mismatch.\n";
     return 0;
   }
   std::vector<GrayImage> images;
@@ -36,7 +37,8 @@ int run_validate(const Arguments& arguments) {
     for (KernelSet set : sets) {
       const std::string mismatch = validate_kernel(kernel, set, images);
       std::printf(" %-12s", mismatch.empty() ? "identical" : "MISMATCH");
-      if (!mismatch.empty() && first_mismatch.empty()) first_mismatch = std::string(to_string(set)) + ": " + mismatch;
+      if (!mismatch.empty() && first_mismatch.empty())
+        first_mismatch = std::string(to_string(set)) + ": " + mismatch;
     }
     std::printf("\n");
     if (!first_mismatch.empty()) {
@@ -44,7 +46,8 @@ int run_validate(const Arguments& arguments) {
       all_identical = false;
     }
   }
-  std::printf("%s\n", all_identical ? "all kernels identical to the scalar reference" : "MISMATCHES FOUND");
+  std::printf("%s\n",
+              all_identical ? "all kernels identical to the scalar reference" : "MISMATCHES FOUND");
   return all_identical ? 0 : 1;
 }
 

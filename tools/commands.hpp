@@ -15,7 +15,7 @@ int run_adapt(const Arguments& args);
 int run_eval(const Arguments& args);
 int run_bench(const Arguments& args);
 int run_validate(const Arguments& args);
-int run_merge(const Arguments& args);   // tools/cmd_sfm.cpp
+int run_merge(const Arguments& args);  // tools/cmd_sfm.cpp
 int run_colmap(const Arguments& args);
 
 }  // namespace aief::cli

@@ -6,7 +6,8 @@
 
 namespace aief::cli {
 
-GrayImage read_image_reporting(const std::string& path, long long max_pixels, std::vector<std::string>* warnings) {
+GrayImage read_image_reporting(const std::string& path, long long max_pixels,
+                               std::vector<std::string>* warnings) {
   std::vector<std::string> found;
   GrayImage image = io::read_gray_image(path, max_pixels, &found);
   for (const std::string& warning : found) std::cerr << "aief: warning: " << warning << "\n";

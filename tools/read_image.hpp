@@ -8,6 +8,7 @@
 
 namespace aief::cli {
 
-GrayImage read_image_reporting(const std::string& path, long long max_pixels, std::vector<std::string>* warnings = nullptr);
+GrayImage read_image_reporting(const std::string& path, long long max_pixels,
+                               std::vector<std::string>* warnings = nullptr);
 
 }  // namespace aief::cli

@@ -19,10 +19,10 @@ namespace aief {
 
 struct SweepOptions {
   double first_threshold = 0.0;  // F_0 (docs/design.md §10)
-  double step = 0.2;             // S_p; the sweep runs C = ceil(E / S_p) thresholds, E = entropy of A
-  int min_inliers = 20;          // a threshold with fewer inliers cannot be chosen
-  MatchOptions match;            // mutual nearest neighbours by default
-  RansacOptions ransac;          // 3 px, confidence 0.995, fixed seed
+  double step = 0.2;     // S_p; the sweep runs C = ceil(E / S_p) thresholds, E = entropy of A
+  int min_inliers = 20;  // a threshold with fewer inliers cannot be chosen
+  MatchOptions match;    // mutual nearest neighbours by default
+  RansacOptions ransac;  // 3 px, confidence 0.995, fixed seed
 
   // Throws aief::Error naming the first invalid field and its value.
   void validate() const;
@@ -30,26 +30,26 @@ struct SweepOptions {
 
 // One threshold of the sweep: one row of the curve.
 struct SweepPoint {
-  double threshold = 0;  // F
-  int kept_blocks = 0;   // blocks of image A with entropy > F, all levels
-  int kept_blocks_b = 0; // same for image B
+  double threshold = 0;   // F
+  int kept_blocks = 0;    // blocks of image A with entropy > F, all levels
+  int kept_blocks_b = 0;  // same for image B
   int keypoints_a = 0;
   int keypoints_b = 0;
-  int putative = 0;      // matches before RANSAC
-  int inliers = 0;       // RANSAC inliers of the final model (0 when no model)
-  double cmr = 0;        // inliers / putative (Eq. 10), 0 when there is no match
-  bool eligible = false; // inliers >= min_inliers
+  int putative = 0;       // matches before RANSAC
+  int inliers = 0;        // RANSAC inliers of the final model (0 when no model)
+  double cmr = 0;         // inliers / putative (Eq. 10), 0 when there is no match
+  bool eligible = false;  // inliers >= min_inliers
 };
 
 struct AdaptResult {
-  bool found = false;         // some threshold was eligible
-  double threshold = 0;       // the chosen F (first_threshold when none was eligible)
-  int chosen_index = -1;      // its row in curve, -1 when none
+  bool found = false;             // some threshold was eligible
+  double threshold = 0;           // the chosen F (first_threshold when none was eligible)
+  int chosen_index = -1;          // its row in curve, -1 when none
   double image_entropy_bits = 0;  // E of image A (Eq. 7), sets the number of thresholds
   std::vector<SweepPoint> curve;
-  Features features_a;        // at the chosen F
+  Features features_a;  // at the chosen F
   Features features_b;
-  std::vector<Match> matches; // putative matches at the chosen F
+  std::vector<Match> matches;  // putative matches at the chosen F
   HomographyResult homography;
 };
 
@@ -59,7 +59,8 @@ struct AdaptResult {
 class AdaptiveSweep {
  public:
   // Validates both option sets (throws aief::Error). `options` gives everything but F (its
-  // distribution is used as is, and an entropy measure is required: EntropyMeasure::off is an error).
+  // distribution is used as is, and an entropy measure is required: EntropyMeasure::off is an
+  // error).
   explicit AdaptiveSweep(const ExtractorOptions& options = {}, const SweepOptions& sweep = {});
   ~AdaptiveSweep();
   AdaptiveSweep(AdaptiveSweep&&) noexcept;

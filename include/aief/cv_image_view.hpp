@@ -13,8 +13,9 @@ namespace aief {
 namespace detail {
 inline void check_gray_mat(const cv::Mat& gray) {
   if (!gray.empty() && (gray.type() != CV_8UC1 || gray.dims != 2))
-    throw Error("expected a 2-D 8-bit one-channel image (CV_8UC1), got type " + cv::typeToString(gray.type()) +
-                " with " + std::to_string(gray.dims) + " dimensions");
+    throw Error("expected a 2-D 8-bit one-channel image (CV_8UC1), got type " +
+                cv::typeToString(gray.type()) + " with " + std::to_string(gray.dims) +
+                " dimensions");
 }
 }  // namespace detail
 

@@ -47,8 +47,10 @@ class Extractor {
   // receives each kept keypoint's index in `keypoints`. Throws aief::Error for an image
   // extract() refuses, an octave outside [0, n_levels), or a kept angle outside [0, 360).
   void describe(ImageView image, const std::vector<Keypoint>& keypoints, Features& out,
-                std::vector<std::int32_t>* kept_indices = nullptr, GivenAngles angles = GivenAngles::recompute);
-  Features describe(ImageView image, const std::vector<Keypoint>& keypoints, GivenAngles angles = GivenAngles::recompute);
+                std::vector<std::int32_t>* kept_indices = nullptr,
+                GivenAngles angles = GivenAngles::recompute);
+  Features describe(ImageView image, const std::vector<Keypoint>& keypoints,
+                    GivenAngles angles = GivenAngles::recompute);
 
   const ExtractorOptions& options() const;
   // Level n of the last frame's pyramid, valid until the next extract; empty for a level too

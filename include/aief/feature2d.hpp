@@ -24,7 +24,8 @@ class Feature2D : public cv::Feature2D {
   // angles of the keypoints it is given (recomputes them, the default, or keeps them as cv::ORB).
   static cv::Ptr<Feature2D> create(const ExtractorOptions& options = {},
                                    GivenAngles given_angles = GivenAngles::recompute);
-  explicit Feature2D(const ExtractorOptions& options = {}, GivenAngles given_angles = GivenAngles::recompute);
+  explicit Feature2D(const ExtractorOptions& options = {},
+                     GivenAngles given_angles = GivenAngles::recompute);
 
   // image: CV_8UC1, or CV_8UC3 / CV_8UC4 (BGR / BGRA, converted to gray as cv::cvtColor does).
   // mask (detection): CV_8UC1 of the image's size; keypoints are detected where it is non-zero,
@@ -38,8 +39,9 @@ class Feature2D : public cv::Feature2D {
   // pt (level-0 pixels), size, angle (degrees), response (FAST score), octave, class_id -1.
   // Throws aief::Error for an image or mask of another kind, or a keypoint octave outside
   // [0, n_levels).
-  void detectAndCompute(cv::InputArray image, cv::InputArray mask, std::vector<cv::KeyPoint>& keypoints,
-                        cv::OutputArray descriptors, bool useProvidedKeypoints = false) override;
+  void detectAndCompute(cv::InputArray image, cv::InputArray mask,
+                        std::vector<cv::KeyPoint>& keypoints, cv::OutputArray descriptors,
+                        bool useProvidedKeypoints = false) override;
 
   int descriptorSize() const override { return kDescriptorBytes; }
   int descriptorType() const override { return CV_8U; }

@@ -10,13 +10,14 @@ namespace aief {
 
 struct Keypoint {
   // Level-0 pixels: (level x + 0.5) * (W_0 / W_octave) - 0.5 plus the sub-pixel offset by default,
-  // level x times scale_factor^octave in the aief-paper and orbslam2 modes (ExtractorOptions::coordinates).
+  // level x times scale_factor^octave in the aief-paper and orbslam2 modes
+  // (ExtractorOptions::coordinates).
   float x = 0;
   float y = 0;
-  float size = 0;      // kPatchSize * scale_factor^octave
-  float angle_deg = 0; // intensity-centroid orientation, [0, 360)
-  float response = 0;  // FAST corner score (OpenCV's definition)
-  int octave = 0;      // pyramid level
+  float size = 0;       // kPatchSize * scale_factor^octave
+  float angle_deg = 0;  // intensity-centroid orientation, [0, 360)
+  float response = 0;   // FAST corner score (OpenCV's definition)
+  int octave = 0;       // pyramid level
 };
 
 using Descriptor = std::array<std::uint8_t, kDescriptorBytes>;
@@ -37,7 +38,7 @@ struct ExtractionInfo {
 struct Features {
   int image_width = 0;
   int image_height = 0;
-  std::vector<Keypoint> keypoints;      // octave ascending, then level y, then level x (integer pixels)
+  std::vector<Keypoint> keypoints;  // octave ascending, then level y, then level x (integer pixels)
   std::vector<Descriptor> descriptors;  // descriptors[i] describes keypoints[i]
   ExtractionInfo info;
 };

@@ -18,8 +18,8 @@ MatcherKind parse_matcher_kind(std::string_view name);  // throws aief::Error
 
 struct MatchOptions {
   MatcherKind kind = MatcherKind::mutual;
-  double ratio = 0.8;     // Lowe's ratio for MatcherKind::ratio, in (0, 1]
-  int max_distance = 256; // matches farther than this many bits are dropped (256: none)
+  double ratio = 0.8;      // Lowe's ratio for MatcherKind::ratio, in (0, 1]
+  int max_distance = 256;  // matches farther than this many bits are dropped (256: none)
 
   // Throws aief::Error naming the first invalid field and its value.
   void validate() const;
@@ -33,7 +33,8 @@ struct Match {
 
 // Matches of descriptors `a` (queries) into `b`, sorted by query index. For every query the
 // nearest train descriptor wins, ties to the lowest index.
-std::vector<Match> match_descriptors(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b,
+std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
+                                     const std::vector<Descriptor>& b,
                                      const MatchOptions& options = {});
 
 }  // namespace aief

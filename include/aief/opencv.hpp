@@ -17,7 +17,8 @@ class CvExtractor {
   // image: CV_8UC1, or CV_8UC3 / CV_8UC4 (converted to gray as OpenCV's cvtColor). Keypoints
   // carry pt (level-0 pixels), size, angle (degrees), response (FAST score), octave, class_id -1.
   // Throws aief::Error for an empty or unsupported image.
-  void detect_and_compute(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors);
+  void detect_and_compute(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints,
+                          cv::Mat& descriptors);
 
   const Extractor& extractor() const { return extractor_; }
 

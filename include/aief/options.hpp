@@ -56,12 +56,12 @@ enum class Mode {
 };
 
 struct ExtractorOptions {
-  int n_features = 1000;         // keypoints wanted over all levels (ORB-SLAM2 nFeatures)
-  double scale_factor = 1.2;     // size ratio between two pyramid levels (ORB-SLAM2 scaleFactor)
-  int n_levels = 8;              // pyramid levels (ORB-SLAM2 nLevels)
-  int fast_threshold = 20;       // FAST-9 threshold tried first in a block (ORB-SLAM2 iniThFAST)
-  int fast_min_threshold = 7;    // retry threshold when a block has no corner (ORB-SLAM2 minThFAST)
-  int block_size = 32;           // side of an entropy / distribution block, level pixels
+  int n_features = 1000;       // keypoints wanted over all levels (ORB-SLAM2 nFeatures)
+  double scale_factor = 1.2;   // size ratio between two pyramid levels (ORB-SLAM2 scaleFactor)
+  int n_levels = 8;            // pyramid levels (ORB-SLAM2 nLevels)
+  int fast_threshold = 20;     // FAST-9 threshold tried first in a block (ORB-SLAM2 iniThFAST)
+  int fast_min_threshold = 7;  // retry threshold when a block has no corner (ORB-SLAM2 minThFAST)
+  int block_size = 32;         // side of an entropy / distribution block, level pixels
   Distribution distribution = Distribution::proportional;
   EntropyMeasure entropy = EntropyMeasure::histogram;
   // F of Eq. 9: a block is kept when its entropy is > F. 4.0 bits keeps textured blocks and
@@ -130,9 +130,9 @@ CandidateRanking parse_candidate_ranking(std::string_view name);
 double parse_candidate_pool(std::string_view text);
 
 // Fixed geometry of ORB (ORB-SLAM2 defaults, docs/design.md §7).
-constexpr int kPatchSize = 31;     // rBRIEF patch side
-constexpr int kPatchRadius = 15;   // half patch: orientation disc radius
-constexpr int kEdgeBorder = 19;    // keypoints lie at least this far from a level's edge
+constexpr int kPatchSize = 31;    // rBRIEF patch side
+constexpr int kPatchRadius = 15;  // half patch: orientation disc radius
+constexpr int kEdgeBorder = 19;   // keypoints lie at least this far from a level's edge
 constexpr int kDescriptorBytes = 32;
 // Upper bound of max_image_pixels (2^26, the default): the entropy sums in Q32 fixed point
 // (core/block_entropy.cpp, c log2 c * 2^32 per bin) stay exact below it for both measures.

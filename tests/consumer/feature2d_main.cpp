@@ -32,13 +32,17 @@ bool run(const cv::Ptr<cv::Feature2D>& detector, const cv::Mat& image, const cv:
   const cv::String settings = storage.releaseAndGetString();
   int inside = 0;
   for (const cv::KeyPoint& kp : masked) inside += kp.pt.x < image.cols / 2;
-  std::printf("%s: %zu keypoints (%zu, %d inside, with the left half masked), descriptors %dx%d %s, %zu cross-checked matches, "
-              "%zu settings bytes\n",
-              detector->getDefaultName().c_str(), keypoints.size(), masked.size(), inside, descriptors.rows, descriptors.cols,
-              descriptors.type() == detector->descriptorType() ? "of its type" : "of another type", matches.size(),
-              settings.size());
+  std::printf(
+      "%s: %zu keypoints (%zu, %d inside, with the left half masked), descriptors %dx%d %s, %zu "
+      "cross-checked matches, "
+      "%zu settings bytes\n",
+      detector->getDefaultName().c_str(), keypoints.size(), masked.size(), inside, descriptors.rows,
+      descriptors.cols,
+      descriptors.type() == detector->descriptorType() ? "of its type" : "of another type",
+      matches.size(), settings.size());
   return !keypoints.empty() && descriptors.cols == detector->descriptorSize() && !masked.empty() &&
-         inside == static_cast<int>(masked.size()) && matches.size() > keypoints.size() / 4 && !canvas.empty();
+         inside == static_cast<int>(masked.size()) && matches.size() > keypoints.size() / 4 &&
+         !canvas.empty();
 }
 
 }  // namespace
@@ -50,10 +54,12 @@ int main() {
   cv::GaussianBlur(image, image, cv::Size(0, 0), 3);
   cv::normalize(image, image, 0, 255, cv::NORM_MINMAX);
   cv::Mat moved;
-  cv::warpAffine(image, moved, cv::getRotationMatrix2D(cv::Point2f(320, 240), 10, 1.0), image.size());
+  cv::warpAffine(image, moved, cv::getRotationMatrix2D(cv::Point2f(320, 240), 10, 1.0),
+                 image.size());
 
   const cv::Ptr<cv::Feature2D> orb = cv::ORB::create(1000);
-  const cv::Ptr<cv::Feature2D> aief = aief::opencv::Feature2D::create();  // the one line that changes
+  const cv::Ptr<cv::Feature2D> aief =
+      aief::opencv::Feature2D::create();  // the one line that changes
   const bool ok = run(orb, image, moved) && run(aief, image, moved);
   return ok ? 0 : 1;
 }

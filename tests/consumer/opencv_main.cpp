@@ -24,9 +24,10 @@ int main() {
   aief::cv_extract(image, keypoints, descriptors, options);
   aief::ORBextractor orb(300, 1.2f, 8, 20, 7);
   orb(image, cv::noArray(), orb_keypoints, orb_descriptors);
-  std::printf("aief::opencv: %zu keypoints, descriptors %dx%d; ORBextractor: %zu keypoints\n", keypoints.size(),
-              descriptors.rows, descriptors.cols, orb_keypoints.size());
-  const bool same = keypoints.size() == orb_keypoints.size() && descriptors.size() == orb_descriptors.size() &&
+  std::printf("aief::opencv: %zu keypoints, descriptors %dx%d; ORBextractor: %zu keypoints\n",
+              keypoints.size(), descriptors.rows, descriptors.cols, orb_keypoints.size());
+  const bool same = keypoints.size() == orb_keypoints.size() &&
+                    descriptors.size() == orb_descriptors.size() &&
                     std::memcmp(descriptors.data, orb_descriptors.data, descriptors.total()) == 0;
   const bool ok = !keypoints.empty() && descriptors.type() == CV_8U && descriptors.cols == 32 &&
                   descriptors.rows == static_cast<int>(keypoints.size()) && same;

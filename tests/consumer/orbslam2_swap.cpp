@@ -28,7 +28,8 @@ namespace ORB_SLAM2 {
 
 int run() {
   cv::FileStorage fSettings(
-      "%YAML:1.0\nORBextractor.nFeatures: 500\nORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
+      "%YAML:1.0\nORBextractor.nFeatures: 500\nORBextractor.scaleFactor: "
+      "1.2\nORBextractor.nLevels: 8\n"
       "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\nORBextractor.mode: \"aief\"\n",
       cv::FileStorage::READ | cv::FileStorage::MEMORY);
   // Tracking.cc, unchanged:
@@ -37,7 +38,8 @@ int run() {
   int nLevels = fSettings["ORBextractor.nLevels"];
   int fIniThFAST = fSettings["ORBextractor.iniThFAST"];
   int fMinThFAST = fSettings["ORBextractor.minThFAST"];
-  ORBextractor* mpORBextractorLeft = new ORBextractor(nFeatures, fScaleFactor, nLevels, fIniThFAST, fMinThFAST);
+  ORBextractor* mpORBextractorLeft =
+      new ORBextractor(nFeatures, fScaleFactor, nLevels, fIniThFAST, fMinThFAST);
   // Tracking.cc, reading our keys too:
   const aief::ExtractorOptions orbOptions = aief::ORBextractor::options_from_settings(fSettings);
   aief::ExtractorOptions iniOptions = orbOptions;
@@ -59,11 +61,16 @@ int run() {
   const std::vector<float> mvScaleFactors = mpORBextractorLeft->GetScaleFactors();
   const std::vector<float> mvInvLevelSigma2 = mpORBextractorLeft->GetInverseScaleSigmaSquares();
   const cv::Mat& level1 = mpORBextractorLeft->mvImagePyramid[1];
-  std::printf("ORB-SLAM2 swap: %zu keypoints (%zu for the initialiser), %d levels, scale %.2f, level 1 %dx%d\n",
-              mvKeys.size(), mvIniKeys.size(), mnScaleLevels, static_cast<double>(mfScaleFactor), level1.cols, level1.rows);
-  const bool ok = !mvKeys.empty() && mvIniKeys.size() > mvKeys.size() && mvSettingsKeys.size() == mvKeys.size() &&
+  std::printf(
+      "ORB-SLAM2 swap: %zu keypoints (%zu for the initialiser), %d levels, scale %.2f, level 1 "
+      "%dx%d\n",
+      mvKeys.size(), mvIniKeys.size(), mnScaleLevels, static_cast<double>(mfScaleFactor),
+      level1.cols, level1.rows);
+  const bool ok = !mvKeys.empty() && mvIniKeys.size() > mvKeys.size() &&
+                  mvSettingsKeys.size() == mvKeys.size() &&
                   mDescriptors.rows == static_cast<int>(mvKeys.size()) && mnScaleLevels == 8 &&
-                  mvScaleFactors.size() == 8u && mvInvLevelSigma2.size() == 8u && level1.cols == 267;
+                  mvScaleFactors.size() == 8u && mvInvLevelSigma2.size() == 8u &&
+                  level1.cols == 267;
   delete mpORBextractorLeft;
   delete mpIniORBextractor;
   delete fromSettings;

@@ -19,7 +19,8 @@ namespace ORB_SLAM3 {
 class ORBextractor : public aief::orbslam3::ORBextractor {
  public:
   using aief::orbslam3::ORBextractor::ORBextractor;
-  explicit ORBextractor(aief::orbslam3::ORBextractor&& base) : aief::orbslam3::ORBextractor(std::move(base)) {}
+  explicit ORBextractor(aief::orbslam3::ORBextractor&& base)
+      : aief::orbslam3::ORBextractor(std::move(base)) {}
 };
 }  // namespace ORB_SLAM3
 #endif
@@ -29,7 +30,8 @@ namespace ORB_SLAM3 {
 
 // Frame.cc's ExtractORB, unchanged.
 struct Frame {
-  Frame(ORBextractor* left, ORBextractor* right) : mpORBextractorLeft(left), mpORBextractorRight(right) {}
+  Frame(ORBextractor* left, ORBextractor* right)
+      : mpORBextractorLeft(left), mpORBextractorRight(right) {}
   ORBextractor* mpORBextractorLeft;
   ORBextractor* mpORBextractorRight;
   std::vector<cv::KeyPoint> mvKeys, mvKeysRight;
@@ -46,7 +48,8 @@ struct Frame {
 
 int run() {
   cv::FileStorage fSettings(
-      "%YAML:1.0\nORBextractor.nFeatures: 500\nORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
+      "%YAML:1.0\nORBextractor.nFeatures: 500\nORBextractor.scaleFactor: "
+      "1.2\nORBextractor.nLevels: 8\n"
       "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\nORBextractor.mode: \"aief\"\n",
       cv::FileStorage::READ | cv::FileStorage::MEMORY);
   // Tracking.cc (ParseORBParamFile), unchanged:
@@ -55,14 +58,18 @@ int run() {
   int nLevels = fSettings["ORBextractor.nLevels"];
   int fIniThFAST = fSettings["ORBextractor.iniThFAST"];
   int fMinThFAST = fSettings["ORBextractor.minThFAST"];
-  ORBextractor* mpORBextractorLeft = new ORBextractor(nFeatures, fScaleFactor, nLevels, fIniThFAST, fMinThFAST);
-  ORBextractor* mpORBextractorRight = new ORBextractor(nFeatures, fScaleFactor, nLevels, fIniThFAST, fMinThFAST);
+  ORBextractor* mpORBextractorLeft =
+      new ORBextractor(nFeatures, fScaleFactor, nLevels, fIniThFAST, fMinThFAST);
+  ORBextractor* mpORBextractorRight =
+      new ORBextractor(nFeatures, fScaleFactor, nLevels, fIniThFAST, fMinThFAST);
   // Tracking.cc, reading our keys too:
-  const aief::ExtractorOptions orbOptions = aief::orbslam3::ORBextractor::options_from_settings(fSettings);
+  const aief::ExtractorOptions orbOptions =
+      aief::orbslam3::ORBextractor::options_from_settings(fSettings);
   aief::ExtractorOptions iniOptions = orbOptions;
   iniOptions.n_features = 5 * orbOptions.n_features;
   ORBextractor* mpIniORBextractor = new ORBextractor(iniOptions);
-  ORBextractor* fromSettings = new ORBextractor(aief::orbslam3::ORBextractor::from_settings(fSettings));
+  ORBextractor* fromSettings =
+      new ORBextractor(aief::orbslam3::ORBextractor::from_settings(fSettings));
 
   cv::Mat imLeft(240, 320, CV_8UC1), imRight;
   cv::theRNG().state = 3;
@@ -85,16 +92,20 @@ int run() {
   const std::vector<float> mvScaleFactors = mpORBextractorLeft->GetScaleFactors();
   const std::vector<float> mvInvLevelSigma2 = mpORBextractorLeft->GetInverseScaleSigmaSquares();
   const cv::Mat& level1 = mpORBextractorRight->mvImagePyramid[1];
-  std::printf("ORB-SLAM3 swap: %zu + %zu stereo keypoints (%d, %d left of the lapping area), %zu for the initialiser, "
-              "%d levels, scale %.2f, level 1 %dx%d\n",
-              stereo.mvKeys.size(), stereo.mvKeysRight.size(), stereo.monoLeft, stereo.monoRight, mono.mvKeys.size(),
-              mnScaleLevels, static_cast<double>(mfScaleFactor), level1.cols, level1.rows);
-  const bool ok = !stereo.mvKeys.empty() && stereo.monoLeft == static_cast<int>(stereo.mvKeys.size()) &&
-                  stereo.mvKeysRight.size() == stereo.mvKeys.size() && stereo.monoRight == stereo.monoLeft &&
-                  mono.mvKeys.size() > stereo.mvKeys.size() && mono.monoLeft == 0 &&
-                  settingsFrame.mvKeys.size() == stereo.mvKeys.size() &&
-                  stereo.mDescriptors.rows == static_cast<int>(stereo.mvKeys.size()) && mnScaleLevels == 8 &&
-                  mvScaleFactors.size() == 8u && mvInvLevelSigma2.size() == 8u && level1.cols == 267;
+  std::printf(
+      "ORB-SLAM3 swap: %zu + %zu stereo keypoints (%d, %d left of the lapping area), %zu for the "
+      "initialiser, "
+      "%d levels, scale %.2f, level 1 %dx%d\n",
+      stereo.mvKeys.size(), stereo.mvKeysRight.size(), stereo.monoLeft, stereo.monoRight,
+      mono.mvKeys.size(), mnScaleLevels, static_cast<double>(mfScaleFactor), level1.cols,
+      level1.rows);
+  const bool ok =
+      !stereo.mvKeys.empty() && stereo.monoLeft == static_cast<int>(stereo.mvKeys.size()) &&
+      stereo.mvKeysRight.size() == stereo.mvKeys.size() && stereo.monoRight == stereo.monoLeft &&
+      mono.mvKeys.size() > stereo.mvKeys.size() && mono.monoLeft == 0 &&
+      settingsFrame.mvKeys.size() == stereo.mvKeys.size() &&
+      stereo.mDescriptors.rows == static_cast<int>(stereo.mvKeys.size()) && mnScaleLevels == 8 &&
+      mvScaleFactors.size() == 8u && mvInvLevelSigma2.size() == 8u && level1.cols == 267;
   delete mpORBextractorLeft;
   delete mpORBextractorRight;
   delete mpIniORBextractor;

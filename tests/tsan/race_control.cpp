@@ -23,7 +23,8 @@ int unsynchronised_total = 0;  // written by two threads with nothing ordering t
 void wait_for_each_other(std::atomic<int>& arrived) {
   arrived.fetch_add(1);
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (arrived.load() < 2 && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+  while (arrived.load() < 2 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::yield();
 }
 
 __attribute__((noinline)) void racy_body(int piece, std::atomic<int>& arrived) {

@@ -7,7 +7,8 @@
 
 namespace aief::eval {
 
-inline const std::vector<std::string> kAllSequences = {"bark", "bikes", "boat", "graf", "leuven", "trees", "ubc", "wall"};
+inline const std::vector<std::string> kAllSequences = {"bark",   "bikes", "boat", "graf",
+                                                       "leuven", "trees", "ubc",  "wall"};
 // The pairs of the paper's tables (img1 -> img2).
 inline const std::vector<std::string> kPaperSequences = {"graf", "leuven", "boat", "bikes"};
 
@@ -24,6 +25,7 @@ Homography read_homography_file(const std::string& path);
 
 // The pairs img1 -> img2 (all_pairs false) or img1 -> img2..6 of each sequence. Throws
 // aief::Error naming the first missing file.
-std::vector<PairInput> find_pairs(const std::string& dataset, const std::vector<std::string>& sequences, bool all_pairs);
+std::vector<PairInput> find_pairs(const std::string& dataset,
+                                  const std::vector<std::string>& sequences, bool all_pairs);
 
 }  // namespace aief::eval

@@ -6,23 +6,29 @@
 namespace aief::eval {
 
 Homography inverse_homography(const Homography& h) {
-  const double a = h[0], b = h[1], c = h[2], d = h[3], e = h[4], f = h[5], g = h[6], i = h[7], k = h[8];
-  const Homography adjugate = {e * k - f * i, c * i - b * k, b * f - c * e, f * g - d * k, a * k - c * g,
-                               c * d - a * f, d * i - e * g, b * g - a * i, a * e - b * d};
+  const double a = h[0], b = h[1], c = h[2], d = h[3], e = h[4], f = h[5], g = h[6], i = h[7],
+               k = h[8];
+  const Homography adjugate = {e * k - f * i, c * i - b * k, b * f - c * e,
+                               f * g - d * k, a * k - c * g, c * d - a * f,
+                               d * i - e * g, b * g - a * i, a * e - b * d};
   const double det = a * adjugate[0] + b * adjugate[3] + c * adjugate[6];
   Homography inverse{};
-  for (int j = 0; j < 9; ++j) inverse[static_cast<std::size_t>(j)] = adjugate[static_cast<std::size_t>(j)] / det;
+  for (int j = 0; j < 9; ++j)
+    inverse[static_cast<std::size_t>(j)] = adjugate[static_cast<std::size_t>(j)] / det;
   return inverse;
 }
 
 namespace {
 
-bool inside(Point2 p, int width, int height) { return p.x >= 0 && p.y >= 0 && p.x <= width - 1 && p.y <= height - 1; }
+bool inside(Point2 p, int width, int height) {
+  return p.x >= 0 && p.y >= 0 && p.x <= width - 1 && p.y <= height - 1;
+}
 
 }  // namespace
 
-double repeatability(const std::vector<Point2>& a, const std::vector<Point2>& b, const Homography& a_to_b, int width_a,
-                     int height_a, int width_b, int height_b, double tolerance_px) {
+double repeatability(const std::vector<Point2>& a, const std::vector<Point2>& b,
+                     const Homography& a_to_b, int width_a, int height_a, int width_b, int height_b,
+                     double tolerance_px) {
   const Homography b_to_a = inverse_homography(a_to_b);
   std::vector<Point2> a_in_b;  // images of A's visible keypoints
   for (const Point2& p : a) {
@@ -52,9 +58,11 @@ double keypoint_spread(const std::vector<Point2>& points, int width, int height,
   for (const Point2& p : points) {
     const int c = std::clamp(static_cast<int>(std::floor(p.x / cell_px)), 0, cols - 1);
     const int r = std::clamp(static_cast<int>(std::floor(p.y / cell_px)), 0, rows - 1);
-    occupied[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c)] = 1;
+    occupied[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) +
+             static_cast<std::size_t>(c)] = 1;
   }
-  return static_cast<double>(std::count(occupied.begin(), occupied.end(), 1)) / static_cast<double>(occupied.size());
+  return static_cast<double>(std::count(occupied.begin(), occupied.end(), 1)) /
+         static_cast<double>(occupied.size());
 }
 
 }  // namespace aief::eval

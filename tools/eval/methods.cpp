@@ -53,8 +53,8 @@ Method parse_method_key(const std::string& key) {
 namespace {
 
 // Matched point pairs, then every metric from them, the same for every method.
-void measure(const std::vector<Point2>& pa, const std::vector<Point2>& pb, const Homography& truth, int width, int height,
-             PairResult& r) {
+void measure(const std::vector<Point2>& pa, const std::vector<Point2>& pb, const Homography& truth,
+             int width, int height, PairResult& r) {
   r.putative = static_cast<int>(pa.size());
   const HomographyResult model = find_homography_ransac(pa, pb);
   r.inliers = model.found ? model.inliers : 0;
@@ -72,8 +72,9 @@ void measure(const std::vector<Point2>& pa, const std::vector<Point2>& pb, const
 }
 
 // Repeatability and spread from the keypoints alone.
-void measure_keypoints(const std::vector<Point2>& a, const std::vector<Point2>& b, const Homography& truth, int width,
-                       int height, int width_b, int height_b, PairResult& r) {
+void measure_keypoints(const std::vector<Point2>& a, const std::vector<Point2>& b,
+                       const Homography& truth, int width, int height, int width_b, int height_b,
+                       PairResult& r) {
   r.keypoints_a = static_cast<int>(a.size());
   r.keypoints_b = static_cast<int>(b.size());
   r.repeatability = repeatability(a, b, truth, width, height, width_b, height_b);
@@ -86,8 +87,8 @@ std::vector<Point2> points_of(const Features& features) {
   return points;
 }
 
-void measure_features(const Features& a, const Features& b, const std::vector<Match>& matches, const Homography& truth,
-                      int width, int height, PairResult& r) {
+void measure_features(const Features& a, const Features& b, const std::vector<Match>& matches,
+                      const Homography& truth, int width, int height, PairResult& r) {
   std::vector<Point2> pa, pb;
   for (const Match& m : matches) {
     const Keypoint& ka = a.keypoints[static_cast<std::size_t>(m.query)];
@@ -95,18 +96,25 @@ void measure_features(const Features& a, const Features& b, const std::vector<Ma
     pa.push_back({ka.x, ka.y});
     pb.push_back({kb.x, kb.y});
   }
-  measure_keypoints(points_of(a), points_of(b), truth, width, height, b.image_width, b.image_height, r);
+  measure_keypoints(points_of(a), points_of(b), truth, width, height, b.image_width, b.image_height,
+                    r);
   measure(pa, pb, truth, width, height, r);
 }
 
-bool is_adaptive(Method method) { return method == Method::aief_adaptive || method == Method::aief_paper_adaptive; }
-bool is_opencv(Method method) { return method == Method::opencv_orb || method == Method::opencv_sift; }
+bool is_adaptive(Method method) {
+  return method == Method::aief_adaptive || method == Method::aief_paper_adaptive;
+}
+bool is_opencv(Method method) {
+  return method == Method::opencv_orb || method == Method::opencv_sift;
+}
 
 ExtractorOptions options_of(Method method, const EvalSettings& s) {
   ExtractorOptions options;
   switch (method) {
     case Method::orbslam2: options = options_for_mode(Mode::orbslam2, options); break;
-    case Method::quadtree_entropy: options = options_for_mode(Mode::quadtree_entropy, options); break;
+    case Method::quadtree_entropy:
+      options = options_for_mode(Mode::quadtree_entropy, options);
+      break;
     case Method::aief_paper_adaptive: options = options_for_mode(Mode::aief_paper, options); break;
     case Method::aief_paper_auto:
       options = options_for_mode(Mode::aief_paper, options);
@@ -127,7 +135,8 @@ cv::Ptr<cv::Feature2D> opencv_detector(Method method) {
   return cv::SIFT::create(1000);
 }
 
-PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth, const EvalSettings& s) {
+PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth,
+                    const EvalSettings& s) {
   PairResult r;
   const ExtractorOptions options = options_of(method, s);
   if (is_adaptive(method)) {
@@ -135,8 +144,10 @@ PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Hom
     sweep.match = s.match;
     const auto start = std::chrono::steady_clock::now();
     const AdaptResult adapted = adapt(view_of(a), view_of(b), options, sweep);
-    r.sweep_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    measure_features(adapted.features_a, adapted.features_b, adapted.matches, truth, a.cols, a.rows, r);
+    r.sweep_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    measure_features(adapted.features_a, adapted.features_b, adapted.matches, truth, a.cols, a.rows,
+                     r);
     r.threshold = adapted.threshold;
     return r;
   }
@@ -150,7 +161,8 @@ PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Hom
   return r;
 }
 
-PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth, const EvalSettings& s) {
+PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth,
+                      const EvalSettings& s) {
   PairResult r;
   const cv::Ptr<cv::Feature2D> detector = opencv_detector(method);
   std::vector<cv::KeyPoint> ka, kb;
@@ -169,12 +181,15 @@ PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const H
     // Binary descriptors: our matcher, so the rows differ only in their features.
     const auto to_descriptors = [](const cv::Mat& m) {
       std::vector<Descriptor> out(static_cast<std::size_t>(m.rows));
-      for (int row = 0; row < m.rows; ++row) std::copy_n(m.ptr<std::uint8_t>(row), 32, out[static_cast<std::size_t>(row)].begin());
+      for (int row = 0; row < m.rows; ++row)
+        std::copy_n(m.ptr<std::uint8_t>(row), 32, out[static_cast<std::size_t>(row)].begin());
       return out;
     };
     for (const Match& m : match_descriptors(to_descriptors(da), to_descriptors(db), s.match)) {
-      pa.push_back({ka[static_cast<std::size_t>(m.query)].pt.x, ka[static_cast<std::size_t>(m.query)].pt.y});
-      pb.push_back({kb[static_cast<std::size_t>(m.train)].pt.x, kb[static_cast<std::size_t>(m.train)].pt.y});
+      pa.push_back(
+          {ka[static_cast<std::size_t>(m.query)].pt.x, ka[static_cast<std::size_t>(m.query)].pt.y});
+      pb.push_back(
+          {kb[static_cast<std::size_t>(m.train)].pt.x, kb[static_cast<std::size_t>(m.train)].pt.y});
     }
   } else if (!da.empty() && !db.empty()) {
     // Float descriptors: L2, mutual nearest neighbours (cross-check); Lowe's ratio when asked.
@@ -183,13 +198,16 @@ PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const H
       std::vector<std::vector<cv::DMatch>> knn;
       cv::BFMatcher(cv::NORM_L2).knnMatch(da, db, knn, 2);
       for (const auto& pair : knn)
-        if (pair.size() == 2 && pair[0].distance < s.match.ratio * pair[1].distance) matches.push_back(pair[0]);
+        if (pair.size() == 2 && pair[0].distance < s.match.ratio * pair[1].distance)
+          matches.push_back(pair[0]);
     } else {
       cv::BFMatcher(cv::NORM_L2, true).match(da, db, matches);
     }
     for (const cv::DMatch& m : matches) {
-      pa.push_back({ka[static_cast<std::size_t>(m.queryIdx)].pt.x, ka[static_cast<std::size_t>(m.queryIdx)].pt.y});
-      pb.push_back({kb[static_cast<std::size_t>(m.trainIdx)].pt.x, kb[static_cast<std::size_t>(m.trainIdx)].pt.y});
+      pa.push_back({ka[static_cast<std::size_t>(m.queryIdx)].pt.x,
+                    ka[static_cast<std::size_t>(m.queryIdx)].pt.y});
+      pb.push_back({kb[static_cast<std::size_t>(m.trainIdx)].pt.x,
+                    kb[static_cast<std::size_t>(m.trainIdx)].pt.y});
     }
   }
   measure(pa, pb, truth, a.cols, a.rows, r);
@@ -198,14 +216,15 @@ PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const H
 
 }  // namespace
 
-PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b, const Homography& truth,
-                      const EvalSettings& settings) {
+PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b,
+                      const Homography& truth, const EvalSettings& settings) {
   if (is_opencv(method)) return run_opencv(method, gray_a, gray_b, truth, settings);
   return run_ours(method, gray_a, gray_b, truth, settings);
 }
 
-void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a, const EvalSettings& settings,
-                      std::vector<PairResult>& row, MachineLoad& load) {
+void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a,
+                      const EvalSettings& settings, std::vector<PairResult>& row,
+                      MachineLoad& load) {
   // Each method's extractor and outputs live as long as its rounds: only the extraction is timed.
   std::vector<std::function<void()>> work;
   for (std::size_t m = 0; m < methods.size(); ++m) {
@@ -213,10 +232,12 @@ void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a,
       auto detector = opencv_detector(methods[m]);
       auto keypoints = std::make_shared<std::vector<cv::KeyPoint>>();
       auto descriptors = std::make_shared<cv::Mat>();
-      work.push_back([=] { detector->detectAndCompute(gray_a, cv::noArray(), *keypoints, *descriptors); });
+      work.push_back(
+          [=] { detector->detectAndCompute(gray_a, cv::noArray(), *keypoints, *descriptors); });
     } else {
       ExtractorOptions options = options_of(methods[m], settings);
-      if (is_adaptive(methods[m])) options.entropy_threshold = row[m].threshold;  // one frame at the learned F
+      if (is_adaptive(methods[m]))
+        options.entropy_threshold = row[m].threshold;  // one frame at the learned F
       auto extractor = std::make_shared<Extractor>(options);
       auto features = std::make_shared<Features>();
       work.push_back([=] { extractor->extract(view_of(gray_a), *features); });

@@ -20,15 +20,16 @@ enum class Method {
   quadtree_entropy,
   aief_paper_adaptive,  // --mode aief-paper: the published algorithm, the paper's tables
   aief_paper_auto,
-  aief_adaptive,        // --mode aief (default): pixel-centre map, sub-pixel, pool, level guard
+  aief_adaptive,  // --mode aief (default): pixel-centre map, sub-pixel, pool, level guard
   aief_auto,
   opencv_orb,
   opencv_sift
 };
 
-inline const std::vector<Method> kAllMethods = {Method::orbslam2,   Method::quadtree_entropy, Method::aief_paper_adaptive,
-                                                Method::aief_paper_auto, Method::aief_adaptive, Method::aief_auto,
-                                                Method::opencv_orb, Method::opencv_sift};
+inline const std::vector<Method> kAllMethods = {
+    Method::orbslam2,        Method::quadtree_entropy, Method::aief_paper_adaptive,
+    Method::aief_paper_auto, Method::aief_adaptive,    Method::aief_auto,
+    Method::opencv_orb,      Method::opencv_sift};
 
 std::string method_name(Method method);  // the row label, e.g. "AIEF (adaptive F)"
 std::string method_key(Method method);   // the JSON key, e.g. "aief_adaptive"
@@ -37,20 +38,22 @@ Method parse_method_key(const std::string& key);
 
 struct PairResult {
   int keypoints_a = 0, keypoints_b = 0;
-  int putative = 0;        // matches before RANSAC (n of the paper)
-  int inliers = 0;         // RANSAC inliers of our final model (m of the paper)
-  double cmr = 0;          // m / n (Eq. 10)
-  int correct = 0;         // putative matches within 3 px under the true homography
-  double accuracy = 0;     // correct / putative
-  double corner_error = -1;  // mean corner error of the RANSAC homography vs the truth, px (-1: none)
+  int putative = 0;     // matches before RANSAC (n of the paper)
+  int inliers = 0;      // RANSAC inliers of our final model (m of the paper)
+  double cmr = 0;       // m / n (Eq. 10)
+  int correct = 0;      // putative matches within 3 px under the true homography
+  double accuracy = 0;  // correct / putative
+  double corner_error =
+      -1;  // mean corner error of the RANSAC homography vs the truth, px (-1: none)
   bool homography_ok = false;  // corner_error < 5 px
-  double extract_ms = 0;   // extraction + description of image A, one thread: CPU time, median of interleaved rounds
+  double extract_ms =
+      0;  // extraction + description of image A, one thread: CPU time, median of interleaved rounds
   double extract_min_ms = 0, extract_max_ms = 0;  // the fastest and slowest of those rounds
-  double extract_wall_ms = 0;  // the wall-clock median of the same rounds
-  double sweep_ms = 0;     // the adaptive sweep over the pair (AIEF adaptive only)
-  double threshold = -1;   // F used for image A (entropy methods)
+  double extract_wall_ms = 0;                     // the wall-clock median of the same rounds
+  double sweep_ms = 0;       // the adaptive sweep over the pair (AIEF adaptive only)
+  double threshold = -1;     // F used for image A (entropy methods)
   double repeatability = 0;  // keypoints of A repeated in B within 3 px (keypoint_metrics.hpp)
-  double spread = 0;       // share of image A's 32 px cells holding a keypoint
+  double spread = 0;         // share of image A's 32 px cells holding a keypoint
 };
 
 struct EvalSettings {
@@ -60,12 +63,13 @@ struct EvalSettings {
 };
 
 // Every measure of one method on one pair but the extraction time.
-PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b, const Homography& truth,
-                      const EvalSettings& settings);
+PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b,
+                      const Homography& truth, const EvalSettings& settings);
 // The extraction times of image A for every method of `row` (results of run_method, in the order of
 // `methods`; an adaptive method is timed at the F it chose), in interleaved rounds; `load` records
 // the machine's load meanwhile.
-void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a, const EvalSettings& settings,
-                      std::vector<PairResult>& row, MachineLoad& load);
+void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a,
+                      const EvalSettings& settings, std::vector<PairResult>& row,
+                      MachineLoad& load);
 
 }  // namespace aief::eval

@@ -23,7 +23,8 @@ std::string markdown_report(const EvalRun& run, const std::string& plot_folder_r
 
 // A report may end with a hand-written section (docs/evaluation.md keeps its measurements there):
 // the line kHandWrittenMarker and everything after it. Regenerating keeps it.
-inline constexpr const char* kHandWrittenMarker = "<!-- hand-written below: aief eval keeps this line and all after it -->";
+inline constexpr const char* kHandWrittenMarker =
+    "<!-- hand-written below: aief eval keeps this line and all after it -->";
 // The hand-written section of a previous report, from its marker to the end ("" without one).
 std::string hand_written_section(const std::string& previous_report);
 std::string json_report(const EvalRun& run);

@@ -42,7 +42,8 @@ struct MethodTimes {
 };
 
 // `rounds` rounds over `work` (one callable per method), interleaved as above.
-inline std::vector<MethodTimes> time_interleaved(const std::vector<std::function<void()>>& work, int rounds) {
+inline std::vector<MethodTimes> time_interleaved(const std::vector<std::function<void()>>& work,
+                                                 int rounds) {
   using Clock = std::chrono::steady_clock;
   std::vector<std::vector<double>> cpu(work.size()), wall(work.size());
   for (int round = 0; round < rounds; ++round)
@@ -51,11 +52,13 @@ inline std::vector<MethodTimes> time_interleaved(const std::vector<std::function
       const std::clock_t cpu_start = std::clock();  // the whole process: worker threads count too
       const auto wall_start = Clock::now();
       work[m]();
-      wall[m].push_back(std::chrono::duration<double, std::milli>(Clock::now() - wall_start).count());
+      wall[m].push_back(
+          std::chrono::duration<double, std::milli>(Clock::now() - wall_start).count());
       cpu[m].push_back(1000.0 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
     }
   std::vector<MethodTimes> out;
-  for (std::size_t m = 0; m < work.size(); ++m) out.push_back({spread_of(std::move(cpu[m])), spread_of(std::move(wall[m]))});
+  for (std::size_t m = 0; m < work.size(); ++m)
+    out.push_back({spread_of(std::move(cpu[m])), spread_of(std::move(wall[m]))});
   return out;
 }
 
