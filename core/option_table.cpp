@@ -1,5 +1,6 @@
 #include "core/option_table.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -508,6 +509,38 @@ std::vector<std::pair<std::string_view, OptionValue>> record_of(const ExtractorO
     record.emplace_back(r.key, value);
   }
   return record;
+}
+
+std::vector<std::string> output_differences(const RecordedOptions& recorded,
+                                            const ExtractorOptions& options) {
+  std::vector<std::string> differences;
+  for (const auto& [key, value] : record_of(options)) {
+    const OptionRow& r = row(key);
+    if (!r.changes_output) continue;
+    const auto it = std::find_if(recorded.begin(), recorded.end(),
+                                 [&](const auto& field) { return field.first == key; });
+    const std::string now = text_of(r, value);
+    if (it == recorded.end()) {
+      differences.push_back(std::string(key) + " not recorded (now " + now + ")");
+      continue;
+    }
+    // The file's spelling: JSON's true / false for toggles, numbers as their digits.
+    const std::string& text = it->second;
+    bool same = false;
+    if (const bool* flag = std::get_if<bool>(&value)) {
+      same = text == (*flag ? "true" : "false");
+    } else if (const long long* integer = std::get_if<long long>(&value)) {
+      long long read = 0;
+      same = parse_integer(text, read) && read == *integer;
+    } else if (const double* number = std::get_if<double>(&value)) {
+      double read = 0;
+      same = parse_decimal(text, read) && read == *number;
+    } else {
+      same = text == std::get<std::string_view>(value);
+    }
+    if (!same) differences.push_back(std::string(key) + " " + text + " (now " + now + ")");
+  }
+  return differences;
 }
 
 ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {

@@ -117,6 +117,17 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given);
 // that is infinite is the word "inf".
 std::vector<std::pair<std::string_view, OptionValue>> record_of(const ExtractorOptions& options);
 
+// An option record read back from a file: (key, value as the file holds it: digits, a name or
+// word, true / false), in any order.
+using RecordedOptions = std::vector<std::pair<std::string, std::string>>;
+
+// The fields that change the output whose recorded value differs from `options`', each as
+// "n_features 500 (now 3000)"; a field missing from the record counts as differing ("not
+// recorded"). Empty: an output made with the record is what `options` would make. Batch resume
+// redoes an output with differences; merge refuses shards with them.
+std::vector<std::string> output_differences(const RecordedOptions& recorded,
+                                            const ExtractorOptions& options);
+
 // A value as a front end would write it: 1000, 1.2, inf, pixel-centre, on.
 std::string text_of(const OptionRow& row, const OptionValue& value);
 

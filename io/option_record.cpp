@@ -1,0 +1,71 @@
+#include "io/option_record.hpp"
+
+#include <sstream>
+#include <variant>
+
+#include "io/json_writer.hpp"
+
+namespace aief::io {
+
+std::string option_record_json(const ExtractorOptions& options) {
+  std::ostringstream out;
+  JsonWriter json(out);
+  json.set_newline_depth(0);
+  json.begin_object();
+  for (const auto& [key, value] : option_table::record_of(options)) {
+    json.key(key);
+    std::visit([&](const auto& v) { json.value(v); }, value);
+  }
+  json.end_object();
+  std::string text = out.str();
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
+std::optional<option_table::RecordedOptions> read_option_record_json(std::string_view text) {
+  option_table::RecordedOptions fields;
+  std::size_t at = 0;
+  const auto skip_space = [&] {
+    while (at < text.size() &&
+           (text[at] == ' ' || text[at] == '\n' || text[at] == '\r' || text[at] == '\t'))
+      ++at;
+  };
+  // A string without escapes (keys and names never hold one); false when there is none.
+  const auto read_string = [&](std::string& out) {
+    if (at >= text.size() || text[at] != '"') return false;
+    const std::size_t end = text.find('"', at + 1);
+    if (end == std::string_view::npos ||
+        text.substr(at + 1, end - at - 1).find('\\') != std::string_view::npos)
+      return false;
+    out = std::string(text.substr(at + 1, end - at - 1));
+    at = end + 1;
+    return true;
+  };
+  skip_space();
+  if (at >= text.size() || text[at++] != '{') return std::nullopt;
+  skip_space();
+  if (at < text.size() && text[at] == '}') return fields;
+  while (true) {
+    std::string key, value;
+    skip_space();
+    if (!read_string(key)) return std::nullopt;
+    skip_space();
+    if (at >= text.size() || text[at++] != ':') return std::nullopt;
+    skip_space();
+    if (at < text.size() && text[at] == '"') {
+      if (!read_string(value)) return std::nullopt;
+    } else {
+      const std::size_t end = text.find_first_of(",} \n\r\t", at);
+      if (end == std::string_view::npos || end == at) return std::nullopt;
+      value = std::string(text.substr(at, end - at));
+      at = end;
+    }
+    fields.emplace_back(std::move(key), std::move(value));
+    skip_space();
+    if (at >= text.size()) return std::nullopt;
+    if (text[at] == '}') return fields;
+    if (text[at++] != ',') return std::nullopt;
+  }
+}
+
+}  // namespace aief::io
