@@ -1,6 +1,5 @@
 #include "core/option_table.hpp"
 
-#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -511,36 +510,39 @@ std::vector<std::pair<std::string_view, OptionValue>> record_of(const ExtractorO
   return record;
 }
 
-std::vector<std::string> output_differences(const RecordedOptions& recorded,
-                                            const ExtractorOptions& options) {
-  std::vector<std::string> differences;
-  for (const auto& [key, value] : record_of(options)) {
-    const OptionRow& r = row(key);
-    if (!r.changes_output) continue;
-    const auto it = std::find_if(recorded.begin(), recorded.end(),
-                                 [&](const auto& field) { return field.first == key; });
-    const std::string now = text_of(r, value);
-    if (it == recorded.end()) {
-      differences.push_back(std::string(key) + " not recorded (now " + now + ")");
-      continue;
-    }
-    // The file's spelling: JSON's true / false for toggles, numbers as their digits.
-    const std::string& text = it->second;
-    bool same = false;
-    if (const bool* flag = std::get_if<bool>(&value)) {
-      same = text == (*flag ? "true" : "false");
-    } else if (const long long* integer = std::get_if<long long>(&value)) {
-      long long read = 0;
-      same = parse_integer(text, read) && read == *integer;
-    } else if (const double* number = std::get_if<double>(&value)) {
-      double read = 0;
-      same = parse_decimal(text, read) && read == *number;
-    } else {
-      same = text == std::get<std::string_view>(value);
-    }
-    if (!same) differences.push_back(std::string(key) + " " + text + " (now " + now + ")");
+namespace {
+
+// The value of `key` in `record`, or "not recorded".
+std::string_view recorded_value(const RecordedOptions& record, std::string_view key) {
+  for (const auto& [field, value] : record)
+    if (field == key) return value;
+  return "not recorded";
+}
+
+bool same_recorded_value(std::string_view a, std::string_view b) {
+  if (a == b) return true;
+  long long integer_a = 0, integer_b = 0;
+  if (parse_integer(a, integer_a) && parse_integer(b, integer_b)) return integer_a == integer_b;
+  double number_a = 0, number_b = 0;
+  return parse_decimal(a, number_a) && parse_decimal(b, number_b) && number_a == number_b;
+}
+
+}  // namespace
+
+std::vector<OptionDifference> output_differences(const RecordedOptions& before,
+                                                 const RecordedOptions& after) {
+  std::vector<OptionDifference> differences;
+  for (const OptionRow& r : rows()) {
+    if (!r.is_field() || !r.changes_output) continue;
+    const std::string_view was = recorded_value(before, r.key), is = recorded_value(after, r.key);
+    if (!same_recorded_value(was, is))
+      differences.push_back({std::string(r.key), std::string(was), std::string(is)});
   }
   return differences;
+}
+
+std::string text_of(const OptionDifference& difference) {
+  return difference.key + " " + difference.before + " -> " + difference.after;
 }
 
 ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {

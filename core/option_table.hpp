@@ -121,12 +121,21 @@ std::vector<std::pair<std::string_view, OptionValue>> record_of(const ExtractorO
 // word, true / false), in any order.
 using RecordedOptions = std::vector<std::pair<std::string, std::string>>;
 
-// The fields that change the output whose recorded value differs from `options`', each as
-// "n_features 500 (now 3000)"; a field missing from the record counts as differing ("not
-// recorded"). Empty: an output made with the record is what `options` would make. Batch resume
-// redoes an output with differences; merge refuses shards with them.
-std::vector<std::string> output_differences(const RecordedOptions& recorded,
-                                            const ExtractorOptions& options);
+// A field that changes the output and differs between two records; a field one record lacks is
+// "not recorded" there.
+struct OptionDifference {
+  std::string key, before, after;
+};
+
+// The fields that change the output (rows with changes_output) whose values differ between
+// `before` and `after`, in table order. Numbers compare as numbers (1.2 and 1.20 are the same),
+// everything else as text. Empty: outputs made with either record are the same bytes. Batch
+// resume redoes an output with differences; merge refuses shards with them (io/option_record.hpp).
+std::vector<OptionDifference> output_differences(const RecordedOptions& before,
+                                                 const RecordedOptions& after);
+
+// "n_features 500 -> 3000".
+std::string text_of(const OptionDifference& difference);
 
 // A value as a front end would write it: 1000, 1.2, inf, pixel-centre, on.
 std::string text_of(const OptionRow& row, const OptionValue& value);

@@ -3,25 +3,33 @@
 #include <sstream>
 #include <variant>
 
-#include "io/json_writer.hpp"
+#include "core/option_table.hpp"
 
 namespace aief::io {
 
-std::string option_record_json(const ExtractorOptions& options) {
-  std::ostringstream out;
-  JsonWriter json(out);
-  json.set_newline_depth(0);
+void write_option_record(JsonWriter& json, const ExtractorOptions& options) {
   json.begin_object();
   for (const auto& [key, value] : option_table::record_of(options)) {
     json.key(key);
     std::visit([&](const auto& v) { json.value(v); }, value);
   }
   json.end_object();
+}
+
+std::string option_record_json(const ExtractorOptions& options) {
+  std::ostringstream out;
+  JsonWriter json(out);
+  json.set_newline_depth(0);
+  write_option_record(json, options);
   std::string text = out.str();
   if (!text.empty() && text.back() == '\n') text.pop_back();
   return text;
 }
 
+namespace {
+
+// The fields of a flat JSON object of scalars (what write_option_record writes), values as
+// written with strings unquoted; nullopt when `text` is not one.
 std::optional<option_table::RecordedOptions> read_option_record_json(std::string_view text) {
   option_table::RecordedOptions fields;
   std::size_t at = 0;
@@ -66,6 +74,28 @@ std::optional<option_table::RecordedOptions> read_option_record_json(std::string
     if (text[at] == '}') return fields;
     if (text[at++] != ',') return std::nullopt;
   }
+}
+
+std::vector<std::string> changes_between(
+    const std::optional<option_table::RecordedOptions>& first,
+    const std::optional<option_table::RecordedOptions>& other) {
+  if (!first || !other) return {std::string(kNoOptionRecord)};
+  std::vector<std::string> changes;
+  for (const auto& difference : option_table::output_differences(*first, *other))
+    changes.push_back(option_table::text_of(difference));
+  return changes;
+}
+
+}  // namespace
+
+std::vector<std::string> option_changes(const std::optional<std::string>& recorded,
+                                        const ExtractorOptions& options) {
+  return changes_between(recorded ? read_option_record_json(*recorded) : std::nullopt,
+                         read_option_record_json(option_record_json(options)));
+}
+
+std::vector<std::string> option_changes(const std::string& first, const std::string& other) {
+  return changes_between(read_option_record_json(first), read_option_record_json(other));
 }
 
 }  // namespace aief::io
