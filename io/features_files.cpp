@@ -10,23 +10,13 @@
 #include <opencv2/core.hpp>
 
 #include "aief/error.hpp"
-#include "core/option_table.hpp"
 #include "io/json_writer.hpp"
 #include "io/npz_writer.hpp"
+#include "io/option_record.hpp"
 
 namespace aief::io {
 
 namespace {
-
-// Every field of the options, from the option table (core/option_table.hpp).
-void write_options(JsonWriter& json, const ExtractorOptions& options) {
-  json.key("options").begin_object();
-  for (const auto& [key, value] : option_table::record_of(options)) {
-    json.key(key);
-    std::visit([&](const auto& v) { json.value(v); }, value);
-  }
-  json.end_object();
-}
 
 void write_info(JsonWriter& json, const ExtractionInfo& info,
                 const std::vector<std::string>* decoder_warnings) {
@@ -140,6 +130,31 @@ bool yaml_file_belongs_to(const std::string& path, const SourceRecord& source) {
   }
 }
 
+// The "options" object of a JSON result: after "image", "source", "width" and "height", a few KiB
+// in; strings inside are escaped, so `"options":` cannot occur in a name.
+std::optional<std::string> json_file_options(const std::string& path) {
+  constexpr std::size_t kHeadBytes = 64 * 1024;
+  const std::string head = read_bytes(path, 0, kHeadBytes);
+  const std::size_t key = head.find("\"options\":");
+  if (key == std::string::npos) return std::nullopt;
+  const std::size_t begin = head.find('{', key), end = head.find('}', key);
+  if (begin == std::string::npos || end == std::string::npos || end < begin) return std::nullopt;
+  return head.substr(begin, end + 1 - begin);
+}
+
+std::optional<std::string> yaml_file_options(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  try {
+    const cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+    if (!fs.isOpened() || !fs["options"].isString()) return std::nullopt;
+    return static_cast<std::string>(fs["options"]);
+  } catch (const cv::Exception&) {
+    return std::nullopt;
+  }
+}
+
 std::string extension_of(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -154,6 +169,14 @@ bool features_file_belongs_to(const std::string& output_path, const SourceRecord
   if (ext == ".yml" || ext == ".yaml") return yaml_file_belongs_to(output_path, source);
   if (ext == ".npz") return npz_file_belongs_to(output_path, source);
   return false;
+}
+
+std::optional<std::string> features_file_options(const std::string& output_path) {
+  const std::string ext = extension_of(output_path);
+  if (ext == ".json") return json_file_options(output_path);
+  if (ext == ".yml" || ext == ".yaml") return yaml_file_options(output_path);
+  if (ext == ".npz") return npz_file_options(output_path);
+  return std::nullopt;
 }
 
 bool is_features_file_name(const std::string& path) {
@@ -178,7 +201,8 @@ std::string features_json(const std::string& image_path, const Features& feature
   json.field("image", image_path);
   if (source) write_source(json, *source);
   json.field("width", features.image_width).field("height", features.image_height);
-  write_options(json, options);
+  json.key("options");
+  write_option_record(json, options);
   write_info(json, features.info, source ? &source->warnings : nullptr);
   json.key("keypoints").begin_array();
   for (const Keypoint& kp : features.keypoints) {
@@ -202,7 +226,8 @@ void write_features_json(const std::string& path, const std::string& image_path,
 }
 
 void write_features_yaml(const std::string& path, const std::string& image_path,
-                         const Features& features, const std::optional<SourceRecord>& source) {
+                         const Features& features, const ExtractorOptions& options,
+                         const std::optional<SourceRecord>& source) {
   std::vector<cv::KeyPoint> keypoints;
   keypoints.reserve(features.keypoints.size());
   for (const Keypoint& kp : features.keypoints)
@@ -225,6 +250,7 @@ void write_features_yaml(const std::string& path, const std::string& image_path,
       cv::write(fs, "source_mtime_ns", std::to_string(source->mtime_ns));
     }
     fs << "width" << features.image_width << "height" << features.image_height;
+    cv::write(fs, "options", yaml_quoted(option_record_json(options), "option record"));
     cv::write(fs, "keypoints", keypoints);
     fs << "descriptors" << descriptors;
     text = fs.releaseAndGetString();
@@ -240,8 +266,8 @@ void write_features(const std::string& path, const std::string& image_path,
   const std::string ext = extension_of(path);
   if (ext == ".json") return write_features_json(path, image_path, features, options, source);
   if (ext == ".yml" || ext == ".yaml")
-    return write_features_yaml(path, image_path, features, source);
-  if (ext == ".npz") return write_features_npz(path, features, source);
+    return write_features_yaml(path, image_path, features, options, source);
+  if (ext == ".npz") return write_features_npz(path, features, options, source);
   throw Error("output '" + path + "' must end in .json, .yml, .yaml or .npz");
 }
 

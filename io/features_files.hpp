@@ -17,6 +17,10 @@ namespace aief::io {
 // equals `source`; false when it is missing, cut short, unreadable, or from another input.
 bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source);
 
+// The option record of a result file, its JSON text (io/option_record.hpp); nullopt when it has
+// none (an older aief's) or cannot be read.
+std::optional<std::string> features_file_options(const std::string& output_path);
+
 // True when write_features accepts the path's extension: the CLI asks before any work.
 bool is_features_file_name(const std::string& path);
 
@@ -38,9 +42,10 @@ void write_features_json(const std::string& path, const std::string& image_path,
                          const std::optional<SourceRecord>& source = std::nullopt);
 
 // YAML: image, source_name / source_bytes / source_mtime_ns (strings: FileStorage integers are
-// 32-bit), width, height, keypoints, descriptors.
+// 32-bit), width, height, options (the option record as one JSON string, io/option_record.hpp),
+// keypoints, descriptors.
 void write_features_yaml(const std::string& path, const std::string& image_path,
-                         const Features& features,
+                         const Features& features, const ExtractorOptions& options,
                          const std::optional<SourceRecord>& source = std::nullopt);
 
 // By extension: .json, .yml / .yaml, or .npz (io/npz_writer.hpp). Throws aief::Error for another

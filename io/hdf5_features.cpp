@@ -16,6 +16,7 @@
 
 #include "aief/error.hpp"
 #include "io/json_writer.hpp"
+#include "io/option_record.hpp"
 
 namespace aief::io {
 
@@ -417,12 +418,21 @@ bool Hdf5File::features_belong_to(const std::string& name, const SourceRecord& s
          stored[1] == source.mtime_ns;
 }
 
+std::optional<std::string> Hdf5File::option_record(const std::string& name) const {
+  silence_hdf5();
+  const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!group.ok()) return std::nullopt;
+  std::string record = string_attribute(group.get(), "options");
+  if (record.empty()) return std::nullopt;
+  return record;
+}
+
 void Hdf5File::remove_features(const std::string& name) {
   write_guarded(0, "the removal of '" + name + "'", [&] { remove_group(file_, name); });
 }
 
 void Hdf5File::write_features(const std::string& name, const Features& features,
-                              const SourceRecord* source) {
+                              const SourceRecord* source, const ExtractorOptions* options) {
   silence_hdf5();
   // A group being replaced goes first, flushed, so that no new data lands in its space while the
   // file on disk still holds it.
@@ -458,6 +468,7 @@ void Hdf5File::write_features(const std::string& name, const Features& features,
           group.get(), "source", {2},
           std::vector<std::int64_t>{static_cast<std::int64_t>(source->bytes), source->mtime_ns},
           name);
+    if (options) write_string_attribute(group.get(), "options", option_record_json(*options));
     // Last: its presence marks the group complete (has_features).
     write_dataset(group.get(), "image_size", {2},
                   std::vector<std::int64_t>{features.image_width, features.image_height}, name);

@@ -13,7 +13,8 @@
 //     image_size   2 int64, (width, height)
 //   and, for aief's own readers, size, angle (degrees) and octave, N each, and source: 2 int64,
 //   the image file's size in bytes and its modification time in nanoseconds (a batch resume
-//   re-extracts an image whose file changed).
+//   re-extracts an image whose file changed); the group's string attribute options is the option
+//   record (io/option_record.hpp: the options it was extracted with, as JSON text).
 //   matches.h5: one group per pair, hloc's names_to_pair (io/pairs_file.hpp: name0 and name1 with
 //   '/' replaced by '-', joined by '/'), holding matches0 (N0 int32, the index in image 1 or -1)
 //   and matching_scores0 (N0 float32, 1 - distance / 256, 0 when unmatched); hloc writes int16 /
@@ -23,11 +24,13 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "aief/features.hpp"
 #include "aief/match.hpp"
+#include "aief/options.hpp"
 #include "io/pairs_file.hpp"
 #include "io/source_record.hpp"
 
@@ -62,9 +65,13 @@ class Hdf5File {
   // Whether `name` is a complete image group written from the file `source` describes (same
   // size and modification time; a group written without a source never is).
   bool features_belong_to(const std::string& name, const SourceRecord& source) const;
-  // Writes one image's group, replacing any group of that name; with `source`, records it.
+  // The option record of the image group `name` (its JSON text); nullopt when it has none.
+  std::optional<std::string> option_record(const std::string& name) const;
+  // Writes one image's group, replacing any group of that name; with `source` and `options`,
+  // records them.
   void write_features(const std::string& name, const Features& features,
-                      const SourceRecord* source = nullptr);
+                      const SourceRecord* source = nullptr,
+                      const ExtractorOptions* options = nullptr);
   // Removes an image's group, if there is one.
   void remove_features(const std::string& name);
   // Reads back what write_features wrote (keypoints, size, angle, octave, response, descriptors,

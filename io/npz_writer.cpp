@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/json_writer.hpp"
+#include "io/option_record.hpp"
 
 namespace aief::io {
 
@@ -120,18 +121,65 @@ std::string zip_stored(const std::vector<std::pair<std::string, std::string>>& m
   return out;
 }
 
+// A bytes scalar ("|Sn"), as numpy.savez writes a Python bytes object.
+NpyArray bytes_scalar(const std::string& name, const std::string& bytes) {
+  return {name,
+          "|S" + std::to_string(std::max<std::size_t>(bytes.size(), 1)),
+          {},
+          bytes.empty() ? std::string(1, '\0') : bytes};
+}
+
 // The members that record the source: stored uncompressed, so their bytes appear verbatim in the
 // file.
 std::vector<NpyArray> source_arrays(const SourceRecord& source) {
   const std::vector<std::int64_t> stat = {static_cast<std::int64_t>(source.bytes), source.mtime_ns};
-  return {{"source_name",
-           "|S" + std::to_string(std::max<std::size_t>(source.name.size(), 1)),
-           {},
-           source.name.empty() ? std::string(1, '\0') : source.name},
-          {"source_stat", "<i8", {2}, raw_bytes(stat)}};
+  return {bytes_scalar("source_name", source.name), {"source_stat", "<i8", {2}, raw_bytes(stat)}};
+}
+
+std::uint32_t get16(const std::string& in, std::size_t at) {
+  return static_cast<std::uint32_t>(static_cast<unsigned char>(in[at])) |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(in[at + 1])) << 8;
+}
+std::uint32_t get32(const std::string& in, std::size_t at) {
+  return get16(in, at) | get16(in, at + 2) << 16;
+}
+
+// The data of a stored member of a zip written by zip_stored (local headers one after the other),
+// nullopt when there is none of that name.
+std::optional<std::string> stored_member(const std::string& zip, const std::string& name) {
+  constexpr std::size_t kLocalHeader = 30;
+  std::size_t at = 0;
+  while (at + kLocalHeader <= zip.size() && get32(zip, at) == 0x04034b50) {
+    const std::size_t size = get32(zip, at + 18), name_length = get16(zip, at + 26),
+                      extra = get16(zip, at + 28);
+    const std::size_t data = at + kLocalHeader + name_length + extra;
+    if (data + size > zip.size()) return std::nullopt;
+    if (zip.compare(at + kLocalHeader, name_length, name) == 0 && name_length == name.size())
+      return zip.substr(data, size);
+    at = data + size;
+  }
+  return std::nullopt;
+}
+
+// The bytes of an .npy bytes scalar (format 1.0), its NUL padding removed.
+std::optional<std::string> npy_bytes_scalar(const std::string& npy) {
+  constexpr std::size_t kPreamble = 10;  // magic, version, header length
+  if (npy.size() < kPreamble || npy.compare(0, 6, "\x93NUMPY") != 0) return std::nullopt;
+  const std::size_t data = kPreamble + get16(npy, 8);
+  if (data > npy.size() || npy.find("'descr': '|S", kPreamble) >= data) return std::nullopt;
+  std::string bytes = npy.substr(data);
+  bytes.erase(bytes.find_last_not_of('\0') + 1);
+  return bytes;
 }
 
 }  // namespace
+
+std::optional<std::string> npz_file_options(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::optional<std::string> member = stored_member(file, "options.npy");
+  return member ? npy_bytes_scalar(*member) : std::nullopt;
+}
 
 bool npz_file_belongs_to(const std::string& path, const SourceRecord& source) {
   std::ifstream in(path, std::ios::binary);
@@ -143,7 +191,8 @@ bool npz_file_belongs_to(const std::string& path, const SourceRecord& source) {
   return true;
 }
 
-std::string features_npz(const Features& features, const std::optional<SourceRecord>& source) {
+std::string features_npz(const Features& features, const ExtractorOptions& options,
+                         const std::optional<SourceRecord>& source) {
   const std::size_t n = features.keypoints.size();
   std::vector<float> xy, size, angle, response;
   std::vector<std::int32_t> octave;
@@ -167,6 +216,7 @@ std::string features_npz(const Features& features, const std::optional<SourceRec
       {"angle", "<f4", {n}, raw_bytes(angle)},
       {"octave", "<i4", {n}, raw_bytes(octave)},
       {"image_size", "<i8", {2}, raw_bytes(image_size)},
+      bytes_scalar("options", option_record_json(options)),
   };
   if (source)
     for (NpyArray& array : source_arrays(*source)) arrays.push_back(std::move(array));
@@ -176,8 +226,9 @@ std::string features_npz(const Features& features, const std::optional<SourceRec
 }
 
 void write_features_npz(const std::string& path, const Features& features,
+                        const ExtractorOptions& options,
                         const std::optional<SourceRecord>& source) {
-  write_file_atomically(path, features_npz(features, source));
+  write_file_atomically(path, features_npz(features, options, source));
 }
 
 }  // namespace aief::io

@@ -55,7 +55,7 @@ void expect_same(const Features& a, const Features& b) {
 
 TEST(NpzWriter, ArchiveOfNpyArraysWithNumpyHeaders) {
   const Features features = sample_features("boat", 1);
-  const std::string npz = io::features_npz(features);
+  const std::string npz = io::features_npz(features, ExtractorOptions{});
   EXPECT_EQ(npz.substr(0, 4), std::string("PK\x03\x04", 4));
   EXPECT_EQ(npz.substr(npz.size() - 22, 4),
             std::string("PK\x05\x06", 4));  // end of central directory, no comment
