@@ -45,8 +45,9 @@ struct Item {
   io::SourceRecord source;
   Features features;
   std::string error;
-  bool skip = false;       // its output is current
-  bool replacing = false;  // an output was there, from another or a changed input
+  bool skip = false;                        // its output is current
+  bool replacing = false;                   // an output was there, from another or a changed input
+  std::vector<std::string> option_changes;  // an output of this input was there, of other options
 };
 
 // Stage 2, parallel: is the output current? If not: read (decoding dominates) and extract.
@@ -55,9 +56,10 @@ void extract_unless_current(
     tbb::enumerable_thread_specific<std::unique_ptr<Extractor>>& extractors) {
   try {
     item.source = io::source_record_of(item.input.path, item.input.name);
-    const BatchSink::Existing existing = sink.existing(item.input, item.source);
-    item.skip = existing.current;
-    item.replacing = existing.present && !existing.current;
+    BatchSink::Existing existing = sink.existing(item.input, item.source);
+    item.skip = existing.current();
+    item.replacing = existing.present && !existing.of_this_input;
+    item.option_changes = std::move(existing.option_changes);
     if (item.skip) return;
     std::unique_ptr<Extractor>& extractor = extractors.local();
     if (!extractor) {
@@ -73,8 +75,19 @@ void extract_unless_current(
   }
 }
 
+// An output of this input redone because its options differ: counted, and each change listed once.
+void count_redone(const Item& item, BatchSummary& summary) {
+  if (item.option_changes.empty()) return;
+  ++summary.redone;
+  for (const std::string& change : item.option_changes)
+    if (std::find(summary.redone_for.begin(), summary.redone_for.end(), change) ==
+        summary.redone_for.end())
+      summary.redone_for.push_back(change);
+}
+
 // Stage 3, serial: write, or count the skip or the failure (an output of another or an older
-// input must not stay beside a failure). A failure of the sink itself stops the batch.
+// input, or of other options, must not stay beside a failure). A failure of the sink itself stops
+// the batch.
 void write_and_tally(Item& item, BatchSink& sink, BatchSummary& summary) {
   for (const std::string& warning : item.source.warnings)
     std::cerr << "aief: warning: " << warning << "\n";
@@ -87,6 +100,7 @@ void write_and_tally(Item& item, BatchSink& sink, BatchSummary& summary) {
       sink.write(item.input, item.features, item.source);
       ++summary.extracted;
       summary.replaced += item.replacing ? 1 : 0;
+      count_redone(item, summary);
       summary.keypoints += static_cast<long long>(item.features.keypoints.size());
       return;
     } catch (const SinkFailure& e) {
@@ -96,7 +110,7 @@ void write_and_tally(Item& item, BatchSink& sink, BatchSummary& summary) {
       item.error = e.what();
     }
   }
-  if (item.replacing) {
+  if (item.replacing || !item.option_changes.empty()) {
     const std::string not_removed = sink.remove(item.input);
     if (!not_removed.empty()) item.error += "; its old output could not be removed: " + not_removed;
   }
@@ -132,11 +146,6 @@ std::vector<BatchInput> batch_inputs(const BatchSettings& settings) {
   const std::vector<BatchInput> all = io::list_batch_inputs(settings.input);
   io::check_batch_outputs_do_not_nest(all, settings.output_dir, settings.format);
   return io::shard_of(all, settings.shard_index, settings.shard_count);
-}
-
-bool batch_output_is_current(const std::string& output, const io::SourceRecord& source) {
-  std::error_code ec;
-  return fs::exists(output, ec) && io::features_file_belongs_to(output, source);
 }
 
 BatchSummary run_batch(const BatchSettings& settings) {

@@ -12,9 +12,11 @@
 // output removed); a failure of the output itself (a full disk, an I/O error) stops the batch:
 // every output complete before is kept, and the same command resumes once it is fixed.
 //
-// Resume. Every output records its input's name, size and modification time; a run skips an
-// input whose output holds exactly that record and extracts the others again (a changed image,
-// an output cut short). Outputs appear atomically (temporary file, then rename); a run first
+// Resume. Every output records its input's name, size and modification time, and the options it
+// was made with (io/option_record.hpp); a run skips an input whose output holds exactly that
+// input and options that give the same output (the thread count, say, may differ), and extracts
+// the others again (a changed image, an output cut short, other options, an older aief's output
+// without an option record). Outputs appear atomically (temporary file, then rename); a run first
 // removes the stale temporary a killed run left for each of its outputs.
 //
 // Shards. --shard i/n takes images i, i+n, i+2n ... of the list sorted by name, 0 <= i < n:
@@ -42,7 +44,9 @@ struct BatchSummary {
   int images = 0;  // in this shard
   int extracted = 0;
   int replaced = 0;  // of those extracted: the output was there but from another or changed input
-  int skipped = 0;   // output already complete and of this very input
+  int redone = 0;    // of those extracted: the output was of this input but of other options
+  std::vector<std::string> redone_for;  // why, each option change once ("n_features 500 -> 3000")
+  int skipped = 0;                      // output already complete and of this very input
   int failed = 0;
   long long keypoints = 0;
   std::vector<std::string> failures;  // "path: reason"
@@ -63,9 +67,6 @@ Shard parse_shard(const std::string& text);
 // The images of a folder or list file, sorted by name, this shard's only. Throws aief::Error,
 // also when two inputs' outputs would clash (io::check_batch_outputs_do_not_nest).
 std::vector<BatchInput> batch_inputs(const BatchSettings& settings);
-
-// Whether an existing output can be kept for this input: it exists and records exactly `source`.
-bool batch_output_is_current(const std::string& output, const io::SourceRecord& source);
 
 BatchSummary run_batch(const BatchSettings& settings);
 

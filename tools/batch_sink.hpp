@@ -3,6 +3,7 @@
 // file (h5). The batch pipeline knows nothing of formats; it asks its sink these three things.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "aief/error.hpp"
 #include "aief/features.hpp"
@@ -23,8 +24,14 @@ class BatchSink {
   virtual ~BatchSink() = default;
 
   struct Existing {
-    bool present = false;  // an output of this name is there
-    bool current = false;  // ... and records exactly this input (name, size, modification time)
+    bool present = false;        // an output of this name is there
+    bool of_this_input = false;  // ... and records exactly this input (name, size, modification
+                                 // time)
+    // ... made with other options than this run's, as far as they change the output
+    // (io::option_changes: "n_features 500 -> 3000"; an output without a record has one).
+    std::vector<std::string> option_changes;
+    // The one rule of resume: an output is kept when it is of this input and of these options.
+    bool current() const { return of_this_input && option_changes.empty(); }
   };
   // What is there for `input`. Called from the pipeline's parallel stage, several at a time; may
   // tidy what a killed run left (a stale temporary).

@@ -3,6 +3,7 @@
 #include "io/batch_output_names.hpp"
 #include "io/features_files.hpp"
 #include "io/json_writer.hpp"
+#include "io/option_record.hpp"
 #include "tools/batch_sink.hpp"
 
 namespace aief::cli {
@@ -28,9 +29,12 @@ class FilePerImageSink : public BatchSink {
     fs::remove(output + ".tmp", ignored);                // ... of an aief before the short names
     Existing found;
     found.present = fs::exists(output, ignored);
-    found.current = found.present && batch_output_is_current(output, source);
+    found.of_this_input = found.present && io::features_file_belongs_to(output, source);
+    if (found.of_this_input)
+      found.option_changes =
+          io::option_changes(io::features_file_options(output), settings_.options);
     // Before the work: a name the format cannot hold (YAML: control characters).
-    if (!found.current) io::check_features_file_can_hold(output, input.path, input.name);
+    if (!found.current()) io::check_features_file_can_hold(output, input.path, input.name);
     return found;
   }
 

@@ -4,6 +4,7 @@
 #include "tools/batch_sink.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_features.hpp"
+#include "io/option_record.hpp"
 #endif
 
 namespace aief::cli {
@@ -18,13 +19,15 @@ namespace {
 class Hdf5Sink : public BatchSink {
  public:
   explicit Hdf5Sink(const BatchSettings& settings)
-      : file_(settings.output_dir, io::Hdf5File::Mode::read_write) {}
+      : options_(settings.options), file_(settings.output_dir, io::Hdf5File::Mode::read_write) {}
 
   Existing existing(const BatchInput& input, const io::SourceRecord& source) override {
     const std::lock_guard<std::mutex> lock(mutex_);
     Existing found;
-    found.current = file_.features_belong_to(input.name, source);
-    found.present = found.current || file_.has_features(input.name);
+    found.of_this_input = file_.features_belong_to(input.name, source);
+    found.present = found.of_this_input || file_.has_features(input.name);
+    if (found.of_this_input)
+      found.option_changes = io::option_changes(file_.option_record(input.name), options_);
     return found;
   }
 
@@ -32,7 +35,7 @@ class Hdf5Sink : public BatchSink {
              const io::SourceRecord& source) override {
     const std::lock_guard<std::mutex> lock(mutex_);
     try {
-      file_.write_features(input.name, features, &source);
+      file_.write_features(input.name, features, &source, &options_);
     } catch (const Error& e) {
       throw SinkFailure(e.what());  // the file refuses every later write (io::Hdf5File)
     }
@@ -50,6 +53,7 @@ class Hdf5Sink : public BatchSink {
 
  private:
   std::mutex mutex_;
+  ExtractorOptions options_;
   io::Hdf5File file_;
 };
 
