@@ -16,6 +16,7 @@
 
 #include "aief/error.hpp"
 #include "io/json_writer.hpp"
+#include "io/merge_option_check.hpp"
 #include "io/option_record.hpp"
 
 namespace aief::io {
@@ -604,7 +605,18 @@ std::vector<std::string> Hdf5File::feature_names() const {
 int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  // Every input checked first: each opens, and no image is in two of them (a hash set: linear).
+  // Every input checked first: each opens, no image is in two of them (a hash set: linear), and
+  // every image, those already in the output included, was extracted with the same options.
+  SameOptionsCheck same_options;
+  std::unordered_set<std::string> kept;  // images already in the output, from an earlier merge
+  const bool extending = fs::exists(output, ec);
+  if (extending) {
+    const Hdf5File previous(output, Hdf5File::Mode::read);
+    for (std::string& name : previous.feature_names()) {
+      same_options.check(previous, name);
+      kept.insert(std::move(name));
+    }
+  }
   std::vector<std::unique_ptr<Hdf5File>> shards;
   std::vector<std::vector<std::string>> names;
   std::unordered_map<std::string, std::size_t> first_shard;
@@ -616,18 +628,13 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
       if (!inserted)
         throw Error("image '" + name + "' is in two of the files merged, '" + inputs[at->second] +
                     "' and '" + input + "'; nothing was written");
+      if (!kept.count(name)) same_options.check(*shards.back(), name);
     }
   }
-  std::unordered_set<std::string> kept;  // images already in the output, from an earlier merge
-  const bool extending = fs::exists(output, ec);
-  if (extending) {
-    const Hdf5File previous(output, Hdf5File::Mode::read);
-    for (std::string& name : previous.feature_names()) kept.insert(std::move(name));
-  } else if (const fs::path folder = fs::path(output).parent_path();
-             !folder.empty() && !fs::is_directory(folder, ec)) {
+  if (const fs::path folder = fs::path(output).parent_path();
+      !extending && !folder.empty() && !fs::is_directory(folder, ec))
     throw Error("cannot create '" + output + "': the folder '" + folder.string() +
                 "' does not exist");
-  }
 
   // Then written to a temporary beside the output (a copy of it when extending), renamed over it
   // only when complete: a failed merge leaves the output as it was.
