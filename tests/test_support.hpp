@@ -43,4 +43,14 @@ class TempFolder {
   std::filesystem::path path_;
 };
 
+// A command line tool run to its end: its exit status (-1 when it did not exit) and what it wrote
+// to stdout and stderr, interleaved.
+struct CommandRun {
+  int status = -1;
+  std::string output;
+};
+// Runs `program` with `arguments` (no shell: any name passes as it is). CLI tests pass the built
+// tool, AIEF_CLI_PATH.
+CommandRun run_command(const std::string& program, const std::vector<std::string>& arguments);
+
 }  // namespace aief::test
