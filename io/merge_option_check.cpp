@@ -35,9 +35,8 @@ void SameOptionsCheck::check(const Hdf5File& file, const std::string& name) {
     agreeing_.push_back(*record);
     return;
   }
-  std::string listed;
-  for (const std::string& change : changes) listed += (listed.empty() ? "" : ", ") + change;
-  throw Error("the options differ between " + first + " and " + here + ": " + listed + refusal);
+  throw Error("the options differ between " + first + " and " + here + ": " + listed(changes) +
+              refusal);
 }
 
 }  // namespace aief::io

@@ -98,4 +98,10 @@ std::vector<std::string> option_changes(const std::string& first, const std::str
   return changes_between(read_option_record_json(first), read_option_record_json(other));
 }
 
+std::string listed(const std::vector<std::string>& changes) {
+  std::string text;
+  for (const std::string& change : changes) text += (text.empty() ? "" : ", ") + change;
+  return text;
+}
+
 }  // namespace aief::io

@@ -34,4 +34,7 @@ std::vector<std::string> option_changes(const std::optional<std::string>& record
 // 1000", first's value first); an unreadable record is kNoOptionRecord.
 std::vector<std::string> option_changes(const std::string& first, const std::string& other);
 
+// "n_features 500 -> 3000, entropy histogram -> off": changes as messages list them.
+std::string listed(const std::vector<std::string>& changes);
+
 }  // namespace aief::io

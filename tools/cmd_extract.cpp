@@ -8,6 +8,7 @@
 #include "io/drawing.hpp"
 #include "io/features_files.hpp"
 #include "io/image_io.hpp"
+#include "io/option_record.hpp"
 #include "tools/batch.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
@@ -82,11 +83,8 @@ int run_extract_batch(const Args& args) {
   std::printf("batch: %d images in this shard: %d extracted", summary.images, summary.extracted);
   if (summary.replaced > 0)
     std::printf(" (%d replacing the output of another or a changed image)", summary.replaced);
-  if (summary.redone > 0) {
-    std::string why;
-    for (const std::string& change : summary.redone_for) why += (why.empty() ? "" : ", ") + change;
-    std::printf(" (%d redone: %s)", summary.redone, why.c_str());
-  }
+  if (summary.redone > 0)
+    std::printf(" (%d redone: %s)", summary.redone, io::listed(summary.redone_for).c_str());
   std::printf(", %d already done, %d failed; %lld keypoints\n", summary.skipped, summary.failed,
               summary.keypoints);
   for (const std::string& failure : summary.failures)
