@@ -12,6 +12,7 @@
 #include "aief/extractor.hpp"
 #include "core/option_table.hpp"
 #include "io/image_io.hpp"
+#include "io/option_record.hpp"
 #include "python/bindings.hpp"
 #include "python/extraction_rendezvous.hpp"
 #include "python/py_extractor.hpp"
@@ -201,6 +202,10 @@ void bind_extractor(py::module_& m) {
       .def_property_readonly(
           "options", [](const PyExtractor& e) { return options_dict(e.options()); },
           "every option in effect, as a dict (the mode's values filled in)")
+      .def_property_readonly(
+          "option_record", [](const PyExtractor& e) { return io::option_record_json(e.options()); },
+          "the options as aief's output files record them (every field, one line of JSON): what "
+          "the Dask recipe writes into its HDF5 groups")
       .def_property_readonly("kernel_name", &PyExtractor::kernel_name,
                              "the SIMD kernel set this extractor runs (e.g. avx2), picked for this "
                              "CPU or by `kernels`");
@@ -222,6 +227,15 @@ void bind_extractor(py::module_& m) {
       py::arg("path"),
       "An image file as the aief CLI reads it: 2-D uint8 gray (colour by OpenCV's BGR2GRAY, 16-bit "
       "divided by 256)");
+  m.def(
+      "option_changes",
+      [](const std::optional<std::string>& record, const PyExtractor& extractor) {
+        return io::option_changes(record, extractor.options());
+      },
+      py::arg("record"), py::arg("extractor"),
+      "What an output whose option record is `record` (None: it has none) does not share with "
+      "`extractor`'s options, as aief extract --batch reports it ('n_features 500 -> 3000'); "
+      "empty when the extractor would write the same output, so a resume keeps it");
   m.def(
       "default_options", [] { return options_dict(ExtractorOptions{}); },
       "The C++ ExtractorOptions defaults, as a dict");

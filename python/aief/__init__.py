@@ -8,10 +8,10 @@ RANSAC homography and the adaptive threshold sweep, on numpy arrays.
     features.descriptors  # N x 32 uint8
 """
 from aief._aief import (AdaptResult, Error, Extractor, Features, __version__, adapt, batch_inputs, default_options,
-                        find_homography, match, read_image)
+                        find_homography, match, option_changes, read_image)
 
 __all__ = ["AdaptResult", "Error", "Extractor", "Features", "adapt", "batch_inputs", "default_options",
-           "find_homography", "match", "read_image"]
+           "find_homography", "match", "option_changes", "read_image"]
 
 
 def _cv_keypoints(features, class_ids=None):

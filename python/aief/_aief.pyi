@@ -115,6 +115,9 @@ class Extractor:
     def options(self) -> dict[str, Any]:
         """Every option in effect, as a dict."""
     @property
+    def option_record(self) -> str:
+        """The options as aief's output files record them: every field, one line of JSON."""
+    @property
     def kernel_name(self) -> str:
         """The SIMD kernel set this extractor runs."""
 
@@ -174,6 +177,10 @@ def read_image(path: str) -> numpy.ndarray:
 
 def batch_inputs(folder_or_list: str) -> list[tuple[str, str]]:
     """The images `aief extract --batch FOLDER_OR_LIST` takes, as (path, name) pairs sorted by name."""
+
+def option_changes(record: Optional[str], extractor: Extractor) -> list[str]:
+    """What an output recorded with `record` (None: no record) does not share with `extractor`'s
+    options ("n_features 500 -> 3000"); empty when the extractor would write the same output."""
 
 def default_options() -> dict[str, Any]:
     """The C++ ExtractorOptions defaults, as a dict."""

@@ -40,12 +40,16 @@ def source_of(path):
     return numpy.array([info.st_size, info.st_mtime_ns], numpy.int64)
 
 
-def is_current(file, name, source):
-    """Whether `name` is a complete group written from the file `source` describes."""
-    return f"{name}/image_size" in file and f"{name}/source" in file and numpy.array_equal(file[name]["source"][()], source)
+def is_current(file, name, source, extractor):
+    """Whether `name` is a complete group written from the file `source` describes, with options
+    that give what `extractor` would (aief.option_changes, the rule of aief extract --batch: a
+    group of other options, or without a record, is redone)."""
+    return (f"{name}/image_size" in file and f"{name}/source" in file
+            and numpy.array_equal(file[name]["source"][()], source)
+            and not aief.option_changes(file[name].attrs.get("options"), extractor))
 
 
-def write_group(file, name, features, source):
+def write_group(file, name, features, source, option_record):
     """One image's group, as io/hdf5_features.cpp writes it (image_size last marks it complete)."""
     if name in file:
         del file[name]
@@ -57,6 +61,7 @@ def write_group(file, name, features, source):
     group.create_dataset("angle", data=features.angle)
     group.create_dataset("octave", data=features.octave)
     group.create_dataset("source", data=source)
+    group.attrs["options"] = option_record
     group.create_dataset("image_size", data=numpy.array([features.image_width, features.image_height], numpy.int64))
     file.flush()
 
@@ -73,7 +78,7 @@ def extract_shard(inputs, output, options):
         for path, name in inputs:
             try:
                 source = source_of(path)
-                if is_current(file, name, source):
+                if is_current(file, name, source, extractor):
                     skipped += 1
                     continue
                 features = extractor.extract(aief.read_image(path))
@@ -82,7 +87,7 @@ def extract_shard(inputs, output, options):
                 if name in file:  # an output of another or older file must not stay beside a failure
                     del file[name]
                 continue
-            write_group(file, name, features, source)
+            write_group(file, name, features, source, extractor.option_record)
             extracted += 1
             keypoints += len(features)
     return extracted, skipped, keypoints, failures

@@ -11,6 +11,7 @@ from conftest import SEQUENCES, run_cli, sample_path
 
 distributed = pytest.importorskip("dask.distributed")
 from aief import dask_batch  # noqa: E402  (after the skip: it needs dask only when run)
+import aief  # noqa: E402
 
 
 def test_two_worker_processes_give_the_single_process_bytes(cli, tmp_path):
@@ -28,6 +29,11 @@ def test_two_worker_processes_give_the_single_process_bytes(cli, tmp_path):
         assert totals[:2] == (6, 0) and failures == []
         _, again, _ = dask_batch.run(client, images, tmp_path / "shards", shards=4)  # resumes: nothing left to do
         assert again == (0, 6, 0)
+        # Other options: every group is redone (its recorded options differ), then kept.
+        _, other, _ = dask_batch.run(client, images, tmp_path / "other", shards=2, n_features=300)
+        _, redone, _ = dask_batch.run(client, images, tmp_path / "other", shards=2, n_features=500)
+        _, kept, _ = dask_batch.run(client, images, tmp_path / "other", shards=2, n_features=500)
+        assert (other[:2], redone[:2], kept[:2]) == ((6, 0), (6, 0), (0, 6))
     merged = tmp_path / "merged.h5"
     run_cli(cli, "merge", "-o", merged, *outputs)
 
@@ -36,6 +42,9 @@ def test_two_worker_processes_give_the_single_process_bytes(cli, tmp_path):
         assert len(names) == 6 and all(name in s and name in m for name in names)
         for name in names:
             assert sorted(m[name]) == sorted(s[name])
+            # The Dask recipe records the options as the CLI does.
+            assert aief.option_changes(m[name].attrs["options"], aief.Extractor()) == []
+            assert aief.option_changes(s[name].attrs["options"], aief.Extractor()) == []
             for dataset in s[name]:
                 a, b = s[name][dataset][()], m[name][dataset][()]
                 assert a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes(), f"{name}/{dataset}"
