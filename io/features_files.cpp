@@ -69,13 +69,20 @@ std::string read_bytes(const std::string& path, std::ios::off_type from_end, std
   return text;
 }
 
-bool json_file_belongs_to(const std::string& path, const SourceRecord& source) {
-  // The record comes right after "image" (at most a few KiB in); a complete file ends with the
-  // descriptor list and the closing brace.
+// The source record comes right after "image", the options after "width" and "height" (a few
+// KiB in; strings are escaped, so `"options":` cannot occur in a name); a complete file ends with
+// the descriptor list and the closing brace.
+OutputRecord json_file_record(const std::string& path, const SourceRecord& source) {
   constexpr std::size_t kHeadBytes = 64 * 1024;
-  const std::string tail = read_bytes(path, 4, 4);
-  if (tail != "]\n}\n") return false;
-  return read_bytes(path, 0, kHeadBytes).find(source_json_fragment(source)) != std::string::npos;
+  const std::string head = read_bytes(path, 0, kHeadBytes);
+  OutputRecord record;
+  record.of_source = read_bytes(path, 4, 4) == "]\n}\n" &&
+                     head.find(source_json_fragment(source)) != std::string::npos;
+  const std::size_t key = head.find("\"options\":");
+  const std::size_t begin = head.find('{', key), end = head.find('}', key);
+  if (key != std::string::npos && begin < end && end != std::string::npos)
+    record.options = head.substr(begin, end + 1 - begin);
+  return record;
 }
 
 // A string value for OpenCV's YAML writer, quoted and escaped here. The writer takes a string
@@ -114,45 +121,24 @@ std::string yaml_quoted(const std::string& value, const char* key) {
   return quoted + "\"";
 }
 
-bool yaml_file_belongs_to(const std::string& path, const SourceRecord& source) {
+OutputRecord yaml_file_record(const std::string& path, const SourceRecord& source) {
   // Read here and parsed from memory: OpenCV cannot open a file whose path holds a newline.
   std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
+  if (!in) return {};
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  OutputRecord record;
   try {
     const cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-    if (!fs.isOpened() || fs["descriptors"].empty()) return false;
-    return static_cast<std::string>(fs["source_name"]) == source.name &&
-           static_cast<std::string>(fs["source_bytes"]) == std::to_string(source.bytes) &&
-           static_cast<std::string>(fs["source_mtime_ns"]) == std::to_string(source.mtime_ns);
+    if (!fs.isOpened()) return {};
+    record.of_source =
+        !fs["descriptors"].empty() && static_cast<std::string>(fs["source_name"]) == source.name &&
+        static_cast<std::string>(fs["source_bytes"]) == std::to_string(source.bytes) &&
+        static_cast<std::string>(fs["source_mtime_ns"]) == std::to_string(source.mtime_ns);
+    if (fs["options"].isString()) record.options = static_cast<std::string>(fs["options"]);
   } catch (const cv::Exception&) {
-    return false;
+    return {};
   }
-}
-
-// The "options" object of a JSON result: after "image", "source", "width" and "height", a few KiB
-// in; strings inside are escaped, so `"options":` cannot occur in a name.
-std::optional<std::string> json_file_options(const std::string& path) {
-  constexpr std::size_t kHeadBytes = 64 * 1024;
-  const std::string head = read_bytes(path, 0, kHeadBytes);
-  const std::size_t key = head.find("\"options\":");
-  if (key == std::string::npos) return std::nullopt;
-  const std::size_t begin = head.find('{', key), end = head.find('}', key);
-  if (begin == std::string::npos || end == std::string::npos || end < begin) return std::nullopt;
-  return head.substr(begin, end + 1 - begin);
-}
-
-std::optional<std::string> yaml_file_options(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  try {
-    const cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-    if (!fs.isOpened() || !fs["options"].isString()) return std::nullopt;
-    return static_cast<std::string>(fs["options"]);
-  } catch (const cv::Exception&) {
-    return std::nullopt;
-  }
+  return record;
 }
 
 std::string extension_of(const std::string& path) {
@@ -163,20 +149,16 @@ std::string extension_of(const std::string& path) {
 
 }  // namespace
 
-bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source) {
+OutputRecord features_file_record(const std::string& output_path, const SourceRecord& source) {
   const std::string ext = extension_of(output_path);
-  if (ext == ".json") return json_file_belongs_to(output_path, source);
-  if (ext == ".yml" || ext == ".yaml") return yaml_file_belongs_to(output_path, source);
-  if (ext == ".npz") return npz_file_belongs_to(output_path, source);
-  return false;
+  if (ext == ".json") return json_file_record(output_path, source);
+  if (ext == ".yml" || ext == ".yaml") return yaml_file_record(output_path, source);
+  if (ext == ".npz") return npz_file_record(output_path, source);
+  return {};
 }
 
-std::optional<std::string> features_file_options(const std::string& output_path) {
-  const std::string ext = extension_of(output_path);
-  if (ext == ".json") return json_file_options(output_path);
-  if (ext == ".yml" || ext == ".yaml") return yaml_file_options(output_path);
-  if (ext == ".npz") return npz_file_options(output_path);
-  return std::nullopt;
+bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source) {
+  return features_file_record(output_path, source).of_source;
 }
 
 bool is_features_file_name(const std::string& path) {

@@ -13,13 +13,11 @@
 
 namespace aief::io {
 
-// True when `output_path` is a complete result file (.json, .yml / .yaml, .npz) whose source record
-// equals `source`; false when it is missing, cut short, unreadable, or from another input.
+// What the result file `output_path` (.json, .yml / .yaml, .npz) records: whether it is complete
+// and of `source` (false when it is missing, cut short, unreadable, or from another input), and
+// its option record. One read of the file for both.
+OutputRecord features_file_record(const std::string& output_path, const SourceRecord& source);
 bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source);
-
-// The option record of a result file, its JSON text (io/option_record.hpp); nullopt when it has
-// none (an older aief's) or cannot be read.
-std::optional<std::string> features_file_options(const std::string& output_path);
 
 // True when write_features accepts the path's extension: the CLI asks before any work.
 bool is_features_file_name(const std::string& path);

@@ -174,21 +174,17 @@ std::optional<std::string> npy_bytes_scalar(const std::string& npy) {
 
 }  // namespace
 
-std::optional<std::string> npz_file_options(const std::string& path) {
+OutputRecord npz_file_record(const std::string& path, const SourceRecord& source) {
   std::ifstream in(path, std::ios::binary);
   const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::optional<std::string> member = stored_member(file, "options.npy");
-  return member ? npy_bytes_scalar(*member) : std::nullopt;
-}
-
-bool npz_file_belongs_to(const std::string& path, const SourceRecord& source) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  OutputRecord record;
   // A complete zip ends with its end-of-central-directory record (22 bytes, no comment).
-  if (file.size() < 22 || file.compare(file.size() - 22, 4, "PK\x05\x06") != 0) return false;
+  record.of_source = file.size() >= 22 && file.compare(file.size() - 22, 4, "PK\x05\x06") == 0;
   for (const NpyArray& array : source_arrays(source))
-    if (file.find(npy_file(array)) == std::string::npos) return false;
-  return true;
+    record.of_source = record.of_source && file.find(npy_file(array)) != std::string::npos;
+  if (const std::optional<std::string> member = stored_member(file, "options.npy"))
+    record.options = npy_bytes_scalar(*member);
+  return record;
 }
 
 std::string features_npz(const Features& features, const ExtractorOptions& options,

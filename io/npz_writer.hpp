@@ -22,10 +22,8 @@ void write_features_npz(const std::string& path, const Features& features,
                         const ExtractorOptions& options,
                         const std::optional<SourceRecord>& source = std::nullopt);
 
-// The option record of an .npz written here (its "options" member); nullopt when it has none.
-std::optional<std::string> npz_file_options(const std::string& path);
-
-// True when the file is a complete .npz (its zip directory ends it) holding exactly `source`.
-bool npz_file_belongs_to(const std::string& path, const SourceRecord& source);
+// What an .npz written here records: complete (its zip directory ends it) and holding exactly
+// `source`, and its "options" member.
+OutputRecord npz_file_record(const std::string& path, const SourceRecord& source);
 
 }  // namespace aief::io

@@ -108,8 +108,10 @@ TEST(OptionRecords, EveryFormatReadsBackItsRecord) {
   for (const char* extension : {".json", ".yml", ".npz"}) {
     SCOPED_TRACE(extension);
     const std::string path = two.temp.file(std::string("f") + extension);
-    aief::io::write_features(path, "x.png", features, options);
-    const auto record = aief::io::features_file_options(path);
+    const aief::io::SourceRecord source{"x.png", 1, 2, {}};
+    aief::io::write_features(path, "x.png", features, options, source);
+    ASSERT_TRUE(aief::io::features_file_record(path, source).of_source);
+    const auto record = aief::io::features_file_record(path, source).options;
     ASSERT_TRUE(record.has_value());
     EXPECT_TRUE(aief::io::option_changes(record, options).empty());
     aief::ExtractorOptions other = options;
@@ -140,7 +142,10 @@ TEST(OptionRecords, AnOutputWithoutARecordIsRedone) {
                    "1 extracted (1 redone: no option record (an older aief's output)), 1 "
                    "already done"))
       << run.output;
-  EXPECT_TRUE(aief::io::features_file_options(json.string()).has_value());
+  EXPECT_TRUE(
+      aief::io::features_file_record(
+          json.string(), aief::io::source_record_of((two.images / "a.png").string(), "a.png"))
+          .options.has_value());
 }
 
 #ifdef AIEF_HAVE_HDF5

@@ -29,10 +29,12 @@ class FilePerImageSink : public BatchSink {
     fs::remove(output + ".tmp", ignored);                // ... of an aief before the short names
     Existing found;
     found.present = fs::exists(output, ignored);
-    found.of_this_input = found.present && io::features_file_belongs_to(output, source);
-    if (found.of_this_input)
-      found.option_changes =
-          io::option_changes(io::features_file_options(output), settings_.options);
+    if (found.present) {
+      const io::OutputRecord record = io::features_file_record(output, source);
+      found.of_this_input = record.of_source;
+      if (found.of_this_input)
+        found.option_changes = io::option_changes(record.options, settings_.options);
+    }
     // Before the work: a name the format cannot hold (YAML: control characters).
     if (!found.current()) io::check_features_file_can_hold(output, input.path, input.name);
     return found;
