@@ -8,6 +8,7 @@
 #include "aief/error.hpp"
 #include "core/frame_pipeline.hpp"
 #include "core/matcher.hpp"
+#include "core/sorted_block_entropies.hpp"
 #include "core/sweep_matcher.hpp"
 #include "core/sweep_runs.hpp"
 #include "parallel/scheduler.hpp"
@@ -45,49 +46,6 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
     throw Error("adapt: too many candidates");
   return offsets;
 }
-
-// Each level's block entropies in ascending order, to compare thresholds without visiting every
-// block: Eq. 9 keeps a block when its entropy e > F, so thresholds F < G keep the same blocks of a
-// level exactly when no e has F < e <= G, and F keeps the blocks above the first e > F.
-class SortedBlockEntropies {
- public:
-  explicit SortedBlockEntropies(const FrameAnalysis& analysis)
-      : levels_(static_cast<std::size_t>(analysis.level_count())) {
-    for (int n = 0; n < analysis.level_count(); ++n) {
-      std::vector<double>& sorted = levels_[static_cast<std::size_t>(n)];
-      sorted =
-          analysis.blocks(n)
-              .entropy_bits;  // every block of a usable level (the sweep needs an entropy measure)
-      std::sort(sorted.begin(), sorted.end());
-    }
-  }
-
-  // Whether thresholds F and G keep the same blocks of level n: then the level selects the same
-  // candidates (its distribution depends on its kept blocks alone).
-  bool same_level_blocks_kept(int n, double f, double g) const {
-    if (f > g) std::swap(f, g);
-    const std::vector<double>& sorted = levels_[static_cast<std::size_t>(n)];
-    const auto first_above_f = std::upper_bound(sorted.begin(), sorted.end(), f);
-    return first_above_f == sorted.end() || *first_above_f > g;
-  }
-  // The same on every level: then F and G select the same features (the distribution and the
-  // descriptors depend on the kept blocks alone).
-  bool same_blocks_kept(double f, double g) const {
-    for (int n = 0; n < static_cast<int>(levels_.size()); ++n)
-      if (!same_level_blocks_kept(n, f, g)) return false;
-    return true;
-  }
-  int blocks_kept(double f) const {
-    std::size_t kept = 0;
-    for (const std::vector<double>& sorted : levels_)
-      kept += static_cast<std::size_t>(sorted.end() -
-                                       std::upper_bound(sorted.begin(), sorted.end(), f));
-    return static_cast<int>(kept);
-  }
-
- private:
-  std::vector<std::vector<double>> levels_;
-};
 
 // Extracts the features of one image at threshold F from its analysis (no threshold fallback:
 // the sweep measures each F as it is), with the identity of each feature. `chosen` holds each
@@ -160,54 +118,87 @@ SweepPipeline::SweepPipeline(const ExtractorOptions& options, const SweepOptions
   scheduler_ = parallel::Scheduler(options_.threads);
 }
 
+FramePipeline& SweepPipeline::frame(int image) { return image == 0 ? frame_a_ : frame_b_; }
+
+void SweepPipeline::analyse(int image, ImageView view) {
+  frame(image).analyse(view, sweep_.first_threshold);
+}
+
+int SweepPipeline::begin_thresholds(Repeats repeats) {
+  repeats_ = repeats;
+  features_.image_entropy_bits = frame_a_.analysis().image_entropy_bits();
+  // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
+  const int cycles =
+      std::max(1, static_cast<int>(std::ceil(features_.image_entropy_bits / sweep_.step)));
+  // The features of each threshold keep their storage from pair to pair.
+  features_.a.resize(static_cast<std::size_t>(cycles));
+  features_.b.resize(static_cast<std::size_t>(cycles));
+  for (int image = 0; image < 2; ++image) {
+    const FrameAnalysis& analysis = frame(image).analysis();
+    id_offsets_[static_cast<std::size_t>(image)] = level_id_offsets(analysis);
+    sorted_entropies_[static_cast<std::size_t>(image)] = SortedBlockEntropies(analysis);
+  }
+  return cycles;
+}
+
+void SweepPipeline::select_threshold(int image, int c) {
+  const std::size_t i = static_cast<std::size_t>(image);
+  std::vector<ThresholdFeatures>& features = image == 0 ? features_.a : features_.b;
+  const SortedBlockEntropies& entropies = sorted_entropies_[i];
+  const double threshold = sweep_.first_threshold + sweep_.step * c;
+  const double previous = sweep_.first_threshold + sweep_.step * (c - 1);
+  ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
+  here.repeat_of = -1;
+  if (c > 0 && entropies.same_blocks_kept(previous, threshold)) {
+    // select() reads the threshold only through the mask.
+    const ThresholdFeatures& before = features[static_cast<std::size_t>(c - 1)];
+    if (repeats_ == Repeats::copied) {
+      here = before;
+    } else {
+      here.features.info = before.features.info;
+      here.repeat_of = before.repeat_of >= 0 ? before.repeat_of : c - 1;
+    }
+    here.features.info.entropy_threshold_requested = threshold;
+    here.features.info.entropy_threshold_used = threshold;
+  } else {
+    features_at(frame(image), entropies, threshold, c > 0 ? previous : -1.0, id_offsets_[i],
+                chosen_[i], here);
+  }
+}
+
 const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats repeats) {
   // The two images are independent until matching: each is analysed by its frame pipeline (at
   // the sweep's lowest F), and later selected at every threshold, on its own thread.
-  scheduler_.for_each(2, [&](int image) {
-    if (image == 0)
-      frame_a_.analyse(a, sweep_.first_threshold);
-    else
-      frame_b_.analyse(b, sweep_.first_threshold);
-  });
-
-  SweepFeatures& result = features_;
-  result.image_entropy_bits = frame_a_.analysis().image_entropy_bits();
-  // C = ceil(E / S_p) thresholds F_0 + c S_p (Eq. 11); at least one.
-  const int cycles =
-      std::max(1, static_cast<int>(std::ceil(result.image_entropy_bits / sweep_.step)));
-
+  scheduler_.for_each(2, [&](int image) { analyse(image, image == 0 ? a : b); });
+  const int cycles = begin_thresholds(repeats);
   // Selection and description share the memo of an analysis: serial per image, the two images
-  // side by side. The features of each threshold keep their storage from pair to pair.
-  result.a.resize(static_cast<std::size_t>(cycles));
-  result.b.resize(static_cast<std::size_t>(cycles));
+  // side by side.
   scheduler_.for_each(2, [&](int image) {
-    FramePipeline& frame = image == 0 ? frame_a_ : frame_b_;
-    std::vector<ThresholdFeatures>& features = image == 0 ? result.a : result.b;
-    std::vector<std::vector<std::int32_t>>& chosen = image == 0 ? chosen_a_ : chosen_b_;
-    const std::vector<std::int32_t> id_offsets = level_id_offsets(frame.analysis());
-    const SortedBlockEntropies entropies(frame.analysis());
-    for (int c = 0; c < cycles; ++c) {
-      const double threshold = sweep_.first_threshold + sweep_.step * c;
-      const double previous = sweep_.first_threshold + sweep_.step * (c - 1);
-      ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
-      here.repeat_of = -1;
-      if (c > 0 && entropies.same_blocks_kept(previous, threshold)) {
-        // select() reads the threshold only through the mask.
-        const ThresholdFeatures& before = features[static_cast<std::size_t>(c - 1)];
-        if (repeats == Repeats::copied) {
-          here = before;
-        } else {
-          here.features.info = before.features.info;
-          here.repeat_of = before.repeat_of >= 0 ? before.repeat_of : c - 1;
-        }
-        here.features.info.entropy_threshold_requested = threshold;
-        here.features.info.entropy_threshold_used = threshold;
-      } else {
-        features_at(frame, entropies, threshold, c > 0 ? previous : -1.0, id_offsets, chosen, here);
-      }
-    }
+    for (int c = 0; c < cycles; ++c) select_threshold(image, c);
   });
-  return result;
+  return features_;
+}
+
+bool SweepPipeline::mark_distinct(int c) {
+  const std::size_t i = static_cast<std::size_t>(c);
+  const auto same_as_previous = [&](const std::vector<ThresholdFeatures>& all) {
+    const ThresholdFeatures& here = all[i].resolved(all);
+    const ThresholdFeatures& before = all[i - 1].resolved(all);
+    return &here == &before || same_features(here.features, before.features);
+  };
+  const bool same = c > 0 && same_as_previous(features_.a) && same_as_previous(features_.b);
+  source_.resize(features_.a.size());
+  if (c == 0) distinct_.clear();
+  source_[i] = same ? source_[i - 1] : c;
+  if (!same) distinct_.push_back(c);
+  return !same;
+}
+
+void SweepPipeline::evaluate_in_order(int c) {
+  evaluated_.resize(features_.a.size());
+  if (runs_.empty()) runs_.push_back({SweepMatcher(sweep_.match, *kernels_), {}, {}});
+  if (c == 0) runs_[0].matcher.reset();
+  if (mark_distinct(c)) evaluate(runs_[0], static_cast<std::size_t>(c));
 }
 
 void SweepPipeline::evaluate(MatchRun& run, std::size_t c) {
@@ -269,38 +260,17 @@ std::vector<int> SweepPipeline::cut_into_runs(int runs) {
 void SweepPipeline::run(ImageView a, ImageView b, AdaptResult& result) {
   // Repeated thresholds are not copied: each one's features are those of the first of its run.
   features(a, b, Repeats::referenced);
-  std::vector<ThresholdFeatures>& features_a = features_.a;
-  std::vector<ThresholdFeatures>& features_b = features_.b;
-  const int cycles = static_cast<int>(features_a.size());
-  const auto at_a = [&](std::size_t c) -> const ThresholdFeatures& {
-    return features_a[c].resolved(features_a);
-  };
-  const auto at_b = [&](std::size_t c) -> const ThresholdFeatures& {
-    return features_b[c].resolved(features_b);
-  };
-
-  result.image_entropy_bits = features_.image_entropy_bits;
+  const int cycles = static_cast<int>(features_.a.size());
   // Low thresholds often keep every block: a threshold whose two feature sets equal the previous
   // one's has the same matches and model, so only the first of such a run is evaluated.
-  std::vector<int>& source = source_;
-  std::vector<int>& distinct = distinct_;
-  source.resize(static_cast<std::size_t>(cycles));
-  distinct.clear();
-  for (int c = 0; c < cycles; ++c) {
-    const std::size_t i = static_cast<std::size_t>(c);
-    const auto same_as_previous = [&](const auto& at) {
-      return &at(i) == &at(i - 1) || same_features(at(i).features, at(i - 1).features);
-    };
-    const bool same = c > 0 && same_as_previous(at_a) && same_as_previous(at_b);
-    source[i] = same ? source[i - 1] : c;
-    if (!same) distinct.push_back(c);
-  }
+  for (int c = 0; c < cycles; ++c) mark_distinct(c);
   // Matching walks the distinct thresholds in order, each reusing the distances of the ones
   // before (SweepMatcher: match_descriptors' result, not a brute force per threshold), then fits
   // the threshold's model. With several threads the walk is cut into one run of consecutive
   // thresholds per thread, each with its own matcher (whose first threshold is matched in full),
   // cut where the estimated work is even: the same answers, each slot written by one run.
   evaluated_.resize(static_cast<std::size_t>(cycles));
+  const std::vector<int>& distinct = distinct_;
   const int distinct_count = static_cast<int>(distinct.size());
   const int runs = std::min(scheduler_.concurrency(), distinct_count);
   while (static_cast<int>(runs_.size()) < runs)
@@ -314,7 +284,21 @@ void SweepPipeline::run(ImageView a, ImageView b, AdaptResult& result) {
          k < run_begin[static_cast<std::size_t>(r) + 1]; ++k)
       evaluate(run, static_cast<std::size_t>(distinct[static_cast<std::size_t>(k)]));
   });
+  choose(result);
+}
 
+void SweepPipeline::choose(AdaptResult& result) const {
+  const std::vector<ThresholdFeatures>& features_a = features_.a;
+  const std::vector<ThresholdFeatures>& features_b = features_.b;
+  const auto at_a = [&](std::size_t c) -> const ThresholdFeatures& {
+    return features_a[c].resolved(features_a);
+  };
+  const auto at_b = [&](std::size_t c) -> const ThresholdFeatures& {
+    return features_b[c].resolved(features_b);
+  };
+  const std::vector<int>& source = source_;
+  const int cycles = static_cast<int>(features_a.size());
+  result.image_entropy_bits = features_.image_entropy_bits;
   result.curve.resize(static_cast<std::size_t>(cycles));
   result.chosen_index = -1;
   for (int c = 0; c < cycles; ++c) {

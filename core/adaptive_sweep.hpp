@@ -1,12 +1,14 @@
 #pragma once
 // adapt() with the kernel table given, so tests can count what the sweep computes, and the
 // sweep's features per threshold, so tests can match them their own way.
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "aief/adapt.hpp"
 #include "core/frame_pipeline.hpp"
 #include "core/kernel_table.hpp"
+#include "core/sorted_block_entropies.hpp"
 #include "core/sweep_matcher.hpp"
 #include "parallel/scheduler.hpp"
 
@@ -55,6 +57,17 @@ class SweepPipeline {
   // Analyses both images and extracts them at every threshold; valid until the next call.
   const SweepFeatures& features(ImageView a, ImageView b, Repeats repeats);
 
+  // The same sweep in steps, each on the caller's thread, for a caller that spreads one sweep
+  // over several calls (core/carried_threshold.hpp); the answer is run()'s, bit for bit. In order:
+  // analyse(0, a), analyse(1, b) (the images must stay valid until the last step), then
+  // C = begin_thresholds(Repeats::referenced), then for c = 0 .. C-1 in turn
+  // select_threshold(0, c), select_threshold(1, c), evaluate_in_order(c); then choose(out).
+  void analyse(int image, ImageView view);  // image 0 is A, 1 is B
+  int begin_thresholds(Repeats repeats);    // returns C, the number of thresholds
+  void select_threshold(int image, int c);  // the image's features at F_0 + c S_p
+  void evaluate_in_order(int c);            // matches and model of threshold c, unless repeated
+  void choose(AdaptResult& out) const;      // the curve and the choice, after every threshold
+
  private:
   // The matches of one threshold and the model fitted to them.
   struct Evaluated {
@@ -67,7 +80,10 @@ class SweepPipeline {
     std::vector<Point2> src, dst;
   };
 
+  FramePipeline& frame(int image);
   void evaluate(MatchRun& run, std::size_t c);
+  // Whether threshold c selects other features than c - 1 (both images); records its source.
+  bool mark_distinct(int c);
   // Where the distinct thresholds are cut into `runs` runs (core/sweep_runs.hpp).
   std::vector<int> cut_into_runs(int runs);
 
@@ -77,7 +93,12 @@ class SweepPipeline {
   parallel::Scheduler scheduler_;
   FramePipeline frame_a_, frame_b_;  // each image's analysis, serial (the images run side by side)
   SweepFeatures features_;
-  std::vector<std::vector<std::int32_t>> chosen_a_, chosen_b_;
+  Repeats repeats_ = Repeats::copied;
+  // Per image (A, B): candidate identity offsets, sorted block entropies, each level's selection
+  // at the last threshold selected.
+  std::array<std::vector<std::int32_t>, 2> id_offsets_;
+  std::array<SortedBlockEntropies, 2> sorted_entropies_;
+  std::array<std::vector<std::vector<std::int32_t>>, 2> chosen_;
   std::vector<int> source_, distinct_;
   std::vector<Evaluated> evaluated_;
   std::vector<MatchRun> runs_;
