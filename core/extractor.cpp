@@ -1,5 +1,8 @@
 #include "aief/extractor.hpp"
 
+#include <optional>
+
+#include "core/carried_threshold.hpp"
 #include "core/frame_pipeline.hpp"
 #include "core/given_keypoints.hpp"
 #include "simd/kernels.hpp"
@@ -13,13 +16,22 @@ struct Extractor::State {
   FrameAnalysis
       given_analysis;  // describe(): its own pyramid, so extract()'s stays for pyramid_level()
   GivenKeypointScratch given;
+  std::optional<CarriedThreshold> carried;  // with options.carried_threshold
+
+  void extract(ImageView image, ImageView mask, Features& out) {
+    if (carried) pipeline.set_entropy_threshold(carried->threshold());
+    pipeline.extract(image, out, nullptr, mask);
+    if (carried) carried->after_frame(image);
+  }
 };
 
 Extractor::Extractor(ExtractorOptions options) {
   options.validate();
   const KernelTable& kernels = kernel_table(options.kernels);
   state_ = std::make_unique<State>(
-      State{options, &kernels, FramePipeline(options, kernels, options.threads)});
+      State{options, &kernels, FramePipeline(options, kernels, options.threads), {}, {}, {}});
+  if (options.carried_threshold && options.entropy != EntropyMeasure::off)
+    state_->carried.emplace(options, kernels);
 }
 
 Extractor::~Extractor() = default;
@@ -42,10 +54,14 @@ Features Extractor::extract(ImageView image) {
   return features;
 }
 
-void Extractor::extract(ImageView image, Features& out) { state_->pipeline.extract(image, out); }
+void Extractor::extract(ImageView image, Features& out) { state_->extract(image, {}, out); }
 
 void Extractor::extract(ImageView image, ImageView mask, Features& out) {
-  state_->pipeline.extract(image, out, nullptr, mask);
+  state_->extract(image, mask, out);
+}
+
+void Extractor::request_threshold_sweep() {
+  if (state_->carried) state_->carried->request_sweep();
 }
 
 void Extractor::describe(ImageView image, const std::vector<Keypoint>& keypoints, Features& out,

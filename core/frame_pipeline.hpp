@@ -43,6 +43,8 @@ class FramePipeline final : private CandidateSource {
   void select(int n, double threshold, std::vector<std::int32_t>& chosen);
 
   const FrameAnalysis& analysis() const { return analysis_; }
+  // The fixed F the next extract() requests (the carried F changes it between frames).
+  void set_entropy_threshold(double threshold) { options_.entropy_threshold = threshold; }
 
  private:
   // CandidateSource, for the fallback: detection is the pipeline's (timed) stage 3.

@@ -82,14 +82,12 @@ constexpr FieldAccess access = [] {
 // The mode: a preset over the fields, no field of its own.
 constexpr FieldAccess kPreset{ValueKind::choice, nullptr, nullptr, choices_of<Mode>};
 
-// F or "auto": the word sets the automatic threshold.
+// F, "auto" (the automatic threshold) or "carried" (F carried through a video).
 void set_threshold(ExtractorOptions& options, const OptionValue& value) {
-  if (std::holds_alternative<std::string_view>(value)) {
-    options.auto_threshold = true;
-  } else {
-    options.entropy_threshold = std::get<double>(value);
-    options.auto_threshold = false;
-  }
+  const std::string_view* word = std::get_if<std::string_view>(&value);
+  options.auto_threshold = word != nullptr && *word == "auto";
+  options.carried_threshold = word != nullptr && *word == "carried";
+  if (word == nullptr) options.entropy_threshold = std::get<double>(value);
 }
 
 // P, or "inf" / "off": no pool.
@@ -189,21 +187,37 @@ std::vector<OptionRow> make_rows() {
       {.key = "entropy_threshold",
        .field = access<&M::entropy_threshold>.with_set(set_threshold),
        .cli_flag = "--threshold",
-       .cli_value = "F|auto",
+       .cli_value = "F|auto|carried",
        .python_keyword = "threshold",
        .python_position = 3,
        .yaml_key = "ORBextractor.entropyThreshold",
-       .help = "entropy threshold F in bits (a block is kept when its entropy is > F), or auto: "
-               "Otsu's split of the "
-               "frame's own block entropies",
+       .help = "entropy threshold F in bits (a block is kept when its entropy is > F); auto: "
+               "Otsu's split of the frame's own block entropies; carried: the adaptive sweep on "
+               "the previous and current frames every --carry-every frames, spread over the "
+               "frames that follow (F = 4 until the first sweep ends)",
        .low = 0,
        .high = 64,
-       .words = "auto",
+       .words = "auto|carried",
        .needs_mask = "sets F of the entropy mask"},
       {.key = "auto_threshold",
        .field = access<&M::auto_threshold>,
        .help = "set by --threshold auto",
        .words = "on|off"},
+      {.key = "carried_threshold",
+       .field = access<&M::carried_threshold>,
+       .help = "set by --threshold carried",
+       .words = "on|off"},
+      {.key = "carry_every",
+       .field = access<&M::carry_every>,
+       .cli_flag = "--carry-every",
+       .cli_value = "N",
+       .python_keyword = "carry_every",
+       .yaml_key = "ORBextractor.carryEvery",
+       .help = "with --threshold carried: frames from the start of one sweep to the start of the "
+               "next (a sweep never starts while one runs)",
+       .low = 1,
+       .high = 1'000'000,
+       .needs_mask = "sets how often the carried F is swept"},
       {.key = "coordinates",
        .field = access<&M::coordinates>,
        .cli_flag = "--coordinates",
@@ -614,6 +628,8 @@ void ExtractorOptions::validate() const {
         "scale_factor must be > 1 and <= 4 in single precision (the pyramid computes in float), "
         "got " +
         option_table::number_text(scale_factor) + (used == 1.0f ? ", which is 1 as a float" : ""));
+  if (auto_threshold && carried_threshold)
+    throw Error("auto_threshold and carried_threshold cannot both be on (one source of F)");
   if (fast_min_threshold > fast_threshold)
     throw Error("fast_min_threshold must be in [1, " + std::to_string(fast_threshold) +
                 "] (at most fast_threshold), got " + std::to_string(fast_min_threshold));

@@ -102,8 +102,9 @@ TEST(OptionTable, EveryRowHasEveryFrontEndOnce) {
     EXPECT_FALSE(row.help.empty());
     if (!row.has_front_ends()) {
       // Record-only rows are set through another row: distribution by the mode, auto_threshold by
-      // --threshold auto.
-      EXPECT_TRUE(row.key == "distribution" || row.key == "auto_threshold");
+      // --threshold auto, carried_threshold by --threshold carried.
+      EXPECT_TRUE(row.key == "distribution" || row.key == "auto_threshold" ||
+                  row.key == "carried_threshold");
       continue;
     }
     EXPECT_TRUE(row.cli_flag.starts_with("--") && flags.insert(row.cli_flag).second);
@@ -229,7 +230,7 @@ TEST(OptionTable, NumbersAreDecimalWithinTheRowsRange) {
             std::string::npos);
   EXPECT_NE(error_of("scale_factor", "1").find("--x expects a number in (1, 4], got '1'"),
             std::string::npos);
-  EXPECT_NE(error_of("entropy_threshold", "x").find("a number in [0, 64] or auto"),
+  EXPECT_NE(error_of("entropy_threshold", "x").find("a number in [0, 64], auto or carried"),
             std::string::npos);
   EXPECT_NE(error_of("candidate_pool", "0.5").find("a number >= 1, inf or off"), std::string::npos);
 }

@@ -52,6 +52,11 @@ class Extractor {
   Features describe(ImageView image, const std::vector<Keypoint>& keypoints,
                     GivenAngles angles = GivenAngles::recompute);
 
+  // With options.carried_threshold (F carried through a video, docs/design.md §10): a sweep of
+  // F starts with the next frame, on the pair (this frame, next frame), unless one runs (then
+  // right after it). Does nothing in the other modes.
+  void request_threshold_sweep();
+
   const ExtractorOptions& options() const;
   // Level n of the last frame's pyramid, valid until the next extract; empty for a level too
   // small to be built. Level 0 is the input image itself (not copied), so it is valid only as

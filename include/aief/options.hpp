@@ -70,6 +70,15 @@ struct ExtractorOptions {
   // Pair-free automatic F (core/auto_threshold.hpp) instead of entropy_threshold: Otsu's split
   // of the frame's own block entropies. `aief extract --threshold auto`.
   bool auto_threshold = false;
+  // F carried through a video (core/carried_threshold.hpp, docs/design.md §10): the extractor
+  // runs the adaptive sweep on the pair (previous frame, current frame) every carry_every frames,
+  // spread over the following frames, and applies the F it chooses from the frame after it ends;
+  // entropy_threshold until then. `aief extract --threshold carried`.
+  bool carried_threshold = false;
+  // Frames from the start of one carried sweep to the start of the next (at least the frames a
+  // sweep takes: a sweep never starts while one runs). 30: a sweep takes 12 frames at most
+  // (core/carried_threshold.hpp), so the frames pay for one every 30 (docs/design.md §10).
+  int carry_every = 30;
   // Level-0 position of a keypoint. The pyramid is pixel-centre aligned, so x * scale is off by
   // 3-8 px at levels 6-7 (docs/design.md §8); the paper and ORB-SLAM2 modes keep it for fidelity.
   CoordinateMap coordinates = CoordinateMap::pixel_centre;

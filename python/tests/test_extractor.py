@@ -144,7 +144,7 @@ def test_flat_image_has_no_keypoints():
     (dict(threshold=-0.5), "threshold expects a number in"),
     (dict(threshold=65), "threshold expects a number in"),
     (dict(threshold=float("inf")), "threshold expects a number in"),
-    (dict(threshold="fast"), r"threshold expects a number in \[0, 64\] or auto, got 'fast'"),
+    (dict(threshold="fast"), r"threshold expects a number in \[0, 64\], auto or carried, got 'fast'"),
     (dict(mode="orb"), "unknown mode"),
     (dict(kernels="neon9"), "unknown kernel set"),
     (dict(entropy="shannon"), "unknown entropy"),
