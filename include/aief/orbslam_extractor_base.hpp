@@ -42,6 +42,9 @@ class OrbSlamExtractorBase {
   std::vector<cv::Mat> mvImagePyramid;
 
   const Extractor& extractor() const { return extractor_; }
+  // How the entropy mask went on the last frame: the F it requested (the carried F: docs/design.md
+  // §10), the F used, the blocks kept.
+  const ExtractionInfo& last_frame_info() const { return features_.info; }
 
  protected:
   // The features of one frame, as both call operators start: image CV_8UC1 (CV_8UC3/4 converted
