@@ -51,25 +51,28 @@ struct Item {
 };
 
 // Stage 2, parallel: is the output current? If not: read (decoding dominates) and extract.
-void extract_unless_current(
-    Item& item, BatchSink& sink, const ExtractorOptions& options,
-    tbb::enumerable_thread_specific<std::unique_ptr<Extractor>>& extractors) {
+// With the carried F the images are frames of one video: one extractor sees every one of them in
+// listing order (serial_in_order), a current output included, so F does not depend on which
+// outputs a run found.
+void extract_unless_current(Item& item, BatchSink& sink, const ExtractorOptions& options,
+                            tbb::enumerable_thread_specific<std::unique_ptr<Extractor>>& extractors,
+                            Extractor* video_extractor) {
   try {
     item.source = io::source_record_of(item.input.path, item.input.name);
     BatchSink::Existing existing = sink.existing(item.input, item.source);
     item.skip = existing.current();
     item.replacing = existing.present && !existing.of_this_input;
     item.option_changes = std::move(existing.option_changes);
-    if (item.skip) return;
+    if (item.skip && !video_extractor) return;
     std::unique_ptr<Extractor>& extractor = extractors.local();
-    if (!extractor) {
+    if (!extractor && !video_extractor) {
       ExtractorOptions per_thread = options;  // frames are independent: one thread each
       per_thread.threads = 1;
       extractor = std::make_unique<Extractor>(per_thread);
     }
     const GrayImage image =
         io::read_gray_image(item.input.path, options.max_image_pixels, &item.source.warnings);
-    extractor->extract(image.view(), item.features);
+    (video_extractor ? *video_extractor : *extractor).extract(image.view(), item.features);
   } catch (const std::exception& e) {
     item.error = e.what();
   }
@@ -159,6 +162,13 @@ BatchSummary run_batch(const BatchSettings& settings) {
                                                    : tbb::this_task_arena::max_concurrency();
   // Each worker thread keeps its own Extractor: buffers reused from image to image.
   tbb::enumerable_thread_specific<std::unique_ptr<Extractor>> extractors;
+  // The carried F: one extractor for the whole video, its frames in listing order.
+  std::unique_ptr<Extractor> video_extractor;
+  if (settings.options.carried_threshold) {
+    video_extractor = std::make_unique<Extractor>(settings.options);
+  }
+  const tbb::filter_mode extract_mode =
+      video_extractor ? tbb::filter_mode::serial_in_order : tbb::filter_mode::parallel;
 
   // The pipeline's tokens are plain pointers to items owned here: TBB moves a token between
   // stages in its own inline code, which TSan does not instrument, so a token must not be an
@@ -185,13 +195,14 @@ BatchSummary run_batch(const BatchSettings& settings) {
                                         item->input = inputs[next++];
                                         return item;
                                       }) &
-            tbb::make_filter<Item*, Item*>(tbb::filter_mode::parallel,
+            tbb::make_filter<Item*, Item*>(extract_mode,
                                            [&](Item* item) {
                                              parallel::handoff_acquire(&kListStage);
                                              const HandoffOnExit release_extracted{&kExtractStage};
                                              if (!stop.load())
                                                extract_unless_current(*item, *sink,
-                                                                      settings.options, extractors);
+                                                                      settings.options, extractors,
+                                                                      video_extractor.get());
                                              return item;
                                            }) &
             tbb::make_filter<Item*, void>(tbb::filter_mode::serial_out_of_order, [&](Item* item) {
