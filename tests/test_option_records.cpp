@@ -2,9 +2,9 @@
 // redoes an output of other options (saying which), keeps one whose options differ only where the
 // output does not depend on them (threads), redoes an output without a record (an older aief's),
 // and merge refuses shards of other options, naming both and the fields, before writing.
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 #include <vector>
