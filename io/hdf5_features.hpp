@@ -19,13 +19,15 @@
 //   '/' replaced by '-', joined by '/'), holding matches0 (N0 int32, the index in image 1 or -1)
 //   and matching_scores0 (N0 float32, 1 - distance / 256, 0 when unmatched); hloc writes int16 /
 //   float16, its readers take any width, and int32 holds more than 32767 keypoints. The group's
-//   string attributes name0 and name1 record the pair's own names, since two pairs can share a
-//   group name ("a/b.png c.png" and "a-b.png c.png"): a pair never reads or keeps another's.
+//   string attributes name0 and name1 (fixed length, UTF-8; variable-length ones are read too)
+//   record the pair's own names, since two pairs can share a group name ("a/b.png c.png" and
+//   "a-b.png c.png"): a pair never reads or keeps another's.
 #include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "aief/features.hpp"
@@ -36,16 +38,20 @@
 
 namespace aief::io {
 
-// An HDF5 file opened for reading and writing (created when missing). Every write ends with a
-// flush, and a group counts as complete only once its last dataset exists, so a killed batch
-// resumes at the first incomplete image. Throws aief::Error naming the file.
+// An HDF5 file opened for reading and writing (created when missing). Writes are flushed in
+// batches (kWritesPerFlush groups, and at close), and a group counts as complete only once its
+// last dataset exists, so a killed run keeps every group up to its last flush and resumes from
+// there. Written files never reuse space freed during a run (no free-space manager), so nothing a
+// flushed state still refers to is overwritten before the next flush. Throws aief::Error naming
+// the file.
 //
 // A failed write (a full disk, an I/O error) never damages what was complete before: the disk
 // space a write needs is reserved (fallocate) before libhdf5 touches the file, and everything
 // below libhdf5's end of allocation is reserved before a flush, so a full disk fails the
-// reservation with nothing written. Should a write fail anyway, the file's descriptor is
-// diverted to a scratch file in memory: nothing more reaches the file, which stays as of its last
-// flush, libhdf5 closes it cleanly, and every later write is refused with the first reason.
+// reservation with nothing written, and the writes before it are flushed. Should a write fail
+// anyway, the file's descriptor is diverted to a scratch file in memory: nothing more reaches the
+// file, which stays as of its last flush, libhdf5 closes it cleanly, and every later write is
+// refused with the first reason.
 // (File systems without fallocate, and copy-on-write ones such as btrfs, get the diversion only.)
 class Hdf5File {
  public:
@@ -89,9 +95,13 @@ class Hdf5File {
   // Copies the group `name` of `source` here (replacing an incomplete one), not flushed: for a
   // file written whole and then renamed (merge_feature_files).
   void copy_group_from(const Hdf5File& source, const std::string& name);
-  // Closes the file now, throwing when libhdf5 cannot (its last writes failed); the destructor
-  // closes a file still open and ignores a failure.
+  // Closes the file now (flushing what is pending), throwing when libhdf5 cannot (its last writes
+  // failed); the destructor closes a file still open and ignores a failure, so a writer calls
+  // close() to know that its writes are on disk.
   void close();
+
+  // Groups written between flushes: a flush costs about as much as writing a small pair group.
+  static constexpr int kWritesPerFlush = 64;
 
  private:
   // Throws when the group of (name0, name1) records other names.
@@ -104,16 +114,28 @@ class Hdf5File {
   void reserve(std::uint64_t extra);
   // Diverts the file's descriptor to a scratch file: nothing more reaches the file.
   void fence();
-  // Runs `write` (about `bytes` of data) and flushes (unless told not to), reserved before and
-  // fenced on failure.
+  // Reserves and flushes; throws on failure.
+  void flush_now();
+  // Whether the file may hold a group named `group`: false only when it certainly does not (a
+  // written file keeps the hashes of its groups, so a new name costs no lookup in libhdf5).
+  bool may_hold(const std::string& group) const;
+  void note_group(const std::string& group);
+  // When a write reaches the disk: with the next batch, at once, or only at close (a file written
+  // whole and renamed).
+  enum class Flush { batched, now, at_close };
+  // Runs `write` (about `bytes` of data), reserved before and fenced on failure, and flushes it
+  // as told.
   template <class Write>
   void write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
-                     bool flush = true);
+                     Flush flush = Flush::batched);
 
   std::string path_;
   long long file_ = -1;  // hid_t
   int descriptor_ = -1;  // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
   std::uint64_t reserved_until_ = 0;
+  int unflushed_writes_ = 0;
+  bool groups_known_ = false;  // read_write: groups_ holds the hash of every group's name
+  std::unordered_set<std::uint64_t> groups_;
   std::mutex failure_mutex_;  // writes come from one thread at a time; the lock orders the record
   std::string failure_;       // the first failed write's reason; later writes are refused
 };

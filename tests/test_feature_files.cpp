@@ -232,6 +232,33 @@ TEST(Hdf5Features, RoundTripInNestedGroupsAndResume) {
   EXPECT_THROW(file.read_features("none.png"), Error);
 }
 
+TEST(Hdf5Features, NamesSpelledWithExtraSlashesFindTheirGroupsAfterAReopen) {
+  // A written file keeps the names of its groups in memory; libhdf5 reads "/a", "a" and "b//c"
+  // as the groups "a" and "b/c", and so must that index, or a resumed batch of absolute paths
+  // takes its images as missing and fails on "name already exists".
+  OwnTempDir dir;
+  const Features a = sample_features("graf", 1);
+  {
+    io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
+    file.write_features("/abs/a.png", a);
+    EXPECT_TRUE(file.has_features("abs/a.png"));
+    file.write_features("b//c.png", a);
+    EXPECT_TRUE(file.has_features("b/c.png"));
+    io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
+    matches.write_matches("/abs/a.png", "b/c.png", 3, {{0, 1, 2}});
+  }
+  io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
+  EXPECT_TRUE(file.has_features("/abs/a.png"));
+  EXPECT_TRUE(file.has_features("abs/a.png"));
+  EXPECT_TRUE(file.has_features("b//c.png"));
+  EXPECT_FALSE(file.has_features("abs/b.png"));
+  EXPECT_NO_THROW(file.write_features("/abs/a.png", a));
+  EXPECT_EQ(file.feature_names(), (std::vector<std::string>{"abs/a.png", "b/c.png"}));
+  io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
+  EXPECT_TRUE(matches.has_matches("/abs/a.png", "b/c.png"));
+  EXPECT_NO_THROW(matches.write_matches("/abs/a.png", "b/c.png", 3, {{0, 1, 2}}));
+}
+
 TEST(Hdf5Features, MatchesInHlocPairGroups) {
   OwnTempDir dir;
   EXPECT_EQ(io::hloc_pair_name("a/b.png", "c.png"), "a-b.png/c.png");

@@ -219,6 +219,13 @@ BatchSummary run_batch(const BatchSettings& settings) {
   });
   parallel::handoff_acquire(&kExtractStage);
   parallel::handoff_acquire(&kWriteStage);
+  if (summary.stopped.empty()) {
+    try {
+      sink->finish();
+    } catch (const SinkFailure& e) {
+      summary.stopped = e.what();
+    }
+  }
   progress.finish();
   return summary;
 }

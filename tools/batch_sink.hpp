@@ -43,6 +43,9 @@ class BatchSink {
   // Removes `input`'s output (one from another or a changed input, beside a failure). One call
   // at a time; best effort: returns what went wrong, empty when nothing did.
   virtual std::string remove(const BatchInput& input) = 0;
+  // After the last write: makes every write durable (a file that batches its writes flushes and
+  // closes). Throws SinkFailure.
+  virtual void finish() {}
 };
 
 // The sink of settings.format, its output created or opened. Throws aief::Error (a format this

@@ -41,6 +41,15 @@ class Hdf5Sink : public BatchSink {
     }
   }
 
+  void finish() override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    try {
+      file_.close();
+    } catch (const Error& e) {
+      throw SinkFailure(e.what());
+    }
+  }
+
   std::string remove(const BatchInput& input) override {
     const std::lock_guard<std::mutex> lock(mutex_);
     try {

@@ -56,6 +56,7 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
     ++written;
     total += static_cast<long long>(matches.size());
   }
+  matches_file.close();  // the last batch of pairs flushed, or an error
   std::printf("%d pairs matched (%s), %lld matches, %d already in %s; %zu images read\n", written,
               std::string(to_string(match_options.kind)).c_str(), total, skipped, output->c_str(),
               descriptors.reads());
