@@ -58,9 +58,11 @@ TEST(FramePipeline, StageClockChangesNoByteAndHearsEveryStage) {
         options.threads = 1;
         const Features expected = Extractor(options).extract(image.view());
         ASSERT_FALSE(expected.keypoints.empty());
-        if (threshold == 12.0 && !options.auto_threshold && options.entropy != EntropyMeasure::off)
+        if (threshold == 12.0 && !options.auto_threshold &&
+            options.entropy != EntropyMeasure::off) {
           EXPECT_TRUE(expected.info.threshold_lowered)
               << to_string(mode);  // the fallback's paths run
+        }
 
         for (const int threads : {1, 2}) {
           FramePipeline pipeline(options, kernel_table(KernelSet::scalar), threads);
@@ -72,8 +74,9 @@ TEST(FramePipeline, StageClockChangesNoByteAndHearsEveryStage) {
               << threads;
           for (const Stage stage : {Stage::pyramid, Stage::detect, Stage::select, Stage::frame})
             EXPECT_GT(times.total_ms(stage), 0.0) << static_cast<int>(stage);
-          if (options.entropy != EntropyMeasure::off)
+          if (options.entropy != EntropyMeasure::off) {
             EXPECT_GT(times.total_ms(Stage::entropy), 0.0);
+          }
           times.clear();
           for (std::size_t k = 0; k < kStageCount; ++k)
             EXPECT_EQ(times.total_ms(static_cast<Stage>(k)), 0.0);
