@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -13,21 +14,25 @@ namespace aief {
 
 namespace {
 
-// Where the drop-ins put a keypoint: ORB-SLAM's convention, level pixel x (an integer) at
-// x * scale_n in level 0. Frame::ComputeStereoMatches (ORB-SLAM2 and ORB-SLAM3) centres its SAD
+// What the drop-ins change from the engine's defaults, each measured inside ORB-SLAM3
+// (docs/slam.md). Keypoints sit where ORB-SLAM puts them, level pixel x (an integer) at
+// x * scale_n in level 0: Frame::ComputeStereoMatches (ORB-SLAM2 and ORB-SLAM3) centres its SAD
 // window at round(x / scale_n) in mvImagePyramid and takes the disparity from x itself, so a
 // sub-pixel or pixel-centre x shifts that keypoint's disparity by x - scale_n * round(x / scale_n):
-// up to half a level pixel, times scale_n (docs/slam.md, "Stereo"). The engine's own defaults
-// (pixel-centre, sub-pixel) stay for everything else.
-ExtractorOptions with_orbslam_keypoint_convention(ExtractorOptions options) {
+// up to half a level pixel, times scale_n ("Stereo"). And no candidate pool: each level spreads
+// its keypoints over all its kept blocks instead of first keeping its strongest 1.25 x N_n over
+// the frame, which left half of ORB-SLAM3's grid cells empty and made its stereo trajectories
+// 2-5x worse ("Results"). The engine's own defaults stay for everything else.
+ExtractorOptions with_orbslam_conventions(ExtractorOptions options) {
   options.coordinates = CoordinateMap::scaled;
   options.subpixel = false;
+  options.candidate_pool = std::numeric_limits<double>::infinity();
   return options;
 }
 
 ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, int iniThFAST,
                                  int minThFAST) {
-  ExtractorOptions options = with_orbslam_keypoint_convention({});
+  ExtractorOptions options = with_orbslam_conventions({});
   options.n_features = nfeatures;
   options.scale_factor = scaleFactor;
   options.n_levels = nlevels;
@@ -91,9 +96,9 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
     if (const cv::FileNode node = settings[key]; !node.empty())
       given.push_back({&row, text_of_node(node, key), key});
   }
-  // The drop-ins' own defaults over the mode's: ORB-SLAM's keypoint convention, unless set.
-  const ExtractorOptions convention = with_orbslam_keypoint_convention({});
-  for (const char* key : {"coordinates", "subpixel"}) {
+  // The drop-ins' own defaults over the mode's (with_orbslam_conventions), unless set.
+  const ExtractorOptions convention = with_orbslam_conventions({});
+  for (const char* key : {"coordinates", "subpixel", "candidate_pool"}) {
     const option_table::OptionRow& row = option_table::row(key);
     const bool set =
         std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.row == &row; });

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -80,6 +81,7 @@ TEST(OrbSlam2DropIn, ConstructorArgumentsBecomeTheOptions) {
   EXPECT_EQ(o.coordinates,
             CoordinateMap::scaled);  // ORB-SLAM's keypoint convention (docs/slam.md, "Stereo")
   EXPECT_FALSE(o.subpixel);
+  EXPECT_TRUE(std::isinf(o.candidate_pool));  // spread over the frame (docs/slam.md, "Results")
   EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
 }
 
@@ -94,6 +96,7 @@ TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeaturesAndPyramid) {
   options.scale_factor = 1.2f;                  // the same options: ORB-SLAM2 passes a float
   options.coordinates = CoordinateMap::scaled;  // and ORB-SLAM's keypoint convention (docs/slam.md)
   options.subpixel = false;
+  options.candidate_pool = std::numeric_limits<double>::infinity();  // and no candidate pool
   const Features features = extract(view_of(gray), options);
   ASSERT_GT(features.keypoints.size(), 700u);
   expect_same(features, keypoints, descriptors);
@@ -221,10 +224,15 @@ TEST(OrbSlam2DropIn, SettingsModesAndAutoThreshold) {
   }
   {
     const SettingsFile file(
-        "ORBextractor.mode: \"aief\"\n");  // the mode keeps ORB-SLAM's keypoint convention
+        "ORBextractor.mode: \"aief\"\n");  // the mode keeps the drop-ins' conventions
     const ExtractorOptions o = ORBextractor::options_from_settings(file.open());
     EXPECT_EQ(o.coordinates, CoordinateMap::scaled);
     EXPECT_FALSE(o.subpixel);
+    EXPECT_TRUE(std::isinf(o.candidate_pool));
+  }
+  {
+    const SettingsFile file("ORBextractor.candidatePool: 1.25\n");  // the engine's pool, if asked
+    EXPECT_EQ(ORBextractor::options_from_settings(file.open()).candidate_pool, 1.25);
   }
   {
     const SettingsFile file(

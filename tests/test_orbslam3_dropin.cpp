@@ -3,6 +3,7 @@
 // computes exactly the engine's features. The settings parsing itself is shared with the
 // ORB-SLAM2 drop-in and tested in depth there.
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,7 @@ ExtractorOptions options_of(int nfeatures, float scale_factor) {
   options.coordinates =
       CoordinateMap::scaled;  // the drop-ins' keypoint convention (docs/slam.md, "Stereo")
   options.subpixel = false;
+  options.candidate_pool = std::numeric_limits<double>::infinity();  // and no pool ("Results")
   return options;
 }
 
