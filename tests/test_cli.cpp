@@ -1,7 +1,5 @@
 // The aief command line as a user meets it: help, every error path's message and exit status,
 // and the files it writes.
-#include <array>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,31 +8,18 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "tests/test_support.hpp"
 
 namespace {
 
-struct CliResult {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using CliResult = aief::test::CommandRun;  // status, and stdout + stderr
 
 std::string aief_binary() { return std::string(AIEF_CLI_PATH); }
 
 CliResult run(const std::string& arguments) {
-  CliResult result;
-  const std::string command = aief_binary() + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe))
-    result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return aief::test::run_shell(aief_binary() + " " + arguments);
 }
 
 TEST(Cli, HelpAndVersion) {

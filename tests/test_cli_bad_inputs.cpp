@@ -2,15 +2,12 @@
 // a folder or /dev/zero given as a list, a picture path OpenCV cannot write, a float image.
 // Each gets its reason and a non-zero exit, before any work where the flag can be checked first.
 // Every command runs under `timeout`: what used to hang fails the test instead of blocking it.
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -20,23 +17,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliResult {
-  int status = -1;     // 124: killed by the timeout (it hung)
-  std::string output;  // stdout and stderr
-};
+using CliResult = aief::test::CommandRun;  // status 124: killed by the timeout (it hung)
 
 CliResult run(const std::string& arguments) {
-  CliResult result;
-  const std::string command =
-      "timeout 120 " + std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1 </dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe))
-    result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return aief::test::run_shell("timeout 120 " + std::string(AIEF_CLI_PATH) + " " + arguments +
+                               " </dev/null");
 }
 
 bool says(const CliResult& result, const std::string& text) {

@@ -2,9 +2,7 @@
 // tmpfs (mounting needs root; CI runs as root, elsewhere these tests skip and say why). Each run
 // must stop with exit 1 and aief's own message (no crash, no libhdf5 stack on stderr), keep every
 // group complete before, leave no temporary behind, and resume once space is free.
-#include <array>
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -13,7 +11,6 @@
 
 #include <gtest/gtest.h>
 #include <sys/mount.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "tests/test_support.hpp"
@@ -25,21 +22,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliResult {
-  int status = -1;  // the exit status; -1 when the process ended by a signal
-  std::string output;
-};
+using CliResult = aief::test::CommandRun;  // status, and stdout + stderr
 
 CliResult run(const std::string& arguments) {
-  CliResult result;
-  FILE* pipe = popen((std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe))
-    result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return aief::test::run_shell(std::string(AIEF_CLI_PATH) + " " + arguments);
 }
 
 // "i7.png": built by appending (GCC 12 warns falsely, -Wrestrict, on "i" + std::to_string(n)).

@@ -3,7 +3,6 @@
 // Python keyword in python/tests/test_options.py), each given value taking effect. The number
 // syntax, the enum names, and the one resolution rule (the mode first, the options given over it,
 // conflicts refused).
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -13,7 +12,6 @@
 #include <variant>
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <opencv2/core.hpp>
 
 #include "aief/error.hpp"
@@ -117,21 +115,10 @@ TEST(OptionTable, EveryRowHasEveryFrontEndOnce) {
   EXPECT_EQ(positions.size(), 7u);
 }
 
-struct CliResult {
-  int status = -1;
-  std::string output;
-};
+using CliResult = aief::test::CommandRun;  // status, and stdout + stderr
 
 CliResult run_cli(const std::string& arguments) {
-  CliResult result;
-  FILE* pipe = popen((std::string(AIEF_CLI_PATH) + " " + arguments + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe))
-    result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return aief::test::run_shell(std::string(AIEF_CLI_PATH) + " " + arguments);
 }
 
 // The JSON text the record holds for `text` given to `row`.

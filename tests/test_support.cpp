@@ -4,6 +4,8 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -112,6 +114,17 @@ CommandRun run_command(const std::string& program, const std::vector<std::string
   run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::ifstream in(log, std::ios::binary);
   run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return run;
+}
+
+CommandRun run_shell(const std::string& command_line) {
+  CommandRun run;
+  FILE* pipe = popen((command_line + " 2>&1").c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 512> buffer{};
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) run.output += buffer.data();
+  const int status = pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
 }
 

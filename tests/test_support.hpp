@@ -52,5 +52,8 @@ struct CommandRun {
 // Runs `program` with `arguments` (no shell: any name passes as it is). CLI tests pass the built
 // tool, AIEF_CLI_PATH.
 CommandRun run_command(const std::string& program, const std::vector<std::string>& arguments);
+// Runs `command_line` through sh, stderr joined to stdout (for tests that need the shell's
+// quoting, redirections or `timeout`).
+CommandRun run_shell(const std::string& command_line);
 
 }  // namespace aief::test
