@@ -80,7 +80,7 @@ void bind_blob(sqlite3_stmt* statement, int column, const std::vector<T>& values
 }
 
 void write_database(Database& db, const Hdf5File& features, const Hdf5File& matches_file,
-                    const std::vector<ImagePair>& pairs, ColmapExport& summary) {
+                    const PairsList& pairs, ColmapExport& summary) {
   db.exec(kSchema);
   db.exec("BEGIN TRANSACTION");
   std::unordered_map<std::string, std::pair<long long, int>>
@@ -126,7 +126,8 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     ++summary.images;
   }
   std::unordered_set<long long> written;
-  for (const auto& [name0, name1] : pairs) {
+  for (std::size_t pair = 0; pair < pairs.size(); ++pair) {
+    const std::string &name0 = pairs.name0(pair), &name1 = pairs.name1(pair);
     const auto a = images.find(name0), b = images.find(name1);
     if (a == images.end() || b == images.end())
       throw Error("pair '" + name0 + " " + name1 + "': image '" +
@@ -194,7 +195,7 @@ ColmapExport export_colmap_database(const std::string& database, const std::stri
   summary.notes = std::move(pairs.notes);
   try {
     Database db(temporary);
-    write_database(db, features, matches, pairs.pairs, summary);
+    write_database(db, features, matches, pairs, summary);
   } catch (...) {
     remove_temporaries();
     throw;

@@ -30,8 +30,8 @@ std::size_t longest_path() {
 #endif
 }
 
-std::vector<std::string> read_text_list(const std::string& path, const std::string& what,
-                                        int names_per_line) {
+void for_each_text_line(const std::string& path, const std::string& what, int names_per_line,
+                        const std::function<void(std::string& line)>& on_line) {
   const std::string named = what + " '" + path + "'";
   // PATH_MAX counts the terminating NUL; names on one line are one byte apart.
   const std::size_t longest_line = static_cast<std::size_t>(names_per_line) * longest_path() - 1;
@@ -43,7 +43,7 @@ std::vector<std::string> read_text_list(const std::string& path, const std::stri
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   if (!file) throw Error("cannot read " + named + ": " + std::strerror(errno));
 
-  std::vector<std::string> lines;
+  std::size_t lines_read = 0;
   std::string line;
   char block[64 * 1024];
   bool first_block = true;
@@ -60,15 +60,16 @@ std::vector<std::string> read_text_list(const std::string& path, const std::stri
     for (std::size_t i = 0; i < got; ++i) {
       const char c = block[i];
       if (c == '\n') {
-        lines.push_back(std::move(line));
+        ++lines_read;
+        on_line(line);
         line.clear();
         continue;
       }
       if (c == '\0')
-        throw Error(named + " line " + std::to_string(lines.size() + 1) +
+        throw Error(named + " line " + std::to_string(lines_read + 1) +
                     " holds a NUL byte: a binary file, not a text file of names (one per line)");
       if (line.size() >= longest_line)
-        throw Error(named + " line " + std::to_string(lines.size() + 1) + " is longer than " +
+        throw Error(named + " line " + std::to_string(lines_read + 1) + " is longer than " +
                     std::to_string(longest_line) + " bytes, more than " +
                     (names_per_line == 1 ? "a path" : std::to_string(names_per_line) + " paths") +
                     " can be (PATH_MAX " + std::to_string(longest_path()) +
@@ -77,7 +78,14 @@ std::vector<std::string> read_text_list(const std::string& path, const std::stri
     }
   }
   if (std::ferror(file.get())) throw Error("cannot read " + named + ": " + std::strerror(errno));
-  if (!line.empty()) lines.push_back(std::move(line));
+  if (!line.empty()) on_line(line);
+}
+
+std::vector<std::string> read_text_list(const std::string& path, const std::string& what,
+                                        int names_per_line) {
+  std::vector<std::string> lines;
+  for_each_text_line(path, what, names_per_line,
+                     [&](std::string& line) { lines.push_back(std::move(line)); });
   return lines;
 }
 

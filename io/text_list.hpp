@@ -5,6 +5,7 @@
 // file is read as a stream with one line in memory at a time, so a pipe (`--batch <(find ...)`)
 // works and nothing grows without bound before the refusal.
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,5 +20,10 @@ std::size_t longest_path();
 // a NUL byte (with the image format when the bytes start like one), a line too long.
 std::vector<std::string> read_text_list(const std::string& path, const std::string& what,
                                         int names_per_line = 1);
+
+// The same checks, each line handed to `on_line` as it is read (a pairs file of a million lines is
+// then never held whole); the line may be moved from.
+void for_each_text_line(const std::string& path, const std::string& what, int names_per_line,
+                        const std::function<void(std::string& line)>& on_line);
 
 }  // namespace aief::io

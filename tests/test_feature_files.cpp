@@ -78,9 +78,15 @@ TEST(NpzWriter, ArchiveOfNpyArraysWithNumpyHeaders) {
 TEST(PairsFile, ReadsNamesSkipsCommentsAndNamesBadLines) {
   OwnTempDir dir;
   std::ofstream(dir.file("pairs.txt")) << "# comment\na.png b.png\n\n  c/d.png e.png  \n";
-  const std::vector<io::ImagePair> pairs = io::read_pairs(dir.file("pairs.txt")).pairs;
+  const io::PairsList pairs = io::read_pairs(dir.file("pairs.txt"));
   ASSERT_EQ(pairs.size(), 2u);
-  EXPECT_EQ(pairs[1], io::ImagePair("c/d.png", "e.png"));
+  EXPECT_EQ(pairs.pair(1), io::ImagePair("c/d.png", "e.png"));
+  // Each name held once, the pairs as indices into them (a collection's list in little memory).
+  std::ofstream(dir.file("chain.txt")) << "a.png b.png\nb.png c.png\nc.png a.png\n";
+  const io::PairsList chain = io::read_pairs(dir.file("chain.txt"));
+  EXPECT_EQ(chain.names, (std::vector<std::string>{"a.png", "b.png", "c.png"}));
+  using Indices = std::pair<std::uint32_t, std::uint32_t>;
+  EXPECT_EQ(chain.pairs, (std::vector<Indices>{{0, 1}, {1, 2}, {2, 0}}));
   std::ofstream(dir.file("bad.txt")) << "a.png b.png\na.png b.png c.png\n";
   try {
     io::read_pairs(dir.file("bad.txt"));

@@ -45,7 +45,8 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
   io::DescriptorCache descriptors(features, kDescriptorCacheBytes);
   int written = 0, skipped = 0;
   long long total = 0;
-  for (const auto& [name0, name1] : pairs.pairs) {
+  for (std::size_t pair = 0; pair < pairs.size(); ++pair) {
+    const std::string &name0 = pairs.name0(pair), &name1 = pairs.name1(pair);
     if (matches_file.has_matches(name0, name1)) {  // a resumed run
       ++skipped;
       continue;
