@@ -90,6 +90,10 @@ class Hdf5File {
   // The matches of a pair (query = index in image 0); distance from matching_scores0. Throws as
   // has_matches does for another pair's group.
   std::vector<Match> read_matches(const std::string& name0, const std::string& name1) const;
+  // What has_matches and read_matches answer together, with one lookup of the pair's group: its
+  // matches, or nullopt when the file holds no complete group for the pair. Throws as they do.
+  std::optional<std::vector<Match>> find_matches(const std::string& name0,
+                                                 const std::string& name1) const;
   // The image names of a features file: every group holding an image_size dataset, sorted.
   std::vector<std::string> feature_names() const;
   // Copies the group `name` of `source` here (replacing an incomplete one), not flushed: for a

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <fcntl.h>
@@ -276,10 +277,14 @@ TEST(Hdf5Features, MatchesInHlocPairGroups) {
   const io::Hdf5File file(dir.file("m.h5"), io::Hdf5File::Mode::read);
   EXPECT_TRUE(file.has_matches("a/b.png", "c.png"));
   EXPECT_FALSE(file.has_matches("c.png", "a/b.png"));
+  EXPECT_FALSE(file.find_matches("c.png", "a/b.png"));
+  EXPECT_FALSE(file.find_matches("a/b.png", "d.png"));  // the first image's pairs, not this one
+  EXPECT_THROW(file.read_matches("a/b.png", "d.png"), Error);
   // Another pair of the same hloc group is refused, both pairs named, never given these matches.
   for (const auto& ask :
        {std::function<void()>([&] { (void)file.has_matches("a-b.png", "c.png"); }),
-        std::function<void()>([&] { (void)file.read_matches("a-b.png", "c.png"); })}) {
+        std::function<void()>([&] { (void)file.read_matches("a-b.png", "c.png"); }),
+        std::function<void()>([&] { (void)file.find_matches("a-b.png", "c.png"); })}) {
     try {
       ask();
       ADD_FAILURE() << "no error";
@@ -298,6 +303,32 @@ TEST(Hdf5Features, MatchesInHlocPairGroups) {
     EXPECT_EQ(back[i].train, matches[i].train);
     EXPECT_EQ(back[i].distance, matches[i].distance);
   }
+  const std::optional<std::vector<Match>> found = file.find_matches("a/b.png", "c.png");
+  ASSERT_TRUE(found);
+  ASSERT_EQ(found->size(), matches.size());
+  for (std::size_t i = 0; i < matches.size(); ++i) EXPECT_EQ((*found)[i].train, matches[i].train);
+}
+
+// What is written or replaced after a pair lookup is seen by the next one, and a file looked up
+// in closes for real.
+TEST(Hdf5Features, PairLookupsSeeWritesMadeBetweenThem) {
+  OwnTempDir dir;
+  {
+    io::Hdf5File file(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
+    file.write_matches("a.png", "b.png", 4, {{0, 1, 0}});
+    EXPECT_TRUE(file.has_matches("a.png", "b.png"));
+    EXPECT_FALSE(file.has_matches("a.png", "c.png"));
+    file.write_matches("a.png", "c.png", 4, {{1, 2, 0}});
+    EXPECT_TRUE(file.has_matches("a.png", "c.png"));
+    EXPECT_EQ(file.read_matches("a.png", "c.png").at(0).train, 2);
+    file.write_matches("a.png", "c.png", 4, {{1, 3, 0}});  // replaced
+    EXPECT_EQ(file.read_matches("a.png", "c.png").at(0).train, 3);
+    file.close();
+  }
+  io::Hdf5File reopened(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
+  EXPECT_EQ(reopened.read_matches("a.png", "b.png").at(0).train, 1);
+  EXPECT_EQ(reopened.read_matches("a.png", "c.png").at(0).train, 3);
+  EXPECT_FALSE(reopened.find_matches("b.png", "a.png"));
 }
 
 TEST(Hdf5Features, MergeCopiesShardsAndRefusesAnImageTwice) {
