@@ -764,7 +764,9 @@ std::vector<std::string> Hdf5File::feature_names() const {
           path.substr(0, path.size() - suffix.size()));
     return 0;
   };
-  if (H5Ovisit(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names) < 0)
+  // Only each object's type (H5O_INFO_BASIC): the full information reads every header's
+  // attributes and sizes too, 340k instructions an image.
+  if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names, H5O_INFO_BASIC) < 0)
     throw Error("cannot list the groups of '" + path_ + "'");
   std::sort(names.begin(), names.end());
   return names;
