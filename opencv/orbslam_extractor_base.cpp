@@ -4,9 +4,11 @@
 #include <charconv>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aief/error.hpp"
+#include "core/option_names.hpp"
 #include "core/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
@@ -14,15 +16,19 @@ namespace aief {
 
 namespace {
 
-// What the drop-ins change from the engine's defaults, each measured inside ORB-SLAM3
-// (docs/slam.md). Keypoints sit where ORB-SLAM puts them, level pixel x (an integer) at
-// x * scale_n in level 0: Frame::ComputeStereoMatches (ORB-SLAM2 and ORB-SLAM3) centres its SAD
-// window at round(x / scale_n) in mvImagePyramid and takes the disparity from x itself, so a
-// sub-pixel or pixel-centre x shifts that keypoint's disparity by x - scale_n * round(x / scale_n):
-// up to half a level pixel, times scale_n ("Stereo"). And no candidate pool: each level spreads
-// its keypoints over all its kept blocks instead of first keeping its strongest 1.25 x N_n over
-// the frame, which left half of ORB-SLAM3's grid cells empty and made its stereo trajectories
-// 2-5x worse ("Results"). The engine's own defaults stay for everything else.
+// The drop-ins' defaults, each measured inside ORB-SLAM3 (docs/slam.md). The mode is orbslam2:
+// ORB-SLAM's choices (no entropy mask, quadtree distribution) on aief's kernels, because in
+// ORB-SLAM3's stereo tracking the AIEF mask and proportional distribution cost accuracy (baseline
+// 8 mm against 20, fast rotation 37 against 109, light change 7.5 against 13; "Which choice costs
+// what"); `ORBextractor.mode: "aief"` gives them back. And whatever the mode, keypoints sit where
+// ORB-SLAM puts them, level pixel x (an integer) at x * scale_n in level 0:
+// Frame::ComputeStereoMatches (ORB-SLAM2 and ORB-SLAM3) centres its SAD window at round(x /
+// scale_n) in mvImagePyramid and takes the disparity from x itself, so a sub-pixel or
+// pixel-centre x shifts that keypoint's disparity by x - scale_n * round(x / scale_n): up to half
+// a level pixel, times scale_n ("Stereo"). No candidate pool either: it left half of ORB-SLAM3's
+// grid cells empty and made its stereo trajectories 2-5x worse in AIEF mode ("Results").
+constexpr Mode kDropInMode = Mode::orbslam2;
+
 ExtractorOptions with_orbslam_conventions(ExtractorOptions options) {
   options.coordinates = CoordinateMap::scaled;
   options.subpixel = false;
@@ -32,7 +38,7 @@ ExtractorOptions with_orbslam_conventions(ExtractorOptions options) {
 
 ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, int iniThFAST,
                                  int minThFAST) {
-  ExtractorOptions options = with_orbslam_conventions({});
+  ExtractorOptions options = with_orbslam_conventions(options_for_mode(kDropInMode));
   options.n_features = nfeatures;
   options.scale_factor = scaleFactor;
   options.n_levels = nlevels;
@@ -96,17 +102,35 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
     if (const cv::FileNode node = settings[key]; !node.empty())
       given.push_back({&row, text_of_node(node, key), key});
   }
-  // The drop-ins' own defaults over the mode's (with_orbslam_conventions), unless set.
+  // The drop-ins' own defaults over the mode's (with_orbslam_conventions), unless set; their
+  // mode unless the settings name one.
+  const auto is_given = [&](std::string_view key) {
+    const option_table::OptionRow& row = option_table::row(key);
+    return std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.row == &row; });
+  };
+  const bool mode_given = is_given("mode");
+  if (!mode_given) {
+    const option_table::OptionRow& row = option_table::row("mode");
+    given.push_back(
+        {&row, std::string(option_names::name_of(kDropInMode)), std::string(row.yaml_key)});
+  }
   const ExtractorOptions convention = with_orbslam_conventions({});
   for (const char* key : {"coordinates", "subpixel", "candidate_pool"}) {
+    if (is_given(key)) continue;
     const option_table::OptionRow& row = option_table::row(key);
-    const bool set =
-        std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.row == &row; });
-    if (!set)
-      given.push_back(
-          {&row, option_table::text_of(row, row.field.get(convention)), std::string(row.yaml_key)});
+    given.push_back(
+        {&row, option_table::text_of(row, row.field.get(convention)), std::string(row.yaml_key)});
   }
-  ExtractorOptions options = option_table::resolve_options(given);
+  ExtractorOptions options;
+  try {
+    options = option_table::resolve_options(given);
+  } catch (const Error& e) {
+    if (mode_given) throw;
+    throw Error(
+        std::string(e.what()) + " (ORBextractor.mode is \"" +
+        std::string(option_names::name_of(kDropInMode)) +
+        "\" when the settings name none; the AIEF options need ORBextractor.mode: \"aief\")");
+  }
   // Both versions' Tracking read scaleFactor into a float: so do we, so that settings and the
   // five-number constructor give the same extractor.
   options.scale_factor = static_cast<float>(options.scale_factor);

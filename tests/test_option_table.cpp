@@ -169,19 +169,56 @@ TEST(OptionTable, EverySettingsKeyReachesTheOptions) {
     const std::string value = other_value(row);
     const bool is_text =
         row.kind() == table::ValueKind::choice || row.kind() == table::ValueKind::toggle;
-    const std::string yaml = "%YAML:1.0\n" + std::string(row.yaml_key) + ": " +
+    // In AIEF mode, where every key applies (the drop-ins' own mode, orbslam2, has no mask).
+    const std::string aief_mode = "%YAML:1.0\nORBextractor.mode: \"aief\"\n";
+    const std::string yaml = aief_mode + std::string(row.yaml_key) + ": " +
                              (is_text ? "\"" + value + "\"" : value) + "\n";
     const cv::FileStorage settings(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     const ExtractorOptions options = ORBextractor::options_from_settings(settings);
     // The drop-ins' defaults (ORB-SLAM's keypoint convention) with the one key changed.
     ExtractorOptions expected = ORBextractor::options_from_settings(
-        cv::FileStorage("%YAML:1.0\nORBextractor.nFeatures: 1000\n",
-                        cv::FileStorage::READ | cv::FileStorage::MEMORY));
+        cv::FileStorage(aief_mode, cv::FileStorage::READ | cv::FileStorage::MEMORY));
     row.field.set(expected, table::parse_value(row, value, row.key));
     expected.scale_factor =
         static_cast<float>(expected.scale_factor);  // read into a float, as Tracking.cc
     EXPECT_EQ(table::record_of(options), table::record_of(expected))
         << row.yaml_key << ": " << value;
+  }
+}
+
+// Without a mode the drop-ins run ORB-SLAM's choices (orbslam2: no mask, quadtree; docs/slam.md
+// "Which choice costs what"); an AIEF option then is refused, saying which mode it needs.
+TEST(OptionTable, DropInsDefaultToOrbSlam2ModeAndSayWhatAnAiefKeyNeeds) {
+  const auto settings = [](const std::string& body) {
+    return cv::FileStorage("%YAML:1.0\n" + body, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  };
+  const ExtractorOptions plain =
+      ORBextractor::options_from_settings(settings("ORBextractor.nFeatures: 800\n"));
+  EXPECT_EQ(table::record_of(plain), table::record_of([] {
+              ExtractorOptions o = options_for_mode(Mode::orbslam2);
+              o.n_features = 800;
+              o.scale_factor = static_cast<float>(o.scale_factor);  // as Tracking.cc reads it
+              return o;
+            }()));
+  EXPECT_EQ(
+      ORBextractor::options_from_settings(settings("ORBextractor.mode: \"aief\"\n")).distribution,
+      Distribution::proportional);
+  try {
+    ORBextractor::options_from_settings(settings("ORBextractor.entropyThreshold: 4.5\n"));
+    ADD_FAILURE() << "an entropy threshold without a mode was accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("ORBextractor.entropyThreshold"), std::string::npos) << message;
+    EXPECT_NE(message.find("ORBextractor.mode: \"aief\""), std::string::npos) << message;
+  }
+  // A named mode's own refusal carries no hint about the default.
+  try {
+    ORBextractor::options_from_settings(
+        settings("ORBextractor.mode: \"orbslam2\"\nORBextractor.entropyThreshold: 4.5\n"));
+    ADD_FAILURE() << "an entropy threshold in orbslam2 mode was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("when the settings name none"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -76,8 +75,9 @@ TEST(OrbSlam2DropIn, ConstructorArgumentsBecomeTheOptions) {
   EXPECT_EQ(o.n_levels, 6);
   EXPECT_EQ(o.fast_threshold, 25);
   EXPECT_EQ(o.fast_min_threshold, 9);
-  EXPECT_EQ(o.distribution,
-            ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
+  // ORB-SLAM's choices unless the settings name a mode (docs/slam.md, "Which choice costs what")
+  EXPECT_EQ(o.distribution, Distribution::quadtree);
+  EXPECT_EQ(o.entropy, EntropyMeasure::off);
   EXPECT_EQ(o.coordinates,
             CoordinateMap::scaled);  // ORB-SLAM's keypoint convention (docs/slam.md, "Stereo")
   EXPECT_FALSE(o.subpixel);
@@ -91,12 +91,11 @@ TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeaturesAndPyramid) {
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   orb(gray, cv::Mat(), keypoints, descriptors);
-  ExtractorOptions options;
+  // The same options: the drop-ins' mode (orbslam2: no pool, ORB-SLAM's keypoint convention),
+  // and ORB-SLAM2 passes a float.
+  ExtractorOptions options = options_for_mode(Mode::orbslam2);
   options.n_features = 800;
-  options.scale_factor = 1.2f;                  // the same options: ORB-SLAM2 passes a float
-  options.coordinates = CoordinateMap::scaled;  // and ORB-SLAM's keypoint convention (docs/slam.md)
-  options.subpixel = false;
-  options.candidate_pool = std::numeric_limits<double>::infinity();  // and no candidate pool
+  options.scale_factor = 1.2f;
   const Features features = extract(view_of(gray), options);
   ASSERT_GT(features.keypoints.size(), 700u);
   expect_same(features, keypoints, descriptors);

@@ -3,7 +3,6 @@
 // computes exactly the engine's features. The settings parsing itself is shared with the
 // ORB-SLAM2 drop-in and tested in depth there.
 #include <cmath>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -57,14 +56,12 @@ void expect_lapping_split(const Features& features, int x0, int x1,
   EXPECT_EQ(returned, static_cast<int>(front)) << "lapping area [" << x0 << ", " << x1 << "]";
 }
 
+// The drop-ins' options: their mode (orbslam2, docs/slam.md "Which choice costs what"), which
+// also has ORB-SLAM's keypoint convention ("Stereo") and no pool ("Results").
 ExtractorOptions options_of(int nfeatures, float scale_factor) {
-  ExtractorOptions options;
+  ExtractorOptions options = options_for_mode(Mode::orbslam2);
   options.n_features = nfeatures;
   options.scale_factor = scale_factor;  // ORB-SLAM3 passes a float
-  options.coordinates =
-      CoordinateMap::scaled;  // the drop-ins' keypoint convention (docs/slam.md, "Stereo")
-  options.subpixel = false;
-  options.candidate_pool = std::numeric_limits<double>::infinity();  // and no pool ("Results")
   return options;
 }
 
@@ -108,8 +105,9 @@ TEST(OrbSlam3DropIn, ConstructorArgumentsBecomeTheOptions) {
   EXPECT_EQ(o.n_levels, 6);
   EXPECT_EQ(o.fast_threshold, 25);
   EXPECT_EQ(o.fast_min_threshold, 9);
-  EXPECT_EQ(o.distribution,
-            ExtractorOptions{}.distribution);  // AIEF mode unless the settings say otherwise
+  // ORB-SLAM's choices unless the settings name a mode (docs/slam.md, "Which choice costs what")
+  EXPECT_EQ(o.distribution, Distribution::quadtree);
+  EXPECT_EQ(o.entropy, EntropyMeasure::off);
   EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
 }
 
@@ -324,7 +322,8 @@ TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
 
 TEST(OrbSlam3DropIn, CarriedThresholdFromTheSettingsChangesFAfterTheFirstSweep) {
   const cv::FileStorage settings(
-      "%YAML:1.0\nORBextractor.nFeatures: 500\nORBextractor.entropyThreshold: \"carried\"\n"
+      "%YAML:1.0\nORBextractor.mode: \"aief\"\nORBextractor.nFeatures: 500\n"
+      "ORBextractor.entropyThreshold: \"carried\"\n"
       "ORBextractor.carryEvery: 15\n",
       cv::FileStorage::READ | cv::FileStorage::MEMORY);
   ORBextractor orb = ORBextractor::from_settings(settings);

@@ -14,7 +14,8 @@ namespace aief {
 
 class OrbSlamExtractorBase {
  public:
-  // ORB-SLAM's signature; the rest of the options are ExtractorOptions defaults (AIEF mode).
+  // ORB-SLAM's signature; the rest of the options are orbslam2 mode's (ORB-SLAM's choices on
+  // aief's kernels: no entropy mask, quadtree; docs/slam.md, "Which choice costs what").
   OrbSlamExtractorBase(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST);
   explicit OrbSlamExtractorBase(const ExtractorOptions& options);
 
@@ -22,8 +23,9 @@ class OrbSlamExtractorBase {
   // .scaleFactor, .nLevels, .iniThFAST, .minThFAST, and ours: every extractor option has a key
   // (ORBextractor.mode, .entropyThreshold (a number or "auto"), .blockSize, .threads, ...; the
   // list is the option table's, core/option_table.cpp, and `aief extract --help` explains each).
-  // Missing keys keep the mode's values; a wrong value throws aief::Error naming the key and what
-  // it accepts; a mode's conflicts are refused as in the CLI. scaleFactor is rounded to float, as
+  // The mode is orbslam2 unless ORBextractor.mode names another (the AIEF keys, such as
+  // .entropyThreshold, need ORBextractor.mode: "aief"). Missing keys keep the mode's values; a
+  // wrong value throws aief::Error naming the key and what it accepts; a mode's conflicts are refused as in the CLI. scaleFactor is rounded to float, as
   // both versions' Tracking reads it, so settings and the five-number constructor give the same
   // extractor. Also the way to change nFeatures for the monocular initialiser.
   static ExtractorOptions options_from_settings(const cv::FileStorage& settings);

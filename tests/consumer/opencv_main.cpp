@@ -2,7 +2,6 @@
 // drop-in; both must find keypoints, agree with each other and give N x 32 CV_8U descriptors.
 #include <cstdio>
 #include <cstring>
-#include <limits>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -20,9 +19,9 @@ int main() {
 
   std::vector<cv::KeyPoint> keypoints, orb_keypoints;
   cv::Mat descriptors, orb_descriptors;
-  aief::ExtractorOptions options;
+  // The drop-ins' options: orbslam2 mode (docs/slam.md, "Which choice costs what").
+  aief::ExtractorOptions options = aief::options_for_mode(aief::Mode::orbslam2);
   options.n_features = 300;
-  options.candidate_pool = std::numeric_limits<double>::infinity();  // as the drop-ins (slam.md)
   aief::cv_extract(image, keypoints, descriptors, options);
   aief::ORBextractor orb(300, 1.2f, 8, 20, 7);
   orb(image, cv::noArray(), orb_keypoints, orb_descriptors);

@@ -30,7 +30,7 @@ int run() {
   cv::FileStorage fSettings(
       "%YAML:1.0\nORBextractor.nFeatures: 500\nORBextractor.scaleFactor: "
       "1.2\nORBextractor.nLevels: 8\n"
-      "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\nORBextractor.mode: \"aief\"\n",
+      "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\nORBextractor.threads: 1\n",
       cv::FileStorage::READ | cv::FileStorage::MEMORY);
   // Tracking.cc, unchanged:
   int nFeatures = fSettings["ORBextractor.nFeatures"];
