@@ -219,19 +219,23 @@ Handle file_creation() {
 // entry too large for it (its "flash" increase, kept: the local heap of a top-level group grows
 // with the images, about 2.4 MB in a matches file of 1,000,000 pairs over 100,000 images). The
 // cache counts an object header at its size on disk, not at the size of the messages decoded into
-// it (about 28 times more here), and by default grows to 32 MB whenever its hit rate falls below
+// it (about 11 to 28 times more), and by default grows to 32 MB whenever its hit rate falls below
 // 90%, as it does when each group is read once: `aief colmap` over 20,000 pairs peaked at 365 MB
 // so, 156 MB at 4 MB. At 1 or 2 MB, the same pairs from the 1,000,000-pair file took twice the
 // wall time; at 4 MB they take no longer than from a 50,000-pair file.
 constexpr std::size_t kReadCacheBytes = std::size_t{4} << 20;
-Handle read_access() {
+// A reader going through the file once in name order (merge's two passes) reuses only the nodes of
+// the group index on its path, which a small cache keeps: `aief merge` of two shards of 20,000
+// images peaks at 95 MB so, 201 MB at 4 MB, for no more CPU (docs/scale_out.md).
+constexpr std::size_t kInNameOrderCacheBytes = std::size_t{256} << 10;
+Handle read_access(std::size_t cache_bytes) {
   Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5AC_cache_config_t cache{};
   cache.version = H5AC__CURR_CACHE_CONFIG_VERSION;
   if (H5Pget_mdc_config(access.get(), &cache) >= 0) {
     cache.set_initial_size = true;
-    cache.initial_size = kReadCacheBytes;
-    cache.min_size = std::min<std::size_t>(cache.min_size, kReadCacheBytes);
+    cache.initial_size = cache_bytes;
+    cache.min_size = std::min<std::size_t>(cache.min_size, cache_bytes);
     cache.incr_mode = H5C_incr__off;  // the flash increase for large entries stays on
     cache.decr_mode = H5C_decr__off;
     H5Pset_mdc_config(access.get(), &cache);
@@ -278,9 +282,11 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   silence_hdf5();
   std::error_code ec;
   bool creating = false;
-  if (mode == Mode::read) {
+  if (mode != Mode::read_write) {
     if (!std::filesystem::exists(path, ec)) throw Error("cannot open '" + path + "': no such file");
-    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, read_access().get());
+    const std::size_t cache_bytes =
+        mode == Mode::read_in_name_order ? kInNameOrderCacheBytes : kReadCacheBytes;
+    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, read_access(cache_bytes).get());
   } else if (std::filesystem::exists(path, ec)) {
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   } else {
@@ -781,7 +787,7 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
   std::unordered_set<std::string> kept;  // images already in the output, from an earlier merge
   const bool extending = fs::exists(output, ec);
   if (extending) {
-    const Hdf5File previous(output, Hdf5File::Mode::read);
+    const Hdf5File previous(output, Hdf5File::Mode::read_in_name_order);
     for (std::string& name : previous.feature_names()) {
       same_options.check(previous, name);
       kept.insert(std::move(name));
@@ -791,7 +797,7 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
   std::vector<std::vector<std::string>> names;
   std::unordered_map<std::string, std::size_t> first_shard;
   for (const std::string& input : inputs) {
-    shards.push_back(std::make_unique<Hdf5File>(input, Hdf5File::Mode::read));
+    shards.push_back(std::make_unique<Hdf5File>(input, Hdf5File::Mode::read_in_name_order));
     names.push_back(shards.back()->feature_names());
     for (const std::string& name : names.back()) {
       const auto [at, inserted] = first_shard.emplace(name, shards.size() - 1);

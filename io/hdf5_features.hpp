@@ -55,7 +55,10 @@ namespace aief::io {
 // (File systems without fallocate, and copy-on-write ones such as btrfs, get the diversion only.)
 class Hdf5File {
  public:
-  enum class Mode { read, read_write };
+  // read_in_name_order: for a reader that goes through the file once, image after image in name
+  // order (merge's passes), which needs only a small metadata cache (io/hdf5_features.cpp,
+  // read_access); read: for any order of reads.
+  enum class Mode { read, read_in_name_order, read_write };
   Hdf5File(const std::string& path, Mode mode);
   ~Hdf5File();
   Hdf5File(const Hdf5File&) = delete;
