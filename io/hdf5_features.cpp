@@ -794,8 +794,10 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     }
   }
   std::vector<std::unique_ptr<Hdf5File>> shards;
-  std::vector<std::vector<std::string>> names;
-  std::unordered_map<std::string, std::size_t> first_shard;
+  std::vector<std::vector<std::string>> names;  // each shard's, kept for the copy
+  names.reserve(inputs.size());
+  // Each image's shard, keyed by the names above (not copies of them: 48 bytes less an image).
+  std::unordered_map<std::string_view, std::size_t> first_shard;
   for (const std::string& input : inputs) {
     shards.push_back(std::make_unique<Hdf5File>(input, Hdf5File::Mode::read_in_name_order));
     names.push_back(shards.back()->feature_names());
