@@ -20,25 +20,41 @@ namespace {
 // ORB-SLAM's choices (no entropy mask, quadtree distribution) on aief's kernels, because in
 // ORB-SLAM3's stereo tracking the AIEF mask and proportional distribution cost accuracy (baseline
 // 8 mm against 20, fast rotation 37 against 109, light change 7.5 against 13; "Which choice costs
-// what"); `ORBextractor.mode: "aief"` gives them back. And whatever the mode, keypoints sit where
-// ORB-SLAM puts them, level pixel x (an integer) at x * scale_n in level 0:
-// Frame::ComputeStereoMatches (ORB-SLAM2 and ORB-SLAM3) centres its SAD window at round(x /
-// scale_n) in mvImagePyramid and takes the disparity from x itself, so a sub-pixel or
-// pixel-centre x shifts that keypoint's disparity by x - scale_n * round(x / scale_n): up to half
-// a level pixel, times scale_n ("Stereo"). No candidate pool either: it left half of ORB-SLAM3's
-// grid cells empty and made its stereo trajectories 2-5x worse in AIEF mode ("Results").
+// what"); `ORBextractor.mode: "aief"` gives them back. No candidate pool in any mode: it left half
+// of ORB-SLAM3's grid cells empty and made its stereo trajectories 2-5x worse ("Results").
 constexpr Mode kDropInMode = Mode::orbslam2;
 
-ExtractorOptions with_orbslam_conventions(ExtractorOptions options) {
-  options.coordinates = CoordinateMap::scaled;
-  options.subpixel = false;
+// Where keypoints sit. For a stereo rig or a depth camera, where ORB-SLAM puts them: level pixel
+// x (an integer) at x * scale_n in level 0. Frame::ComputeStereoMatches (ORB-SLAM2 and ORB-SLAM3)
+// centres its SAD window at round(x / scale_n) in mvImagePyramid and takes the disparity from x
+// itself, so a sub-pixel or pixel-centre x shifts that keypoint's disparity by
+// x - scale_n * round(x / scale_n): up to half a level pixel, times scale_n ("Stereo"). A
+// monocular camera reads no disparity, and there the engine's own convention (pixel-centre map,
+// sub-pixel peak: where the pyramid really sampled the point) initialises and tracks as ORB-SLAM3's
+// own extractor does, where ORB-SLAM's convention lost tracking in every baseline run ("The
+// keypoint convention in monocular").
+ExtractorOptions with_keypoint_convention(ExtractorOptions options, bool stereo_or_depth) {
+  options.coordinates = stereo_or_depth ? CoordinateMap::scaled : CoordinateMap::pixel_centre;
+  options.subpixel = !stereo_or_depth;
   options.candidate_pool = std::numeric_limits<double>::infinity();
   return options;
 }
 
+// Whether ORB-SLAM settings describe a stereo rig or a depth camera: the keys of a second camera,
+// a baseline or a depth scale, in either settings format (ORB-SLAM2 and ORB-SLAM3 before 1.0:
+// Camera.bf, ThDepth, DepthMapFactor; ORB-SLAM3 1.0: Camera2.*, Stereo.*, RGBD.*).
+bool describes_stereo_or_depth(const cv::FileStorage& settings) {
+  for (const char* key : {"Camera.bf", "ThDepth", "DepthMapFactor", "Camera2.fx", "Stereo.b",
+                          "Stereo.ThDepth", "Stereo.T_c1_c2", "RGBD.DepthMapFactor"})
+    if (!settings[key].empty()) return true;
+  return false;
+}
+
 ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, int iniThFAST,
                                  int minThFAST) {
-  ExtractorOptions options = with_orbslam_conventions(options_for_mode(kDropInMode));
+  // No settings to tell the sensor: ORB-SLAM's convention, which stereo needs.
+  ExtractorOptions options =
+      with_keypoint_convention(options_for_mode(kDropInMode), /*stereo_or_depth=*/true);
   options.n_features = nfeatures;
   options.scale_factor = scaleFactor;
   options.n_levels = nlevels;
@@ -102,8 +118,8 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
     if (const cv::FileNode node = settings[key]; !node.empty())
       given.push_back({&row, text_of_node(node, key), key});
   }
-  // The drop-ins' own defaults over the mode's (with_orbslam_conventions), unless set; their
-  // mode unless the settings name one.
+  // The drop-ins' own defaults over the mode's (with_keypoint_convention for this sensor), unless
+  // set; their mode unless the settings name one.
   const auto is_given = [&](std::string_view key) {
     const option_table::OptionRow& row = option_table::row(key);
     return std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.row == &row; });
@@ -114,7 +130,8 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
     given.push_back(
         {&row, std::string(option_names::name_of(kDropInMode)), std::string(row.yaml_key)});
   }
-  const ExtractorOptions convention = with_orbslam_conventions({});
+  const ExtractorOptions convention =
+      with_keypoint_convention({}, describes_stereo_or_depth(settings));
   for (const char* key : {"coordinates", "subpixel", "candidate_pool"}) {
     if (is_given(key)) continue;
     const option_table::OptionRow& row = option_table::row(key);

@@ -192,8 +192,8 @@ TEST(OptionTable, DropInsDefaultToOrbSlam2ModeAndSayWhatAnAiefKeyNeeds) {
   const auto settings = [](const std::string& body) {
     return cv::FileStorage("%YAML:1.0\n" + body, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   };
-  const ExtractorOptions plain =
-      ORBextractor::options_from_settings(settings("ORBextractor.nFeatures: 800\n"));
+  const ExtractorOptions plain = ORBextractor::options_from_settings(
+      settings("Camera.bf: 47.9\nORBextractor.nFeatures: 800\n"));  // a stereo rig's settings
   EXPECT_EQ(table::record_of(plain), table::record_of([] {
               ExtractorOptions o = options_for_mode(Mode::orbslam2);
               o.n_features = 800;

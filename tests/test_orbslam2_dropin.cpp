@@ -188,8 +188,10 @@ TEST(OrbSlam2DropIn, ReadsItsSettingsKeys) {
 }
 
 TEST(OrbSlam2DropIn, OrbSlam2sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
-  // TUM1.yaml's values; Tracking.cc reads scaleFactor into a float and calls the constructor.
+  // RGB-D TUM1.yaml's values (a depth camera: the constructor's keypoint convention); Tracking.cc
+  // reads scaleFactor into a float and calls the constructor.
   const SettingsFile file(
+      "Camera.bf: 40.0\nThDepth: 40.0\nDepthMapFactor: 5000.0\n"
       "ORBextractor.nFeatures: 1000\nORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
       "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\n");
   ORBextractor from_file = ORBextractor::from_settings(file.open());
@@ -222,11 +224,19 @@ TEST(OrbSlam2DropIn, SettingsModesAndAutoThreshold) {
     EXPECT_TRUE(o.auto_threshold);
   }
   {
-    const SettingsFile file(
-        "ORBextractor.mode: \"aief\"\n");  // the mode keeps the drop-ins' conventions
+    // The mode keeps the drop-ins' conventions: a stereo rig's (Camera.bf) ...
+    const SettingsFile file("Camera.bf: 47.9\nORBextractor.mode: \"aief\"\n");
     const ExtractorOptions o = ORBextractor::options_from_settings(file.open());
     EXPECT_EQ(o.coordinates, CoordinateMap::scaled);
     EXPECT_FALSE(o.subpixel);
+    EXPECT_TRUE(std::isinf(o.candidate_pool));
+  }
+  {
+    // ... and a monocular camera's.
+    const SettingsFile file("ORBextractor.mode: \"aief\"\n");
+    const ExtractorOptions o = ORBextractor::options_from_settings(file.open());
+    EXPECT_EQ(o.coordinates, CoordinateMap::pixel_centre);
+    EXPECT_TRUE(o.subpixel);
     EXPECT_TRUE(std::isinf(o.candidate_pool));
   }
   {

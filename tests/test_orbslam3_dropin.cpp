@@ -275,9 +275,10 @@ TEST(OrbSlam3DropIn, EmptyImageReturnsMinusOneAndOtherBadInputThrows) {
 }
 
 TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
-  // EuRoC.yaml's ORB values; Tracking.cc reads scaleFactor into a float and calls the constructor.
+  // EuRoC.yaml's ORB values, a stereo rig (the constructor's keypoint convention); Tracking.cc
+  // reads scaleFactor into a float and calls the constructor.
   const cv::FileStorage settings(
-      "%YAML:1.0\nORBextractor.nFeatures: 1200\nORBextractor.scaleFactor: "
+      "%YAML:1.0\nStereo.b: 0.0745\nORBextractor.nFeatures: 1200\nORBextractor.scaleFactor: "
       "1.2\nORBextractor.nLevels: 8\n"
       "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\n",
       cv::FileStorage::READ | cv::FileStorage::MEMORY);
@@ -318,6 +319,33 @@ TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("ORBextractor.nLevels"), std::string::npos) << e.what();
   }
+}
+
+// Settings that describe a stereo rig or a depth camera (either settings format) get ORB-SLAM's
+// integer level pixels, which Frame::ComputeStereoMatches needs; monocular settings the engine's
+// pixel-centre, sub-pixel keypoints (docs/slam.md, "The keypoint convention in monocular").
+TEST(OrbSlam3DropIn, KeypointConventionFollowsTheSensorTheSettingsDescribe) {
+  const auto options_of_settings = [](const std::string& body) {
+    return ORBextractor::options_from_settings(
+        cv::FileStorage("%YAML:1.0\n" + body, cv::FileStorage::READ | cv::FileStorage::MEMORY));
+  };
+  for (const std::string key :
+       {"Camera.bf: 47.9", "ThDepth: 35.0", "DepthMapFactor: 5000.0", "Camera2.fx: 458.654",
+        "Stereo.b: 0.0745", "Stereo.ThDepth: 60.0", "RGBD.DepthMapFactor: 5000.0"}) {
+    const ExtractorOptions o = options_of_settings("Camera1.fx: 458.654\n" + key + "\n");
+    EXPECT_EQ(o.coordinates, CoordinateMap::scaled) << key;
+    EXPECT_FALSE(o.subpixel) << key;
+  }
+  const std::string monocular = "Camera.type: \"PinHole\"\nCamera1.fx: 458.654\n";
+  const ExtractorOptions mono = options_of_settings(monocular);
+  EXPECT_EQ(mono.coordinates, CoordinateMap::pixel_centre);
+  EXPECT_TRUE(mono.subpixel);
+  EXPECT_TRUE(std::isinf(mono.candidate_pool));
+  // Keys given win over either convention.
+  const ExtractorOptions asked = options_of_settings(
+      monocular + "ORBextractor.coordinates: \"scaled\"\nORBextractor.subpixel: 0\n");
+  EXPECT_EQ(asked.coordinates, CoordinateMap::scaled);
+  EXPECT_FALSE(asked.subpixel);
 }
 
 TEST(OrbSlam3DropIn, CarriedThresholdFromTheSettingsChangesFAfterTheFirstSweep) {

@@ -24,7 +24,10 @@ class OrbSlamExtractorBase {
   // (ORBextractor.mode, .entropyThreshold (a number or "auto"), .blockSize, .threads, ...; the
   // list is the option table's, core/option_table.cpp, and `aief extract --help` explains each).
   // The mode is orbslam2 unless ORBextractor.mode names another (the AIEF keys, such as
-  // .entropyThreshold, need ORBextractor.mode: "aief"). Missing keys keep the mode's values; a
+  // .entropyThreshold, need ORBextractor.mode: "aief"). Keypoints sit at ORB-SLAM's integer level
+  // pixels when the settings describe a stereo rig or a depth camera (Camera.bf, Stereo.b,
+  // Camera2.fx, RGBD.DepthMapFactor, ...: Frame::ComputeStereoMatches needs them), else at the
+  // engine's pixel-centre, sub-pixel positions (docs/orbslam2.md, "Differences to know"). Missing keys keep the mode's values; a
   // wrong value throws aief::Error naming the key and what it accepts; a mode's conflicts are refused as in the CLI. scaleFactor is rounded to float, as
   // both versions' Tracking reads it, so settings and the five-number constructor give the same
   // extractor. Also the way to change nFeatures for the monocular initialiser.
