@@ -19,7 +19,7 @@ namespace {
 // The drop-ins' defaults, each measured inside ORB-SLAM3 (docs/slam.md). The mode is orbslam2:
 // ORB-SLAM's choices (no entropy mask, quadtree distribution) on aief's kernels, because in
 // ORB-SLAM3's stereo tracking the AIEF mask and proportional distribution cost accuracy (baseline
-// 8 mm against 20, fast rotation 37 against 109, light change 7.5 against 13; "Which choice costs
+// 8 mm against 20, fast rotation 41 against 109, light change 7.5 against 13; "Which choice costs
 // what"); `ORBextractor.mode: "aief"` gives them back. No candidate pool in any mode: it left half
 // of ORB-SLAM3's grid cells empty and made its stereo trajectories 2-5x worse ("Results").
 constexpr Mode kDropInMode = Mode::orbslam2;
@@ -142,7 +142,9 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
   try {
     options = option_table::resolve_options(given);
   } catch (const Error& e) {
-    if (mode_given) throw;
+    // A refusal by the mode the settings did not name says which mode that was.
+    const std::string mode_key(option_table::row("mode").yaml_key);
+    if (mode_given || std::string(e.what()).find(mode_key) == std::string::npos) throw;
     throw Error(
         std::string(e.what()) + " (ORBextractor.mode is \"" +
         std::string(option_names::name_of(kDropInMode)) +

@@ -211,6 +211,13 @@ TEST(OptionTable, DropInsDefaultToOrbSlam2ModeAndSayWhatAnAiefKeyNeeds) {
     EXPECT_NE(message.find("ORBextractor.entropyThreshold"), std::string::npos) << message;
     EXPECT_NE(message.find("ORBextractor.mode: \"aief\""), std::string::npos) << message;
   }
+  // A bad value is only that: no word about the mode.
+  try {
+    ORBextractor::options_from_settings(settings("ORBextractor.nLevels: 7.5\n"));
+    ADD_FAILURE() << "nLevels 7.5 accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("ORBextractor.mode"), std::string::npos) << e.what();
+  }
   // A named mode's own refusal carries no hint about the default.
   try {
     ORBextractor::options_from_settings(
