@@ -1,0 +1,100 @@
+// aief eval's report, pinned byte for byte: the markdown (docs/evaluation.md is one), the JSON and
+// the plots of every row on the bundled pairs. The times, which vary from run to run, are set to
+// fixed figures; everything else is measured as `aief eval` measures it (cv::ORB and cv::SIFT rows:
+// the OpenCV of scripts/setup).
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "tests/features_hash.hpp"
+#include "tests/test_support.hpp"
+#include "tools/eval/dataset.hpp"
+#include "tools/eval/methods.hpp"
+#include "tools/eval/report.hpp"
+
+namespace aief::eval {
+namespace {
+
+std::uint64_t hash_of(const std::string& text) {
+  test::Fnv1a hash;
+  hash.add(text.data(), text.size());
+  return hash.value();
+}
+
+std::string bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Every row on img1 -> img2 of the bundled sequences, times fixed.
+EvalRun bundled_run() {
+  EvalRun run;
+  run.pairs = find_pairs(AIEF_SAMPLE_DIR, {"graf", "leuven", "boat"}, false);
+  run.methods = kAllMethods;
+  run.matcher = "mutual";
+  run.seconds = 42;
+  run.timing_rounds = 5;
+  // run.load stays unsampled: the note on the load names this machine's hardware threads.
+  cv::setNumThreads(1);
+  const EvalSettings settings;
+  for (std::size_t p = 0; p < run.pairs.size(); ++p) {
+    const PairInput& pair = run.pairs[p];
+    const cv::Mat a = test::load_sample_gray(pair.sequence, "img1.png");
+    const cv::Mat b = test::load_sample_gray(pair.sequence, "img2.png");
+    std::vector<PairResult> row;
+    for (std::size_t m = 0; m < run.methods.size(); ++m) {
+      PairResult r = run_method(run.methods[m], a, b, pair.truth, settings);
+      r.extract_ms = 2.0 + 0.5 * static_cast<double>(m) + 0.125 * static_cast<double>(p);
+      r.extract_min_ms = r.extract_ms - 0.25;
+      r.extract_max_ms = r.extract_ms + 0.75;
+      r.extract_wall_ms = r.extract_ms + 0.5;
+      r.sweep_ms = r.sweep_ms > 0 ? 30.0 + static_cast<double>(p) : 0.0;
+      row.push_back(r);
+    }
+    run.results.push_back(row);
+  }
+  return run;
+}
+
+// A run with only some of the rows: the sections that need a missing row are left out.
+EvalRun with_rows(const EvalRun& full, const std::vector<std::size_t>& rows) {
+  EvalRun run = full;
+  run.methods.clear();
+  for (std::size_t m : rows) run.methods.push_back(full.methods[m]);
+  for (std::size_t p = 0; p < full.results.size(); ++p) {
+    run.results[p].clear();
+    for (std::size_t m : rows) run.results[p].push_back(full.results[p][m]);
+  }
+  return run;
+}
+
+TEST(EvalReport, MarkdownJsonAndPlotsOfTheBundledPairsArePinned) {
+  const EvalRun run = bundled_run();
+  ASSERT_EQ(run.pairs.size(), 3u);
+  ASSERT_EQ(run.methods.size(), 8u);
+  const std::string markdown = markdown_report(run, "evaluation_plots");
+  EXPECT_EQ(markdown.find("# aief evaluation"), 0u);
+  EXPECT_EQ(hash_of(markdown), 8858723817471973114ull) << markdown;
+  EXPECT_EQ(hash_of(json_report(run)), 7157074843877695771ull) << json_report(run);
+  const test::TempFolder folder("aief_eval_report");
+  const std::vector<std::string> plots = write_plots(run, folder.file("plots"));
+  ASSERT_EQ(plots.size(), 3u);
+  std::string all_plots;
+  for (const std::string& path : plots) all_plots += bytes_of(path);
+  EXPECT_EQ(hash_of(all_plots), 13780459131209024433ull);
+
+  // Without the automatic, the adaptive paper and cv::ORB rows (no F table, no targets); and
+  // without the swept row (the targets, no F table), no plots folder.
+  const std::string fewer = markdown_report(with_rows(run, {0, 1, 4, 7}), "");
+  EXPECT_EQ(hash_of(fewer), 9262577821685538527ull) << fewer;
+  const std::string no_sweep = markdown_report(with_rows(run, {0, 3, 5, 6}), "plots");
+  EXPECT_EQ(hash_of(no_sweep), 4373943680349144513ull) << no_sweep;
+}
+
+}  // namespace
+}  // namespace aief::eval
