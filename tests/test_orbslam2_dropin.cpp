@@ -1,5 +1,6 @@
-// aief::ORBextractor behaves as ORB-SLAM2's ORBextractor where ORB-SLAM2 reads it (accessors,
-// call operator, settings keys) and computes exactly the engine's features.
+// aief::ORBextractor behaves as ORB-SLAM2's ORBextractor where ORB-SLAM2 reads it (call operator,
+// settings keys) and computes exactly the engine's features. What both drop-ins share (accessors,
+// constructor, pyramid) is tested once in tests/test_orbslam_dropins.cpp.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,77 +16,7 @@
 namespace aief {
 namespace {
 
-void expect_same(const Features& features, const std::vector<cv::KeyPoint>& keypoints,
-                 const cv::Mat& descriptors) {
-  ASSERT_EQ(keypoints.size(), features.keypoints.size());
-  ASSERT_EQ(descriptors.rows, static_cast<int>(features.descriptors.size()));
-  ASSERT_EQ(descriptors.cols, kDescriptorBytes);
-  ASSERT_EQ(descriptors.type(), CV_8U);
-  for (std::size_t i = 0; i < keypoints.size(); ++i) {
-    const Keypoint& want = features.keypoints[i];
-    const cv::KeyPoint& got = keypoints[i];
-    ASSERT_TRUE(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size &&
-                got.angle == want.angle_deg && got.response == want.response &&
-                got.octave == want.octave && got.class_id == -1)
-        << "keypoint " << i << ": got (" << got.pt.x << ", " << got.pt.y << ") octave "
-        << got.octave << " angle " << got.angle << ", want (" << want.x << ", " << want.y
-        << ") octave " << want.octave << " angle " << want.angle_deg;
-    for (int b = 0; b < kDescriptorBytes; ++b)
-      ASSERT_EQ(descriptors.at<std::uint8_t>(static_cast<int>(i), b),
-                features.descriptors[i][static_cast<std::size_t>(b)])
-          << "descriptor " << i << " byte " << b;
-  }
-}
-
-// The scale tables exactly as ORB-SLAM2's ORBextractor constructor computes them (float).
-TEST(OrbSlam2DropIn, AccessorsAsOrbSlam2) {
-  for (const float factor : {1.2f, 1.5f, 2.0f}) {
-    for (const int levels : {1, 3, 8, 12}) {
-      const ORBextractor orb(1000, factor, levels, 20, 7);
-      EXPECT_EQ(orb.GetLevels(), levels);
-      EXPECT_EQ(orb.GetScaleFactor(), factor);
-      std::vector<float> scale(static_cast<std::size_t>(levels)),
-          sigma2(static_cast<std::size_t>(levels));
-      scale[0] = 1.0f;
-      sigma2[0] = 1.0f;
-      for (std::size_t i = 1; i < scale.size(); ++i) {
-        scale[i] = scale[i - 1] * factor;
-        sigma2[i] = scale[i] * scale[i];
-      }
-      ASSERT_EQ(orb.GetScaleFactors().size(), scale.size());
-      ASSERT_EQ(orb.GetInverseScaleFactors().size(), scale.size());
-      ASSERT_EQ(orb.GetScaleSigmaSquares().size(), scale.size());
-      ASSERT_EQ(orb.GetInverseScaleSigmaSquares().size(), scale.size());
-      for (std::size_t i = 0; i < scale.size(); ++i) {
-        SCOPED_TRACE("factor " + std::to_string(factor) + ", level " + std::to_string(i));
-        EXPECT_EQ(orb.GetScaleFactors()[i], scale[i]);
-        EXPECT_EQ(orb.GetInverseScaleFactors()[i], 1.0f / scale[i]);
-        EXPECT_EQ(orb.GetScaleSigmaSquares()[i], sigma2[i]);
-        EXPECT_EQ(orb.GetInverseScaleSigmaSquares()[i], 1.0f / sigma2[i]);
-      }
-    }
-  }
-}
-
-TEST(OrbSlam2DropIn, ConstructorArgumentsBecomeTheOptions) {
-  const ORBextractor orb(1234, 1.3f, 6, 25, 9);
-  const ExtractorOptions& o = orb.extractor().options();
-  EXPECT_EQ(o.n_features, 1234);
-  EXPECT_EQ(o.scale_factor, static_cast<double>(1.3f));
-  EXPECT_EQ(o.n_levels, 6);
-  EXPECT_EQ(o.fast_threshold, 25);
-  EXPECT_EQ(o.fast_min_threshold, 9);
-  // ORB-SLAM's choices unless the settings name a mode (docs/slam.md, "Which choice costs what")
-  EXPECT_EQ(o.distribution, Distribution::quadtree);
-  EXPECT_EQ(o.entropy, EntropyMeasure::off);
-  EXPECT_EQ(o.coordinates,
-            CoordinateMap::scaled);  // ORB-SLAM's keypoint convention (docs/slam.md, "Stereo")
-  EXPECT_FALSE(o.subpixel);
-  EXPECT_TRUE(std::isinf(o.candidate_pool));  // spread over the frame (docs/slam.md, "Results")
-  EXPECT_THROW(ORBextractor(1000, 0.8f, 8, 20, 7), Error);
-}
-
-TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeaturesAndPyramid) {
+TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeatures) {
   const cv::Mat gray = test::load_sample_gray("leuven", "img1.png");
   ORBextractor orb(800, 1.2f, 8, 20, 7);
   std::vector<cv::KeyPoint> keypoints;
@@ -98,30 +29,16 @@ TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeaturesAndPyramid) {
   options.scale_factor = 1.2f;
   const Features features = extract(view_of(gray), options);
   ASSERT_GT(features.keypoints.size(), 700u);
-  expect_same(features, keypoints, descriptors);
+  EXPECT_TRUE(test::same_features(features, keypoints, descriptors));
 
-  // The pyramid ORB-SLAM2's stereo matching reads: level 0 is the image, level n is
-  // round(size / scale_n) as ORB-SLAM2 sizes it, and equals the engine's level.
-  ASSERT_EQ(orb.mvImagePyramid.size(), 8u);
-  EXPECT_EQ(cv::norm(orb.mvImagePyramid[0], gray, cv::NORM_INF), 0.0);
-  for (int n = 1; n < 8; ++n) {
-    const cv::Mat& level = orb.mvImagePyramid[static_cast<std::size_t>(n)];
-    const float inverse = orb.GetInverseScaleFactors()[static_cast<std::size_t>(n)];
-    EXPECT_EQ(level.cols, cvRound(static_cast<float>(gray.cols) * inverse)) << "level " << n;
-    EXPECT_EQ(level.rows, cvRound(static_cast<float>(gray.rows) * inverse)) << "level " << n;
-    const ImageView view = orb.extractor().pyramid_level(n);
-    EXPECT_EQ(static_cast<const void*>(level.data), static_cast<const void*>(view.data))
-        << "level " << n;
-  }
-
-  // Colour in, the same features out; the pyramid follows the latest frame.
+  // Colour in, the same features out, after a frame of another size (the pyramid: in
+  // tests/test_orbslam_dropins.cpp).
   cv::Mat bgr;
   cv::cvtColor(gray, bgr, cv::COLOR_GRAY2BGR);
   const cv::Mat small = test::load_sample_gray("boat", "img1.png")(cv::Rect(0, 0, 200, 150));
   orb(small, cv::noArray(), keypoints, descriptors);
-  EXPECT_EQ(orb.mvImagePyramid[0].cols, 200);
   orb(bgr, cv::noArray(), keypoints, descriptors);
-  expect_same(features, keypoints, descriptors);
+  EXPECT_TRUE(test::same_features(features, keypoints, descriptors));
 }
 
 TEST(OrbSlam2DropIn, MaskIsIgnoredAsOrbSlam2) {

@@ -7,14 +7,18 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "core/gaussian_blur.hpp"
 
 extern char** environ;
 
@@ -48,6 +52,82 @@ cv::Mat random_textured_image(int width, int height, std::uint32_t seed) {
   cv::GaussianBlur(noise, smooth, cv::Size(5, 5), 1.5);
   cv::normalize(smooth, smooth, 0, 255, cv::NORM_MINMAX);
   return smooth;
+}
+
+std::string first_pixel_difference(const cv::Mat& a, const cv::Mat& b, int tolerance) {
+  if (a.size() != b.size()) return "sizes differ";
+  for (int y = 0; y < a.rows; ++y)
+    for (int x = 0; x < a.cols; ++x) {
+      const int va = a.at<std::uint8_t>(y, x), vb = b.at<std::uint8_t>(y, x);
+      if (std::abs(va - vb) > tolerance) {
+        std::ostringstream out;
+        out << "first difference at (" << x << ", " << y << "): " << va << " vs " << vb;
+        return out.str();
+      }
+    }
+  return "";
+}
+
+cv::Mat gaussian7_ours(const cv::Mat& src) {
+  cv::Mat dst(src.size(), CV_8UC1, cv::Scalar(0));
+  gaussian7_rows_scalar(view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
+  return dst;
+}
+
+cv::Mat gaussian7_opencv(const cv::Mat& src) {
+  cv::Mat dst;
+  cv::GaussianBlur(src, dst, cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
+  return dst;
+}
+
+bool same_bytes(const Features& a, const Features& b) {
+  if (a.keypoints.size() != b.keypoints.size() || a.descriptors != b.descriptors) return false;
+  for (std::size_t i = 0; i < a.keypoints.size(); ++i)
+    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0) return false;
+  return true;
+}
+
+::testing::AssertionResult same_keypoint_at(const Features& features, std::size_t i,
+                                            const std::vector<cv::KeyPoint>& keypoints,
+                                            const cv::Mat& descriptors, std::size_t slot) {
+  const Keypoint& want = features.keypoints[i];
+  const cv::KeyPoint& got = keypoints[slot];
+  if (!(got.pt.x == want.x && got.pt.y == want.y && got.size == want.size &&
+        got.angle == want.angle_deg && got.response == want.response && got.octave == want.octave &&
+        got.class_id == -1))
+    return ::testing::AssertionFailure()
+           << "engine keypoint " << i << " at slot " << slot << ": got (" << got.pt.x << ", "
+           << got.pt.y << ") size " << got.size << " angle " << got.angle << " response "
+           << got.response << " octave " << got.octave << " class_id " << got.class_id << ", want ("
+           << want.x << ", " << want.y << ") size " << want.size << " angle " << want.angle_deg
+           << " response " << want.response << " octave " << want.octave << " class_id -1";
+  for (int b = 0; b < kDescriptorBytes; ++b)
+    if (descriptors.at<std::uint8_t>(static_cast<int>(slot), b) !=
+        features.descriptors[i][static_cast<std::size_t>(b)])
+      return ::testing::AssertionFailure()
+             << "engine keypoint " << i << " at slot " << slot << ", descriptor byte " << b << ": "
+             << int{descriptors.at<std::uint8_t>(static_cast<int>(slot), b)} << " vs "
+             << int{features.descriptors[i][static_cast<std::size_t>(b)]};
+  return ::testing::AssertionSuccess();
+}
+
+::testing::AssertionResult same_features(const Features& features,
+                                         const std::vector<cv::KeyPoint>& keypoints,
+                                         const cv::Mat& descriptors) {
+  if (keypoints.size() != features.keypoints.size())
+    return ::testing::AssertionFailure()
+           << keypoints.size() << " keypoints, want " << features.keypoints.size();
+  if (descriptors.rows != static_cast<int>(features.descriptors.size()) ||
+      descriptors.cols != kDescriptorBytes || descriptors.type() != CV_8U)
+    return ::testing::AssertionFailure()
+           << "descriptors " << descriptors.rows << " x " << descriptors.cols << " of type "
+           << descriptors.type() << ", want " << features.descriptors.size() << " x "
+           << kDescriptorBytes << " CV_8U";
+  for (std::size_t i = 0; i < keypoints.size(); ++i)
+    if (::testing::AssertionResult same = same_keypoint_at(features, i, keypoints, descriptors, i);
+        !same)
+      return same;
+  return ::testing::AssertionSuccess();
 }
 
 namespace {

@@ -1,13 +1,17 @@
 #pragma once
-// Shared by the tests: seeded random images and the bundled sample images.
+// Shared by the tests: seeded random images and the bundled sample images, comparisons of
+// images and features, temporary folders, running the built tool.
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
 #include "aief/cv_image_view.hpp"  // view_of, for every test
+#include "aief/features.hpp"
 #include "aief/image.hpp"
 
 namespace aief::test {
@@ -27,6 +31,28 @@ cv::Mat random_textured_image(int width, int height, std::uint32_t seed);
 // A valid small PNG file whose header (checksum fixed) declares width x height: a decompression
 // bomb's header, to test that the size is refused before decoding.
 std::vector<std::uint8_t> png_declaring(std::uint32_t width, std::uint32_t height);
+
+// The first pixel where two 8-bit images differ by more than `tolerance`, or "" when none does.
+std::string first_pixel_difference(const cv::Mat& a, const cv::Mat& b, int tolerance);
+
+// The engine's 7x7 Gaussian of a whole image (its scalar reference, core/gaussian_blur.hpp), and
+// cv::GaussianBlur's with the same kernel and border.
+cv::Mat gaussian7_ours(const cv::Mat& src);
+cv::Mat gaussian7_opencv(const cv::Mat& src);
+
+// Every keypoint byte and descriptor byte equal.
+bool same_bytes(const Features& a, const Features& b);
+
+// Engine keypoint `i` of `features` and its descriptor stand at position `slot` of an OpenCV
+// output (cv::KeyPoint field for field, class_id -1; the descriptor row byte for byte).
+::testing::AssertionResult same_keypoint_at(const Features& features, std::size_t i,
+                                            const std::vector<cv::KeyPoint>& keypoints,
+                                            const cv::Mat& descriptors, std::size_t slot);
+// An OpenCV output is exactly `features`, in the engine's order: counts, a CV_8U descriptor
+// matrix of 32 columns, then every keypoint; the first difference is reported.
+::testing::AssertionResult same_features(const Features& features,
+                                         const std::vector<cv::KeyPoint>& keypoints,
+                                         const cv::Mat& descriptors);
 
 // A fresh folder of its own under the system temporary folder (mkdtemp), removed with all it
 // holds when the object goes: two suites running at once never share a path.
