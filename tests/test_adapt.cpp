@@ -2,7 +2,6 @@
 // does not depend on F (kernel calls counted; each threshold equal to an independent extraction).
 #include <atomic>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -21,6 +20,7 @@ namespace aief {
 namespace {
 
 using test::load_sample_gray;
+using test::same_bytes;
 
 // Scalar kernels that count their work.
 struct Counts {
@@ -61,13 +61,6 @@ KernelTable counting_kernels() {
     rbrief_describe_scalar(blurred, points, angles, n, out);
   };
   return table;
-}
-
-bool same_bytes(const Features& a, const Features& b) {
-  if (a.keypoints.size() != b.keypoints.size() || a.descriptors != b.descriptors) return false;
-  for (std::size_t i = 0; i < a.keypoints.size(); ++i)
-    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0) return false;
-  return true;
 }
 
 TEST(AdaptiveSweep, ChoosesTheBestEligibleThresholdOfItsCurve) {

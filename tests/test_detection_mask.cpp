@@ -3,7 +3,6 @@
 // sets and threads; an all-allowing mask is no mask.
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -21,14 +20,7 @@ namespace {
 constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2,
                                Mode::quadtree_entropy};
 
-bool same_bytes(const Features& a, const Features& b) {
-  if (a.keypoints.size() != b.keypoints.size()) return false;
-  for (std::size_t i = 0; i < a.keypoints.size(); ++i)
-    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0 ||
-        a.descriptors[i] != b.descriptors[i])
-      return false;
-  return true;
-}
+using test::same_bytes;
 
 bool allowed_at(const cv::Mat& mask, const Keypoint& kp) {
   const int x = std::clamp(static_cast<int>(std::lround(kp.x)), 0, mask.cols - 1);

@@ -2,7 +2,6 @@
 // and descriptors that survive an exact 90-degree rotation.
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -18,13 +17,7 @@ namespace aief {
 namespace {
 
 using test::load_sample_gray;
-
-bool same_bytes(const Features& a, const Features& b) {
-  if (a.keypoints.size() != b.keypoints.size() || a.descriptors != b.descriptors) return false;
-  for (std::size_t i = 0; i < a.keypoints.size(); ++i)
-    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0) return false;
-  return true;
-}
+using test::same_bytes;
 
 class ExtractorModes : public testing::TestWithParam<Mode> {};
 

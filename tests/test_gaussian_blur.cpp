@@ -5,7 +5,6 @@
 #include <cstdlib>
 #include <iostream>
 #include <numeric>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,11 +19,8 @@
 namespace aief {
 namespace {
 
-cv::Mat blur_ours(const cv::Mat& src) {
-  cv::Mat dst(src.size(), CV_8UC1, cv::Scalar(0));
-  gaussian7_rows_scalar(view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
-  return dst;
-}
+using test::gaussian7_opencv;
+using test::gaussian7_ours;
 
 // BORDER_REFLECT_101 for offsets of at most size - 1 past either edge: -1 -> 1, size -> size - 2.
 int reflect101(int i, int size) {
@@ -61,27 +57,6 @@ cv::Mat blur_documented(const cv::Mat& src) {
   return dst;
 }
 
-cv::Mat blur_opencv(const cv::Mat& src) {
-  cv::Mat dst;
-  cv::GaussianBlur(src, dst, cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
-  return dst;
-}
-
-// First pixel where a and b differ by more than `tolerance`, or "" when none does.
-std::string first_difference(const cv::Mat& a, const cv::Mat& b, int tolerance) {
-  if (a.size() != b.size()) return "sizes differ";
-  for (int y = 0; y < a.rows; ++y)
-    for (int x = 0; x < a.cols; ++x) {
-      const int va = a.at<std::uint8_t>(y, x), vb = b.at<std::uint8_t>(y, x);
-      if (std::abs(va - vb) > tolerance) {
-        std::ostringstream out;
-        out << "first difference at (" << x << ", " << y << "): " << va << " vs " << vb;
-        return out.str();
-      }
-    }
-  return "";
-}
-
 TEST(GaussianBlur, TapsAreASymmetricQ8Gaussian) {
   // OpenCV's taps: the sampled sigma-2 Gaussian in Q8, within one unit of round(256 g / sum g)
   // (its own fixed-point rounding moves the centre pair), symmetric, summing to exactly 256.
@@ -103,13 +78,14 @@ TEST(GaussianBlur, EqualsTheDocumentedFormula) {
     for (int height : {4, 5, 7, 8, 37}) {
       const cv::Mat src =
           test::random_image(width, height, static_cast<std::uint32_t>(width * 100 + height));
-      EXPECT_EQ(first_difference(blur_ours(src), blur_documented(src), 0), "")
+      EXPECT_EQ(test::first_pixel_difference(gaussian7_ours(src), blur_documented(src), 0), "")
           << width << "x" << height;
       ++checked;
     }
   for (const char* sequence : {"graf", "boat"}) {
     const cv::Mat src = test::load_sample_gray(sequence, "img1.png");
-    EXPECT_EQ(first_difference(blur_ours(src), blur_documented(src), 0), "") << sequence;
+    EXPECT_EQ(test::first_pixel_difference(gaussian7_ours(src), blur_documented(src), 0), "")
+        << sequence;
   }
   EXPECT_EQ(checked, 90);
 }
@@ -117,13 +93,13 @@ TEST(GaussianBlur, EqualsTheDocumentedFormula) {
 TEST(GaussianBlur, FlatAndSaturatedImagesStayFlat) {
   for (int value : {0, 1, 128, 255}) {
     const cv::Mat src(9, 13, CV_8UC1, cv::Scalar(value));
-    EXPECT_EQ(first_difference(blur_ours(src), src, 0), "") << "value " << value;
+    EXPECT_EQ(test::first_pixel_difference(gaussian7_ours(src), src, 0), "") << "value " << value;
   }
   // A checkerboard of 0 and 255 drives every partial sum to its extremes.
   cv::Mat board(16, 16, CV_8UC1);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) board.at<std::uint8_t>(y, x) = ((x + y) % 2) ? 255 : 0;
-  EXPECT_EQ(first_difference(blur_ours(board), blur_documented(board), 0), "");
+  EXPECT_EQ(test::first_pixel_difference(gaussian7_ours(board), blur_documented(board), 0), "");
 }
 
 std::vector<std::pair<std::string, cv::Mat>> opencv_comparison_images() {
@@ -142,35 +118,38 @@ TEST(GaussianBlur, IsCvGaussianBlurToTheByte) {
   // The same taps, separable order, REFLECT_101 border and single rounding as OpenCV's 8-bit
   // path: rBRIEF sees exactly the image ORB-SLAM2 and cv::ORB describe.
   for (const auto& [name, src] : opencv_comparison_images()) {
-    EXPECT_EQ(first_difference(blur_ours(src), blur_opencv(src), 0), "") << name;
-    EXPECT_EQ(first_difference(blur_documented(src), blur_opencv(src), 0), "") << name;
+    EXPECT_EQ(test::first_pixel_difference(gaussian7_ours(src), gaussian7_opencv(src), 0), "")
+        << name;
+    EXPECT_EQ(test::first_pixel_difference(blur_documented(src), gaussian7_opencv(src), 0), "")
+        << name;
   }
 }
 
 TEST(GaussianBlur, RowPiecesEqualTheWhole) {
   const cv::Mat src = test::load_sample_gray("graf", "img1.png");
-  const cv::Mat whole = blur_ours(src);
+  const cv::Mat whole = gaussian7_ours(src);
   cv::Mat pieces(src.size(), CV_8UC1, cv::Scalar(0));
   const std::vector<int> cuts = {0, 1, 3, 4, 10, 11, 250, src.rows - 2, src.rows - 1, src.rows};
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     cv::Mat band = pieces.rowRange(cuts[i], cuts[i + 1]);  // dst row 0 is blurred row cuts[i]
     gaussian7_rows_scalar(view_of(src), mutable_view_of(band), cuts[i], cuts[i + 1], 0, src.cols);
   }
-  EXPECT_EQ(first_difference(pieces, whole, 0), "");
+  EXPECT_EQ(test::first_pixel_difference(pieces, whole, 0), "");
 }
 
 TEST(GaussianBlur, ColumnSpansEqualTheWholeAndLeaveTheRest) {
   const cv::Mat src = test::load_sample_gray("graf", "img1.png");
-  const cv::Mat whole = blur_ours(src);
+  const cv::Mat whole = gaussian7_ours(src);
   cv::Mat spans(src.size(), CV_8UC1, cv::Scalar(0));
   const std::vector<int> cuts = {0, 1, 3, 4, 40, 41, 600, src.cols - 3, src.cols - 1, src.cols};
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
     gaussian7_rows_scalar(view_of(src), mutable_view_of(spans), 0, src.rows, cuts[i], cuts[i + 1]);
-  EXPECT_EQ(first_difference(spans, whole, 0), "");
+  EXPECT_EQ(test::first_pixel_difference(spans, whole, 0), "");
 
   cv::Mat canvas(src.size(), CV_8UC1, cv::Scalar(77));
   gaussian7_rows_scalar(view_of(src), mutable_view_of(canvas), 0, src.rows, 100, 139);
-  EXPECT_EQ(first_difference(canvas.colRange(100, 139), whole.colRange(100, 139), 0), "");
+  EXPECT_EQ(test::first_pixel_difference(canvas.colRange(100, 139), whole.colRange(100, 139), 0),
+            "");
   EXPECT_EQ(cv::countNonZero(canvas.colRange(0, 100) != 77) +
                 cv::countNonZero(canvas.colRange(139, src.cols) != 77),
             0);
@@ -182,7 +161,7 @@ TEST(GaussianBlur, StridedViews) {
   cv::Mat canvas(40, 70, CV_8UC1, cv::Scalar(77));
   cv::Mat dst = canvas(cv::Rect(2, 4, 61, 33));
   gaussian7_rows_scalar(view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
-  EXPECT_EQ(first_difference(dst, blur_documented(src.clone()), 0), "");
+  EXPECT_EQ(test::first_pixel_difference(dst, blur_documented(src.clone()), 0), "");
   int outside_changed = 0;
   for (int y = 0; y < canvas.rows; ++y)
     for (int x = 0; x < canvas.cols; ++x) {

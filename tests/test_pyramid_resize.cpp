@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -59,21 +58,6 @@ cv::Mat resize_documented(const cv::Mat& src, int dst_width, int dst_height) {
   return dst;
 }
 
-// First pixel where a and b differ by more than `tolerance`, or "" when none does.
-std::string first_difference(const cv::Mat& a, const cv::Mat& b, int tolerance) {
-  if (a.size() != b.size()) return "sizes differ";
-  for (int y = 0; y < a.rows; ++y)
-    for (int x = 0; x < a.cols; ++x) {
-      const int va = a.at<std::uint8_t>(y, x), vb = b.at<std::uint8_t>(y, x);
-      if (std::abs(va - vb) > tolerance) {
-        std::ostringstream out;
-        out << "first difference at (" << x << ", " << y << "): " << va << " vs " << vb;
-        return out.str();
-      }
-    }
-  return "";
-}
-
 int scaled(int size) { return static_cast<int>(std::lround(size / 1.2)); }
 
 TEST(PyramidResize, PlanKeepsBothTapsInside) {
@@ -100,7 +84,7 @@ TEST(PyramidResize, ConstantImageStaysConstant) {
       const cv::Mat src(h, w, CV_8UC1, cv::Scalar(value));
       const cv::Mat dst = resize_ours(src, std::max(1, scaled(w)), std::max(1, scaled(h)));
       const cv::Mat expected(dst.size(), CV_8UC1, cv::Scalar(value));
-      EXPECT_EQ(first_difference(dst, expected, 0), "")
+      EXPECT_EQ(test::first_pixel_difference(dst, expected, 0), "")
           << "value " << value << ", " << w << "x" << h;
     }
 }
@@ -115,14 +99,17 @@ TEST(PyramidResize, EqualsTheDocumentedFormula) {
                                           {1, 1},
                                           {w, h},
                                           {w / 2 + 1, h / 2 + 1}}) {
-      EXPECT_EQ(first_difference(resize_ours(src, dw, dh), resize_documented(src, dw, dh), 0), "")
+      EXPECT_EQ(
+          test::first_pixel_difference(resize_ours(src, dw, dh), resize_documented(src, dw, dh), 0),
+          "")
           << w << "x" << h << " -> " << dw << "x" << dh;
       ++sizes_checked;
     }
   }
   const cv::Mat graf = test::load_sample_gray("graf", "img1.png");
-  EXPECT_EQ(first_difference(resize_ours(graf, scaled(graf.cols), scaled(graf.rows)),
-                             resize_documented(graf, scaled(graf.cols), scaled(graf.rows)), 0),
+  EXPECT_EQ(test::first_pixel_difference(
+                resize_ours(graf, scaled(graf.cols), scaled(graf.rows)),
+                resize_documented(graf, scaled(graf.cols), scaled(graf.rows)), 0),
             "");
   EXPECT_EQ(sizes_checked, 32);
 }
@@ -136,7 +123,7 @@ TEST(PyramidResize, WithinOneOfOpenCvOnRealImages) {
       const cv::Mat ours = resize_ours(level, dw, dh);
       cv::Mat opencv;
       cv::resize(level, opencv, cv::Size(dw, dh), 0, 0, cv::INTER_LINEAR);
-      EXPECT_EQ(first_difference(ours, opencv, 1), "") << sequence << " level " << n;
+      EXPECT_EQ(test::first_pixel_difference(ours, opencv, 1), "") << sequence << " level " << n;
       level = ours;
     }
   }
@@ -150,7 +137,7 @@ TEST(PyramidResize, WithinOneOfOpenCvOnOddRandomImages) {
          std::vector<std::pair<int, int>>{{scaled(w), scaled(h)}, {w / 2, h / 2}, {w - 1, h - 1}}) {
       cv::Mat opencv;
       cv::resize(src, opencv, cv::Size(dw, dh), 0, 0, cv::INTER_LINEAR);
-      EXPECT_EQ(first_difference(resize_ours(src, dw, dh), opencv, 1), "")
+      EXPECT_EQ(test::first_pixel_difference(resize_ours(src, dw, dh), opencv, 1), "")
           << w << "x" << h << " -> " << dw << "x" << dh;
     }
   }
@@ -165,7 +152,7 @@ TEST(PyramidResize, RowPiecesEqualTheWhole) {
   const std::vector<int> cuts = {0, 1, 2, 7, 64, 65, 300, dh - 1, dh};
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
     resize_bilinear_rows_scalar(view_of(src), plan, mutable_view_of(pieces), cuts[i], cuts[i + 1]);
-  EXPECT_EQ(first_difference(pieces, whole, 0), "");
+  EXPECT_EQ(test::first_pixel_difference(pieces, whole, 0), "");
 }
 
 TEST(PyramidResize, StridedViewsReadAndWriteOnlyTheirPixels) {
@@ -177,7 +164,7 @@ TEST(PyramidResize, StridedViewsReadAndWriteOnlyTheirPixels) {
   cv::Mat dst = canvas(cv::Rect(4, 2, dw, dh));
   const ResizePlan plan = make_resize_plan(src.cols, src.rows, dw, dh);
   resize_bilinear_rows_scalar(view_of(src), plan, mutable_view_of(dst), 0, dh);
-  EXPECT_EQ(first_difference(dst, resize_documented(src.clone(), dw, dh), 0), "");
+  EXPECT_EQ(test::first_pixel_difference(dst, resize_documented(src.clone(), dw, dh), 0), "");
   int outside_changed = 0;
   for (int y = 0; y < canvas.rows; ++y)
     for (int x = 0; x < canvas.cols; ++x) {

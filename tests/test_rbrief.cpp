@@ -22,17 +22,8 @@ namespace {
 
 constexpr int kBytes = 32;
 
-cv::Mat blur_ours(const cv::Mat& src) {
-  cv::Mat dst(src.size(), CV_8UC1, cv::Scalar(0));
-  gaussian7_rows_scalar(view_of(src), mutable_view_of(dst), 0, src.rows, 0, src.cols);
-  return dst;
-}
-
-cv::Mat blur_opencv(const cv::Mat& src) {
-  cv::Mat dst;
-  cv::GaussianBlur(src, dst, cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
-  return dst;
-}
+using test::gaussian7_opencv;
+using test::gaussian7_ours;
 
 // The image cv::ORB (4.x) describes at level 0: the input copied into a buffer with a 32-pixel
 // REFLECT_101 border, then blurred in place as a window of that buffer. cv::GaussianBlur takes
@@ -182,7 +173,7 @@ TEST(Rbrief, EqualsTheFormulaOnAnyBlurredImage) {
   const std::vector<PixelPoint> points = corners(raw, kEdgeBorder, 1000);
   ASSERT_EQ(points.size(), 1000u);
   const std::vector<float> angles = test_angles(raw, points);
-  const cv::Mat blurred = blur_opencv(raw);
+  const cv::Mat blurred = gaussian7_opencv(raw);
   const std::vector<std::uint8_t> ours = describe_ours(blurred, points, angles);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::vector<std::uint8_t> formula = describe_by_formula(blurred, points[i], angles[i]);
@@ -221,7 +212,7 @@ TEST(Rbrief, CloseToOpenCvOnOurOwnBlur) {
     const std::vector<PixelPoint> points = corners(raw, 32, 1000);
     ASSERT_GE(points.size(), 500u);
     const std::vector<float> angles = test_angles(raw, points);
-    const std::vector<std::uint8_t> ours = describe_ours(blur_ours(raw), points, angles);
+    const std::vector<std::uint8_t> ours = describe_ours(gaussian7_ours(raw), points, angles);
     std::vector<bool> kept;
     const std::vector<std::uint8_t> opencv = describe_opencv(raw, points, angles, kept);
     long bits = 0, differing = 0, identical_descriptors = 0, compared = 0;
@@ -251,7 +242,7 @@ TEST(Rbrief, QuarterTurnOfTheImageKeepsTheDescriptor) {
   std::vector<PixelPoint> turned_points;
   for (const PixelPoint& p : points) turned_points.push_back({raw.rows - 1 - p.y, p.x});
 
-  const cv::Mat blurred = blur_ours(raw), turned_blurred = blur_ours(turned);
+  const cv::Mat blurred = gaussian7_ours(raw), turned_blurred = gaussian7_ours(turned);
   // The Q8 blur is one rounding of a symmetric 2D sum, so it commutes with the quarter turn.
   cv::Mat blurred_then_turned;
   cv::rotate(blurred, blurred_then_turned, cv::ROTATE_90_CLOCKWISE);
