@@ -7,34 +7,16 @@
 #include <gtest/gtest.h>
 
 #include "core/distribution.hpp"
+#include "tests/candidate_level.hpp"
 
 namespace aief {
 namespace {
 
-struct Level {
-  std::vector<Candidate> candidates;
-  std::vector<BlockRange> blocks;
-};
+using Level = test::CandidateLevel;
 
-// Blocks of 32x32 pixels in a row; block i holds counts[i] candidates with random scores that
-// often tie, so the tie-break is exercised.
+// Scores 7..26: ties are common, so the tie-break is exercised.
 Level make_level(const std::vector<int>& counts, std::uint32_t seed) {
-  Level level;
-  std::mt19937 rng(seed);
-  for (std::size_t b = 0; b < counts.size(); ++b) {
-    BlockRange range{static_cast<std::int32_t>(level.candidates.size()), 0};
-    std::set<std::pair<int, int>> used;
-    while (static_cast<int>(used.size()) < counts[b]) {
-      const int x = static_cast<int>(b) * 32 + static_cast<int>(rng() % 32),
-                y = static_cast<int>(rng() % 32);
-      used.insert({y, x});
-    }
-    for (const auto& [y, x] : used)
-      level.candidates.push_back({x, y, 7 + static_cast<int>(rng() % 20)});
-    range.end = static_cast<std::int32_t>(level.candidates.size());
-    level.blocks.push_back(range);
-  }
-  return level;
+  return test::make_candidate_level(counts, seed, 20);
 }
 
 std::map<int, std::vector<std::int32_t>> kept_per_block(const Level& level,

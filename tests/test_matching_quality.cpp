@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -17,6 +16,7 @@
 #include "core/level_geometry.hpp"
 #include "core/pyramid_resize.hpp"
 #include "simd/kernels.hpp"
+#include "tests/candidate_level.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -107,26 +107,11 @@ TEST(CoordinateMap, SubpixelOffsetMovesThePointInLevelPixels) {
   EXPECT_NEAR(p.y, (49.75 + 0.5) * 700.0 / 486.0 - 0.5, 1e-4);
 }
 
-struct Level {
-  std::vector<Candidate> candidates;
-  std::vector<BlockRange> blocks;
-};
+using Level = test::CandidateLevel;
 
-// Blocks side by side, with scores from a small range so that ties at the cut-off are common.
+// Scores 7..18: ties at the cut-off are common.
 Level make_level(const std::vector<int>& counts, std::uint32_t seed) {
-  Level level;
-  std::mt19937 rng(seed);
-  for (std::size_t b = 0; b < counts.size(); ++b) {
-    const std::int32_t begin = static_cast<std::int32_t>(level.candidates.size());
-    std::set<std::pair<int, int>> used;
-    while (static_cast<int>(used.size()) < counts[b])
-      used.insert(
-          {static_cast<int>(rng() % 32), static_cast<int>(b) * 32 + static_cast<int>(rng() % 32)});
-    for (const auto& [y, x] : used)
-      level.candidates.push_back({x, y, 7 + static_cast<int>(rng() % 12)});
-    level.blocks.push_back({begin, static_cast<std::int32_t>(level.candidates.size())});
-  }
-  return level;
+  return test::make_candidate_level(counts, seed, 12);
 }
 
 TEST(CandidatePool, PoolSizeIsCeilOfPTimesTheBudget) {
