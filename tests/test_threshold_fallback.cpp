@@ -131,6 +131,21 @@ TEST(ThresholdFallback, ShortfallRaisesTheFinestLevelsWithCandidatesToSpare) {
   EXPECT_FALSE(fallback.settle_frame(frame, 3.0, thresholds, budgets));
 }
 
+TEST(ThresholdFallback, RaisedBudgetsGoToTheFinestLevelsWithCandidatesToSpare) {
+  std::vector<int> raised;
+  // Level 1 is 30 short; level 0 can take 10 more, level 2 is short too, level 3 takes the rest.
+  EXPECT_TRUE(raise_budgets_for_shortfall({100, 80, 60, 40}, {110, 50, 55, 500}, raised));
+  EXPECT_EQ(raised, (std::vector<int>{110, 80, 60, 65}));
+  // Not enough anywhere: every level with spare candidates gives them all.
+  EXPECT_TRUE(raise_budgets_for_shortfall({100, 80}, {105, 0}, raised));
+  EXPECT_EQ(raised, (std::vector<int>{105, 80}));
+  // No shortfall, or nobody to take it: the budgets stay.
+  EXPECT_FALSE(raise_budgets_for_shortfall({100, 80}, {100, 900}, raised));
+  EXPECT_EQ(raised, (std::vector<int>{100, 80}));
+  EXPECT_FALSE(raise_budgets_for_shortfall({100, 80}, {10, 80}, raised));
+  EXPECT_EQ(raised, (std::vector<int>{100, 80}));
+}
+
 TEST(ThresholdFallback, EntropyOffLowersNothingButHandsTheShortfallOn) {
   ExtractorOptions options = with_guard(StarvationGuard::level, 600);
   options.entropy = EntropyMeasure::off;

@@ -1,7 +1,7 @@
-// The shortfall rule of the aief mode (core/threshold_fallback.hpp): the budget a
-// level short of candidates leaves undelivered goes to the levels with candidates to spare, so the
-// frame delivers min(N, candidates in the kept blocks) at every kernel set and thread count.
-#include <cstring>
+// The threshold fallback policy (core/threshold_fallback.hpp) on an image, through the extractor:
+// in the aief mode, the budget a level short of candidates leaves undelivered goes to the levels
+// with candidates to spare, so the frame delivers min(N, candidates in the kept blocks) at every
+// kernel set and thread count. The policy on a table, no image: tests/test_threshold_fallback.cpp.
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -10,27 +10,11 @@
 
 #include "aief/extractor.hpp"
 #include "core/level_geometry.hpp"
-#include "core/threshold_fallback.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
 namespace {
-
-TEST(LevelShortfall, GoesToTheFinestLevelsWithCandidatesToSpare) {
-  std::vector<int> raised;
-  // Level 1 is 30 short; level 0 can take 10 more, level 2 is short too, level 3 takes the rest.
-  EXPECT_TRUE(raise_budgets_for_shortfall({100, 80, 60, 40}, {110, 50, 55, 500}, raised));
-  EXPECT_EQ(raised, (std::vector<int>{110, 80, 60, 65}));
-  // Not enough anywhere: every level with spare candidates gives them all.
-  EXPECT_TRUE(raise_budgets_for_shortfall({100, 80}, {105, 0}, raised));
-  EXPECT_EQ(raised, (std::vector<int>{105, 80}));
-  // No shortfall, or nobody to take it: the budgets stay.
-  EXPECT_FALSE(raise_budgets_for_shortfall({100, 80}, {100, 900}, raised));
-  EXPECT_EQ(raised, (std::vector<int>{100, 80}));
-  EXPECT_FALSE(raise_budgets_for_shortfall({100, 80}, {10, 80}, raised));
-  EXPECT_EQ(raised, (std::vector<int>{100, 80}));
-}
 
 // Gray squares on a flat field: about the same corners on every level, so the fine levels, with
 // the largest budgets, are short of candidates while the coarse ones have plenty.
@@ -42,14 +26,9 @@ cv::Mat sparse_squares() {
   return image;
 }
 
-bool same_bytes(const Features& a, const Features& b) {
-  if (a.keypoints.size() != b.keypoints.size() || a.descriptors != b.descriptors) return false;
-  for (std::size_t i = 0; i < a.keypoints.size(); ++i)
-    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0) return false;
-  return true;
-}
+using test::same_bytes;
 
-TEST(LevelShortfall, AiefModeDeliversTheCountAskedForWhenALevelIsShort) {
+TEST(ThresholdFallbackOnImages, AiefModeDeliversTheCountAskedForWhenALevelIsShort) {
   const cv::Mat image = sparse_squares();
   ExtractorOptions options = options_for_mode(Mode::aief);
   options.n_features = 600;
