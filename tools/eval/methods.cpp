@@ -16,36 +16,44 @@
 
 namespace aief::eval {
 
-std::string method_name(Method method) {
-  switch (method) {
-    case Method::orbslam2: return "ORB-SLAM2 mode (ours)";
-    case Method::quadtree_entropy: return "Quadtree + entropy (F = 4)";
-    case Method::aief_paper_adaptive: return "AIEF paper (adaptive F)";
-    case Method::aief_paper_auto: return "AIEF paper (auto F, no pair)";
-    case Method::aief_adaptive: return "AIEF (adaptive F)";
-    case Method::aief_auto: return "AIEF (auto F, no pair)";
-    case Method::opencv_orb: return "OpenCV ORB";
-    case Method::opencv_sift: return "OpenCV SIFT";
-  }
-  return "?";
+bool operator==(const Method& a, const Method& b) {
+  if (a.baseline != Baseline::none || b.baseline != Baseline::none) return a.baseline == b.baseline;
+  return a.mode == b.mode && a.threshold == b.threshold;
 }
 
-std::string method_key(Method method) {
-  switch (method) {
-    case Method::orbslam2: return "orbslam2";
-    case Method::quadtree_entropy: return "quadtree_entropy";
-    case Method::aief_paper_adaptive: return "aief_paper_adaptive";
-    case Method::aief_paper_auto: return "aief_paper_auto";
-    case Method::aief_adaptive: return "aief_adaptive";
-    case Method::aief_auto: return "aief_auto";
-    case Method::opencv_orb: return "opencv_orb";
-    case Method::opencv_sift: return "opencv_sift";
+std::string method_name(const Method& method) {
+  if (method.baseline == Baseline::opencv_orb) return "OpenCV ORB";
+  if (method.baseline == Baseline::opencv_sift) return "OpenCV SIFT";
+  std::string name;
+  switch (method.mode) {
+    case Mode::orbslam2: name = "ORB-SLAM2 mode (ours)"; break;
+    case Mode::quadtree_entropy: name = "Quadtree + entropy (F = 4)"; break;
+    case Mode::aief_paper: name = "AIEF paper"; break;
+    case Mode::aief: name = "AIEF"; break;
   }
-  return "?";
+  switch (method.threshold) {
+    case ThresholdChoice::mode: return name;
+    case ThresholdChoice::swept: return name + " (adaptive F)";
+    case ThresholdChoice::automatic: return name + " (auto F, no pair)";
+  }
+  return name;
+}
+
+std::string method_key(const Method& method) {
+  if (method.baseline == Baseline::opencv_orb) return "opencv_orb";
+  if (method.baseline == Baseline::opencv_sift) return "opencv_sift";
+  std::string key(to_string(method.mode));
+  std::replace(key.begin(), key.end(), '-', '_');
+  switch (method.threshold) {
+    case ThresholdChoice::mode: return key;
+    case ThresholdChoice::swept: return key + "_adaptive";
+    case ThresholdChoice::automatic: return key + "_auto";
+  }
+  return key;
 }
 
 Method parse_method_key(const std::string& key) {
-  for (Method method : kAllMethods)
+  for (const Method& method : kAllMethods)
     if (method_key(method) == key) return method;
   throw Error("unknown method '" + key + "'");
 }
@@ -101,45 +109,26 @@ void measure_features(const Features& a, const Features& b, const std::vector<Ma
   measure(pa, pb, truth, width, height, r);
 }
 
-bool is_adaptive(Method method) {
-  return method == Method::aief_adaptive || method == Method::aief_paper_adaptive;
-}
-bool is_opencv(Method method) {
-  return method == Method::opencv_orb || method == Method::opencv_sift;
-}
-
-ExtractorOptions options_of(Method method, const EvalSettings& s) {
-  ExtractorOptions options;
-  switch (method) {
-    case Method::orbslam2: options = options_for_mode(Mode::orbslam2, options); break;
-    case Method::quadtree_entropy:
-      options = options_for_mode(Mode::quadtree_entropy, options);
-      break;
-    case Method::aief_paper_adaptive: options = options_for_mode(Mode::aief_paper, options); break;
-    case Method::aief_paper_auto:
-      options = options_for_mode(Mode::aief_paper, options);
-      options.auto_threshold = true;
-      break;
-    case Method::aief_auto:
-      options = s.aief;
-      options.auto_threshold = true;
-      break;
-    default: options = s.aief; break;
-  }
+// The options of an engine row: the aief mode's rows take the evaluation's (its flags), the
+// others their mode's; one thread.
+ExtractorOptions options_of(const Method& method, const EvalSettings& s) {
+  ExtractorOptions options =
+      method.mode == Mode::aief ? s.aief : options_for_mode(method.mode, ExtractorOptions{});
+  if (method.threshold == ThresholdChoice::automatic) options.auto_threshold = true;
   options.threads = 1;  // per-core times, as the paper's and OpenCV's
   return options;
 }
 
-cv::Ptr<cv::Feature2D> opencv_detector(Method method) {
-  if (method == Method::opencv_orb) return cv::ORB::create(1000, 1.2f, 8);
+cv::Ptr<cv::Feature2D> opencv_detector(Baseline baseline) {
+  if (baseline == Baseline::opencv_orb) return cv::ORB::create(1000, 1.2f, 8);
   return cv::SIFT::create(1000);
 }
 
-PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth,
-                    const EvalSettings& s) {
+PairResult run_ours(const Method& method, const cv::Mat& a, const cv::Mat& b,
+                    const Homography& truth, const EvalSettings& s) {
   PairResult r;
   const ExtractorOptions options = options_of(method, s);
-  if (is_adaptive(method)) {
+  if (method.threshold == ThresholdChoice::swept) {
     SweepOptions sweep;
     sweep.match = s.match;
     const auto start = std::chrono::steady_clock::now();
@@ -161,10 +150,10 @@ PairResult run_ours(Method method, const cv::Mat& a, const cv::Mat& b, const Hom
   return r;
 }
 
-PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const Homography& truth,
-                      const EvalSettings& s) {
+PairResult run_opencv(Baseline baseline, const cv::Mat& a, const cv::Mat& b,
+                      const Homography& truth, const EvalSettings& s) {
   PairResult r;
-  const cv::Ptr<cv::Feature2D> detector = opencv_detector(method);
+  const cv::Ptr<cv::Feature2D> detector = opencv_detector(baseline);
   std::vector<cv::KeyPoint> ka, kb;
   cv::Mat da, db;
   detector->detectAndCompute(a, cv::noArray(), ka, da);
@@ -177,7 +166,7 @@ PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const H
   measure_keypoints(points(ka), points(kb), truth, a.cols, a.rows, b.cols, b.rows, r);
 
   std::vector<Point2> pa, pb;
-  if (method == Method::opencv_orb) {
+  if (baseline == Baseline::opencv_orb) {
     // Binary descriptors: our matcher, so the rows differ only in their features.
     const auto to_descriptors = [](const cv::Mat& m) {
       std::vector<Descriptor> out(static_cast<std::size_t>(m.rows));
@@ -216,9 +205,10 @@ PairResult run_opencv(Method method, const cv::Mat& a, const cv::Mat& b, const H
 
 }  // namespace
 
-PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b,
+PairResult run_method(const Method& method, const cv::Mat& gray_a, const cv::Mat& gray_b,
                       const Homography& truth, const EvalSettings& settings) {
-  if (is_opencv(method)) return run_opencv(method, gray_a, gray_b, truth, settings);
+  if (method.baseline != Baseline::none)
+    return run_opencv(method.baseline, gray_a, gray_b, truth, settings);
   return run_ours(method, gray_a, gray_b, truth, settings);
 }
 
@@ -228,15 +218,15 @@ void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a,
   // Each method's extractor and outputs live as long as its rounds: only the extraction is timed.
   std::vector<std::function<void()>> work;
   for (std::size_t m = 0; m < methods.size(); ++m) {
-    if (is_opencv(methods[m])) {
-      auto detector = opencv_detector(methods[m]);
+    if (methods[m].baseline != Baseline::none) {
+      auto detector = opencv_detector(methods[m].baseline);
       auto keypoints = std::make_shared<std::vector<cv::KeyPoint>>();
       auto descriptors = std::make_shared<cv::Mat>();
       work.push_back(
           [=] { detector->detectAndCompute(gray_a, cv::noArray(), *keypoints, *descriptors); });
     } else {
       ExtractorOptions options = options_of(methods[m], settings);
-      if (is_adaptive(methods[m]))
+      if (methods[m].threshold == ThresholdChoice::swept)
         options.entropy_threshold = row[m].threshold;  // one frame at the learned F
       auto extractor = std::make_shared<Extractor>(options);
       auto features = std::make_shared<Features>();

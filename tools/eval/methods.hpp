@@ -1,7 +1,8 @@
 #pragma once
-// The rows of the evaluation: our three modes, the pair-free automatic F, and OpenCV's ORB and
-// SIFT as outside baselines. Each is run on one pair and measured the same way: our RANSAC
-// (3 px) for inliers and CMR, the ground-truth homography for correct matches and accuracy.
+// The rows of the evaluation: our modes, with F as the mode sets it, swept over the pair or
+// automatic, and OpenCV's ORB and SIFT as outside baselines. Each is run on one pair and measured
+// the same way: our RANSAC (3 px) for inliers and CMR, the ground-truth homography for correct
+// matches and accuracy.
 #include <string>
 #include <vector>
 
@@ -15,25 +16,41 @@
 
 namespace aief::eval {
 
-enum class Method {
-  orbslam2,
-  quadtree_entropy,
-  aief_paper_adaptive,  // --mode aief-paper: the published algorithm, the paper's tables
-  aief_paper_auto,
-  aief_adaptive,  // --mode aief (default): pixel-centre map, sub-pixel, pool, level guard
-  aief_auto,
-  opencv_orb,
-  opencv_sift
+// How an engine row chooses the entropy threshold F for a pair.
+enum class ThresholdChoice {
+  mode,       // as its mode sets it (F = 4, or no mask)
+  swept,      // the adaptive sweep over the pair (aief adapt)
+  automatic,  // pair-free: the automatic F of each image (--threshold auto)
 };
 
-inline const std::vector<Method> kAllMethods = {
-    Method::orbslam2,        Method::quadtree_entropy, Method::aief_paper_adaptive,
-    Method::aief_paper_auto, Method::aief_adaptive,    Method::aief_auto,
-    Method::opencv_orb,      Method::opencv_sift};
+// The rows that are not our engine.
+enum class Baseline { none, opencv_orb, opencv_sift };
 
-std::string method_name(Method method);  // the row label, e.g. "AIEF (adaptive F)"
-std::string method_key(Method method);   // the JSON key, e.g. "aief_adaptive"
-// The method of a JSON key; throws aief::Error for an unknown one.
+// A row of the evaluation: one of our modes with its way of choosing F, or an OpenCV baseline
+// (its mode and threshold unused). The aief mode's rows take their options from
+// EvalSettings::aief, the others the mode's own.
+struct Method {
+  Mode mode = Mode::aief;
+  ThresholdChoice threshold = ThresholdChoice::mode;
+  Baseline baseline = Baseline::none;
+};
+bool operator==(const Method& a, const Method& b);
+inline bool operator!=(const Method& a, const Method& b) { return !(a == b); }
+
+inline const std::vector<Method> kAllMethods = {
+    {Mode::orbslam2},
+    {Mode::quadtree_entropy},
+    {Mode::aief_paper, ThresholdChoice::swept},  // --mode aief-paper: the paper's tables
+    {Mode::aief_paper, ThresholdChoice::automatic},
+    {Mode::aief, ThresholdChoice::swept},  // --mode aief (default): the measured departures
+    {Mode::aief, ThresholdChoice::automatic},
+    {Mode::aief, ThresholdChoice::mode, Baseline::opencv_orb},
+    {Mode::aief, ThresholdChoice::mode, Baseline::opencv_sift}};
+
+std::string method_name(const Method& method);  // the row label, e.g. "AIEF (adaptive F)"
+// The JSON key, the mode's name with _adaptive or _auto, e.g. "aief_adaptive"; "opencv_orb".
+std::string method_key(const Method& method);
+// The row of kAllMethods with a JSON key; throws aief::Error for an unknown one.
 Method parse_method_key(const std::string& key);
 
 struct PairResult {
@@ -63,7 +80,7 @@ struct EvalSettings {
 };
 
 // Every measure of one method on one pair but the extraction time.
-PairResult run_method(Method method, const cv::Mat& gray_a, const cv::Mat& gray_b,
+PairResult run_method(const Method& method, const cv::Mat& gray_a, const cv::Mat& gray_b,
                       const Homography& truth, const EvalSettings& settings);
 // The extraction times of image A for every method of `row` (results of run_method, in the order of
 // `methods`; an adaptive method is timed at the F it chose), in interleaved rounds; `load` records

@@ -19,6 +19,12 @@ struct EvalRun {
   MachineLoad load;       // while timing
 };
 
+// The sequences of the run's pairs, in the order they first appear.
+std::vector<std::string> sequences_of(const EvalRun& run);
+
+// The markdown report (tools/eval/markdown_report.cpp): the paper's tables beside its figures,
+// the ground-truth tables, the thresholds and the quality targets, links to the plots in
+// `plot_folder_relative` (none if "").
 std::string markdown_report(const EvalRun& run, const std::string& plot_folder_relative);
 
 // A report may end with a hand-written section (docs/evaluation.md keeps its measurements there):
