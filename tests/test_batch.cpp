@@ -21,7 +21,7 @@
 #include "io/features_files.hpp"
 #include "io/json_writer.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #endif
 #include "tests/test_support.hpp"
 

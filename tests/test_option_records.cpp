@@ -15,7 +15,7 @@
 #include "io/option_record.hpp"
 #include "io/source_record.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #endif
 #include "tests/test_support.hpp"
 

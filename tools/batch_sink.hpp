@@ -52,7 +52,7 @@ class BatchSink {
 // build lacks, an output that cannot be created).
 std::unique_ptr<BatchSink> make_batch_sink(const BatchSettings& settings);
 
-// One file per image (io::batch_output_path) and one HDF5 file (io/hdf5_features.hpp).
+// One file per image (io::batch_output_path) and one HDF5 file (io/hdf5_file.hpp).
 std::unique_ptr<BatchSink> make_file_per_image_sink(const BatchSettings& settings);
 std::unique_ptr<BatchSink> make_hdf5_sink(const BatchSettings& settings);
 

@@ -3,7 +3,7 @@
 
 #include "tools/batch_sink.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #include "io/option_record.hpp"
 #endif
 
@@ -13,7 +13,7 @@ namespace aief::cli {
 
 namespace {
 
-// One hloc features file, a group per input named by its name (io/hdf5_features.hpp). Calls are
+// One hloc features file, a group per input named by its name (io/hdf5_file.hpp). Calls are
 // serialised here: the pipeline asks from several threads, and a libhdf5 built without its
 // thread-safe option allows one caller at a time.
 class Hdf5Sink : public BatchSink {
