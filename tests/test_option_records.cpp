@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 #include "io/option_record.hpp"
 #include "io/source_record.hpp"
 #ifdef AIEF_HAVE_HDF5

@@ -27,7 +27,7 @@
 
 #include "aief/options.hpp"
 #include "io/batch_inputs.hpp"
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 
 namespace aief::cli {
 
