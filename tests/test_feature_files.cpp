@@ -21,7 +21,8 @@
 #include "io/pairs_file.hpp"
 #include "tests/test_support.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/hdf5_merge.hpp"
 #endif
 #ifdef AIEF_HAVE_COLMAP_EXPORT
 #include "io/colmap_database.hpp"

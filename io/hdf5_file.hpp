@@ -22,6 +22,11 @@
 //   string attributes name0 and name1 (fixed length, UTF-8; variable-length ones are read too)
 //   record the pair's own names, since two pairs can share a group name ("a/b.png c.png" and
 //   "a-b.png c.png"): a pair never reads or keeps another's.
+//
+// One class, defined by job: io/hdf5_file.cpp opens and closes the file and keeps its space
+// policy (reservation, fence, batched flushes); io/hdf5_features.cpp the image groups;
+// io/hdf5_matches.cpp the pair groups; io/hdf5_merge.cpp the copy of groups between files
+// (merge, io/hdf5_merge.hpp). libhdf5's objects they share are io/hdf5_objects.hpp.
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -56,7 +61,7 @@ namespace aief::io {
 class Hdf5File {
  public:
   // read_in_name_order: for a reader that goes through the file once, image after image in name
-  // order (merge's passes), which needs only a small metadata cache (io/hdf5_features.cpp,
+  // order (merge's passes), which needs only a small metadata cache (io/hdf5_file.cpp,
   // read_access); read: for any order of reads.
   enum class Mode { read, read_in_name_order, read_write };
   Hdf5File(const std::string& path, Mode mode);
@@ -146,14 +151,5 @@ class Hdf5File {
   std::mutex failure_mutex_;  // writes come from one thread at a time; the lock orders the record
   std::string failure_;       // the first failed write's reason; later writes are refused
 };
-
-// Copies every image group of `inputs` (shard files) into `output` (created or extended); an
-// image already in `output` is kept, an image in two inputs is an error, and so is a group whose
-// option record differs from the first group's in a field that changes the output (a group
-// without a record and one with a record differ; groups without records all agree). Atomic: every
-// input is checked before anything is written, the result is written to a temporary and renamed
-// over `output`, so a failed merge (a bad input, a full disk) leaves `output` as it was (or
-// absent). Linear in the images (hash sets). Returns the images copied.
-int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs);
 
 }  // namespace aief::io
