@@ -7,12 +7,12 @@
 
 #include "aief/error.hpp"
 #include "core/frame_pipeline.hpp"
+#include "core/kernel_table.hpp"
 #include "core/matcher.hpp"
 #include "core/sorted_block_entropies.hpp"
 #include "core/sweep_matcher.hpp"
 #include "core/sweep_runs.hpp"
 #include "parallel/scheduler.hpp"
-#include "simd/kernels.hpp"
 
 namespace aief {
 

@@ -5,7 +5,7 @@
 #include "core/carried_threshold.hpp"
 #include "core/frame_pipeline.hpp"
 #include "core/given_keypoints.hpp"
-#include "simd/kernels.hpp"
+#include "core/kernel_table.hpp"
 
 namespace aief {
 

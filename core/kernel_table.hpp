@@ -80,6 +80,11 @@ constexpr const char* listed_kernel(std::string_view name) {
   throw "not a kernel of AIEF_FOR_EACH_KERNEL";
 }
 
+// The table of `set` (auto_select resolves to default_kernel_set(), simd/kernels.hpp). Throws
+// aief::Error when the CPU or the build lacks it. Declared here for core/, defined by the one
+// dispatch point, simd/kernels.cpp: core/ names no simd/ header.
+const KernelTable& kernel_table(KernelSet set);
+
 // Which code the table runs for the kernel at `index` (into kKernelNames).
 inline const char* kernel_variant(const KernelTable& table, int index) {
   int at = 0;

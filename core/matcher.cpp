@@ -9,8 +9,8 @@
 #include <tbb/parallel_for.h>
 
 #include "aief/error.hpp"
+#include "core/kernel_table.hpp"
 #include "parallel/tsan_handoff.hpp"
-#include "simd/kernels.hpp"
 
 namespace aief {
 

@@ -95,8 +95,9 @@ template <class Arch>
 void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row,
                              const std::uint8_t* below, int x_begin, int x_end,
                              int strong_threshold, std::uint64_t* maxima, std::uint64_t* strong) {
-  constexpr int N =
-      static_cast<int>(U8<Arch>::size);  // 16, 32 or 64: a batch never straddles a word
+  // 16, 32 or 64 lanes, a divisor of 64: the full batches (at x_begin + k N) each fill part of one
+  // bit word; only the overlapping last batch (at x_end - N) can straddle two, handled below.
+  constexpr int N = static_cast<int>(U8<Arch>::size);
   if (x_end - x_begin < N) {  // a short run (a block or two): narrower vectors, else the reference
     using Narrower = typename narrower_arch<Arch>::type;
     if constexpr (!std::is_void_v<Narrower>)

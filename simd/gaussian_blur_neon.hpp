@@ -5,15 +5,13 @@
 
 #include <arm_neon.h>
 
+#include "simd/gaussian_blur_bias.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 namespace blur_detail {
-
-// Vertical sums v (0..65280) are stored as the int16 v - kBias (see simd/gaussian_blur_x86.hpp).
-constexpr std::int16_t kBias = 32640;
 
 template <class Arch>
 struct Vec {

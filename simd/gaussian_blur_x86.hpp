@@ -5,16 +5,13 @@
 
 #include <immintrin.h>
 
+#include "simd/gaussian_blur_bias.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
 namespace blur_detail {
-
-// Vertical sums v (0..65280) are stored as the int16 v - kBias (|v - kBias| <= 32640), so the
-// horizontal pmaddwd sum is S - 256 kBias = S + 2^15 - 2^23: the rounding term comes for free.
-constexpr short kBias = 32640;
 
 // The register the kernel runs on: 128-bit (SSE4.1), 256-bit (AVX2) or 512-bit (AVX-512BW).
 // Templates on Arch, so every instruction set's copy is its own symbol.

@@ -25,8 +25,7 @@ inline constexpr const char* kKernelsEnvironmentVariable = "AIEF_KERNELS";
 // cannot run that set: a forced set that silently did not apply would defeat the purpose.
 KernelSet default_kernel_set();
 
-// The table of `set` (auto_select resolves to default_kernel_set()). Throws aief::Error when
-// the CPU or the build lacks it.
-const KernelTable& kernel_table(KernelSet set);
+// kernel_table(set), the table of a set, is declared in core/kernel_table.hpp and defined in
+// simd/kernels.cpp.
 
 }  // namespace aief
