@@ -1,5 +1,6 @@
 # cmake --install: headers, libraries, the aief tool, a CMake package (find_package(aief) ->
-# aief::aief, and aief::io, aief::opencv when built) and a pkg-config file for the engine.
+# aief::aief, and aief::io, aief::opencv when built) and a pkg-config file for the engine. The
+# same CMake package in the build folder, for use without installing.
 # Each component has its own export file, so the package config loads OpenCV only for the
 # components that link it (cmake/aiefConfig.cmake.in). Every file belongs to one install component
 # (runtime: shared libraries; dev: headers, archives, .so links, CMake and pkg-config files; tool;
@@ -18,6 +19,7 @@ foreach(component IN ITEMS io opencv)
             ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
             LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev)
     install(EXPORT aief_${component}Targets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief COMPONENT dev)
+    export(EXPORT aief_${component}Targets NAMESPACE aief:: FILE ${PROJECT_BINARY_DIR}/aief_${component}Targets.cmake)
     list(APPEND AIEF_INSTALLED_COMPONENTS ${component})
   endif()
 endforeach()
@@ -43,6 +45,10 @@ if(TARGET aief_io)
 endif()
 
 install(EXPORT aiefTargets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief COMPONENT dev)
+# The build tree is a package too: aiefConfig.cmake and the targets files beside it in the build
+# folder, so find_package(aief) with aief_DIR=<build folder> uses the built libraries in place
+# (tests/consumer/run.sh --build-tree).
+export(EXPORT aiefTargets NAMESPACE aief:: FILE ${PROJECT_BINARY_DIR}/aiefTargets.cmake)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/aiefConfig.cmake.in ${PROJECT_BINARY_DIR}/aiefConfig.cmake
                               INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/aiefConfigVersion.cmake COMPATIBILITY SameMinorVersion)

@@ -3,14 +3,48 @@
 # then builds against it: a CMake project (find_package(aief), aief::aief, and aief::opencv when
 # the build tree has the adapter) and a one-file program through `pkg-config --cflags --libs
 # aief`. Fails if any step cannot find, compile, link or run.
-#   run.sh BUILD_DIR          install BUILD_DIR, then the above
-#   run.sh --installed PREFIX the above against what is already installed in PREFIX (e.g. /usr from
-#                             the Debian packages, scripts/ci_packages)
+#   run.sh BUILD_DIR              install BUILD_DIR, then the above
+#   run.sh --installed PREFIX     the above against what is already installed in PREFIX (e.g. /usr
+#                                 from the Debian packages, scripts/ci_packages)
+#   run.sh --build-tree BUILD_DIR the CMake project against the build folder itself, not installed
+#                                 (aief_DIR=BUILD_DIR: its aiefConfig.cmake and exported targets)
 set -euo pipefail
 source_dir=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "install test: $*" >&2; exit 1; }
+
+# What a build folder was configured with says what it built: the OpenCV parts, the adapter.
+parts_of_build() {
+  with_opencv=ON
+  if grep -q '^AIEF_WITH_OPENCV:BOOL=OFF' "$1/CMakeCache.txt"; then with_opencv=OFF; fi
+  expect_opencv=OFF
+  if [ "$with_opencv" = ON ] && grep -q '^AIEF_BUILD_OPENCV_ADAPTER:BOOL=ON' "$1/CMakeCache.txt"; then expect_opencv=ON; fi
+}
+# The CMake consumer (tests/consumer/CMakeLists.txt) configured with CMAKE_ARGS..., built and run.
+cmake_consumer() {
+  local opencv_flags=()
+  [ "$with_opencv" = ON ] || opencv_flags=(-DAIEF_EXPECT_IO=OFF -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON)
+  cmake -S "$source_dir" -B "$work/consumer" -DCMAKE_BUILD_TYPE=Release \
+        -DAIEF_EXPECT_OPENCV=$expect_opencv "${opencv_flags[@]}" "$@" > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "consumer configure failed"; }
+  cmake --build "$work/consumer" > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "consumer build failed"; }
+  "$work/consumer/consumer" || fail "the find_package consumer failed"
+  if [ "$expect_opencv" = ON ]; then
+    "$work/consumer/consumer_opencv" || fail "the aief::opencv consumer failed"
+    "$work/consumer/feature2d_consumer" || fail "the cv::Feature2D consumer failed"
+    "$work/consumer/orbslam2_swap" || fail "the ORB-SLAM2 swap of docs/orbslam2.md failed"
+    "$work/consumer/orbslam3_swap" || fail "the ORB-SLAM3 swap of docs/orbslam3.md failed"
+  fi
+}
+
+if [ "${1:-}" = --build-tree ]; then
+  build_dir=$(cd "$2" && pwd)
+  parts_of_build "$build_dir"
+  # find_package(aief) reads aief_DIR's aiefConfig.cmake before any installed one.
+  cmake_consumer -Daief_DIR="$build_dir"
+  echo "build tree $build_dir, find_package (OpenCV parts: $with_opencv, adapter: $expect_opencv) consumers: OK"
+  exit 0
+fi
 
 if [ "${1:-}" = --installed ]; then
   prefix=$2
@@ -25,10 +59,7 @@ else
   prefix=$work/prefix
   # An OpenCV-free build (AIEF_WITH_OPENCV=OFF) installs the engine alone: no tool, no aief::io,
   # and its package must configure with OpenCV out of reach.
-  with_opencv=ON
-  if grep -q '^AIEF_WITH_OPENCV:BOOL=OFF' "$build_dir/CMakeCache.txt"; then with_opencv=OFF; fi
-  expect_opencv=OFF
-  if [ "$with_opencv" = ON ] && grep -q '^AIEF_BUILD_OPENCV_ADAPTER:BOOL=ON' "$build_dir/CMakeCache.txt"; then expect_opencv=ON; fi
+  parts_of_build "$build_dir"
 fi
 for file in include/aief/aief.hpp include/aief/extractor.hpp include/aief/version.hpp; do
   test -e "$prefix/$file" || fail "missing $file in the install tree"
@@ -43,18 +74,7 @@ test -n "$config" || fail "no aiefConfig.cmake installed"
 pc_file=$(find "$prefix"/lib* -maxdepth 4 -name aief.pc | head -n 1)
 test -n "$pc_file" || fail "no aief.pc installed"
 
-opencv_flags=()
-[ "$with_opencv" = ON ] || opencv_flags=(-DAIEF_EXPECT_IO=OFF -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON)
-cmake -S "$source_dir" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
-      -DAIEF_EXPECT_OPENCV=$expect_opencv "${opencv_flags[@]}" > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "consumer configure failed"; }
-cmake --build "$work/consumer" > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "consumer build failed"; }
-"$work/consumer/consumer" || fail "the find_package consumer failed"
-if [ "$expect_opencv" = ON ]; then
-  "$work/consumer/consumer_opencv" || fail "the aief::opencv consumer failed"
-  "$work/consumer/feature2d_consumer" || fail "the cv::Feature2D consumer failed"
-  "$work/consumer/orbslam2_swap" || fail "the ORB-SLAM2 swap of docs/orbslam2.md failed"
-  "$work/consumer/orbslam3_swap" || fail "the ORB-SLAM3 swap of docs/orbslam3.md failed"
-fi
+cmake_consumer -DCMAKE_PREFIX_PATH="$prefix"
 
 export PKG_CONFIG_PATH=$(dirname "$pc_file")
 flags=$(pkg-config --cflags --libs aief) || fail "pkg-config does not know aief"
