@@ -29,6 +29,10 @@ cmake_consumer() {
         -DAIEF_EXPECT_OPENCV=$expect_opencv "${opencv_flags[@]}" "$@" > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "consumer configure failed"; }
   cmake --build "$work/consumer" > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "consumer build failed"; }
   "$work/consumer/consumer" || fail "the find_package consumer failed"
+  if [ "$with_opencv" = ON ]; then
+    mkdir -p "$work/io_cmake"
+    "$work/consumer/io_consumer" "$work/io_cmake" || fail "the aief::io consumer failed"
+  fi
   if [ "$expect_opencv" = ON ]; then
     "$work/consumer/consumer_opencv" || fail "the aief::opencv consumer failed"
     "$work/consumer/feature2d_consumer" || fail "the cv::Feature2D consumer failed"
@@ -77,10 +81,44 @@ test -n "$pc_file" || fail "no aief.pc installed"
 cmake_consumer -DCMAKE_PREFIX_PATH="$prefix"
 
 export PKG_CONFIG_PATH=$(dirname "$pc_file")
-flags=$(pkg-config --cflags --libs aief) || fail "pkg-config does not know aief"
-# shellcheck disable=SC2086  # the flags are a word list
-c++ -std=c++17 "$source_dir/main.cpp" -o "$work/pkgconfig_consumer" $flags || fail "pkg-config consumer did not build with: $flags"
-LD_LIBRARY_PATH="$(dirname "$(dirname "$pc_file")")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$work/pkgconfig_consumer" || fail "the pkg-config consumer failed"  # a shared build has no rpath here
+libdir=$(dirname "$PKG_CONFIG_PATH")
+# pkg_consumer NAME SOURCE PACKAGE...: SOURCE compiled and linked with `pkg-config --cflags --libs
+# PACKAGE...` alone, then run (with a folder of its own as argument).
+pkg_consumer() {
+  local name=$1 source=$2 flags
+  shift 2
+  flags=$(pkg-config --cflags --libs "$@") || fail "pkg-config does not know $*"
+  # shellcheck disable=SC2086  # the flags are a word list
+  c++ -std=c++17 "$source_dir/$source" -o "$work/$name" $flags || fail "the pkg-config consumer $name did not build with: $flags"
+  mkdir -p "$work/$name.out"
+  LD_LIBRARY_PATH="$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$work/$name" "$work/$name.out" || fail "the pkg-config consumer $name failed"  # a shared build has no rpath here
+}
+pkg_consumer pkgconfig_consumer main.cpp aief
+pkg_checked="aief"
+if [ "$with_opencv" = ON ]; then
+  pkg_consumer pkgconfig_io_consumer io_main.cpp aief-io
+  pkg_checked+=", aief-io"
+  # docs/install.md's static link of the archives, whatever the package's own libraries are:
+  # libaief_io.a needs OpenCV, HDF5 and SQLite, libaief.a TBB and pthreads.
+  if [ -e "$libdir/libaief_io.a" ]; then
+    static_libs=(opencv4)
+    grep -q AIEF_HAVE_HDF5 "$PKG_CONFIG_PATH/aief-io.pc" && static_libs+=(hdf5)
+    grep -q AIEF_HAVE_COLMAP_EXPORT "$PKG_CONFIG_PATH/aief-io.pc" && static_libs+=(sqlite3)
+    # shellcheck disable=SC2046  # the flags are word lists
+    c++ -std=c++17 "$source_dir/io_main.cpp" -o "$work/static_io_consumer" $(pkg-config --cflags aief-io) \
+        "$libdir/libaief_io.a" "$libdir/libaief.a" $(pkg-config --libs "${static_libs[@]}") -ltbb -lpthread \
+      || fail "the static link of docs/install.md (libaief_io.a libaief.a, pkg-config --libs ${static_libs[*]}, -ltbb -lpthread) failed"
+    mkdir -p "$work/static_io.out"
+    "$work/static_io_consumer" "$work/static_io.out" || fail "the statically linked aief::io consumer failed"
+    ldd "$work/static_io_consumer" | grep -q 'libaief' && fail "the static consumer loads a shared libaief"
+    pkg_checked+=", the static archives"
+  fi
+fi
+if [ "$expect_opencv" = ON ]; then
+  pkg_consumer pkgconfig_opencv_consumer opencv_main.cpp aief-opencv
+  pkg_consumer pkgconfig_feature2d_consumer feature2d_main.cpp aief-opencv
+  pkg_checked+=", aief-opencv"
+fi
 where="install (relocated)"
 [ -n "${build_dir:-}" ] || where="install in $prefix"
-echo "$where, find_package (OpenCV parts: $with_opencv, adapter: $expect_opencv) and pkg-config consumers: OK"
+echo "$where, find_package (OpenCV parts: $with_opencv, adapter: $expect_opencv) and pkg-config ($pkg_checked) consumers: OK"
