@@ -1,5 +1,6 @@
 # cmake --install: headers, libraries, the aief tool, a CMake package (find_package(aief) ->
-# aief::aief, and aief::io, aief::opencv when built) and a pkg-config file for the engine.
+# aief::aief, and aief::io, aief::opencv when built) and a pkg-config file for the engine. The
+# same CMake package in the build folder, for use without installing.
 # Each component has its own export file, so the package config loads OpenCV only for the
 # components that link it (cmake/aiefConfig.cmake.in). Every file belongs to one install component
 # (runtime: shared libraries; dev: headers, archives, .so links, CMake and pkg-config files; tool;
@@ -18,6 +19,7 @@ foreach(component IN ITEMS io opencv)
             ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
             LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev)
     install(EXPORT aief_${component}Targets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief COMPONENT dev)
+    export(EXPORT aief_${component}Targets NAMESPACE aief:: FILE ${PROJECT_BINARY_DIR}/aief_${component}Targets.cmake)
     list(APPEND AIEF_INSTALLED_COMPONENTS ${component})
   endif()
 endforeach()
@@ -43,6 +45,10 @@ if(TARGET aief_io)
 endif()
 
 install(EXPORT aiefTargets NAMESPACE aief:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief COMPONENT dev)
+# The build tree is a package too: aiefConfig.cmake and the targets files beside it in the build
+# folder, so find_package(aief) with aief_DIR=<build folder> uses the built libraries in place
+# (tests/consumer/run.sh --build-tree).
+export(EXPORT aiefTargets NAMESPACE aief:: FILE ${PROJECT_BINARY_DIR}/aiefTargets.cmake)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/aiefConfig.cmake.in ${PROJECT_BINARY_DIR}/aiefConfig.cmake
                               INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/aief)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/aiefConfigVersion.cmake COMPATIBILITY SameMinorVersion)
@@ -64,6 +70,44 @@ else()
 endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/aief.pc.in ${PROJECT_BINARY_DIR}/aief.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/aief.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT dev)
+# aief-io.pc and aief-opencv.pc, one per component built: `pkg-config --cflags --libs aief-opencv`
+# links the cv::Feature2D adapter and the ORB-SLAM drop-ins (their headers include OpenCV's, so
+# opencv4 is required publicly); `aief-io` the image and result files. A static libaief_io also
+# needs, on the consumer's link line, what it links privately: OpenCV, and HDF5 and SQLite when
+# it was built with them (the AIEF_HAVE_* definitions say so, in Cflags as in aief::io).
+if(TARGET aief_io)
+  get_target_property(aief_io_type aief_io TYPE)
+  get_target_property(aief_io_definitions aief_io INTERFACE_COMPILE_DEFINITIONS)
+  set(AIEF_PC_COMPONENT io)
+  set(AIEF_PC_DESCRIPTION "aief's image and result files: images through OpenCV, JSON, YAML, hloc's HDF5, COLMAP's database")
+  set(AIEF_PC_REQUIRES aief)
+  set(AIEF_PC_CFLAGS "-I\${includedir}/aief")
+  if(aief_io_type STREQUAL "STATIC_LIBRARY")
+    string(APPEND AIEF_PC_REQUIRES " opencv4")
+  endif()
+  if("AIEF_HAVE_HDF5" IN_LIST aief_io_definitions)
+    string(APPEND AIEF_PC_CFLAGS " -DAIEF_HAVE_HDF5")
+    if(aief_io_type STREQUAL "STATIC_LIBRARY")
+      string(APPEND AIEF_PC_REQUIRES " hdf5")
+    endif()
+  endif()
+  if("AIEF_HAVE_COLMAP_EXPORT" IN_LIST aief_io_definitions)
+    string(APPEND AIEF_PC_CFLAGS " -DAIEF_HAVE_COLMAP_EXPORT")
+    if(aief_io_type STREQUAL "STATIC_LIBRARY")
+      string(APPEND AIEF_PC_REQUIRES " sqlite3")
+    endif()
+  endif()
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/aief-component.pc.in ${PROJECT_BINARY_DIR}/aief-io.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/aief-io.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT dev)
+endif()
+if(TARGET aief_opencv)
+  set(AIEF_PC_COMPONENT opencv)
+  set(AIEF_PC_DESCRIPTION "aief's OpenCV adapter: cv::Feature2D, cv::Mat views, the ORB-SLAM2 and ORB-SLAM3 drop-ins")
+  set(AIEF_PC_REQUIRES "aief opencv4")
+  set(AIEF_PC_CFLAGS "")
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/aief-component.pc.in ${PROJECT_BINARY_DIR}/aief-opencv.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/aief-opencv.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT dev)
+endif()
 
 # tests/ builds every tests/test_*.cpp; without the adapter its tests have nothing to link.
 # (CTest then lists them as *_NOT_BUILT; skipping them belongs in tests/CMakeLists.txt.)
