@@ -66,8 +66,20 @@ bool is_disk_failure(int code);
 
 // Writes `content` to `path` atomically: a temporary file beside it, then rename, so an
 // interrupted run never leaves a half-written result, and a failed one leaves no temporary.
+// The temporary is this write's own (unique_temporary_path_of, created exclusively and locked
+// while written): two processes writing the same output (a batch resubmitted while the first
+// still runs) each rename a whole file of their own, and the output is whole either way.
 // Throws WriteError with the system's reason.
 void write_file_atomically(const std::string& path, const std::string& content);
+
+// The temporary of one write of `path`: "." + the 16 hex digits of temporary_path_of + "." + 8
+// random hex digits + ".tmp", beside it.
+std::string unique_temporary_path_of(const std::string& path);
+
+// Removes, below `folder`, the temporaries write_file_atomically leaves when killed: files named
+// as unique_temporary_path_of names them that no writer holds locked (a write in progress, by
+// this process or another, holds its own). Returns how many it removed.
+int remove_stale_temporaries(const std::string& folder);
 
 // The temporary file beside `path` that write_file_atomically (and the writers of HDF5 and
 // COLMAP files) use: "." + 16 hex digits of a hash of the file name + ".tmp", the same for the

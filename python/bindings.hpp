@@ -52,6 +52,7 @@ std::vector<Descriptor> descriptors_from(const py::object& value, const char* na
 void bind_extractor(py::module_& m);
 void bind_matching(py::module_& m);
 void bind_batch(py::module_& m);
+void bind_features_file(py::module_& m);
 // After the classes are bound: pickle support for Extractor, Features and AdaptResult.
 void bind_pickling(py::module_& m);
 void bind_testing(py::module_& m);

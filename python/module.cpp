@@ -15,6 +15,7 @@ PYBIND11_MODULE(_aief, m) {
   aief::python::bind_extractor(m);
   aief::python::bind_matching(m);
   aief::python::bind_batch(m);
+  aief::python::bind_features_file(m);
   aief::python::bind_pickling(m);
   aief::python::bind_testing(m);
   m.attr("__version__") = aief::kVersionString;

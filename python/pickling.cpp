@@ -156,6 +156,22 @@ AdaptResult adapt_result_from(const py::bytes& state) {
   return r;
 }
 
+// Pickle protocols 0 and 1 do not go through __getstate__ alone: Python's default reduction for
+// them (copyreg._reduce_ex) builds the object by calling its base's constructor, which a pybind11
+// class cannot do (it aborted the interpreter: "instance allocation failed"). Every protocol gets
+// the reduction protocol 2 makes: copyreg.__newobj__(type) (an instance not yet constructed), then
+// __setstate__(state).
+template <class Class>
+void reduce_for_every_protocol(Class& cls) {
+  cls.def(
+      "__reduce_ex__",
+      [](const py::object& self, int /*protocol*/) {
+        return py::make_tuple(py::module_::import("copyreg").attr("__newobj__"),
+                              py::make_tuple(py::type::of(self)), self.attr("__getstate__")());
+      },
+      py::arg("protocol"));
+}
+
 }  // namespace
 
 void bind_pickling(py::module_& m) {
@@ -172,6 +188,7 @@ void bind_pickling(py::module_& m) {
         in.expect_end();
         return std::make_unique<PyExtractor>(options);  // validates the options
       }));
+  reduce_for_every_protocol(extractor);
 
   auto features = py::reinterpret_borrow<py::class_<PyFeatures>>(m.attr("Features"));
   features.def(py::pickle(
@@ -195,9 +212,11 @@ void bind_pickling(py::module_& m) {
         f.image_height = t[8].cast<int>();
         return f;
       }));
+  reduce_for_every_protocol(features);
 
   auto adapt_result = py::reinterpret_borrow<py::class_<AdaptResult>>(m.attr("AdaptResult"));
   adapt_result.def(py::pickle(&adapt_result_state, &adapt_result_from));
+  reduce_for_every_protocol(adapt_result);
 }
 
 }  // namespace aief::python

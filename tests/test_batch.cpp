@@ -154,6 +154,35 @@ TEST(Batch, ResumesAfterBeingKilledHalfway) {
   EXPECT_TRUE(files_below(folder.out, ".tmp").empty());
 }
 
+// Two runs of one batch at once (a task resubmitted while the first still runs): each writes its
+// own temporaries, so both end with exit 0 and every output is whole. Was: 16-28 false "failed"
+// each, exit 1 (one shared temporary per output, taken or removed by the other run).
+TEST(Batch, TwoRunsOfOneBatchAtOnceBothSucceed) {
+  BatchFolder folder;
+  fs::remove(folder.images / "broken.png");
+  const std::vector<std::string> args = {
+      "extract", "--batch", folder.images.string(), "-o", folder.out.string(), "--threads", "2"};
+  for (int round = 0; round < 2; ++round) {  // the second round: redone (other options) at once
+    std::vector<std::string> round_args = args;
+    if (round == 1) round_args.insert(round_args.end(), {"--features", "700"});
+    const fs::path log_a = folder.root / "a.log", log_b = folder.root / "b.log";
+    const pid_t a = start(round_args, log_a), b = start(round_args, log_b);
+    ASSERT_GT(a, 0);
+    ASSERT_GT(b, 0);
+    EXPECT_EQ(wait_for(a), 0) << text_of(log_a);
+    EXPECT_EQ(wait_for(b), 0) << text_of(log_b);
+    EXPECT_NE(text_of(log_a).find(" 0 failed"), std::string::npos) << text_of(log_a);
+    EXPECT_NE(text_of(log_b).find(" 0 failed"), std::string::npos) << text_of(log_b);
+  }
+  EXPECT_EQ(folder.outputs().size(), static_cast<std::size_t>(folder.count));
+  for (const auto& entry : fs::recursive_directory_iterator(folder.images)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string name = entry.path().lexically_relative(folder.images).generic_string();
+    expect_output_of(folder.out / (name + ".json"), name, entry.path());
+  }
+  EXPECT_TRUE(files_below(folder.out, ".tmp").empty());
+}
+
 TEST(Batch, CollidingSpellingsGetOneOutputEach) {
   // Names the old scheme (extension dropped, '/' -> "__", leading '.' and '_' stripped) mapped
   // onto five outputs for twelve inputs, and called the missing ones "already done".

@@ -137,3 +137,44 @@ TEST(CliBadInputs, PicturePathsAreCheckedBeforeAnyWork) {
 }
 
 }  // namespace
+
+// Each output flag pointed at an input image, by its own name, by another spelling and through a
+// hard link: refused before any work (exit 2), the image left as it was. Was: replaced, exit 0.
+TEST(CliBadInputs, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
+  const aief::test::TempFolder folder("aief_cli_outputs_inputs");
+  const fs::path& dir = folder.path();
+  const fs::path dataset = dir / "dataset" / "graf";
+  fs::create_directories(dataset);
+  for (const char* name : {"img1.png", "img2.png", "H1to2p"})
+    fs::copy_file(aief::test::sample_path("graf", name), dataset / name);
+  const std::string a = (dataset / "img1.png").string(), b = (dataset / "img2.png").string();
+  const std::string a_dotted = (dataset / "." / "img1.png").string();
+  fs::create_hard_link(b, dir / "b_link.png");
+  const std::string b_link = (dir / "b_link.png").string();
+  const auto size_a = fs::file_size(a), size_b = fs::file_size(b);
+
+  for (const std::string& command :
+       {"extract " + a + " --draw " + a, "extract " + a + " --draw " + a_dotted,
+        "match " + a + " " + b + " --draw " + b, "match " + a + " " + b + " --draw " + b_link,
+        "adapt " + a + " " + b + " --plot " + a, "adapt " + a + " " + b + " -o " + a_dotted,
+        "eval --dataset " + (dir / "dataset").string() +
+            " --sequences graf --pairs 1-2 --methods orbslam2 -o " + a,
+        "eval --dataset " + (dir / "dataset").string() +
+            " --sequences graf --pairs 1-2 --methods orbslam2 -o " +
+            (dataset / "H1to2p").string()}) {
+    const CliResult result = run(command);
+    EXPECT_EQ(result.status, 2) << command << "\n" << result.output;
+    EXPECT_TRUE(says(result, "it would replace the input") &&
+                says(result, "never writes over its inputs"))
+        << command << "\n"
+        << result.output;
+    EXPECT_FALSE(says(result, "keypoints") || says(result, "chosen") || says(result, "evaluated"))
+        << "worked first: " << result.output;
+  }
+  EXPECT_EQ(fs::file_size(a), size_a);
+  EXPECT_EQ(fs::file_size(b), size_b);
+  EXPECT_EQ(fs::file_size(dataset / "H1to2p"),
+            fs::file_size(aief::test::sample_path("graf", "H1to2p")));
+  EXPECT_EQ(run("extract " + a + " --draw " + (dir / "drawn.png").string()).status, 0)
+      << "a new name is fine";
+}

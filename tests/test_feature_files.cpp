@@ -142,6 +142,32 @@ TEST(AtomicWrite, LongNamesWorkAndAFailureLeavesNoTemporary) {
   EXPECT_EQ(files, 1u);  // the long-named output only
 }
 
+// Each write has a temporary of its own; a batch's sweep removes a killed write's (unlocked) and
+// leaves one a writer holds locked (another process writing the same folder now).
+TEST(AtomicWrite, EachWriteHasItsOwnTemporaryAndTheSweepKeepsLockedOnes) {
+  OwnTempDir dir;
+  const std::string output = dir.file("x.json");
+  const std::string first = io::unique_temporary_path_of(output),
+                    second = io::unique_temporary_path_of(output);
+  EXPECT_NE(first, second);
+  EXPECT_EQ(std::filesystem::path(first).parent_path(), dir.path());
+  std::filesystem::create_directories(dir.file("sub"));
+  const std::string killed = io::unique_temporary_path_of(dir.file("sub/y.json"));
+  std::ofstream(killed) << "{";
+  std::ofstream(first) << "{";
+  const int held = ::open(first.c_str(), O_RDONLY);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX), 0);  // as write_file_atomically holds it
+  std::ofstream(dir.file("notes.tmp")) << "not ours";
+  EXPECT_EQ(io::remove_stale_temporaries(dir.path().string()), 1);
+  EXPECT_FALSE(std::filesystem::exists(killed));
+  EXPECT_TRUE(std::filesystem::exists(first)) << "a write in progress lost its temporary";
+  EXPECT_TRUE(std::filesystem::exists(dir.file("notes.tmp")));
+  ::close(held);
+  io::write_file_atomically(output, "{}\n");
+  EXPECT_TRUE(std::filesystem::exists(output));
+}
+
 #ifdef AIEF_HAVE_HDF5
 // Why an HDF5 file cannot be opened, in words a user acts on (not "damaged, or not HDF5?", which
 // invites deleting a good file that another process holds).

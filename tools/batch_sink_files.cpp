@@ -21,12 +21,14 @@ class FilePerImageSink : public BatchSink {
     fs::create_directories(settings.output_dir, ec);
     if (ec)
       throw Error("cannot create output folder '" + settings.output_dir + "': " + ec.message());
+    // Killed writes' temporaries; those of another batch writing here now are locked and kept.
+    io::remove_stale_temporaries(settings.output_dir);
   }
 
   Existing existing(const BatchInput& input, const io::SourceRecord& source) override {
     const std::string output = output_of(input);
     std::error_code ignored;
-    fs::remove(io::temporary_path_of(output), ignored);  // a killed run's
+    fs::remove(io::temporary_path_of(output), ignored);  // a killed older aief's (shared names)
     fs::remove(output + ".tmp", ignored);                // ... of an aief before the short names
     Existing found;
     found.present = fs::exists(output, ignored);

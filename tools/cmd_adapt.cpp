@@ -10,6 +10,7 @@
 #include "io/plot.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/outputs_not_inputs.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
 
@@ -67,6 +68,7 @@ int run_adapt(const Arguments& arguments) {
   }
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
+  refuse_outputs_that_are_inputs(args, {"--output", "--plot"}, {path_a, path_b});
   const GrayImage a = read_image_reporting(path_a, options.max_image_pixels),
                   b = read_image_reporting(path_b, options.max_image_pixels);
   const AdaptResult result = adapt(a.view(), b.view(), options, sweep);

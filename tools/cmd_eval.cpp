@@ -17,6 +17,7 @@
 #include "tools/eval/dataset.hpp"
 #include "tools/eval/methods.hpp"
 #include "tools/eval/report.hpp"
+#include "tools/outputs_not_inputs.hpp"
 #include "tools/progress.hpp"
 #include "tools/read_image.hpp"
 
@@ -124,6 +125,12 @@ int run_eval(const Arguments& arguments) {
   eval::EvalRun run;
   run.pairs = eval::find_pairs(*dataset, sequences, pairs_text == "all");
   if (run.pairs.empty()) throw Error("no sequence found in '" + *dataset + "'");
+  std::filesystem::path json_path(output);
+  json_path.replace_extension(".json");
+  std::vector<std::string> inputs;
+  for (const eval::PairInput& pair : run.pairs)
+    inputs.insert(inputs.end(), {pair.path_a, pair.path_b, pair.truth_path});
+  refuse_outputs_that_are_inputs({{"-o", output}, {"-o (its data)", json_path.string()}}, inputs);
   run.methods = methods;
   run.matcher = std::string(to_string(settings.match.kind));
   run.timing_rounds = settings.timing_repeats;
@@ -168,8 +175,6 @@ int run_eval(const Arguments& arguments) {
   std::string report = eval::markdown_report(run, plots_name);
   if (!hand_written.empty()) report += "\n" + hand_written;
   io::write_file_atomically(output, report);
-  std::filesystem::path json_path = report_path;
-  json_path.replace_extension(".json");
   io::write_file_atomically(json_path.string(), eval::json_report(run));
   std::printf(
       "evaluated %zu pairs x %zu methods in %.0f s\nreport: %s\ndata: %s\nplots: %s/ (%zu)\n",

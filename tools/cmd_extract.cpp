@@ -12,6 +12,7 @@
 #include "tools/batch.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/outputs_not_inputs.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
 
@@ -129,6 +130,7 @@ int run_extract(const Arguments& arguments) {
   check_picture_flag(args, "--draw");
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
+  refuse_outputs_that_are_inputs(args, {"--output", "--draw"}, {path});
 
   std::vector<std::string> warnings;
   const GrayImage image = read_image_reporting(path, options.max_image_pixels, &warnings);

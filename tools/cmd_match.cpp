@@ -15,6 +15,7 @@
 #include "io/json_writer.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/outputs_not_inputs.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
 
@@ -87,6 +88,7 @@ int run_match(const Arguments& arguments) {
   const ExtractorOptions options = extractor_options(args);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
+  refuse_outputs_that_are_inputs(args, {"--output", "--draw"}, {path_a, path_b});
   const GrayImage a = read_image_reporting(path_a, options.max_image_pixels),
                   b = read_image_reporting(path_b, options.max_image_pixels);
 

@@ -7,10 +7,10 @@ RANSAC homography and the adaptive threshold sweep, on numpy arrays.
     features.keypoints    # N x 2 float32, pixel centres at integers (OpenCV's convention)
     features.descriptors  # N x 32 uint8
 """
-from aief._aief import (AdaptResult, Error, Extractor, Features, __version__, adapt, batch_inputs, default_options,
-                        find_homography, match, option_changes, read_image)
+from aief._aief import (AdaptResult, Error, Extractor, Features, FeaturesFile, __version__, adapt, batch_inputs,
+                        default_options, find_homography, match, option_changes, read_image)
 
-__all__ = ["AdaptResult", "Error", "Extractor", "Features", "adapt", "batch_inputs", "default_options",
+__all__ = ["AdaptResult", "Error", "Extractor", "Features", "FeaturesFile", "adapt", "batch_inputs", "default_options",
            "find_homography", "match", "option_changes", "read_image"]
 
 

@@ -175,6 +175,21 @@ def adapt(
 def read_image(path: str) -> numpy.ndarray:
     """An image file as the aief CLI reads it: 2-D uint8 gray."""
 
+class FeaturesFile:
+    """An hloc features file (HDF5) written by the engine's writer, as aief extract --batch --format h5
+    writes it; a failed write (a full disk) raises aief.Error and keeps every group complete before it."""
+    def __init__(self, path: str) -> None: ...
+    def is_current(self, name: str, source: tuple[int, int], extractor: Extractor) -> bool:
+        """Whether `name` is a complete group of the image file `source` ((size, mtime in ns)) with `extractor`'s options."""
+    def write(self, name: str, features: Features, source: tuple[int, int], extractor: Extractor) -> None:
+        """Writes the group `name` with the features, the source record and the option record."""
+    def remove(self, name: str) -> None:
+        """Removes the group `name`, if there is one."""
+    def close(self) -> None:
+        """Closes the file, raising aief.Error when its last writes could not be stored."""
+    def __enter__(self) -> FeaturesFile: ...
+    def __exit__(self, *exc: Any) -> None: ...
+
 def batch_inputs(folder_or_list: str) -> list[tuple[str, str]]:
     """The images `aief extract --batch FOLDER_OR_LIST` takes, as (path, name) pairs sorted by name."""
 

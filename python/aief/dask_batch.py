@@ -6,6 +6,9 @@ i, i+n, i+2n ... of the sorted list, as `aief extract --shard i/n` does, so `aie
 groups, byte for byte in every dataset. A shard file resumes: a complete group whose `source`
 (the image file's size and modification time) is the file as it is now is skipped. An image that
 cannot be read (a broken link, a damaged file) is reported with its reason, as the CLI reports it.
+Shards are written by the engine's own writer (aief.FeaturesFile): a full disk stops the task
+with aief.Error and keeps every group complete before it readable (h5py left a file nobody could
+open).
 
     python3 -m aief.dask_batch IMAGES OUTDIR --shards 8 --scheduler tcp://host:8786
     python3 -m aief.dask_batch IMAGES OUTDIR --shards 4 --local-workers 2   # a LocalCluster here
@@ -15,8 +18,6 @@ CLI batch runs it): give workers threads_per_worker = cores for a machine's wort
 """
 import argparse
 import os
-
-import numpy
 
 import aief
 
@@ -35,59 +36,37 @@ def shard_path(output_dir, index, count):
 
 
 def source_of(path):
-    """The image file's identity a resume compares: size in bytes, modification time in ns (io/source_record.cpp)."""
+    """The image file's identity a resume compares: (size in bytes, modification time in ns), io/source_record.cpp."""
     info = os.stat(path)
-    return numpy.array([info.st_size, info.st_mtime_ns], numpy.int64)
-
-
-def is_current(file, name, source, extractor):
-    """Whether `name` is a complete group written from the file `source` describes, with options
-    that give what `extractor` would (aief.option_changes, the rule of aief extract --batch: a
-    group of other options, or without a record, is redone)."""
-    return (f"{name}/image_size" in file and f"{name}/source" in file
-            and numpy.array_equal(file[name]["source"][()], source)
-            and not aief.option_changes(file[name].attrs.get("options"), extractor))
-
-
-def write_group(file, name, features, source, option_record):
-    """One image's group, as io/hdf5_features.cpp writes it (image_size last marks it complete)."""
-    if name in file:
-        del file[name]
-    group = file.create_group(name)
-    group.create_dataset("keypoints", data=features.keypoints)
-    group.create_dataset("descriptors", data=numpy.ascontiguousarray(features.descriptors.T))
-    group.create_dataset("scores", data=features.response)
-    group.create_dataset("size", data=features.size)
-    group.create_dataset("angle", data=features.angle)
-    group.create_dataset("octave", data=features.octave)
-    group.create_dataset("source", data=source)
-    group.attrs["options"] = option_record
-    group.create_dataset("image_size", data=numpy.array([features.image_width, features.image_height], numpy.int64))
-    file.flush()
+    return info.st_size, info.st_mtime_ns
 
 
 def extract_shard(inputs, output, options):
-    """Runs on a worker: extracts the (path, name) `inputs` into the HDF5 file `output`.
-    Returns (extracted, skipped, keypoints, failures), failures as "path: reason" lines."""
-    import h5py  # on the worker
-
+    """Runs on a worker: extracts the (path, name) `inputs` into the HDF5 file `output` through
+    the engine's writer (aief.FeaturesFile, the writer of `aief extract --batch --format h5`).
+    Returns (extracted, skipped, keypoints, failures), failures as "path: reason" lines. A write
+    the file refuses (a full disk) raises aief.Error saying so: the groups complete before it stay
+    readable, and the same call resumes once there is space."""
     extractor = aief.Extractor(**dict(options, threads=1))
     extracted = skipped = keypoints = 0
     failures = []
-    with h5py.File(output, "a") as file:
+    with aief.FeaturesFile(output) as file:
         for path, name in inputs:
             try:
                 source = source_of(path)
-                if is_current(file, name, source, extractor):
+                if file.is_current(name, source, extractor):
                     skipped += 1
                     continue
                 features = extractor.extract(aief.read_image(path))
             except (OSError, aief.Error) as error:
                 failures.append(f"{path}: {error}")
-                if name in file:  # an output of another or older file must not stay beside a failure
-                    del file[name]
+                file.remove(name)  # an output of another or older file must not stay beside a failure
                 continue
-            write_group(file, name, features, source, extractor.option_record)
+            try:
+                file.write(name, features, source, extractor)
+            except aief.Error as error:
+                raise aief.Error(f"shard {output} stopped after {extracted} new images: {error}; "
+                                 "run the same shard again to resume") from None
             extracted += 1
             keypoints += len(features)
     return extracted, skipped, keypoints, failures

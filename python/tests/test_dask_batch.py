@@ -84,3 +84,43 @@ def test_takes_the_clis_images_symlinked_folders_and_broken_links_included(cli, 
     run_cli(cli, "merge", "-o", merged, *outputs)
     with h5py.File(single, "r") as s, h5py.File(merged, "r") as m:
         assert group_names(m) == group_names(s) == ["graf1.png", "linked/boat1.png", "linked/deeper/leuven1.png"]
+
+
+@pytest.fixture
+def small_disk(tmp_path):
+    """A 4 MB tmpfs mounted on a folder of the test's own (mounting needs root; CI runs as root)."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root (CI runs these as root)")
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=4m", "tmpfs", str(disk)], capture_output=True, text=True)
+    if mounted.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {mounted.stderr.strip()}")
+    yield disk
+    subprocess.run(["umount", str(disk)], check=True)
+
+
+def test_a_full_disk_stops_the_shard_clearly_and_keeps_what_was_complete(small_disk, tmp_path):
+    images = tmp_path / "images"
+    images.mkdir()
+    for copy in range(4):
+        for sequence in SEQUENCES:
+            shutil.copy(sample_path(sequence, 1), images / f"{sequence}{copy}.png")
+    inputs = dask_batch.list_images(images)
+    shard = str(small_disk / "features.0-of-1.h5")
+    first = dask_batch.extract_shard(inputs[:3], shard, {})
+    assert first[:2] == (3, 0)
+    # Fill the disk but for a little room: the next images cannot all be written.
+    free = shutil.disk_usage(small_disk).free
+    with open(small_disk / "filler", "wb") as filler:
+        filler.write(b"\0" * (free - 100_000))
+    with pytest.raises(aief.Error, match="No space left on device.*run the same shard again to resume"):
+        dask_batch.extract_shard(inputs, shard, {})
+    with h5py.File(shard, "r") as file:  # was: unreadable ("addr overflow")
+        kept = group_names(file)
+        assert set(name for _, name in inputs[:3]) <= set(kept)
+        for name in kept:
+            assert file[name]["descriptors"].shape[0] == 32 and file[name]["image_size"].shape == (2,)
+    os.remove(small_disk / "filler")
+    extracted, skipped, _, failures = dask_batch.extract_shard(inputs, shard, {})
+    assert failures == [] and skipped == len(kept) and extracted + skipped == len(inputs)

@@ -2,7 +2,10 @@
 processes (concurrent.futures, multiprocessing, Dask): the same options, the same bytes."""
 import concurrent.futures
 import multiprocessing
+import os
 import pickle
+import subprocess
+import sys
 
 import numpy
 import pytest
@@ -82,3 +85,29 @@ def test_a_damaged_or_foreign_state_is_refused():
         aief.Extractor.__new__(aief.Extractor).__setstate__(foreign)
     with pytest.raises(aief.Error, match="cut short"):
         aief.Extractor.__new__(aief.Extractor).__setstate__(state[:-3])
+
+
+# Run in a child interpreter: protocols 0 and 1 used to abort the interpreter (exit 134,
+# "instance allocation failed"), which would take the whole test run with it.
+EVERY_PROTOCOL = """
+import pickle, sys
+import aief
+from test_pickling import assert_same_adapt_results, assert_same_features, images
+a, b = images()
+extractor = aief.Extractor(n_features=300)
+features = extractor.extract(a)
+result = aief.adapt(a, b, extractor=extractor, step=1.0)
+protocol = int(sys.argv[1])
+copy = pickle.loads(pickle.dumps(extractor, protocol=protocol))
+assert type(copy) is aief.Extractor and copy.options == extractor.options
+assert_same_features(copy.extract(a), features)
+assert_same_features(pickle.loads(pickle.dumps(features, protocol=protocol)), features)
+assert_same_adapt_results(pickle.loads(pickle.dumps(result, protocol=protocol)), result)
+"""
+
+
+@pytest.mark.parametrize("protocol", range(pickle.HIGHEST_PROTOCOL + 1))
+def test_every_pickle_protocol_round_trips(protocol):
+    run = subprocess.run([sys.executable, "-c", EVERY_PROTOCOL, str(protocol)], capture_output=True, text=True,
+                         cwd=os.path.dirname(os.path.abspath(__file__)))
+    assert run.returncode == 0, run.stderr

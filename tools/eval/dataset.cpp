@@ -81,8 +81,8 @@ std::vector<PairInput> find_pairs(const std::string& dataset,
       pair.target = target;
       pair.path_a = image_path(folder, 1);
       pair.path_b = image_path(folder, target);
-      pair.truth =
-          read_homography_file((folder / ("H1to" + std::to_string(target) + "p")).string());
+      pair.truth_path = (folder / ("H1to" + std::to_string(target) + "p")).string();
+      pair.truth = read_homography_file(pair.truth_path);
       pairs.push_back(std::move(pair));
     }
   }

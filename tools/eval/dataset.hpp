@@ -16,6 +16,7 @@ struct PairInput {
   std::string sequence;
   int target = 2;  // img1 -> img<target>
   std::string path_a, path_b;
+  std::string truth_path;  // the homography file, H1to<target>p
   Homography truth{};
 };
 

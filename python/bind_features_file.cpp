@@ -1,0 +1,158 @@
+// aief.FeaturesFile: the engine's writer of hloc feature files (io::Hdf5File, the writer of
+// `aief extract --batch --format h5`), so that the Dask recipe (aief/dask_batch.py) writes its
+// shards with the engine's guarantees: a full disk or a failed write stops with aief.Error and
+// keeps every group complete before it readable (io/hdf5_features.hpp), where h5py left a file
+// nobody could open.
+#include <pybind11/stl.h>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "aief/error.hpp"
+#include "python/bindings.hpp"
+#include "python/py_extractor.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_features.hpp"
+#include "io/option_record.hpp"
+#endif
+
+namespace aief::python {
+
+namespace {
+
+#ifdef AIEF_HAVE_HDF5
+
+// Python features back to the engine's (what write_features stores; info is not stored).
+Features engine_features(const PyFeatures& f) {
+  const py::ssize_t n = f.keypoints.ndim() == 2 ? f.keypoints.shape(0) : -1;
+  for (const py::array* field :
+       {static_cast<const py::array*>(&f.size), static_cast<const py::array*>(&f.angle),
+        static_cast<const py::array*>(&f.response), static_cast<const py::array*>(&f.octave)})
+    if (n < 0 || f.keypoints.shape(1) != 2 || field->ndim() != 1 || field->shape(0) != n)
+      throw Error("features: the keypoint arrays differ in length (not an aief.Features as made)");
+  Features out;
+  out.image_width = f.image_width;
+  out.image_height = f.image_height;
+  out.descriptors = descriptors_from(py::cast(f), "features");
+  if (out.descriptors.size() != static_cast<std::size_t>(n))
+    throw Error("features: " + std::to_string(out.descriptors.size()) + " descriptors for " +
+                std::to_string(n) + " keypoints");
+  const auto xy = f.keypoints.unchecked<2>();
+  const auto size = f.size.unchecked<1>(), angle = f.angle.unchecked<1>(),
+             response = f.response.unchecked<1>();
+  const auto octave = f.octave.unchecked<1>();
+  out.keypoints.resize(static_cast<std::size_t>(n));
+  for (py::ssize_t i = 0; i < n; ++i) {
+    Keypoint& kp = out.keypoints[static_cast<std::size_t>(i)];
+    kp.x = xy(i, 0);
+    kp.y = xy(i, 1);
+    kp.size = size(i);
+    kp.angle_deg = angle(i);
+    kp.response = response(i);
+    kp.octave = octave(i);
+  }
+  return out;
+}
+
+// The source record a group keeps: (size in bytes, modification time in ns), as
+// aief.dask_batch.source_of gives it (io/source_record.hpp).
+io::SourceRecord source_record(const std::string& name, const std::array<long long, 2>& source) {
+  io::SourceRecord record;
+  record.name = name;
+  record.bytes = static_cast<std::uintmax_t>(source[0]);
+  record.mtime_ns = source[1];
+  return record;
+}
+
+// One open file; calls hold the GIL, so a libhdf5 built without its thread-safe option sees one
+// caller at a time.
+class FeaturesFile {
+ public:
+  explicit FeaturesFile(const std::string& path)
+      : file_(std::make_unique<io::Hdf5File>(path, io::Hdf5File::Mode::read_write)) {}
+
+  bool is_current(const std::string& name, const std::array<long long, 2>& source,
+                  const PyExtractor& extractor) const {
+    const io::Hdf5File& file = open();
+    return file.features_belong_to(name, source_record(name, source)) &&
+           io::option_changes(file.option_record(name), extractor.options()).empty();
+  }
+  void write(const std::string& name, const PyFeatures& features,
+             const std::array<long long, 2>& source, const PyExtractor& extractor) {
+    const io::SourceRecord record = source_record(name, source);
+    open().write_features(name, engine_features(features), &record, &extractor.options());
+  }
+  void remove(const std::string& name) { open().remove_features(name); }
+  void close() {
+    if (!file_) return;
+    const std::unique_ptr<io::Hdf5File> file = std::move(file_);
+    file->close();
+  }
+
+ private:
+  io::Hdf5File& open() const {
+    if (!file_) throw Error("the features file is closed");
+    return *file_;
+  }
+  std::unique_ptr<io::Hdf5File> file_;
+};
+
+#else
+
+// A build without libhdf5: the class exists and says why it cannot open a file.
+class FeaturesFile {
+ public:
+  explicit FeaturesFile(const std::string&) {
+    throw Error("this aief was built without HDF5 (install libhdf5-dev and rebuild)");
+  }
+  bool is_current(const std::string&, const std::array<long long, 2>&, const PyExtractor&) const {
+    return false;
+  }
+  void write(const std::string&, const PyFeatures&, const std::array<long long, 2>&,
+             const PyExtractor&) {}
+  void remove(const std::string&) {}
+  void close() {}
+};
+
+#endif
+
+}  // namespace
+
+void bind_features_file(py::module_& m) {
+  py::class_<FeaturesFile>(
+      m, "FeaturesFile",
+      "An hloc features file (HDF5) written by the engine's writer, as aief extract --batch "
+      "--format h5 writes it: opened for reading and writing (created when missing). A failed "
+      "write (a full disk) raises aief.Error and keeps every group complete before it; use it "
+      "as a context manager, or call close() to know that the writes are on disk")
+      .def(py::init<const std::string&>(), py::arg("path"))
+      .def("is_current", &FeaturesFile::is_current, py::arg("name"), py::arg("source"),
+           py::arg("extractor"),
+           "Whether `name` is a complete group written from the image file `source` describes "
+           "((size in bytes, modification time in ns)) with options that give what `extractor` "
+           "would (the resume rule of aief extract --batch)")
+      .def("write", &FeaturesFile::write, py::arg("name"), py::arg("features"), py::arg("source"),
+           py::arg("extractor"),
+           "Writes the group `name` (replacing one of that name) with the features, the source "
+           "record and `extractor`'s option record")
+      .def("remove", &FeaturesFile::remove, py::arg("name"),
+           "Removes the group `name`, if there is one")
+      .def("close", &FeaturesFile::close,
+           "Closes the file, raising aief.Error when its last writes could not be stored")
+      .def("__enter__", [](py::object self) { return self; })
+      .def("__exit__",
+           [](FeaturesFile& file, const py::object& type, const py::object&, const py::object&) {
+             if (type.is_none()) {
+               file.close();
+               return;
+             }
+             try {  // already failing: the first error is the one to see
+               file.close();
+             } catch (const std::exception&) {
+             }
+           });
+}
+
+}  // namespace aief::python
