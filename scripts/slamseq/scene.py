@@ -103,7 +103,10 @@ def _pack(faces, rng, contrast, shapes_per_mpx):
     x = y = shelf = 0
     for i in order:
         height, width = textures[i].shape
-        if x + width + PADDING > ATLAS_WIDTH:
+        if width + 2 * PADDING > ATLAS_WIDTH:
+            raise ValueError(f"a face of {width} texels does not fit the {ATLAS_WIDTH}-texel atlas")
+        # A face takes its padding on both sides: x + PADDING + width + PADDING must fit.
+        if x + width + 2 * PADDING > ATLAS_WIDTH:
             x, y, shelf = 0, y + shelf + PADDING, 0
         faces[i].atlas_x, faces[i].atlas_y = x + PADDING, y + PADDING
         x += width + PADDING

@@ -147,3 +147,23 @@ def test_unknown_family_is_a_clear_error(tmp_path):
     result = subprocess.run([sys.executable, os.path.join(SCRIPTS, "make_sequences.py"), str(tmp_path), "--families", "baseline,fog"],
                             capture_output=True, text=True)
     assert result.returncode != 0 and "fog" in result.stderr
+
+
+def test_every_seed_builds_its_room_or_is_refused_with_a_reason():
+    """Seed 977 died in _pack ("could not broadcast ... (117,196) into shape (117,191)"): a face was
+    kept on a shelf when it fitted without its right padding. Every seed tried builds its atlas,
+    each face's padded block inside it, or make_room says why not."""
+    from slamseq.scene import ATLAS_WIDTH, PADDING, make_room
+    for seed in (977, 5, 17, 23, 101):
+        try:
+            room = make_room(seed)
+        except ValueError as refusal:
+            assert "atlas" in str(refusal)
+            continue
+        atlas = room.atlas[0]
+        assert atlas.shape[1] == ATLAS_WIDTH
+        for face in room.faces:
+            assert face.atlas_x >= PADDING and face.atlas_y >= PADDING
+            extent = np.ceil((face.high - face.low) / TEXEL).astype(int) + 1
+            assert face.atlas_x + extent[0] + PADDING <= atlas.shape[1]
+            assert face.atlas_y + extent[1] + PADDING <= atlas.shape[0]
