@@ -13,6 +13,10 @@ Examples/Stereo/stereo_euroc were built (stock, and with the drop-in; compile wi
 Runs are interleaved across variants and cells (run 1 of every cell, then run 2...) so that the
 load of the machine falls on all of them alike and a stopped benchmark leaves every cell with as
 many runs as possible; finished runs are kept and skipped when re-run.
+Sequences as scripts/make_sequences.py writes them (EuRoC and TUM files together in a family
+folder) or split into its euroc/ and tum/ sub-folders (slambench/sequences.py); an incomplete one
+is named with what it lacks, and a program that cannot load its libraries is refused before any
+run (set LD_LIBRARY_PATH), so nothing runs that cannot be scored.
 Writes OUT/results.json, OUT/table.md, OUT/plots/*.png.
 """
 import argparse
@@ -22,7 +26,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from slambench import evaluate, orbslam3, report  # noqa: E402
+from slambench import evaluate, orbslam3, report, sequences as sequence_files  # noqa: E402
 
 
 def parse_variant(text):
@@ -54,9 +58,9 @@ def main():
     parser.add_argument("--report-only", action="store_true", help="summarise the runs already in OUT")
     args = parser.parse_args()
     variants = args.variant or [("stock", "stock", {}), ("aief", "aief", {"ORBextractor.threads": "1"})]
-    families = args.families.split(",") if args.families else sorted(
-        d for d in os.listdir(args.sequences) if os.path.exists(os.path.join(args.sequences, d, "times.txt")))
     sensors = args.sensors.split(",")
+    if unknown := [s for s in sensors if s not in orbslam3.PROGRAMS]:
+        parser.error(f"unknown sensors {unknown}; known: {sorted(orbslam3.PROGRAMS)}")
     if not os.path.exists(args.vocabulary):
         parser.error(f"no vocabulary at {args.vocabulary}")
     builds = {"stock": args.stock, "aief": args.aief}
@@ -67,11 +71,21 @@ def main():
                         if any(v[1] == build for v in variants)}
         except FileNotFoundError as error:
             parser.error(str(error))
+        for program in sorted(set(programs.values())):
+            if missing := orbslam3.missing_libraries(program):
+                parser.error(f"{program} cannot load {', '.join(missing)}: set LD_LIBRARY_PATH to the folders holding them "
+                             "(e.g. Pangolin's lib/ when ORB-SLAM3 was built against an installed Pangolin)")
+    try:
+        found = sequence_files.find_all(args.sequences, args.families.split(",") if args.families else None, sensors)
+    except sequence_files.SequenceError as error:
+        parser.error(str(error))
+    families = [sequence.name for sequence in found]
+    by_name = {sequence.name: sequence for sequence in found}
 
     # Run k of every cell before run k + 1 of any: stopped early, every cell has as many runs as possible.
     for run in range(args.runs if not args.report_only else 0):
         for family in families:
-            sequence = os.path.abspath(os.path.join(args.sequences, family))
+            sequence = by_name[family]
             for sensor in sensors:
                 for name, build, extra in variants:
                     workdir = os.path.join(args.out, "runs", family, sensor, name, f"{run:02d}")
@@ -79,17 +93,18 @@ def main():
                         continue
                     os.makedirs(workdir, exist_ok=True)
                     settings = os.path.join(workdir, "settings.yaml")
-                    orbslam3.write_settings(os.path.join(sequence, f"{sensor}.yaml"), extra, settings)
+                    orbslam3.write_settings(sequence.settings[sensor], extra, settings)
                     code, seconds = orbslam3.run(programs[(build, sensor)], os.path.abspath(args.vocabulary), settings, sequence, workdir, args.timeout)
-                    result = evaluate.evaluate_run(workdir, sequence, sensor, code, seconds)
+                    result = evaluate.evaluate_run(workdir, sequence.ground_truth, sensor, code, seconds)
                     json.dump(result, open(os.path.join(workdir, "result.json"), "w"), indent=1)
                     ate = "fail" if result["ate"] is None else f"{result['ate'] * 1000:.1f} mm"
                     print(f"{family} {sensor} {name} run {run}: ATE {ate}, tracked {result['tracked_share']:.0%}, "
                           f"keyframes {result['keyframes']}, {seconds:.0f} s", flush=True)
-    write_report(args.out, families, sensors, [v[0] for v in variants], args.sequences)
+    write_report(args.out, families, sensors, [v[0] for v in variants], by_name)
 
 
 def write_report(out, families, sensors, variant_names, sequences):
+    """sequences: family name -> slambench.sequences.Sequence."""
     runs, summaries = {}, {}
     for family in families:
         for sensor in sensors:
@@ -111,7 +126,7 @@ def write_report(out, families, sensors, variant_names, sequences):
             for name in variant_names:
                 workdir = evaluate.median_run(runs.get((family, sensor, name), []))
                 if workdir:
-                    aligned[name] = evaluate.save_aligned_trajectory(workdir, os.path.abspath(os.path.join(sequences, family)), sensor,
+                    aligned[name] = evaluate.save_aligned_trajectory(workdir, sequences[family].ground_truth, sensor,
                                                                       os.path.join(plots, f"aligned_{family}_{sensor}_{name}.npy"))
             if aligned:
                 report.plot_trajectories(aligned, family, sensor, os.path.join(plots, f"trajectory_{family}_{sensor}.png"))

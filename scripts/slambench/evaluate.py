@@ -8,9 +8,9 @@ from slambench import orbslam3
 from slambench.metrics import absolute_trajectory_error
 
 
-def evaluate_run(workdir, sequence, sensor, return_code, seconds):
-    """The figures of one finished run (workdir of slambench.orbslam3.run)."""
-    gt_times, gt_positions = orbslam3.read_ground_truth(sequence)
+def evaluate_run(workdir, ground_truth, sensor, return_code, seconds):
+    """The figures of one finished run (workdir of slambench.orbslam3.run) against the TUM ground truth file."""
+    gt_times, gt_positions = orbslam3.read_ground_truth(ground_truth)
     frame_times, frame_positions = orbslam3.read_trajectory(os.path.join(workdir, f"f_{orbslam3.RUN_NAME}.txt"))
     kf_times, kf_positions = orbslam3.read_trajectory(os.path.join(workdir, f"kf_{orbslam3.RUN_NAME}.txt"))
     result = dict(return_code=return_code, wall_s=seconds, frames=len(gt_times), frames_tracked=len(frame_times),
@@ -31,9 +31,9 @@ def evaluate_run(workdir, sequence, sensor, return_code, seconds):
     return result
 
 
-def save_aligned_trajectory(workdir, sequence, sensor, out_path):
+def save_aligned_trajectory(workdir, ground_truth, sensor, out_path):
     """The run's frames aligned to the ground truth (for the plots), as an N x 6 array (aligned, reference)."""
-    gt_times, gt_positions = orbslam3.read_ground_truth(sequence)
+    gt_times, gt_positions = orbslam3.read_ground_truth(ground_truth)
     times, positions = orbslam3.read_trajectory(os.path.join(workdir, f"f_{orbslam3.RUN_NAME}.txt"))
     if len(times) < 3:
         return None

@@ -26,6 +26,17 @@ def program_path(orbslam3_root, sensor):
     return path
 
 
+def missing_libraries(program):
+    """The shared libraries the program needs and the loader cannot find (ldd's "not found"), e.g.
+    Pangolin's when ORB-SLAM3 was built against an installed Pangolin and LD_LIBRARY_PATH does not
+    name its folder. Empty for a program ldd cannot read (a script) or when there is no ldd."""
+    try:
+        listing = subprocess.run(["ldd", program], capture_output=True, text=True, timeout=60)
+    except (OSError, subprocess.TimeoutExpired):
+        return []
+    return [line.split("=>")[0].strip() for line in listing.stdout.splitlines() if "not found" in line]
+
+
 def write_settings(base_settings, extra_keys, out_path):
     """A copy of the sequence's settings with extra (or replaced) top-level keys."""
     lines = open(base_settings).read().splitlines()
@@ -37,9 +48,10 @@ def write_settings(base_settings, extra_keys, out_path):
 
 
 def run(program, vocabulary, settings, sequence, workdir, timeout):
-    """Runs the program in workdir; returns (return code, wall seconds). Output goes to workdir/log.txt."""
+    """Runs the program on a slambench.sequences.Sequence in workdir; returns (return code, wall
+    seconds). Output goes to workdir/log.txt."""
     os.makedirs(workdir, exist_ok=True)
-    command = [program, vocabulary, settings, sequence, os.path.join(sequence, "times.txt"), RUN_NAME]
+    command = [program, vocabulary, settings, sequence.euroc, sequence.times, RUN_NAME]
     start = time.monotonic()
     with open(os.path.join(workdir, "log.txt"), "w") as log:
         try:
@@ -57,8 +69,9 @@ def read_trajectory(path):
     return data[:, 0] / 1e9, data[:, 1:4]
 
 
-def read_ground_truth(sequence):
-    data = np.loadtxt(os.path.join(sequence, "groundtruth.txt"))
+def read_ground_truth(path):
+    """(times in seconds, N x 3 positions) of a TUM ground truth file."""
+    data = np.loadtxt(path)
     return data[:, 0], data[:, 1:4]
 
 

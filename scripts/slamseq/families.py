@@ -2,7 +2,9 @@
 
 All families of one seed share the room's geometry and (except `fast_rotation`) the camera path,
 so each differs from `baseline` in one thing only: the lighting, the textures, the exposure time
-or the noise. `weak_texture` uses the same room with low-contrast textures.
+or the noise. `weak_texture` uses the same room with low-contrast textures; `blank_walls` the
+same room with flat walls, floor and ceiling (a few posters on the walls, the boxes textured)
+seen through shot and read noise, the scene an entropy mask was made for.
 """
 from dataclasses import dataclass
 from typing import Callable
@@ -24,6 +26,8 @@ class Family:
     gamma: Callable = None          # t -> gamma applied by the camera (1 = linear)
     low_light: bool = False         # dim scene, shot and read noise, then digital gain
     read_noise: float = 1.0         # grey levels, before quantisation
+    blank_walls: bool = False       # the room's own faces flat (slamseq.scene.make_room)
+    shot_noise: float = 0.0         # photon noise variance per grey level of signal (0: none)
 
 
 def _auto_exposure_gain(t):
@@ -40,6 +44,8 @@ FAMILIES = [
     Family("weak_texture", "the same room with textures at 20% contrast and few shapes", weak_texture=True),
     Family("motion_blur", "shutter open 45 ms of the 50 ms frame", exposure=0.045),
     Family("low_light", "scene at 15% exposure with shot and read noise, then x2.5 digital gain", low_light=True),
+    Family("blank_walls", "flat walls, floor and ceiling with a few posters, textured boxes; shot and read noise",
+           blank_walls=True, read_noise=2.0, shot_noise=0.15),
 ]
 
 BY_NAME = {family.name: family for family in FAMILIES}
@@ -66,6 +72,9 @@ def sensor(family, radiance, t, rng):
         dim = 0.15 * levels
         dim = dim + rng.normal(0.0, 1.0, dim.shape) * np.sqrt(0.6 * np.clip(dim, 0, None) + 1.2 ** 2)
         levels = 2.5 * dim
+    elif family.shot_noise > 0:
+        variance = family.shot_noise * np.clip(levels, 0, None) + family.read_noise ** 2
+        levels = levels + rng.normal(0.0, 1.0, levels.shape) * np.sqrt(variance)
     else:
         levels = levels + rng.normal(0.0, family.read_noise, levels.shape)
     return np.clip(np.rint(levels), 0, 255).astype(np.uint8)

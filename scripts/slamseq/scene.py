@@ -92,18 +92,43 @@ def _centre_objects(rng, size):
     return [pillar, table]
 
 
-def _pack(faces, rng, contrast, shapes_per_mpx):
-    """Textures for every face, shelf-packed into one atlas; returns the atlas (level 0)."""
+def _blank_wall(rng, texture, is_wall):
+    """A flat face (one albedo, a gradient of at most 1%) with, on walls, one or two posters: pieces
+    of the face's own texture 0.5-1.1 m wide. Floors and ceilings stay bare."""
+    height, width = texture.shape
+    albedo = float(rng.uniform(0.55, 0.8))
+    ramp = np.linspace(-0.005, 0.005, width, dtype=np.float32)[None, :]
+    blank = np.full((height, width), albedo, np.float32) + ramp
+    for _ in range(int(rng.integers(1, 3)) if is_wall else 0):
+        w = min(width - 2, int(rng.uniform(0.5, 1.1) / TEXEL))
+        h = min(height - 2, int(w * rng.uniform(0.6, 1.4)))
+        if w < 8 or h < 8:
+            continue
+        x, y = int(rng.integers(0, width - w)), int(rng.integers(0, height - h))
+        blank[y:y + h, x:x + w] = texture[y:y + h, x:x + w]
+    return blank
+
+
+def _pack(faces, rng, contrast, shapes_per_mpx, blank_rng=None):
+    """Textures for every face, shelf-packed into one atlas; returns the atlas (level 0). With
+    blank_rng, the room's own six faces are blank walls (_blank_wall); the textures are drawn
+    first either way, so the boxes keep theirs."""
     textures = []
     for face in faces:
         extent = face.high - face.low
         width, height = (int(np.ceil(e / TEXEL)) + 1 for e in extent)
         textures.append(make_texture(rng, height, width, contrast, shapes_per_mpx))
+    if blank_rng is not None:
+        for i in range(6):  # ids axis * 2 + side; axis 2 is the floor and the ceiling
+            textures[i] = _blank_wall(blank_rng, textures[i], is_wall=faces[i].axis != 2)
     order = sorted(range(len(faces)), key=lambda i: -textures[i].shape[0])
     x = y = shelf = 0
     for i in order:
         height, width = textures[i].shape
-        if x + width + PADDING > ATLAS_WIDTH:
+        if width + 2 * PADDING > ATLAS_WIDTH:
+            raise ValueError(f"a face of {width} texels does not fit the {ATLAS_WIDTH}-texel atlas")
+        # A face takes its padding on both sides: x + PADDING + width + PADDING must fit.
+        if x + width + 2 * PADDING > ATLAS_WIDTH:
             x, y, shelf = 0, y + shelf + PADDING, 0
         faces[i].atlas_x, faces[i].atlas_y = x + PADDING, y + PADDING
         x += width + PADDING
@@ -116,16 +141,18 @@ def _pack(faces, rng, contrast, shapes_per_mpx):
     return atlas
 
 
-def make_room(seed, contrast=1.0, shapes_per_mpx=400):
+def make_room(seed, contrast=1.0, shapes_per_mpx=400, blank_walls=False):
     """The room of `seed`: the same seed gives the same geometry (whatever the textures' contrast
-    and shapes) and the same textures."""
+    and shapes) and the same textures. blank_walls: flat walls, floor and ceiling with a few
+    posters, the boxes textured as in the normal room."""
     rng = np.random.default_rng([seed, 0])
     size = np.array([rng.uniform(7.5, 9.0), rng.uniform(6.0, 7.0), rng.uniform(2.7, 3.2)])
     boxes = _place_boxes(rng, size, int(rng.integers(7, 11))) + _centre_objects(rng, size)
     faces = _box_faces(np.zeros(3), size, inward=True)
     for box in boxes:
         faces += _box_faces(box.low, box.high, inward=False)
-    atlas = _pack(faces, np.random.default_rng([seed, 1]), contrast, shapes_per_mpx)
+    atlas = _pack(faces, np.random.default_rng([seed, 1]), contrast, shapes_per_mpx,
+                  np.random.default_rng([seed, 3]) if blank_walls else None)
     levels = [atlas]
     for _ in range(2):
         levels.append(cv2.pyrDown(levels[-1]))

@@ -48,10 +48,15 @@ class Scene:
         self.seed = seed
         self.room = make_room(seed)
         self.weak_room = None
+        self.blank_room = None
         # The same draws for both paths: the fast one is the main one plus the oscillations.
         self.paths = {fast: random_path(np.random.default_rng([seed, 2]), self.room.size, fast_rotation=fast) for fast in (False, True)}
 
     def atlas(self, family):
+        if family.blank_walls:
+            if self.blank_room is None:
+                self.blank_room = make_room(self.seed, blank_walls=True)
+            return self.blank_room.atlas
         if not family.weak_texture:
             return self.room.atlas
         if self.weak_room is None:

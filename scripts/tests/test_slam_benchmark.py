@@ -8,6 +8,7 @@ known exactly.
 """
 import json
 import os
+import shutil
 import stat
 import subprocess
 import sys
@@ -97,3 +98,72 @@ def test_a_missing_program_is_a_clear_error(tmp_path):
                              "--vocabulary", str(tmp_path / "voc.txt"), "--sequences", str(tmp_path / "seq"), "--out", str(tmp_path / "o")],
                             capture_output=True, text=True)
     assert result.returncode != 0 and "mono_euroc" in result.stderr
+
+
+def run_benchmark(stock, aief, vocabulary, sequences, out, *extra, env=None):
+    return subprocess.run([sys.executable, os.path.join(SCRIPTS, "slam_benchmark.py"), "--stock", str(stock), "--aief", str(aief),
+                           "--vocabulary", str(vocabulary), "--sequences", str(sequences), "--out", str(out), "--runs", "1", *extra],
+                          capture_output=True, text=True, env=env)
+
+
+def test_sequences_split_into_euroc_and_tum_folders_are_found_and_scored(tmp_path):
+    """times.txt and mav0/ under euroc/, groundtruth.txt under tum/: found by itself and with --families."""
+    sequences = tmp_path / "sequences"
+    subprocess.run([sys.executable, os.path.join(SCRIPTS, "make_sequences.py"), str(sequences), "--seed", "5", "--seconds", "0.5",
+                    "--width", "96", "--height", "72", "--families", "baseline"], check=True, capture_output=True)
+    family = sequences / "baseline"
+    (family / "euroc").mkdir()
+    (family / "tum").mkdir()
+    for name in ("mav0", "times.txt"):
+        os.rename(family / name, family / "euroc" / name)
+    os.rename(family / "groundtruth.txt", family / "tum" / "groundtruth.txt")
+    stock = stand_in(tmp_path / "stock", scale=0.5, extract=10, track=20)
+    # The stand-in reads the truth beside the EuRoC folder it is given, here ../tum.
+    for program in (tmp_path / "stock").rglob("*_euroc"):
+        program.write_text(program.read_text().replace('os.path.join(sequence, "groundtruth.txt")',
+                                                       'os.path.join(sequence, "..", "tum", "groundtruth.txt")'))
+    (tmp_path / "voc.txt").write_text("x")
+    for families in ([], ["--families", "baseline"]):
+        out = tmp_path / f"out{len(families)}"
+        result = run_benchmark(stock, stock, tmp_path / "voc.txt", sequences, out, *families)
+        assert result.returncode == 0, result.stderr
+        summary = json.load(open(out / "results.json"))
+        assert summary["baseline|stereo|stock"]["failed"] == 0
+        assert summary["baseline|mono|stock"]["ate"]["max"] < 1e-6
+
+
+def test_an_incomplete_sequence_says_what_is_missing(tmp_path):
+    stock = stand_in(tmp_path / "stock", scale=1.0, extract=1, track=1)
+    (tmp_path / "voc.txt").write_text("x")
+    (tmp_path / "seq" / "baseline" / "euroc").mkdir(parents=True)
+    (tmp_path / "seq" / "baseline" / "euroc" / "times.txt").write_text("1\n")
+    for families in ([], ["--families", "baseline"]):
+        result = run_benchmark(stock, stock, tmp_path / "voc.txt", tmp_path / "seq", tmp_path / "out", *families)
+        assert result.returncode != 0 and "Traceback" not in result.stderr
+        assert "groundtruth.txt" in result.stderr and "mono.yaml" in result.stderr and "mav0" in result.stderr
+        assert not (tmp_path / "out" / "runs").exists()
+
+
+@pytest.mark.skipif(not shutil.which("cc") or not shutil.which("ldd"), reason="needs a C compiler and ldd")
+def test_a_program_that_cannot_load_its_libraries_is_refused_before_any_run(tmp_path):
+    """As ORB-SLAM3 built against an installed Pangolin without LD_LIBRARY_PATH: every run would fail
+    with a loader error and be scored as a tracking failure."""
+    lib = tmp_path / "lib"
+    lib.mkdir()
+    (lib / "gone.c").write_text("int gone(void) { return 0; }\n")
+    subprocess.run(["cc", "-shared", "-fPIC", "-o", str(lib / "libgone.so"), str(lib / "gone.c")], check=True)
+    (tmp_path / "main.c").write_text("int gone(void);\nint main(void) { return gone(); }\n")
+    stock = tmp_path / "stock"
+    for path in ("Examples/Monocular/mono_euroc", "Examples/Stereo/stereo_euroc"):
+        (stock / path).parent.mkdir(parents=True, exist_ok=True)
+        subprocess.run(["cc", "-o", str(stock / path), str(tmp_path / "main.c"), f"-L{lib}", "-lgone"], check=True)
+    sequences = tmp_path / "sequences"
+    subprocess.run([sys.executable, os.path.join(SCRIPTS, "make_sequences.py"), str(sequences), "--seed", "5", "--seconds", "0.2",
+                    "--width", "96", "--height", "72", "--families", "baseline"], check=True, capture_output=True)
+    (tmp_path / "voc.txt").write_text("x")
+    env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
+    result = run_benchmark(stock, stock, tmp_path / "voc.txt", sequences, tmp_path / "out", env=env)
+    assert result.returncode != 0 and "libgone.so" in result.stderr and "LD_LIBRARY_PATH" in result.stderr
+    assert not (tmp_path / "out" / "runs").exists()
+    env["LD_LIBRARY_PATH"] = str(lib)  # with it, the same programs run (and exit 0 without output: scored as failures)
+    assert run_benchmark(stock, stock, tmp_path / "voc.txt", sequences, tmp_path / "out", env=env).returncode == 0
