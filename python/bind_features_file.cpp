@@ -1,7 +1,7 @@
 // aief.FeaturesFile: the engine's writer of hloc feature files (io::Hdf5File, the writer of
 // `aief extract --batch --format h5`), so that the Dask recipe (aief/dask_batch.py) writes its
 // shards with the engine's guarantees: a full disk or a failed write stops with aief.Error and
-// keeps every group complete before it readable (io/hdf5_features.hpp), where h5py left a file
+// keeps every group complete before it readable (io/hdf5_file.hpp), where h5py left a file
 // nobody could open.
 #include <pybind11/stl.h>
 
@@ -14,7 +14,7 @@
 #include "python/bindings.hpp"
 #include "python/py_extractor.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #include "io/option_record.hpp"
 #endif
 

@@ -10,7 +10,7 @@
 
 #include "io/image_io.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #endif
 
 int main(int argc, char** argv) {
