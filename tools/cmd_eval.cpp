@@ -64,98 +64,6 @@ cv::Mat as_mat(const GrayImage& image) {
   return cv::Mat(image.height(), image.width(), CV_8UC1, const_cast<std::uint8_t*>(image.data()));
 }
 
-// The sequences asked for, or all eight of the Oxford set present in the dataset.
-std::vector<std::string> sequences_of(const Args& args, const std::string& dataset) {
-  if (const auto listed = args.get("--sequences")) return split(*listed);
-  std::vector<std::string> present;
-  for (const std::string& s : eval::kAllSequences)
-    if (std::filesystem::is_directory(std::filesystem::path(dataset) / s)) present.push_back(s);
-  return present;
-}
-
-eval::EvalSettings settings_of(const Args& args) {
-  eval::EvalSettings settings;
-  settings.timing_repeats = args.get_int("--repeat", settings.timing_repeats, 1, 1000);
-  try {
-    if (const auto kind = args.get("--matcher")) settings.match.kind = parse_matcher_kind(*kind);
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
-  settings.aief =
-      extractor_options(args);  // the AIEF rows' flags, by the option table as in extract
-  return settings;
-}
-
-// The rows --methods names, or every row.
-std::vector<eval::Method> methods_of(const Args& args) {
-  const auto keys = args.get("--methods");
-  if (!keys) return eval::kAllMethods;
-  std::vector<eval::Method> methods;
-  try {
-    for (const std::string& key : split(*keys)) methods.push_back(eval::parse_method_key(key));
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
-  if (methods.empty()) throw UsageError("--methods needs at least one method");
-  return methods;
-}
-
-// Every row on every pair of `run`, one pair after the other (image A read once per sequence),
-// then the pair's extraction times, interleaved.
-void evaluate(eval::EvalRun& run, const eval::EvalSettings& settings) {
-  cv::setNumThreads(1);  // per-core times for every row
-  const auto start = std::chrono::steady_clock::now();
-  Progress progress("eval", static_cast<int>(run.pairs.size() * run.methods.size()));
-  std::string loaded_a;
-  GrayImage image_a;
-  for (const eval::PairInput& pair : run.pairs) {
-    if (pair.path_a != loaded_a) {
-      image_a = read_image_reporting(pair.path_a, ExtractorOptions{}.max_image_pixels);
-      loaded_a = pair.path_a;
-    }
-    const GrayImage image_b =
-        read_image_reporting(pair.path_b, ExtractorOptions{}.max_image_pixels);
-    std::vector<eval::PairResult> row;
-    for (const eval::Method& method : run.methods) {
-      row.push_back(
-          eval::run_method(method, as_mat(image_a), as_mat(image_b), pair.truth, settings));
-      progress.step(pair.sequence + " 1-" + std::to_string(pair.target) + " " +
-                    eval::method_key(method));
-    }
-    eval::time_extractions(run.methods, as_mat(image_a), settings, row, run.load);
-    run.results.push_back(std::move(row));
-  }
-  progress.finish();
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// The markdown report at `output` (keeping the hand-written section of the one it replaces), the
-// JSON beside it and the plots in <stem>_plots/; prints where they went.
-void write_reports(const eval::EvalRun& run, const std::string& output) {
-  const std::filesystem::path report_path(output);
-  const std::string plots_name = report_path.stem().string() + "_plots";
-  const std::filesystem::path plots_folder = report_path.parent_path() / plots_name;
-  if (!report_path.parent_path().empty())
-    std::filesystem::create_directories(report_path.parent_path());
-  const std::vector<std::string> plots = eval::write_plots(run, plots_folder.string());
-  std::string hand_written;  // kept from the report this one replaces
-  if (std::ifstream previous{output}) {
-    const std::string text((std::istreambuf_iterator<char>(previous)),
-                           std::istreambuf_iterator<char>());
-    hand_written = eval::hand_written_section(text);
-  }
-  std::string report = eval::markdown_report(run, plots_name);
-  if (!hand_written.empty()) report += "\n" + hand_written;
-  io::write_file_atomically(output, report);
-  std::filesystem::path json_path = report_path;
-  json_path.replace_extension(".json");
-  io::write_file_atomically(json_path.string(), eval::json_report(run));
-  std::printf(
-      "evaluated %zu pairs x %zu methods in %.0f s\nreport: %s\ndata: %s\nplots: %s/ (%zu)\n",
-      run.pairs.size(), run.methods.size(), run.seconds, output.c_str(), json_path.string().c_str(),
-      plots_folder.string().c_str(), plots.size());
-}
-
 }  // namespace
 
 int run_eval(const Arguments& arguments) {
@@ -184,18 +92,89 @@ int run_eval(const Arguments& arguments) {
   const std::string pairs_text = args.get("--pairs").value_or("all");
   if (pairs_text != "all" && pairs_text != "1-2")
     throw UsageError("--pairs expects 1-2 or all, got '" + pairs_text + "'");
-  const std::vector<std::string> sequences = sequences_of(args, *dataset);
-  const eval::EvalSettings settings = settings_of(args);
-  eval::EvalRun run;
-  run.methods = methods_of(args);
+  std::vector<std::string> sequences =
+      args.get("--sequences") ? split(*args.get("--sequences")) : eval::kAllSequences;
+  if (!args.get("--sequences")) {  // all eight, or those present
+    std::vector<std::string> present;
+    for (const std::string& s : sequences)
+      if (std::filesystem::is_directory(std::filesystem::path(*dataset) / s)) present.push_back(s);
+    sequences = present;
+  }
+  eval::EvalSettings settings;
+  settings.timing_repeats = args.get_int("--repeat", settings.timing_repeats, 1, 1000);
+  try {
+    if (const auto kind = args.get("--matcher")) settings.match.kind = parse_matcher_kind(*kind);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  settings.aief =
+      extractor_options(args);  // the AIEF rows' flags, by the option table as in extract
+  std::vector<eval::Method> methods = eval::kAllMethods;
+  if (const auto keys = args.get("--methods")) {
+    methods.clear();
+    try {
+      for (const std::string& key : split(*keys)) methods.push_back(eval::parse_method_key(key));
+    } catch (const Error& e) {
+      throw UsageError(e.what());
+    }
+    if (methods.empty()) throw UsageError("--methods needs at least one method");
+  }
   const std::string output = args.get("--output").value_or("evaluation.md");
 
+  eval::EvalRun run;
   run.pairs = eval::find_pairs(*dataset, sequences, pairs_text == "all");
   if (run.pairs.empty()) throw Error("no sequence found in '" + *dataset + "'");
+  run.methods = methods;
   run.matcher = std::string(to_string(settings.match.kind));
   run.timing_rounds = settings.timing_repeats;
-  evaluate(run, settings);
-  write_reports(run, output);
+  cv::setNumThreads(1);  // per-core times for every row
+
+  const auto start = std::chrono::steady_clock::now();
+  Progress progress("eval", static_cast<int>(run.pairs.size() * run.methods.size()));
+  std::string loaded_a;
+  GrayImage image_a;
+  for (const eval::PairInput& pair : run.pairs) {
+    if (pair.path_a != loaded_a) {
+      image_a = read_image_reporting(pair.path_a, ExtractorOptions{}.max_image_pixels);
+      loaded_a = pair.path_a;
+    }
+    const GrayImage image_b =
+        read_image_reporting(pair.path_b, ExtractorOptions{}.max_image_pixels);
+    std::vector<eval::PairResult> row;
+    for (eval::Method method : run.methods) {
+      row.push_back(
+          eval::run_method(method, as_mat(image_a), as_mat(image_b), pair.truth, settings));
+      progress.step(pair.sequence + " 1-" + std::to_string(pair.target) + " " +
+                    eval::method_key(method));
+    }
+    eval::time_extractions(run.methods, as_mat(image_a), settings, row, run.load);
+    run.results.push_back(std::move(row));
+  }
+  progress.finish();
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const std::filesystem::path report_path(output);
+  const std::string plots_name = report_path.stem().string() + "_plots";
+  const std::filesystem::path plots_folder = report_path.parent_path() / plots_name;
+  if (!report_path.parent_path().empty())
+    std::filesystem::create_directories(report_path.parent_path());
+  const std::vector<std::string> plots = eval::write_plots(run, plots_folder.string());
+  std::string hand_written;  // kept from the report this one replaces
+  if (std::ifstream previous{output}) {
+    const std::string text((std::istreambuf_iterator<char>(previous)),
+                           std::istreambuf_iterator<char>());
+    hand_written = eval::hand_written_section(text);
+  }
+  std::string report = eval::markdown_report(run, plots_name);
+  if (!hand_written.empty()) report += "\n" + hand_written;
+  io::write_file_atomically(output, report);
+  std::filesystem::path json_path = report_path;
+  json_path.replace_extension(".json");
+  io::write_file_atomically(json_path.string(), eval::json_report(run));
+  std::printf(
+      "evaluated %zu pairs x %zu methods in %.0f s\nreport: %s\ndata: %s\nplots: %s/ (%zu)\n",
+      run.pairs.size(), run.methods.size(), run.seconds, output.c_str(), json_path.string().c_str(),
+      plots_folder.string().c_str(), plots.size());
   return 0;
 }
 
