@@ -165,7 +165,7 @@ std::vector<std::string> Hdf5File::feature_names() const {
   // Only each object's type (H5O_INFO_BASIC): the full information reads every header's
   // attributes and sizes too, 340k instructions an image.
   if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names, H5O_INFO_BASIC) < 0)
-    throw Error("cannot list the groups of '" + path_ + "'");
+    throw Error(damaged_file(path_, hdf5_reason()));
   std::sort(names.begin(), names.end());
   return names;
 }

@@ -178,7 +178,7 @@ TEST(Hdf5Features, OpenFailuresSayWhich) {
     ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
     EXPECT_NE(message([&] {
                 io::Hdf5File(dir.file("good.h5"), Mode::read_write);
-              }).find("another process holds it locked"),
+              }).find("it is locked by a writer"),
               std::string::npos);
     ::close(held);
   }
