@@ -51,9 +51,15 @@ std::string open_failure(const std::string& path, bool creating, const std::stri
   if (fd < 0)
     return std::string("cannot ") + (creating ? "create '" : "open '") + path +
            "': " + std::strerror(errno);
+  // libhdf5 names no reason when it cannot write a new file's first block (a full disk): the
+  // system names it.
+  const char block[4096] = {};
+  const int wrote = creating ? static_cast<int>(::write(fd, block, sizeof block)) : 0;
+  const int write_error = errno;
   ::close(fd);
   if (creating) {
     fs::remove(path, ec);
+    if (wrote < 0) return "cannot create '" + path + "': " + std::strerror(write_error);
     return "cannot create '" + path +
            "': " + (hdf5_said.empty() ? std::string("libhdf5 could not write it") : hdf5_said);
   }
