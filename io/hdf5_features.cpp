@@ -104,6 +104,26 @@ std::vector<Descriptor> Hdf5File::read_descriptors(const std::string& name) cons
   return descriptors;
 }
 
+std::string Hdf5File::foreign_descriptors(const std::string& group) const {
+  silence_hdf5();
+  const Handle set(H5Dopen2(file_, (group + "/descriptors").c_str(), H5P_DEFAULT), H5Dclose);
+  if (!set.ok()) return "no descriptors";
+  const Handle space(H5Dget_space(set.get()), H5Sclose);
+  const Handle type(H5Dget_type(set.get()), H5Tclose);
+  hsize_t dims[2] = {0, 0};
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank == 2) H5Sget_simple_extent_dims(space.get(), dims, nullptr);
+  const bool bytes = H5Tget_class(type.get()) == H5T_INTEGER && H5Tget_size(type.get()) == 1;
+  if (rank == 2 && dims[0] == kDescriptorBytes && bytes) return "";
+  const H5T_class_t kind = H5Tget_class(type.get());
+  const std::string type_name = (kind == H5T_FLOAT     ? "float"
+                                 : kind == H5T_INTEGER ? "int"
+                                                       : "other") +
+                                std::to_string(8 * H5Tget_size(type.get()));
+  if (rank != 2) return "descriptors of rank " + std::to_string(rank) + ", " + type_name;
+  return std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " " + type_name;
+}
+
 Features Hdf5File::read_features(const std::string& name) const {
   if (!exists(file_, name)) throw Error("no image '" + name + "' in '" + path_ + "'");
   const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);

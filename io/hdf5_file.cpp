@@ -14,7 +14,6 @@
 #include <fcntl.h>
 #include <hdf5.h>
 #include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "aief/error.hpp"
@@ -141,12 +140,18 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
     reserved_until_ =
         static_cast<std::uint64_t>(std::filesystem::file_size(creating ? creating_as_ : path, ec));
     const auto visit = [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
-      if (info->type == H5O_TYPE_GROUP)
-        static_cast<std::unordered_set<std::uint64_t>*>(data)->insert(
-            std::hash<std::string_view>{}(name));
+      Hdf5File& file = *static_cast<Hdf5File*>(data);
+      const std::string_view path(name);
+      if (info->type == H5O_TYPE_GROUP) {
+        file.groups_.insert(std::hash<std::string_view>{}(path));
+      } else if (info->type == H5O_TYPE_DATASET) {
+        if (file.first_image_.empty() && path.size() > 11 && path.ends_with("/image_size"))
+          file.first_image_ = path.substr(0, path.size() - 11);
+        if (path.ends_with("/matches0")) file.holds_pairs_ = true;
+      }
       return 0;
     };
-    if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_NATIVE, visit, &groups_, H5O_INFO_BASIC) < 0) {
+    if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_NATIVE, visit, this, H5O_INFO_BASIC) < 0) {
       const std::string reason = hdf5_reason();
       H5Fclose(std::exchange(file_, -1));
       throw Error(damaged_file(path_, reason));
@@ -258,33 +263,12 @@ void Hdf5File::reserve(std::uint64_t extra) {
   if (descriptor_ < 0 || H5Fget_eoa(file_, &end_of_allocation) < 0) return;
   const std::uint64_t until = static_cast<std::uint64_t>(end_of_allocation) + extra;
   if (until <= reserved_until_) return;
-  if (!without_fallocate_) {
-    // FALLOC_FL_KEEP_SIZE: blocks past the end, the file's size unchanged (libhdf5 checks it).
-    if (::fallocate(descriptor_, FALLOC_FL_KEEP_SIZE, static_cast<off_t>(reserved_until_),
-                    static_cast<off_t>(until - reserved_until_)) == 0) {
-      reserved_until_ = until;
-      return;
-    }
-    if (errno != EOPNOTSUPP && errno != ENOSYS) throw Error(std::strerror(errno));
-    without_fallocate_ = true;
-  }
-  reserve_by_writing_zeros(until);
-}
-
-void Hdf5File::reserve_by_writing_zeros(std::uint64_t until) {
-  // Zeros from the file's end (never over a byte libhdf5 wrote; what it holds back for later
-  // lands on them) up to `until`. libhdf5 cuts the file back to its end of allocation when it
-  // flushes, so the size on disk, not reserved_until_, says what is reserved.
-  struct stat status {};
-  if (::fstat(descriptor_, &status) != 0) throw Error(std::strerror(errno));
-  static const std::vector<char> zeros(std::size_t{1} << 16, 0);
-  for (auto at = static_cast<std::uint64_t>(status.st_size); at < until;) {
-    const std::size_t count =
-        static_cast<std::size_t>(std::min<std::uint64_t>(until - at, zeros.size()));
-    const ssize_t written = ::pwrite(descriptor_, zeros.data(), count, static_cast<off_t>(at));
-    if (written < 0 && errno == EINTR) continue;
-    if (written < 0) throw Error(std::strerror(errno));
-    at += static_cast<std::uint64_t>(written);
+  // FALLOC_FL_KEEP_SIZE: blocks past the end, the file's size unchanged (libhdf5 checks it).
+  if (::fallocate(descriptor_, FALLOC_FL_KEEP_SIZE, static_cast<off_t>(reserved_until_),
+                  static_cast<off_t>(until - reserved_until_)) == 0) {
+    reserved_until_ = until;
+  } else if (errno != EOPNOTSUPP && errno != ENOSYS) {
+    throw Error(std::strerror(errno));
   }
 }
 

@@ -57,8 +57,9 @@ namespace aief::io {
 // anyway, the file's descriptor is diverted to a scratch file in memory: nothing more reaches the
 // file, which stays as of its last flush, libhdf5 closes it cleanly, and every later write is
 // refused with the first reason.
-// A file system without fallocate gets the reservation by zeros written past the end; copy-on-
-// write ones such as btrfs, where a reserved block is no promise, get the diversion only.
+// File systems without fallocate (NFSv3, FUSE, older ZFS), and copy-on-write ones such as btrfs,
+// get the diversion only; since a file is flushed when created and after its first write, a full
+// disk in its first images there too leaves it readable as of its first image.
 //
 // A file is readable from its creation on: it is flushed when created and after its first write,
 // so a run killed (kill -9, Ctrl-C, SIGTERM, SIGHUP) before its first batch of writes leaves a
@@ -112,6 +113,15 @@ class Hdf5File {
   // Copies the group `name` of `source` here (replacing an incomplete one), not flushed: for a
   // file written whole and then renamed (merge_feature_files).
   void copy_group_from(const Hdf5File& source, const std::string& name);
+  // What a file opened read_write held when opened: an image group (one of them, by its group
+  // name; empty when none) and any pair group. Commands refuse to write matches into a features
+  // file and features into a matches file.
+  const std::string& first_image_group() const { return first_image_; }
+  bool holds_pairs() const { return holds_pairs_; }
+  // When the image group `group` holds descriptors aief cannot have written (another tool's:
+  // hloc's SuperPoint writes 256 x N float32), what they are ("256 x 1000 float32"); else "".
+  std::string foreign_descriptors(const std::string& group) const;
+
   // Closes the file now (flushing what is pending), throwing when libhdf5 cannot (its last writes
   // failed); the destructor closes a file still open and ignores a failure, so a writer calls
   // close() to know that its writes are on disk.
@@ -128,9 +138,7 @@ class Hdf5File {
   // reserved separately before it.
   static constexpr std::uint64_t kMetadataAllowance = 64 * 1024;
   // Reserves disk blocks up to libhdf5's end of allocation plus `extra` bytes; throws on ENOSPC.
-  // On a file system without fallocate (NFSv3, FUSE, older ZFS), by writing zeros past the end.
   void reserve(std::uint64_t extra);
-  void reserve_by_writing_zeros(std::uint64_t until);
   // Diverts the file's descriptor to a scratch file: nothing more reaches the file.
   void fence();
   // Reserves and flushes; throws on failure.
@@ -155,9 +163,10 @@ class Hdf5File {
   long long file_ = -1;      // hid_t
   int descriptor_ = -1;      // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
   std::uint64_t reserved_until_ = 0;
-  bool without_fallocate_ = false;  // fallocate said EOPNOTSUPP: reserve writes zeros
   int unflushed_writes_ = 0;
   bool flushed_a_write_ = false;
+  std::string first_image_;    // read_write: an image group's name, as the file was opened
+  bool holds_pairs_ = false;   // read_write: the file held a pair group when opened
   bool groups_known_ = false;  // read_write: groups_ holds the hash of every group's name
   std::unordered_set<std::uint64_t> groups_;
   std::mutex failure_mutex_;  // writes come from one thread at a time; the lock orders the record

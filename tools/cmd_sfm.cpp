@@ -3,6 +3,7 @@
 //   aief merge -o features.h5 shard0.h5 shard1.h5 ...
 //   aief colmap --features features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "aief/error.hpp"
@@ -41,8 +42,14 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
     throw UsageError("--pairs takes its images from the pairs file, not from positional arguments");
   const io::PairsList pairs = io::read_pairs(*args.get("--pairs"));
   for (const std::string& note : pairs.notes) std::cerr << "aief: note: " << note << "\n";
+  if (std::error_code ec; std::filesystem::equivalent(*features_path, *output, ec))
+    throw Error("-o '" + *output + "' is the features file (--features '" + *features_path +
+                "'): matches go to a file of their own (hloc's matches.h5); nothing was written");
   const io::Hdf5File features(*features_path, io::Hdf5File::Mode::read);
   io::Hdf5File matches_file(*output, io::Hdf5File::Mode::read_write);
+  if (const std::string& image = matches_file.first_image_group(); !image.empty())
+    throw Error("-o '" + *output + "' holds features (image '" + image +
+                "'): matches go to a file of their own (hloc's matches.h5); nothing was written");
   io::DescriptorCache descriptors(features, kDescriptorCacheBytes);
   int written = 0, skipped = 0;
   long long total = 0;
