@@ -3,7 +3,9 @@
 // AIEF_HAVE_HDF5). hloc (github.com/cvg/Hierarchical-Localization) reads them as its own:
 //
 //   features.h5: one group per image, named by its path relative to the image folder (slashes
-//   make nested groups, as h5py's create_group does), holding
+//   make nested groups, as h5py's create_group does; a name that begins with '/' gets a first
+//   group "%2F", as the JSON layout's folder does, and a leading '%' becomes "%25": libhdf5 would
+//   read "/data/x.png" as "data/x.png", another image), holding
 //     keypoints    N x 2 float32, (x, y) with the centre of the top-left pixel at (0, 0): the
 //                  OpenCV convention hloc uses in its files (hloc adds 0.5 when it writes COLMAP's
 //                  database, whose origin is the top-left pixel's corner; io/colmap_database does
@@ -64,6 +66,11 @@ namespace aief::io {
 // A file is readable from its creation on: it is flushed when created and after its first write,
 // so a run killed (kill -9, Ctrl-C, SIGTERM, SIGHUP) before its first batch of writes leaves a
 // file that opens and resumes.
+// The group of the image named `image` ("/data/x.png" -> "%2F/data/x.png", "%x" -> "%25x", any
+// other name itself), and back.
+std::string image_group(const std::string& image);
+std::string image_of_group(const std::string& group);
+
 class Hdf5File {
  public:
   // read_in_name_order: for a reader that goes through the file once, image after image in name

@@ -73,8 +73,9 @@ void copy_file(const std::string& from, const std::string& to) {
 }
 
 }  // namespace
-void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& name) {
+void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& image) {
   silence_hdf5();
+  const std::string name = image_group(image);
   const std::uint64_t bytes = group_storage_bytes(source.file_, name);
   write_guarded(
       bytes, "'" + name + "' from '" + source.path_ + "'",

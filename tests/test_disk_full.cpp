@@ -190,8 +190,8 @@ TEST_F(DiskFull, MatchPairsStopsCleanlyAndResumes) {
     std::ofstream out(pairs);
     for (int i = 0; i < 60; ++i)
       for (int j = i + 1; j < 60; j += 17)
-        out << (work_.path() / "images" / numbered("i", i, ".png")).string().substr(1) << " "
-            << (work_.path() / "images" / numbered("i", j, ".png")).string().substr(1) << "\n";
+        out << (work_.path() / "images" / numbered("i", i, ".png")).string() << " "
+            << (work_.path() / "images" / numbered("i", j, ".png")).string() << "\n";
   }
   const std::string matches = (disk_ / "matches.h5").string();
   const std::string match = "match --pairs " + pairs + " --features " + features + " -o " + matches;
@@ -239,8 +239,8 @@ TEST_F(DiskFull, ColmapLeavesNoDatabaseNorTemporary) {
       0);
   const std::string pairs = (work_.path() / "pairs.txt").string(),
                     matches = (work_.path() / "matches.h5").string();
-  std::ofstream(pairs) << (work_.path() / "images/i0.png").string().substr(1) << " "
-                       << (work_.path() / "images/i1.png").string().substr(1) << "\n";
+  std::ofstream(pairs) << (work_.path() / "images/i0.png").string() << " "
+                       << (work_.path() / "images/i1.png").string() << "\n";
   ASSERT_EQ(run("match --pairs " + pairs + " --features " + features + " -o " + matches).status, 0);
   fill_leaving(64 << 10);
   const CliResult r = run("colmap --features " + features + " --matches " + matches + " --pairs " +

@@ -19,6 +19,7 @@
 #include "io/json_writer.hpp"
 #include "io/npz_writer.hpp"
 #include "io/pairs_file.hpp"
+#include "tests/odd_names.hpp"
 #include "tests/test_support.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_file.hpp"
@@ -241,15 +242,15 @@ TEST(Hdf5Features, RoundTripInNestedGroupsAndResume) {
 }
 
 TEST(Hdf5Features, NamesSpelledWithExtraSlashesFindTheirGroupsAfterAReopen) {
-  // A written file keeps the names of its groups in memory; libhdf5 reads "/a", "a" and "b//c"
-  // as the groups "a" and "b/c", and so must that index, or a resumed batch of absolute paths
-  // takes its images as missing and fails on "name already exists".
+  // A written file keeps the names of its groups in memory; libhdf5 reads "b//c" as the group
+  // "b/c", and so must that index, or a resumed batch takes its images as missing and fails on
+  // "name already exists".
   OwnTempDir dir;
   const Features a = sample_features("graf", 1);
   {
     io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
     file.write_features("/abs/a.png", a);
-    EXPECT_TRUE(file.has_features("abs/a.png"));
+    EXPECT_TRUE(file.has_features("/abs/a.png"));
     file.write_features("b//c.png", a);
     EXPECT_TRUE(file.has_features("b/c.png"));
     io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
@@ -257,14 +258,40 @@ TEST(Hdf5Features, NamesSpelledWithExtraSlashesFindTheirGroupsAfterAReopen) {
   }
   io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
   EXPECT_TRUE(file.has_features("/abs/a.png"));
-  EXPECT_TRUE(file.has_features("abs/a.png"));
   EXPECT_TRUE(file.has_features("b//c.png"));
   EXPECT_FALSE(file.has_features("abs/b.png"));
   EXPECT_NO_THROW(file.write_features("/abs/a.png", a));
-  EXPECT_EQ(file.feature_names(), (std::vector<std::string>{"abs/a.png", "b/c.png"}));
+  EXPECT_EQ(file.feature_names(), (std::vector<std::string>{"/abs/a.png", "b/c.png"}));
   io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
   EXPECT_TRUE(matches.has_matches("/abs/a.png", "b/c.png"));
   EXPECT_NO_THROW(matches.write_matches("/abs/a.png", "b/c.png", 3, {{0, 1, 2}}));
+}
+
+// "/data/q/x.png" and "data/q/x.png" are two files: two groups, as the JSON layout's two files
+// ("%2F/data/q/x.png.json"); a name of a leading '%' keeps its own group too. Other names are
+// their groups, byte for byte (hloc reads them).
+TEST(Hdf5Features, AnAbsoluteNameAndItsRelativeTwinHaveGroupsOfTheirOwn) {
+  OwnTempDir dir;
+  const Features a = sample_features("graf", 1), b = sample_features("boat", 1),
+                 c = sample_features("leuven", 1);
+  for (int reopen = 0; reopen < 2; ++reopen) {
+    io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
+    if (reopen == 0) {
+      file.write_features("/data/q/x.png", a);
+      file.write_features("data/q/x.png", b);
+      file.write_features("%2F/data/q/x.png", c);
+    }
+    EXPECT_EQ(file.read_features("/data/q/x.png").keypoints.size(), a.keypoints.size());
+    EXPECT_EQ(file.read_features("data/q/x.png").keypoints.size(), b.keypoints.size());
+    EXPECT_EQ(file.read_features("%2F/data/q/x.png").keypoints.size(), c.keypoints.size());
+    EXPECT_EQ(file.feature_names(),
+              (std::vector<std::string>{"%2F/data/q/x.png", "/data/q/x.png", "data/q/x.png"}));
+  }
+  EXPECT_EQ(io::image_group("/data/q/x.png"), "%2F/data/q/x.png");
+  EXPECT_EQ(io::image_group("%2F/data/q/x.png"), "%252F/data/q/x.png");
+  EXPECT_EQ(io::image_group("sub/a%2F.png"), "sub/a%2F.png");
+  for (const std::string& name : aief::test::odd_image_names())
+    EXPECT_EQ(io::image_of_group(io::image_group(name)), name) << name;
 }
 
 TEST(Hdf5Features, MatchesInHlocPairGroups) {
