@@ -113,8 +113,9 @@ class Hdf5File {
   std::vector<Match> read_matches(const std::string& name0, const std::string& name1) const;
   // What has_matches and read_matches answer together, with one lookup of the pair's group: its
   // matches, or nullopt when the file holds no complete group for the pair. Throws as they do.
-  std::optional<std::vector<Match>> find_matches(const std::string& name0,
-                                                 const std::string& name1) const;
+  // `queries`, when given, gets the length of matches0 (image 0's keypoints when written).
+  std::optional<std::vector<Match>> find_matches(const std::string& name0, const std::string& name1,
+                                                 std::size_t* queries = nullptr) const;
   // The image names of a features file: every group holding an image_size dataset, sorted.
   std::vector<std::string> feature_names() const;
   // Copies the group `name` of `source` here (replacing an incomplete one), not flushed: for a

@@ -69,3 +69,28 @@ def test_extract_refuses_a_matches_file_and_match_refuses_a_features_file(cli, t
     into_matches = run(cli, "extract", "--batch", images, "-o", matches, "--format", "h5")
     assert into_matches.returncode == 1 and "holds matches" in into_matches.stderr, into_matches.stderr
     assert contents(features) == features_before and contents(matches) == matches_before
+
+
+@pytest.mark.parametrize("fault", ["shorter", "uint8"])
+def test_colmap_refuses_matches0_of_another_length_or_unsigned(cli, tmp_path, images, fault):
+    """matches0 has a row per keypoint of image 0, signed (-1: unmatched): a shorter one is of
+    other features, an unsigned one would read 255 as an index."""
+    features, matches, database = tmp_path / "f.h5", tmp_path / "m.h5", tmp_path / "db.db"
+    pairs = tmp_path / "pairs.txt"
+    pairs.write_text("img1.png img2.png\n")
+    assert run(cli, "extract", "--batch", images, "-o", features, "--format", "h5").returncode == 0
+    assert run(cli, "match", "--pairs", pairs, "--features", features, "-o", matches).returncode == 0
+    with h5py.File(matches, "a") as f:
+        group = f["img1.png/img2.png"]
+        matches0, scores0 = group["matches0"][()], group["matching_scores0"][()]
+        del group["matches0"], group["matching_scores0"]
+        if fault == "shorter":
+            group["matches0"], group["matching_scores0"] = matches0[:300], scores0[:300]
+        else:
+            group["matches0"] = numpy.where(matches0 < 0, 255, matches0 % 200).astype(numpy.uint8)
+            group["matching_scores0"] = scores0
+    result = run(cli, "colmap", "--features", features, "--matches", matches, "--pairs", pairs, "-o", database)
+    assert result.returncode == 1, result.stdout + result.stderr
+    expected = "matches0 has 300 rows but 'img1.png' has" if fault == "shorter" else "is unsigned uint8"
+    assert expected in result.stderr, result.stderr
+    assert not database.exists()
