@@ -35,6 +35,7 @@
 #include <optional>
 #include <string>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include "aief/features.hpp"
@@ -92,6 +93,10 @@ class Hdf5File {
   // Whether `name` is a complete image group written from the file `source` describes (same
   // size and modification time; a group written without a source never is).
   bool features_belong_to(const std::string& name, const SourceRecord& source) const;
+  // The source the image group `name` records (file size, modification time in ns); nullopt
+  // when it records none.
+  std::optional<std::pair<std::int64_t, std::int64_t>> recorded_source(
+      const std::string& name) const;
   // The option record of the image group `name` (its JSON text); nullopt when it has none.
   std::optional<std::string> option_record(const std::string& name) const;
   // Writes one image's group, replacing any group of that name; with `source` and `options`,

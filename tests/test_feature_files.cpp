@@ -359,6 +359,53 @@ TEST(Hdf5Features, PairLookupsSeeWritesMadeBetweenThem) {
   EXPECT_FALSE(reopened.find_matches("b.png", "a.png"));
 }
 
+// A merge run again after a shard's image changed, or after the shards were extracted again with
+// other options, replaces what the output held of those images; an unchanged rerun copies none.
+TEST(Hdf5Features, MergeRerunReplacesGroupsWhoseShardImageOrOptionsChanged) {
+  OwnTempDir dir;
+  const Features a = sample_features("boat", 1), b = sample_features("boat", 2),
+                 changed = sample_features("graf", 1);
+  io::SourceRecord source, later;
+  source.name = later.name = "a.png";
+  source.bytes = 100;
+  later.bytes = 120;
+  ExtractorOptions options, other;
+  other.n_features = options.n_features + 500;
+  {
+    io::Hdf5File shard(dir.file("s0.h5"), io::Hdf5File::Mode::read_write);
+    shard.write_features("a.png", a, &source, &options);
+    shard.write_features("b.png", b, &source, &options);
+  }
+  int replaced = -1;
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}, &replaced), 2);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}, &replaced), 0);
+  EXPECT_EQ(replaced, 0);
+  // The image a.png changed; its shard was brought up to date.
+  io::Hdf5File(dir.file("s0.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("a.png", changed, &later, &options);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}, &replaced), 1);
+  EXPECT_EQ(replaced, 1);
+  expect_same(io::Hdf5File(dir.file("all.h5"), io::Hdf5File::Mode::read).read_features("a.png"),
+              changed);
+  // Extracted again with other options, every image.
+  {
+    io::Hdf5File shard(dir.file("s0.h5"), io::Hdf5File::Mode::read_write);
+    shard.write_features("a.png", b, &later, &other);
+    shard.write_features("b.png", a, &source, &other);
+  }
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}, &replaced), 2);
+  EXPECT_EQ(replaced, 2);
+  {
+    const io::Hdf5File all(dir.file("all.h5"), io::Hdf5File::Mode::read);
+    expect_same(all.read_features("a.png"), b);
+    expect_same(all.read_features("b.png"), a);
+  }
+  // Only one image of the output extracted again with other options: the rest would disagree.
+  io::Hdf5File(dir.file("s1.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("a.png", a, &later, &options);
+  EXPECT_THROW(io::merge_feature_files(dir.file("all.h5"), {dir.file("s1.h5")}), Error);
+}
+
 TEST(Hdf5Features, MergeCopiesShardsAndRefusesAnImageTwice) {
   OwnTempDir dir;
   const Features a = sample_features("boat", 1), b = sample_features("boat", 2);

@@ -91,8 +91,12 @@ int run_merge(const Arguments& arguments) {
   if (!output || args.positionals().empty())
     throw UsageError("merge expects -o FEATURES.h5 and one or more shard files");
 #ifdef AIEF_HAVE_HDF5
-  const int copied = io::merge_feature_files(*output, args.positionals());
-  std::printf("%d images merged into %s\n", copied, output->c_str());
+  int replaced = 0;
+  const int copied = io::merge_feature_files(*output, args.positionals(), &replaced);
+  std::printf("%d images merged into %s", copied, output->c_str());
+  if (replaced > 0)
+    std::printf(" (%d replacing what it held of them: their image or options changed)", replaced);
+  std::printf("\n");
   return 0;
 #else
   throw Error(kNoHdf5);
