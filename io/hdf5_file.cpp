@@ -110,23 +110,28 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   silence_hdf5();
   std::error_code ec;
   bool creating = false;
+  std::string reason;  // libhdf5's, read before any other call of its API clears it
   if (mode != Mode::read_write) {
     if (!std::filesystem::exists(path, ec)) throw Error("cannot open '" + path + "': no such file");
     const std::size_t cache_bytes =
         mode == Mode::read_in_name_order ? kInNameOrderCacheBytes : kReadCacheBytes;
-    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, read_access(cache_bytes).get());
+    const Handle access = read_access(cache_bytes);
+    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get());
+    if (file_ < 0) reason = hdf5_reason();
   } else if (std::filesystem::exists(path, ec)) {
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    if (file_ < 0) reason = hdf5_reason();
   } else {
     // Created under a temporary name, renamed once its structure is on disk (flush_created_file):
     // a run killed in between leaves no file that cannot be opened.
     creating = true;
     creating_as_ = temporary_path_of(path);
     std::filesystem::remove(creating_as_, ec);  // a killed run's
-    file_ = H5Fcreate(creating_as_.c_str(), H5F_ACC_EXCL, file_creation().get(), H5P_DEFAULT);
+    const Handle creation = file_creation();
+    file_ = H5Fcreate(creating_as_.c_str(), H5F_ACC_EXCL, creation.get(), H5P_DEFAULT);
+    if (file_ < 0) reason = hdf5_reason();
   }
   if (file_ < 0) {
-    const std::string reason = hdf5_reason();
     // libhdf5 leaves the empty file it could not initialise (a full disk): not ours to keep.
     if (creating) std::filesystem::remove(creating_as_, ec);
     throw Error(open_failure(path, creating, reason));

@@ -181,13 +181,21 @@ TEST(Hdf5Features, OpenFailuresSayWhich) {
                 io::Hdf5File(dir.file("good.h5"), Mode::read_write);
               }).find("it is locked by a writer"),
               std::string::npos);
+    // A reader too (merge, match --pairs and colmap reading a shard still being written).
+    for (const Mode reading : {Mode::read, Mode::read_in_name_order})
+      EXPECT_NE(message([&] {
+                  io::Hdf5File(dir.file("good.h5"), reading);
+                }).find("it is locked by a writer"),
+                std::string::npos);
     ::close(held);
   }
   std::filesystem::copy_file(dir.file("good.h5"), dir.file("cut.h5"));
   std::filesystem::resize_file(dir.file("cut.h5"),
                                std::filesystem::file_size(dir.file("cut.h5")) / 2);
-  EXPECT_NE(message([&] { io::Hdf5File(dir.file("cut.h5"), Mode::read); }).find("it is damaged"),
-            std::string::npos);
+  const std::string cut = message([&] { io::Hdf5File(dir.file("cut.h5"), Mode::read); });
+  EXPECT_NE(cut.find("it is damaged or cut short (libhdf5: truncated file"), std::string::npos)
+      << cut;
+  EXPECT_NE(cut.find("run that command again"), std::string::npos) << cut;
 }
 
 // A failed merge (an image in two inputs, a missing, cut or non-HDF5 input) leaves the output
