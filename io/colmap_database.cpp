@@ -159,15 +159,22 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     if (a == images.end() || b == images.end())
       throw Error("pair '" + name0 + " " + name1 + "': image '" +
                   (a == images.end() ? name0 : name1) + "' is not in '" + features.path() + "'");
-    std::optional<std::vector<Match>> found = matches_file.find_matches(name0, name1);
+    std::size_t queries = 0;
+    std::optional<std::vector<Match>> found = matches_file.find_matches(name0, name1, &queries);
     const bool swapped = !found;
-    if (swapped) found = matches_file.find_matches(name1, name0);
+    if (swapped) found = matches_file.find_matches(name1, name0, &queries);
     if (!found)
       throw Error("pair '" + name0 + " " + name1 + "' has no matches in '" + matches_file.path() +
                   "'");
     const std::vector<Match>& matches = *found;
     const auto& query = swapped ? b : a;  // the image whose keypoints the matches' queries index
     const auto& train = swapped ? a : b;
+    // matches0 has a row per keypoint of image 0: another length means other features.
+    if (queries != static_cast<std::size_t>(query->second.second))
+      throw Error("pair '" + name0 + " " + name1 + "': matches0 has " + std::to_string(queries) +
+                  " rows but '" + query->first + "' has " + std::to_string(query->second.second) +
+                  " keypoints in '" + features.path() +
+                  "' (features and matches from different runs?)");
     for (const Match& m : matches)
       if (m.query < 0 || m.query >= query->second.second || m.train < 0 ||
           m.train >= train->second.second) {

@@ -25,7 +25,20 @@ void write_npz(const std::string& path, const std::string&, const Features& feat
 // hloc's features.h5, a group per image.
 class Hdf5Collection : public FeatureCollectionFile {
  public:
-  explicit Hdf5Collection(const std::string& path) : file_(path, Hdf5File::Mode::read_write) {}
+  // Refuses a file it must not add to: a matches file, or another tool's features (hloc's
+  // SuperPoint: 256 x N float32 descriptors), whose groups a resume would replace.
+  explicit Hdf5Collection(const std::string& path) : file_(path, Hdf5File::Mode::read_write) {
+    if (file_.holds_pairs())
+      throw Error("'" + path +
+                  "' holds matches (pair groups with matches0): write features to a file of "
+                  "their own; nothing was written");
+    if (const std::string& image = file_.first_image_group(); !image.empty())
+      if (const std::string other = file_.foreign_descriptors(image); !other.empty())
+        throw Error("'" + path + "' holds another tool's features (image '" + image +
+                    "': " + other +
+                    " descriptors; aief writes 32 x N uint8): write aief's features to a file of "
+                    "their own; nothing was written");
+  }
   bool holds(const std::string& name) const override { return file_.has_features(name); }
   bool holds_from(const std::string& name, const SourceRecord& source) const override {
     return file_.features_belong_to(name, source);

@@ -14,11 +14,26 @@ namespace aief::io {
 
 using namespace hdf5;
 
-bool Hdf5File::has_features(const std::string& name) const {
+std::string image_group(const std::string& image) {
+  if (!image.empty() && image[0] == '/') return std::string("%2F").append(image);
+  if (!image.empty() && image[0] == '%') return std::string("%25").append(image, 1);
+  return image;
+}
+
+std::string image_of_group(const std::string& group) {
+  if (group.rfind("%2F/", 0) == 0) return group.substr(3);
+  // Appended, not "%" + ...: GCC 12 warns falsely (-Wrestrict) on the sum.
+  if (group.rfind("%25", 0) == 0) return std::string("%").append(group, 3);
+  return group;
+}
+
+bool Hdf5File::has_features(const std::string& image) const {
+  const std::string name = image_group(image);
   return may_hold(name) && exists(file_, name + "/image_size");
 }
-bool Hdf5File::features_belong_to(const std::string& name, const SourceRecord& source) const {
-  if (!has_features(name) || !exists(file_, name + "/source")) return false;
+bool Hdf5File::features_belong_to(const std::string& image, const SourceRecord& source) const {
+  const std::string name = image_group(image);
+  if (!has_features(image) || !exists(file_, name + "/source")) return false;
   const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
   std::vector<hsize_t> dims;
   const std::vector<std::int64_t> stored =
@@ -27,7 +42,20 @@ bool Hdf5File::features_belong_to(const std::string& name, const SourceRecord& s
          stored[1] == source.mtime_ns;
 }
 
-std::optional<std::string> Hdf5File::option_record(const std::string& name) const {
+std::optional<std::pair<std::int64_t, std::int64_t>> Hdf5File::recorded_source(
+    const std::string& image) const {
+  const std::string name = image_group(image);
+  if (!exists(file_, name + "/source")) return std::nullopt;
+  const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
+  std::vector<hsize_t> dims;
+  const std::vector<std::int64_t> stored =
+      read_dataset<std::int64_t>(group.get(), "source", dims, name);
+  if (stored.size() != 2) return std::nullopt;
+  return std::make_pair(stored[0], stored[1]);
+}
+
+std::optional<std::string> Hdf5File::option_record(const std::string& image) const {
+  const std::string name = image_group(image);
   silence_hdf5();
   const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
   if (!group.ok()) return std::nullopt;
@@ -36,18 +64,20 @@ std::optional<std::string> Hdf5File::option_record(const std::string& name) cons
   return record;
 }
 
-void Hdf5File::remove_features(const std::string& name) {
+void Hdf5File::remove_features(const std::string& image) {
+  const std::string name = image_group(image);
   // Flushed at once: a file created by an older aief hands freed space out again.
   write_guarded(
       0, "the removal of '" + name + "'", [&] { remove_group(file_, name); }, Flush::now);
 }
 
-void Hdf5File::write_features(const std::string& name, const Features& features,
+void Hdf5File::write_features(const std::string& image, const Features& features,
                               const SourceRecord* source, const ExtractorOptions* options) {
   silence_hdf5();
+  const std::string name = image_group(image);
   // A group being replaced goes first, flushed, so that no new data lands in its space while the
   // file on disk still holds it.
-  if (may_hold(name) && exists(file_, name)) remove_features(name);
+  if (may_hold(name) && exists(file_, name)) remove_features(image);
   const std::size_t n = features.keypoints.size();
   std::vector<float> xy(2 * n), size(n), angle(n), response(n);
   std::vector<std::int32_t> octave(n);
@@ -87,7 +117,8 @@ void Hdf5File::write_features(const std::string& name, const Features& features,
   });
 }
 
-std::vector<Descriptor> Hdf5File::read_descriptors(const std::string& name) const {
+std::vector<Descriptor> Hdf5File::read_descriptors(const std::string& image) const {
+  const std::string name = image_group(image);
   if (!exists(file_, name + "/descriptors"))
     throw Error("no image '" + name + "' in '" + path_ + "'");
   const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
@@ -104,7 +135,28 @@ std::vector<Descriptor> Hdf5File::read_descriptors(const std::string& name) cons
   return descriptors;
 }
 
-Features Hdf5File::read_features(const std::string& name) const {
+std::string Hdf5File::foreign_descriptors(const std::string& group) const {
+  silence_hdf5();
+  const Handle set(H5Dopen2(file_, (group + "/descriptors").c_str(), H5P_DEFAULT), H5Dclose);
+  if (!set.ok()) return "no descriptors";
+  const Handle space(H5Dget_space(set.get()), H5Sclose);
+  const Handle type(H5Dget_type(set.get()), H5Tclose);
+  hsize_t dims[2] = {0, 0};
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank == 2) H5Sget_simple_extent_dims(space.get(), dims, nullptr);
+  const bool bytes = H5Tget_class(type.get()) == H5T_INTEGER && H5Tget_size(type.get()) == 1;
+  if (rank == 2 && dims[0] == kDescriptorBytes && bytes) return "";
+  const H5T_class_t kind = H5Tget_class(type.get());
+  const std::string type_name = (kind == H5T_FLOAT     ? "float"
+                                 : kind == H5T_INTEGER ? "int"
+                                                       : "other") +
+                                std::to_string(8 * H5Tget_size(type.get()));
+  if (rank != 2) return "descriptors of rank " + std::to_string(rank) + ", " + type_name;
+  return std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " " + type_name;
+}
+
+Features Hdf5File::read_features(const std::string& image) const {
+  const std::string name = image_group(image);
   if (!exists(file_, name)) throw Error("no image '" + name + "' in '" + path_ + "'");
   const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
   if (!group.ok()) throw Error("'" + name + "' in '" + path_ + "' is not a group");
@@ -159,13 +211,13 @@ std::vector<std::string> Hdf5File::feature_names() const {
     const std::string suffix = "/image_size";
     if (info->type == H5O_TYPE_DATASET && path.size() > suffix.size() && path.ends_with(suffix))
       static_cast<std::vector<std::string>*>(data)->push_back(
-          path.substr(0, path.size() - suffix.size()));
+          image_of_group(path.substr(0, path.size() - suffix.size())));
     return 0;
   };
   // Only each object's type (H5O_INFO_BASIC): the full information reads every header's
   // attributes and sizes too, 340k instructions an image.
   if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names, H5O_INFO_BASIC) < 0)
-    throw Error("cannot list the groups of '" + path_ + "'");
+    throw Error(damaged_file(path_, hdf5_reason()));
   std::sort(names.begin(), names.end());
   return names;
 }

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string_view>
 #include <unordered_set>
 #include <utility>
+#include <vector>
 
 #include <fcntl.h>
 #include <hdf5.h>
@@ -16,12 +18,18 @@
 
 #include "aief/error.hpp"
 #include "io/hdf5_objects.hpp"
+#include "io/json_writer.hpp"
 
 namespace aief::io {
 
 using namespace hdf5;
 
 namespace {
+
+// What another process's lock on the file means here, and what to do.
+constexpr const char* kLockedByAWriter =
+    "it is locked by a writer (another aief still writing it? wait until that run ends, then run "
+    "this again)";
 
 // Why `path` cannot be opened or created as an HDF5 file, in the words a user acts on: a missing
 // folder, a directory, a file another process holds locked, a file that is not HDF5 or is damaged.
@@ -35,17 +43,26 @@ std::string open_failure(const std::string& path, bool creating, const std::stri
     return "cannot open '" + path + "' as an HDF5 file: it is a directory";
   if (hdf5_said.find("unable to lock file") != std::string::npos ||
       hdf5_said == "Resource temporarily unavailable")
-    return "cannot open '" + path +
-           "': another process holds it locked (another aief writing it? wait until it ends)";
+    return "cannot open '" + path + "': " + kLockedByAWriter;
   if (!creating && H5Fis_hdf5(path.c_str()) == 0)
     return "cannot open '" + path + "': it is not an HDF5 file";
   const int fd = ::open(path.c_str(), creating ? O_RDWR | O_CREAT | O_EXCL : O_RDONLY, 0644);
   if (fd < 0)
     return std::string("cannot ") + (creating ? "create '" : "open '") + path +
            "': " + std::strerror(errno);
+  // libhdf5 names no reason when it cannot write a new file's first block (a full disk): the
+  // system names it.
+  const char block[4096] = {};
+  const int wrote = creating ? static_cast<int>(::write(fd, block, sizeof block)) : 0;
+  const int write_error = errno;
   ::close(fd);
-  if (creating) fs::remove(path, ec);
-  return "cannot open '" + path + "' as an HDF5 file: it is damaged (libhdf5: " + hdf5_said + ")";
+  if (creating) {
+    fs::remove(path, ec);
+    if (wrote < 0) return "cannot create '" + path + "': " + std::strerror(write_error);
+    return "cannot create '" + path +
+           "': " + (hdf5_said.empty() ? std::string("libhdf5 could not write it") : hdf5_said);
+  }
+  return damaged_file(path, hdf5_said);
 }
 
 // How aief creates files: without a free-space manager (H5F_FSPACE_STRATEGY_NONE), space freed
@@ -93,34 +110,78 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   silence_hdf5();
   std::error_code ec;
   bool creating = false;
+  std::string reason;  // libhdf5's, read before any other call of its API clears it
   if (mode != Mode::read_write) {
     if (!std::filesystem::exists(path, ec)) throw Error("cannot open '" + path + "': no such file");
     const std::size_t cache_bytes =
         mode == Mode::read_in_name_order ? kInNameOrderCacheBytes : kReadCacheBytes;
-    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, read_access(cache_bytes).get());
+    const Handle access = read_access(cache_bytes);
+    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get());
+    if (file_ < 0) reason = hdf5_reason();
   } else if (std::filesystem::exists(path, ec)) {
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    if (file_ < 0) reason = hdf5_reason();
   } else {
-    file_ = H5Fcreate(path.c_str(), H5F_ACC_EXCL, file_creation().get(), H5P_DEFAULT);
+    // Created under a temporary name, renamed once its structure is on disk (flush_created_file):
+    // a run killed in between leaves no file that cannot be opened.
     creating = true;
+    creating_as_ = temporary_path_of(path);
+    std::filesystem::remove(creating_as_, ec);  // a killed run's
+    const Handle creation = file_creation();
+    file_ = H5Fcreate(creating_as_.c_str(), H5F_ACC_EXCL, creation.get(), H5P_DEFAULT);
+    if (file_ < 0) reason = hdf5_reason();
   }
-  if (file_ < 0) throw Error(open_failure(path, creating, hdf5_reason()));
+  if (file_ < 0) {
+    // libhdf5 leaves the empty file it could not initialise (a full disk): not ours to keep.
+    if (creating) std::filesystem::remove(creating_as_, ec);
+    throw Error(open_failure(path, creating, reason));
+  }
   if (mode == Mode::read_write) {
     void* handle = nullptr;
     const Handle access(H5Fget_access_plist(file_), H5Pclose);
     if (H5Pget_driver(access.get()) == H5FD_SEC2 &&
         H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) >= 0 && handle)
       descriptor_ = *static_cast<int*>(handle);
-    reserved_until_ = static_cast<std::uint64_t>(std::filesystem::file_size(path, ec));
+    reserved_until_ =
+        static_cast<std::uint64_t>(std::filesystem::file_size(creating ? creating_as_ : path, ec));
     const auto visit = [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
-      if (info->type == H5O_TYPE_GROUP)
-        static_cast<std::unordered_set<std::uint64_t>*>(data)->insert(
-            std::hash<std::string_view>{}(name));
+      Hdf5File& file = *static_cast<Hdf5File*>(data);
+      const std::string_view path(name);
+      if (info->type == H5O_TYPE_GROUP) {
+        file.groups_.insert(std::hash<std::string_view>{}(path));
+      } else if (info->type == H5O_TYPE_DATASET) {
+        if (file.first_image_.empty() && path.size() > 11 && path.ends_with("/image_size"))
+          file.first_image_ = path.substr(0, path.size() - 11);
+        if (path.ends_with("/matches0")) file.holds_pairs_ = true;
+      }
       return 0;
     };
-    if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_NATIVE, visit, &groups_, H5O_INFO_BASIC) < 0)
-      throw Error("cannot list the groups of '" + path_ + "'");
+    if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_NATIVE, visit, this, H5O_INFO_BASIC) < 0) {
+      const std::string reason = hdf5_reason();
+      H5Fclose(std::exchange(file_, -1));
+      throw Error(damaged_file(path_, reason));
+    }
     groups_known_ = true;
+    if (creating) flush_created_file();
+  }
+}
+
+void Hdf5File::flush_created_file() {
+  // Its structure on disk at once: a run killed before its first write leaves a file that opens.
+  std::error_code ec;
+  try {
+    flush_now();
+    flushed_a_write_ = false;
+    // Never over a file another run created meanwhile.
+    if (::renameat2(AT_FDCWD, creating_as_.c_str(), AT_FDCWD, path_.c_str(), RENAME_NOREPLACE) !=
+            0 &&
+        (errno != EINVAL || ::rename(creating_as_.c_str(), path_.c_str()) != 0))
+      throw Error(std::strerror(errno));
+  } catch (const std::exception& e) {
+    fence();
+    H5Fclose(std::exchange(file_, -1));
+    std::filesystem::remove(creating_as_, ec);
+    throw Error("cannot create '" + path_ + "': " + e.what());
   }
 }
 
@@ -229,6 +290,7 @@ void Hdf5File::flush_now() {
   reserve(0);  // everything the flush writes lies below the end of allocation
   if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error(hdf5_reason());
   unflushed_writes_ = 0;
+  flushed_a_write_ = true;
 }
 
 }  // namespace aief::io

@@ -3,7 +3,9 @@
 // AIEF_HAVE_HDF5). hloc (github.com/cvg/Hierarchical-Localization) reads them as its own:
 //
 //   features.h5: one group per image, named by its path relative to the image folder (slashes
-//   make nested groups, as h5py's create_group does), holding
+//   make nested groups, as h5py's create_group does; a name that begins with '/' gets a first
+//   group "%2F", as the JSON layout's folder does, and a leading '%' becomes "%25": libhdf5 would
+//   read "/data/x.png" as "data/x.png", another image), holding
 //     keypoints    N x 2 float32, (x, y) with the centre of the top-left pixel at (0, 0): the
 //                  OpenCV convention hloc uses in its files (hloc adds 0.5 when it writes COLMAP's
 //                  database, whose origin is the top-left pixel's corner; io/colmap_database does
@@ -33,6 +35,7 @@
 #include <optional>
 #include <string>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include "aief/features.hpp"
@@ -57,7 +60,18 @@ namespace aief::io {
 // anyway, the file's descriptor is diverted to a scratch file in memory: nothing more reaches the
 // file, which stays as of its last flush, libhdf5 closes it cleanly, and every later write is
 // refused with the first reason.
-// (File systems without fallocate, and copy-on-write ones such as btrfs, get the diversion only.)
+// File systems without fallocate (NFSv3, FUSE, older ZFS), and copy-on-write ones such as btrfs,
+// get the diversion only; since a file is flushed when created and after its first write, a full
+// disk in its first images there too leaves it readable as of its first image.
+//
+// A file is readable from its creation on: it is flushed when created and after its first write,
+// so a run killed (kill -9, Ctrl-C, SIGTERM, SIGHUP) before its first batch of writes leaves a
+// file that opens and resumes.
+// The group of the image named `image` ("/data/x.png" -> "%2F/data/x.png", "%x" -> "%25x", any
+// other name itself), and back.
+std::string image_group(const std::string& image);
+std::string image_of_group(const std::string& group);
+
 class Hdf5File {
  public:
   // read_in_name_order: for a reader that goes through the file once, image after image in name
@@ -79,6 +93,10 @@ class Hdf5File {
   // Whether `name` is a complete image group written from the file `source` describes (same
   // size and modification time; a group written without a source never is).
   bool features_belong_to(const std::string& name, const SourceRecord& source) const;
+  // The source the image group `name` records (file size, modification time in ns); nullopt
+  // when it records none.
+  std::optional<std::pair<std::int64_t, std::int64_t>> recorded_source(
+      const std::string& name) const;
   // The option record of the image group `name` (its JSON text); nullopt when it has none.
   std::optional<std::string> option_record(const std::string& name) const;
   // Writes one image's group, replacing any group of that name; with `source` and `options`,
@@ -100,13 +118,23 @@ class Hdf5File {
   std::vector<Match> read_matches(const std::string& name0, const std::string& name1) const;
   // What has_matches and read_matches answer together, with one lookup of the pair's group: its
   // matches, or nullopt when the file holds no complete group for the pair. Throws as they do.
-  std::optional<std::vector<Match>> find_matches(const std::string& name0,
-                                                 const std::string& name1) const;
+  // `queries`, when given, gets the length of matches0 (image 0's keypoints when written).
+  std::optional<std::vector<Match>> find_matches(const std::string& name0, const std::string& name1,
+                                                 std::size_t* queries = nullptr) const;
   // The image names of a features file: every group holding an image_size dataset, sorted.
   std::vector<std::string> feature_names() const;
   // Copies the group `name` of `source` here (replacing an incomplete one), not flushed: for a
   // file written whole and then renamed (merge_feature_files).
   void copy_group_from(const Hdf5File& source, const std::string& name);
+  // What a file opened read_write held when opened: an image group (one of them, by its group
+  // name; empty when none) and any pair group. Commands refuse to write matches into a features
+  // file and features into a matches file.
+  const std::string& first_image_group() const { return first_image_; }
+  bool holds_pairs() const { return holds_pairs_; }
+  // When the image group `group` holds descriptors aief cannot have written (another tool's:
+  // hloc's SuperPoint writes 256 x N float32), what they are ("256 x 1000 float32"); else "".
+  std::string foreign_descriptors(const std::string& group) const;
+
   // Closes the file now (flushing what is pending), throwing when libhdf5 cannot (its last writes
   // failed); the destructor closes a file still open and ignores a failure, so a writer calls
   // close() to know that its writes are on disk.
@@ -128,6 +156,8 @@ class Hdf5File {
   void fence();
   // Reserves and flushes; throws on failure.
   void flush_now();
+  // Flushes a file just created, or removes it and throws "cannot create".
+  void flush_created_file();
   // Whether the file may hold a group named `group`: false only when it certainly does not (a
   // written file keeps the hashes of its groups, so a new name costs no lookup in libhdf5).
   bool may_hold(const std::string& group) const;
@@ -142,10 +172,14 @@ class Hdf5File {
                      Flush flush = Flush::batched);
 
   std::string path_;
-  long long file_ = -1;  // hid_t
-  int descriptor_ = -1;  // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
+  std::string creating_as_;  // the temporary a new file is created as, until its first flush
+  long long file_ = -1;      // hid_t
+  int descriptor_ = -1;      // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
   std::uint64_t reserved_until_ = 0;
   int unflushed_writes_ = 0;
+  bool flushed_a_write_ = false;
+  std::string first_image_;    // read_write: an image group's name, as the file was opened
+  bool holds_pairs_ = false;   // read_write: the file held a pair group when opened
   bool groups_known_ = false;  // read_write: groups_ holds the hash of every group's name
   std::unordered_set<std::uint64_t> groups_;
   std::mutex failure_mutex_;  // writes come from one thread at a time; the lock orders the record

@@ -32,7 +32,9 @@ void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write
   }
   try {
     write();
-    if (flush == Flush::now || (flush == Flush::batched && ++unflushed_writes_ >= kWritesPerFlush))
+    // The first write is flushed at once: a run killed before its first batch keeps it.
+    if (flush == Flush::now ||
+        (flush == Flush::batched && (++unflushed_writes_ >= kWritesPerFlush || !flushed_a_write_)))
       flush_now();
   } catch (const std::exception& e) {
     failure_ = e.what();

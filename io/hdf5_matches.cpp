@@ -31,7 +31,21 @@ void check_recorded_names(hid_t group, const std::string& group_name, const std:
 
 // The matches a pair group holds (query = index in image 0); distance from matching_scores0.
 std::vector<Match> read_pair_group(hid_t group, const std::string& group_name,
-                                   const std::string& path) {
+                                   const std::string& path, std::size_t* queries = nullptr) {
+  silence_hdf5();
+  {
+    // hloc's matches0 are signed (-1: unmatched); an unsigned one would read 255 as an index.
+    const Handle set(H5Dopen2(group, "matches0", H5P_DEFAULT), H5Dclose);
+    const Handle type(set.ok() ? H5Dget_type(set.get()) : -1, H5Tclose);
+    if (type.ok() &&
+        (H5Tget_class(type.get()) != H5T_INTEGER || H5Tget_sign(type.get()) != H5T_SGN_2))
+      throw Error("'" + group_name + "/matches0' in '" + path + "' is " +
+                  (H5Tget_class(type.get()) == H5T_INTEGER
+                       ? "unsigned uint" + std::to_string(8 * H5Tget_size(type.get()))
+                       : std::string("not an integer")) +
+                  ": hloc's matches0 are signed integers, -1 for an unmatched keypoint (written "
+                  "by another tool?)");
+  }
   std::vector<hsize_t> dims;
   const std::vector<std::int32_t> matches0 =
       read_dataset<std::int32_t>(group, "matches0", dims, group_name);
@@ -41,6 +55,7 @@ std::vector<Match> read_pair_group(hid_t group, const std::string& group_name,
   if (scores0.size() != matches0.size())
     throw Error("'" + group_name + "' in '" + path +
                 "': matches0 and matching_scores0 differ in length");
+  if (queries) *queries = matches0.size();
   std::vector<Match> matches;
   for (std::size_t i = 0; i < matches0.size(); ++i)
     if (matches0[i] >= 0)
@@ -75,14 +90,15 @@ std::vector<Match> Hdf5File::read_matches(const std::string& name0,
 }
 
 std::optional<std::vector<Match>> Hdf5File::find_matches(const std::string& name0,
-                                                         const std::string& name1) const {
+                                                         const std::string& name1,
+                                                         std::size_t* queries) const {
   const std::string group_name = hloc_pair_name(name0, name1);
   if (!may_hold(group_name)) return std::nullopt;
   const Handle group = open_group_if_any(file_, group_name);
   if (!group.ok() || H5Lexists(group.get(), "matching_scores0", H5P_DEFAULT) <= 0)
     return std::nullopt;
   check_recorded_names(group.get(), group_name, name0, name1, path_);
-  return read_pair_group(group.get(), group_name, path_);
+  return read_pair_group(group.get(), group_name, path_, queries);
 }
 void Hdf5File::write_matches(const std::string& name0, const std::string& name1, int keypoints0,
                              const std::vector<Match>& matches) {

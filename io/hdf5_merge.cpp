@@ -4,6 +4,8 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <unordered_map>
 #include <unordered_set>
@@ -25,6 +27,20 @@ namespace aief::io {
 using namespace hdf5;
 
 namespace {
+
+// A hash of what the image group `name` records of its making: its source (size, modification
+// time) and its option record.
+std::uint64_t making_record_hash(const Hdf5File& file, const std::string& name) {
+  const std::optional<std::string> options = file.option_record(name);
+  const std::optional<std::pair<std::int64_t, std::int64_t>> source = file.recorded_source(name);
+  std::string record = options ? "1" + *options : "0";
+  if (source)
+    record.append("|")
+        .append(std::to_string(source->first))
+        .append("|")
+        .append(std::to_string(source->second));
+  return std::hash<std::string>{}(record);
+}
 
 // The bytes the datasets of group `name` hold (what a copy of it writes besides metadata).
 std::uint64_t group_storage_bytes(hid_t file, const std::string& name) {
@@ -73,8 +89,9 @@ void copy_file(const std::string& from, const std::string& to) {
 }
 
 }  // namespace
-void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& name) {
+void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& image) {
   silence_hdf5();
+  const std::string name = image_group(image);
   const std::uint64_t bytes = group_storage_bytes(source.file_, name);
   write_guarded(
       bytes, "'" + name + "' from '" + source.path_ + "'",
@@ -87,21 +104,28 @@ void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& name) 
       },
       Flush::at_close);
 }
-int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs) {
+int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs,
+                        int* replaced) {
   namespace fs = std::filesystem;
   std::error_code ec;
   // Every input checked first: each opens, no image is in two of them (a hash set: linear), and
-  // every image, those already in the output included, was extracted with the same options.
+  // every image of the result, those the output keeps included, was extracted with the same
+  // options.
   SameOptionsCheck same_options;
-  std::unordered_set<std::string> kept;  // images already in the output, from an earlier merge
+  // Images already in the output, from an earlier merge, each with the hash of what it records of
+  // its making (source and options): a shard's image whose record differs (its image changed, or
+  // the shards were extracted again with other options) replaces it; an equal one is kept.
+  std::vector<std::string> previous_names;                               // sorted
+  std::unordered_map<std::string_view, std::uint64_t> previous_records;  // keyed by those names
+  std::unique_ptr<Hdf5File> previous;
   const bool extending = fs::exists(output, ec);
   if (extending) {
-    const Hdf5File previous(output, Hdf5File::Mode::read_in_name_order);
-    for (std::string& name : previous.feature_names()) {
-      same_options.check(previous.option_record(name), previous.path(), name);
-      kept.insert(std::move(name));
-    }
+    previous = std::make_unique<Hdf5File>(output, Hdf5File::Mode::read_in_name_order);
+    previous_names = previous->feature_names();
+    for (const std::string& name : previous_names)
+      previous_records.emplace(name, making_record_hash(*previous, name));
   }
+  std::unordered_set<std::string_view> kept, stale;  // of previous_names
   std::vector<std::unique_ptr<Hdf5File>> shards;
   std::vector<std::vector<std::string>> names;  // each shard's, kept for the copy
   names.reserve(inputs.size());
@@ -115,9 +139,18 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
       if (!inserted)
         throw Error("image '" + name + "' is in two of the files merged, '" + inputs[at->second] +
                     "' and '" + input + "'; nothing was written");
-      if (!kept.count(name)) same_options.check(shards.back()->option_record(name), input, name);
+      if (const auto found = previous_records.find(name); found != previous_records.end())
+        (found->second == making_record_hash(*shards.back(), name) ? kept : stale)
+            .insert(found->first);
     }
   }
+  // Options: the output's images it keeps first, then the shards' images it takes.
+  for (const std::string& name : previous_names)
+    if (!stale.count(name)) same_options.check(previous->option_record(name), output, name);
+  previous.reset();
+  for (std::size_t s = 0; s < shards.size(); ++s)
+    for (const std::string& name : names[s])
+      if (!kept.count(name)) same_options.check(shards[s]->option_record(name), inputs[s], name);
   if (const fs::path folder = fs::path(output).parent_path();
       !extending && !folder.empty() && !fs::is_directory(folder, ec))
     throw Error("cannot create '" + output + "': the folder '" + folder.string() +
@@ -134,7 +167,7 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     for (std::size_t s = 0; s < shards.size(); ++s)
       for (const std::string& name : names[s]) {
         if (kept.count(name)) continue;
-        out.copy_group_from(*shards[s], name);
+        out.copy_group_from(*shards[s], name);  // replacing a stale group of that name
         ++copied;
       }
     out.close();
@@ -150,6 +183,7 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     fs::remove(temporary, ec);
     throw Error("cannot merge into '" + output + "' (left as it was): " + ec.message());
   }
+  if (replaced) *replaced = static_cast<int>(stale.size());
   return copied;
 }
 

@@ -98,4 +98,11 @@ void write_string_attribute(hid_t object, const char* name, const std::string& v
     throw Error(hdf5_reason() + " (attribute '" + name + "')");
 }
 
+std::string damaged_file(const std::string& path, const std::string& hdf5_said) {
+  return "cannot open '" + path + "' as an HDF5 file: it is damaged or cut short" +
+         (hdf5_said.empty() ? std::string() : " (libhdf5: " + hdf5_said + ")") +
+         "; if it is the output of a run that was killed or stopped, move it away and run that "
+         "command again, which writes it anew";
+}
+
 }  // namespace aief::io::hdf5

@@ -40,6 +40,11 @@ void silence_hdf5();
 // read or write of the file failed ("No space left on device"), else its innermost description.
 std::string hdf5_reason();
 
+// "cannot open 'f.h5' as an HDF5 file: it is damaged or cut short (libhdf5: why), if it is the
+// output of a run that was killed ... move it away and run that command again": a file libhdf5
+// cannot read, named with what to do, never a dead end. `hdf5_said` may be empty.
+std::string damaged_file(const std::string& path, const std::string& hdf5_said);
+
 // Whether every component of `path` exists (H5Lexists fails when a parent is missing).
 bool exists(hid_t file, const std::string& path);
 

@@ -138,6 +138,47 @@ TEST_F(DiskFull, BatchH5StopsCleanlyKeepsWhatWasCompleteAndResumes) {
   EXPECT_EQ(readable_images(h5), 60);
 }
 
+// The same on a file system without fallocate (the shim): the first images of a new file are
+// kept, the file opens, and the rerun resumes as the message says.
+TEST_F(DiskFull, BatchH5WithoutFallocateStopsCleanlyInItsFirstImagesAndResumes) {
+  const std::string shim = std::string("LD_PRELOAD=") + AIEF_NO_FALLOCATE_SHIM + " ";
+  ASSERT_NE(aief::test::run_shell(shim + "fallocate -l 1M " + (disk_ / "probe").string()).status, 0)
+      << "the shim does not take fallocate away";
+  fs::remove(disk_ / "probe");
+  const std::string list = (work_.path() / "images.txt").string(),
+                    h5 = (disk_ / "features.h5").string();
+  const std::string batch =
+      "extract --batch " + list + " -o " + h5 + " --format h5 --features 2000 --threads 2";
+  fill_leaving(1 << 20);  // room for a few images, far from the first 64
+  const CliResult full = aief::test::run_shell(shim + AIEF_CLI_PATH + " " + batch);
+  expect_clean_stop(full, "batch into a full disk without fallocate");
+  EXPECT_NE(full.output.find("run the same command again to resume"), std::string::npos)
+      << full.output;
+  int kept = -1;
+  ASSERT_NO_THROW(kept = readable_images(h5)) << "the message says it resumes; the file must open";
+  EXPECT_LT(kept, 60);
+  EXPECT_TRUE(leftovers(disk_).empty());
+  free_space();
+  const CliResult resumed = aief::test::run_shell(shim + AIEF_CLI_PATH + " " + batch);
+  EXPECT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find(std::to_string(kept) + " already done"), std::string::npos)
+      << resumed.output;
+  EXPECT_EQ(readable_images(h5), 60);
+}
+
+// A disk already full when the file is created: the system's reason, and no empty file left.
+TEST_F(DiskFull, BatchH5OnAFullDiskSaysSoAndLeavesNoFile) {
+  const std::string list = (work_.path() / "images.txt").string(),
+                    h5 = (disk_ / "features.h5").string();
+  fill_leaving(0);
+  const CliResult full =
+      run("extract --batch " + list + " -o " + h5 + " --format h5 --features 2000");
+  expect_clean_stop(full, "batch onto a disk already full");
+  EXPECT_EQ(full.output.find("File exists"), std::string::npos) << full.output;
+  EXPECT_FALSE(fs::exists(h5));
+  EXPECT_TRUE(leftovers(disk_).empty());
+}
+
 TEST_F(DiskFull, MatchPairsStopsCleanlyAndResumes) {
   const std::string list = (work_.path() / "images.txt").string(),
                     features = (work_.path() / "features.h5").string();
@@ -149,8 +190,8 @@ TEST_F(DiskFull, MatchPairsStopsCleanlyAndResumes) {
     std::ofstream out(pairs);
     for (int i = 0; i < 60; ++i)
       for (int j = i + 1; j < 60; j += 17)
-        out << (work_.path() / "images" / numbered("i", i, ".png")).string().substr(1) << " "
-            << (work_.path() / "images" / numbered("i", j, ".png")).string().substr(1) << "\n";
+        out << (work_.path() / "images" / numbered("i", i, ".png")).string() << " "
+            << (work_.path() / "images" / numbered("i", j, ".png")).string() << "\n";
   }
   const std::string matches = (disk_ / "matches.h5").string();
   const std::string match = "match --pairs " + pairs + " --features " + features + " -o " + matches;
@@ -198,8 +239,8 @@ TEST_F(DiskFull, ColmapLeavesNoDatabaseNorTemporary) {
       0);
   const std::string pairs = (work_.path() / "pairs.txt").string(),
                     matches = (work_.path() / "matches.h5").string();
-  std::ofstream(pairs) << (work_.path() / "images/i0.png").string().substr(1) << " "
-                       << (work_.path() / "images/i1.png").string().substr(1) << "\n";
+  std::ofstream(pairs) << (work_.path() / "images/i0.png").string() << " "
+                       << (work_.path() / "images/i1.png").string() << "\n";
   ASSERT_EQ(run("match --pairs " + pairs + " --features " + features + " -o " + matches).status, 0);
   fill_leaving(64 << 10);
   const CliResult r = run("colmap --features " + features + " --matches " + matches + " --pairs " +

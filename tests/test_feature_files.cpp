@@ -19,6 +19,7 @@
 #include "io/json_writer.hpp"
 #include "io/npz_writer.hpp"
 #include "io/pairs_file.hpp"
+#include "tests/odd_names.hpp"
 #include "tests/test_support.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_file.hpp"
@@ -204,15 +205,23 @@ TEST(Hdf5Features, OpenFailuresSayWhich) {
     ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
     EXPECT_NE(message([&] {
                 io::Hdf5File(dir.file("good.h5"), Mode::read_write);
-              }).find("another process holds it locked"),
+              }).find("it is locked by a writer"),
               std::string::npos);
+    // A reader too (merge, match --pairs and colmap reading a shard still being written).
+    for (const Mode reading : {Mode::read, Mode::read_in_name_order})
+      EXPECT_NE(message([&] {
+                  io::Hdf5File(dir.file("good.h5"), reading);
+                }).find("it is locked by a writer"),
+                std::string::npos);
     ::close(held);
   }
   std::filesystem::copy_file(dir.file("good.h5"), dir.file("cut.h5"));
   std::filesystem::resize_file(dir.file("cut.h5"),
                                std::filesystem::file_size(dir.file("cut.h5")) / 2);
-  EXPECT_NE(message([&] { io::Hdf5File(dir.file("cut.h5"), Mode::read); }).find("it is damaged"),
-            std::string::npos);
+  const std::string cut = message([&] { io::Hdf5File(dir.file("cut.h5"), Mode::read); });
+  EXPECT_NE(cut.find("it is damaged or cut short (libhdf5: truncated file"), std::string::npos)
+      << cut;
+  EXPECT_NE(cut.find("run that command again"), std::string::npos) << cut;
 }
 
 // A failed merge (an image in two inputs, a missing, cut or non-HDF5 input) leaves the output
@@ -267,15 +276,15 @@ TEST(Hdf5Features, RoundTripInNestedGroupsAndResume) {
 }
 
 TEST(Hdf5Features, NamesSpelledWithExtraSlashesFindTheirGroupsAfterAReopen) {
-  // A written file keeps the names of its groups in memory; libhdf5 reads "/a", "a" and "b//c"
-  // as the groups "a" and "b/c", and so must that index, or a resumed batch of absolute paths
-  // takes its images as missing and fails on "name already exists".
+  // A written file keeps the names of its groups in memory; libhdf5 reads "b//c" as the group
+  // "b/c", and so must that index, or a resumed batch takes its images as missing and fails on
+  // "name already exists".
   OwnTempDir dir;
   const Features a = sample_features("graf", 1);
   {
     io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
     file.write_features("/abs/a.png", a);
-    EXPECT_TRUE(file.has_features("abs/a.png"));
+    EXPECT_TRUE(file.has_features("/abs/a.png"));
     file.write_features("b//c.png", a);
     EXPECT_TRUE(file.has_features("b/c.png"));
     io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
@@ -283,14 +292,40 @@ TEST(Hdf5Features, NamesSpelledWithExtraSlashesFindTheirGroupsAfterAReopen) {
   }
   io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
   EXPECT_TRUE(file.has_features("/abs/a.png"));
-  EXPECT_TRUE(file.has_features("abs/a.png"));
   EXPECT_TRUE(file.has_features("b//c.png"));
   EXPECT_FALSE(file.has_features("abs/b.png"));
   EXPECT_NO_THROW(file.write_features("/abs/a.png", a));
-  EXPECT_EQ(file.feature_names(), (std::vector<std::string>{"abs/a.png", "b/c.png"}));
+  EXPECT_EQ(file.feature_names(), (std::vector<std::string>{"/abs/a.png", "b/c.png"}));
   io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
   EXPECT_TRUE(matches.has_matches("/abs/a.png", "b/c.png"));
   EXPECT_NO_THROW(matches.write_matches("/abs/a.png", "b/c.png", 3, {{0, 1, 2}}));
+}
+
+// "/data/q/x.png" and "data/q/x.png" are two files: two groups, as the JSON layout's two files
+// ("%2F/data/q/x.png.json"); a name of a leading '%' keeps its own group too. Other names are
+// their groups, byte for byte (hloc reads them).
+TEST(Hdf5Features, AnAbsoluteNameAndItsRelativeTwinHaveGroupsOfTheirOwn) {
+  OwnTempDir dir;
+  const Features a = sample_features("graf", 1), b = sample_features("boat", 1),
+                 c = sample_features("leuven", 1);
+  for (int reopen = 0; reopen < 2; ++reopen) {
+    io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
+    if (reopen == 0) {
+      file.write_features("/data/q/x.png", a);
+      file.write_features("data/q/x.png", b);
+      file.write_features("%2F/data/q/x.png", c);
+    }
+    EXPECT_EQ(file.read_features("/data/q/x.png").keypoints.size(), a.keypoints.size());
+    EXPECT_EQ(file.read_features("data/q/x.png").keypoints.size(), b.keypoints.size());
+    EXPECT_EQ(file.read_features("%2F/data/q/x.png").keypoints.size(), c.keypoints.size());
+    EXPECT_EQ(file.feature_names(),
+              (std::vector<std::string>{"%2F/data/q/x.png", "/data/q/x.png", "data/q/x.png"}));
+  }
+  EXPECT_EQ(io::image_group("/data/q/x.png"), "%2F/data/q/x.png");
+  EXPECT_EQ(io::image_group("%2F/data/q/x.png"), "%252F/data/q/x.png");
+  EXPECT_EQ(io::image_group("sub/a%2F.png"), "sub/a%2F.png");
+  for (const std::string& name : aief::test::odd_image_names())
+    EXPECT_EQ(io::image_of_group(io::image_group(name)), name) << name;
 }
 
 TEST(Hdf5Features, MatchesInHlocPairGroups) {
@@ -356,6 +391,53 @@ TEST(Hdf5Features, PairLookupsSeeWritesMadeBetweenThem) {
   EXPECT_EQ(reopened.read_matches("a.png", "b.png").at(0).train, 1);
   EXPECT_EQ(reopened.read_matches("a.png", "c.png").at(0).train, 3);
   EXPECT_FALSE(reopened.find_matches("b.png", "a.png"));
+}
+
+// A merge run again after a shard's image changed, or after the shards were extracted again with
+// other options, replaces what the output held of those images; an unchanged rerun copies none.
+TEST(Hdf5Features, MergeRerunReplacesGroupsWhoseShardImageOrOptionsChanged) {
+  OwnTempDir dir;
+  const Features a = sample_features("boat", 1), b = sample_features("boat", 2),
+                 changed = sample_features("graf", 1);
+  io::SourceRecord source, later;
+  source.name = later.name = "a.png";
+  source.bytes = 100;
+  later.bytes = 120;
+  ExtractorOptions options, other;
+  other.n_features = options.n_features + 500;
+  {
+    io::Hdf5File shard(dir.file("s0.h5"), io::Hdf5File::Mode::read_write);
+    shard.write_features("a.png", a, &source, &options);
+    shard.write_features("b.png", b, &source, &options);
+  }
+  int replaced = -1;
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}, &replaced), 2);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}, &replaced), 0);
+  EXPECT_EQ(replaced, 0);
+  // The image a.png changed; its shard was brought up to date.
+  io::Hdf5File(dir.file("s0.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("a.png", changed, &later, &options);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}, &replaced), 1);
+  EXPECT_EQ(replaced, 1);
+  expect_same(io::Hdf5File(dir.file("all.h5"), io::Hdf5File::Mode::read).read_features("a.png"),
+              changed);
+  // Extracted again with other options, every image.
+  {
+    io::Hdf5File shard(dir.file("s0.h5"), io::Hdf5File::Mode::read_write);
+    shard.write_features("a.png", b, &later, &other);
+    shard.write_features("b.png", a, &source, &other);
+  }
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("s0.h5")}, &replaced), 2);
+  EXPECT_EQ(replaced, 2);
+  {
+    const io::Hdf5File all(dir.file("all.h5"), io::Hdf5File::Mode::read);
+    expect_same(all.read_features("a.png"), b);
+    expect_same(all.read_features("b.png"), a);
+  }
+  // Only one image of the output extracted again with other options: the rest would disagree.
+  io::Hdf5File(dir.file("s1.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("a.png", a, &later, &options);
+  EXPECT_THROW(io::merge_feature_files(dir.file("all.h5"), {dir.file("s1.h5")}), Error);
 }
 
 TEST(Hdf5Features, MergeCopiesShardsAndRefusesAnImageTwice) {

@@ -3,6 +3,7 @@
 //   aief merge -o features.h5 shard0.h5 shard1.h5 ...
 //   aief colmap --features features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "aief/error.hpp"
@@ -41,8 +42,14 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
     throw UsageError("--pairs takes its images from the pairs file, not from positional arguments");
   const io::PairsList pairs = io::read_pairs(*args.get("--pairs"));
   for (const std::string& note : pairs.notes) std::cerr << "aief: note: " << note << "\n";
+  if (std::error_code ec; std::filesystem::equivalent(*features_path, *output, ec))
+    throw Error("-o '" + *output + "' is the features file (--features '" + *features_path +
+                "'): matches go to a file of their own (hloc's matches.h5); nothing was written");
   const io::Hdf5File features(*features_path, io::Hdf5File::Mode::read);
   io::Hdf5File matches_file(*output, io::Hdf5File::Mode::read_write);
+  if (const std::string& image = matches_file.first_image_group(); !image.empty())
+    throw Error("-o '" + *output + "' holds features (image '" + image +
+                "'): matches go to a file of their own (hloc's matches.h5); nothing was written");
   io::DescriptorCache descriptors(features, kDescriptorCacheBytes);
   int written = 0, skipped = 0;
   long long total = 0;
@@ -84,8 +91,12 @@ int run_merge(const Arguments& arguments) {
   if (!output || args.positionals().empty())
     throw UsageError("merge expects -o FEATURES.h5 and one or more shard files");
 #ifdef AIEF_HAVE_HDF5
-  const int copied = io::merge_feature_files(*output, args.positionals());
-  std::printf("%d images merged into %s\n", copied, output->c_str());
+  int replaced = 0;
+  const int copied = io::merge_feature_files(*output, args.positionals(), &replaced);
+  std::printf("%d images merged into %s", copied, output->c_str());
+  if (replaced > 0)
+    std::printf(" (%d replacing what it held of them: their image or options changed)", replaced);
+  std::printf("\n");
   return 0;
 #else
   throw Error(kNoHdf5);
