@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
+#include "io/image_formats.hpp"
 #include "io/image_header.hpp"
 
 namespace aief::io {
@@ -57,24 +58,21 @@ void check_header_before_decoding(const std::vector<std::uint8_t>& bytes, const 
                                   long long max_pixels) {
   const std::optional<ImageHeader> header = read_image_header(bytes.data(), bytes.size());
   if (!header)
-    throw Error("cannot read image '" + name +
-                "': not an image aief can read (PNG, JPEG, TIFF, WebP, BMP, PNM/PAM, Sun raster, "
-                "JPEG 2000; 8- or "
-                "16-bit), or its header is damaged");
+    throw Error("cannot read image '" + name + "': not an image aief can read (" +
+                readable_image_format_names() + "; 8- or 16-bit), or its header is damaged");
   // Compared by division: width x height may not fit in 64 bits.
   if (header->width > 0 && header->height > max_pixels / header->width)
     throw Error("image '" + name + "' declares " + std::to_string(header->width) + "x" +
                 std::to_string(header->height) + " pixels in its " + header->format +
                 " header, more than max_image_pixels = " + std::to_string(max_pixels) +
                 " (refused before decoding)");
-  // Formats of floating-point pixels only (their size is still read, so the limit holds): refused
-  // by name before decoding.
-  if (header->format == "HDR" || header->format == "PFM")
-    throw Error("cannot use image '" + name + "': a " +
-                (header->format == "HDR" ? "Radiance HDR" : "PFM") +
-                " file holds floating-point pixels, which aief does not read (no conversion to 8 "
-                "bits is right for "
-                "every use: tone-map it first)");
+  // Formats aief does not read (floating-point pixels only; their size is still read, so the
+  // limit holds): refused by name before decoding.
+  const ImageFormat* format = image_format_named(header->format);
+  if (format != nullptr && !format->refusal.empty())
+    throw Error("cannot use image '" + name + "': " + std::string(format->refusal) +
+                ", which aief does not read (no conversion to 8 bits is right for every use: "
+                "tone-map it first)");
 }
 
 // A JPEG whose last scan (SOS, FF DA) is not followed by the end-of-image marker (FF D9) was cut
