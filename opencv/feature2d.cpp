@@ -50,10 +50,10 @@ void Feature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
     given_.reserve(keypoints.size());
     for (const cv::KeyPoint& kp : keypoints) given_.push_back(from_cv_keypoint(kp));
     extractor_.describe(view_of(gray), given_, features_, &kept_, given_angles_);
-    // The kept keypoints as given (class_id and all), with the recomputed angle.
+    // The kept keypoints as given (class_id and all), with the angle the descriptor used.
     for (std::size_t k = 0; k < kept_.size(); ++k) {
       keypoints[k] = keypoints[static_cast<std::size_t>(kept_[k])];
-      keypoints[k].angle = features_.keypoints[k].angle_deg;
+      keypoints[k].angle = features_.keypoints[k].angle_deg;  // the given one when kept
     }
     keypoints.resize(kept_.size());
   } else {

@@ -1,5 +1,6 @@
 // aief::opencv::Feature2D: a cv::Feature2D bit-exact with the engine; compute() for given keypoints
 // (Extractor::describe) and its rules: level from the octave, border rule, angle recomputed.
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -129,7 +130,7 @@ TEST(Feature2D, TheMaskIsTheEnginesDetectionMask) {
                Error);
 }
 
-TEST(Feature2D, ComputeKeepsEachKeypointsFieldsButTheAngleAndRemovesThoseNearTheEdge) {
+TEST(Feature2D, ComputeKeepsEachKeypointsFieldsAndRemovesThoseNearTheEdge) {
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
   const int w = gray.cols, h = gray.rows;
   // Level 0 of the default mode maps x to the pixel round(x): 19 is the first pixel kept.
@@ -153,11 +154,53 @@ TEST(Feature2D, ComputeKeepsEachKeypointsFieldsButTheAngleAndRemovesThoseNearThe
     EXPECT_EQ(keypoints[k].size, original.size);
     EXPECT_EQ(keypoints[k].response, original.response);
     EXPECT_EQ(keypoints[k].octave, original.octave);
-    EXPECT_GE(keypoints[k].angle, 0.f);
-    EXPECT_LT(keypoints[k].angle, 360.f);
+    EXPECT_EQ(keypoints[k].angle, original.angle);  // -1 (OpenCV's "no angle") too, as cv::ORB
   }
   EXPECT_EQ(descriptors.rows, 5);
   EXPECT_EQ(descriptors.type(), CV_8U);
+}
+
+// compute() keeps the angles it is given, as cv::ORB::compute does: graf's keypoints carried to
+// the image turned by 30 degrees, with their true angles, come back with those angles (and so
+// with the descriptors of the true orientation). GivenAngles::recompute re-estimates them on the
+// turned, re-interpolated image. Was: recomputed by default.
+TEST(Feature2D, ComputeKeepsTheGivenAnglesAsCvOrb) {
+  const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
+  constexpr double kTurnDeg = 30;
+  const cv::Mat rotation =
+      cv::getRotationMatrix2D(cv::Point2f(gray.cols / 2.f, gray.rows / 2.f), kTurnDeg, 1.0);
+  cv::Mat turned;
+  cv::warpAffine(gray, turned, rotation, gray.size());
+  std::vector<cv::KeyPoint> detected;
+  opencv::Feature2D::create()->detect(gray, detected);
+  std::vector<cv::KeyPoint> moved;
+  for (const cv::KeyPoint& kp : detected) {
+    const cv::Matx23d m = rotation;
+    const cv::Point2f p(static_cast<float>(m(0, 0) * kp.pt.x + m(0, 1) * kp.pt.y + m(0, 2)),
+                        static_cast<float>(m(1, 0) * kp.pt.x + m(1, 1) * kp.pt.y + m(1, 2)));
+    // The image turns counter-clockwise (y down): an orientation theta becomes theta - 30.
+    const float angle = static_cast<float>(std::fmod(kp.angle - kTurnDeg + 360.0, 360.0));
+    moved.emplace_back(p, kp.size, angle, kp.response, kp.octave, static_cast<int>(moved.size()));
+  }
+  std::vector<cv::KeyPoint> kept = moved, recomputed = moved;
+  cv::Mat descriptors, recomputed_descriptors;
+  opencv::Feature2D::create()->compute(turned, kept, descriptors);
+  opencv::Feature2D::create({}, GivenAngles::recompute)
+      ->compute(turned, recomputed, recomputed_descriptors);
+  ASSERT_GT(kept.size(), moved.size() * 3 / 4);
+  ASSERT_EQ(kept.size(), recomputed.size());
+  int angles_moved = 0;
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    EXPECT_EQ(kept[k].angle, moved[static_cast<std::size_t>(kept[k].class_id)].angle);
+    angles_moved += recomputed[k].angle != kept[k].angle ? 1 : 0;
+  }
+  EXPECT_GT(angles_moved, static_cast<int>(kept.size()) / 2) << "recompute re-estimates them";
+  // cv::ORB, given the same keypoints, keeps the same angles.
+  std::vector<cv::KeyPoint> orb_kept = moved;
+  cv::Mat orb_descriptors;
+  cv::ORB::create()->compute(turned, orb_kept, orb_descriptors);
+  for (const cv::KeyPoint& kp : orb_kept)
+    EXPECT_EQ(kp.angle, moved[static_cast<std::size_t>(kp.class_id)].angle);
 }
 
 TEST(Feature2D, ComputeRefusesAnOctaveOutsideTheLevels) {
