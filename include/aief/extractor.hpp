@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "aief/error.hpp"  // what the functions below throw
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"

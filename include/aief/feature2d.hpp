@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
+#include "aief/error.hpp"  // what the functions below throw
 #include "aief/extractor.hpp"
 
 namespace aief::opencv {
