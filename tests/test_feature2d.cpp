@@ -75,6 +75,35 @@ TEST(Feature2D, OptionsGoThroughFileStorage) {
   EXPECT_EQ(read->options().n_features, 777) << "a bad setting leaves the detector as it was";
 }
 
+// read() refuses a key it would not read, naming it: a typo, cv::ORB's own settings (what
+// cv::ORB::write writes), leaving the detector as it was. Was: ignored without a word.
+TEST(Feature2D, ReadRefusesKeysItDoesNotReadNamingThem) {
+  const cv::Ptr<opencv::Feature2D> detector = opencv::Feature2D::create();
+  const auto message_of = [&](const std::string& yaml) {
+    cv::FileStorage in("%YAML:1.0\n" + yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+    try {
+      detector->read(in.root());
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message_of("n_features: 500\nn_featres: 300\n").find("unknown key 'n_featres'"),
+            std::string::npos);
+  EXPECT_NE(message_of("nfeatures: 300\n").find("'nfeatures' is cv::ORB's setting"),
+            std::string::npos);
+  EXPECT_NE(message_of("nfeatures: 300\n").find("n_features"), std::string::npos);
+  EXPECT_EQ(detector->options().n_features, ExtractorOptions{}.n_features) << "left as it was";
+  // What cv::ORB::write writes in the OpenCV versions that write its settings.
+  EXPECT_NE(message_of("name: Feature2D.ORB\nnfeatures: 500\nscaleFactor: 1.2\nnlevels: 8\n"
+                       "edgeThreshold: 31\nfirstLevel: 0\nwta_k: 2\nscoreType: 0\n"
+                       "patchSize: 31\nfastThreshold: 20\n")
+                .find("cv::ORB's setting"),
+            std::string::npos);
+  EXPECT_EQ(message_of("name: Feature2D.AIEF\nn_features: 500\n"), "no error");
+  EXPECT_EQ(detector->options().n_features, 500);
+}
+
 TEST(Feature2D, DetectAndComputeGivesTheEnginesFeatures) {
   const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
   for (Mode mode : kEveryMode) {

@@ -53,7 +53,8 @@ class Feature2D : public cv::Feature2D {
 
   // The options, one key per option as the output files record them (core/option_table.hpp);
   // read() takes any subset of the keys (the others keep their value) and throws aief::Error for
-  // a bad value, leaving the detector as it was.
+  // a bad value or a key it does not read (a typo, cv::ORB's `nfeatures`: named, with aief's key
+  // where there is one), leaving the detector as it was.
   void write(cv::FileStorage& storage) const override;
   void read(const cv::FileNode& node) override;
   using cv::Feature2D::read;
