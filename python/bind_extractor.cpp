@@ -211,7 +211,8 @@ void bind_extractor(py::module_& m) {
                              "CPU or by `kernels`");
   m.def(
       "read_image",
-      [](const std::string& path) {
+      [](const py::object& path_given) {
+        const std::string path = filesystem_path(path_given);
         GrayImage image;
         {
           py::gil_scoped_release no_gil;
