@@ -1,6 +1,7 @@
 #include "core/given_keypoints.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -16,9 +17,9 @@ void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels,
     if (kp.octave < 0 || kp.octave >= n_levels)
       throw Error("keypoint " + std::to_string(i) + " has octave " + std::to_string(kp.octave) +
                   ", outside the extractor's levels 0.." + std::to_string(n_levels - 1));
-    if (angles == GivenAngles::keep && !(kp.angle_deg >= 0.0f && kp.angle_deg < 360.0f))
+    if (angles == GivenAngles::keep && !std::isfinite(kp.angle_deg))
       throw Error("keypoint " + std::to_string(i) + " has angle " + std::to_string(kp.angle_deg) +
-                  " (degrees), outside [0, 360): the given angles are kept, so each must be one");
+                  " (degrees): the given angles are kept, so each must be a number");
   }
 }
 

@@ -13,8 +13,8 @@
 //                A level too small to hold a keypoint removes all of its keypoints.
 //   orientation  GivenAngles::recompute (the default): the intensity centroid on the raw level,
 //                as for detected keypoints, replaces the given angle. GivenAngles::keep: the given
-//                angle is used as it is, as cv::ORB::compute does (an angle outside [0, 360) is
-//                an error then).
+//                angle is used as it is, as cv::ORB::compute does: any finite number of degrees
+//                (OpenCV's "no angle", -1, too: the pattern is rotated by cos and sin of it).
 //   descriptor   rBRIEF on the level blurred as for detected keypoints
 #include <cstdint>
 #include <vector>
@@ -42,7 +42,7 @@ struct GivenKeypointScratch {
 };
 
 // Throws aief::Error, naming the keypoint, when its octave is outside [0, n_levels) or, with
-// GivenAngles::keep, its angle outside [0, 360).
+// GivenAngles::keep, its angle is not finite.
 void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels,
                            GivenAngles angles);
 

@@ -1,10 +1,10 @@
 #include "io/batch_inputs.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 
 #include "aief/error.hpp"
+#include "io/image_formats.hpp"
 #include "io/text_list.hpp"
 
 namespace aief::io {
@@ -26,7 +26,7 @@ void list_folder(const fs::path& folder, const std::string& prefix,
       open_folders.push_back(real);
       list_folder(entry.path(), name + "/", open_folders, out);
       open_folders.pop_back();
-    } else if (is_image_file_name(entry.path().string())) {
+    } else if (has_readable_image_extension(entry.path().string())) {
       out.push_back({entry.path().string(), name});
     }
   }
@@ -42,16 +42,6 @@ std::vector<BatchInput> list_file_inputs(const std::string& list) {
 }
 
 }  // namespace
-
-bool is_image_file_name(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  static const char* const kExtensions[] = {".png", ".jpg", ".jpeg", ".pgm",  ".ppm",
-                                            ".pbm", ".bmp", ".tif",  ".tiff", ".webp"};
-  return std::any_of(std::begin(kExtensions), std::end(kExtensions),
-                     [&](const char* e) { return ext == e; });
-}
 
 std::string name_of_listed_path(const std::string& line) {
   std::string name = !line.empty() && line[0] == '/' ? "/" : "";

@@ -3,7 +3,8 @@
 // the Python module's `aief.batch_inputs` and the Dask recipe (python/aief/dask_batch.py), so
 // every way of running a batch makes the same groups.
 //
-// A folder: its files with an image extension (is_image_file_name), recursively. Folder symlinks
+// A folder: its files with an extension of a format aief reads (io/image_formats.hpp, the list
+// the single-image reader uses, any case), recursively. Folder symlinks
 // are followed, except one leading back to a folder being listed (a cycle). Symlinks are never
 // resolved for the name: two links to one file are two inputs. A broken link or a FIFO with an
 // image name is listed too, so that reading it reports it (io/image_io.hpp refuses anything that
@@ -26,10 +27,6 @@ struct BatchInput {
   std::string path;  // where it is read: FOLDER/name, or the list line as written
   std::string name;  // its key (see above)
 };
-
-// Whether a file name has an extension a folder batch takes (.png, .jpg, .jpeg, .pgm, .ppm,
-// .pbm, .bmp, .tif, .tiff, .webp, any case).
-bool is_image_file_name(const std::string& path);
 
 // A list line as a name: "." parts and empty parts (doubled '/') dropped, nothing else changed.
 std::string name_of_listed_path(const std::string& line);

@@ -50,9 +50,28 @@ std::optional<ImageHeader> make(const char* format, std::optional<std::uint64_t>
                      static_cast<long long>(std::min(*height, kAbsurd))};
 }
 
+// Bytes per sample of `bits`-bit samples as OpenCV decodes them (8 or 16 bits; 32: float).
+int bytes_per_channel_of(std::uint64_t bits) { return bits <= 8 ? 1 : bits <= 16 ? 2 : 4; }
+
 std::optional<ImageHeader> png_header(const Bytes& b) {
   if (!b.starts_with("IHDR", 12)) return std::nullopt;
-  return make("PNG", b.big_endian(16, 4), b.big_endian(20, 4));
+  std::optional<ImageHeader> header = make("PNG", b.big_endian(16, 4), b.big_endian(20, 4));
+  const std::optional<std::uint8_t> depth = b.at(24), colour = b.at(25);
+  if (header && depth && colour) {
+    // Colour types: 0 gray, 2 RGB, 3 palette (decoded as BGR), 4 gray + alpha (as BGRA), 6 RGBA.
+    header->channels = *colour == 0 ? 1 : *colour == 2 || *colour == 3 ? 3 : 4;
+    header->bytes_per_channel = *depth == 16 ? 2 : 1;
+  }
+  return header;
+}
+
+// Start-of-scan markers (FF DA) in the whole file. Inside entropy-coded data every FF is followed
+// by 00 or a restart marker, so FF DA is always a marker.
+long long count_jpeg_scans(const Bytes& b) {
+  long long scans = 0;
+  for (std::size_t i = 2; i + 1 < b.size(); ++i)
+    if (*b.at(i) == 0xFF && *b.at(i + 1) == 0xDA) ++scans;
+  return scans;
 }
 
 // Markers until the first start-of-frame (SOF0..SOF15 but DHT C4, JPG C8, DAC CC).
@@ -67,8 +86,18 @@ std::optional<ImageHeader> jpeg_header(const Bytes& b) {
     if (*marker == 0xD9 || *marker == 0xDA) return std::nullopt;  // EOI or scan before any frame
     const std::optional<std::uint64_t> length = b.big_endian(at, 2);
     if (!length || *length < 2) return std::nullopt;
-    if (*marker >= 0xC0 && *marker <= 0xCF && *marker != 0xC4 && *marker != 0xC8 && *marker != 0xCC)
-      return make("JPEG", b.big_endian(at + 5, 2), b.big_endian(at + 3, 2));
+    if (*marker >= 0xC0 && *marker <= 0xCF && *marker != 0xC4 && *marker != 0xC8 &&
+        *marker != 0xCC) {
+      std::optional<ImageHeader> header =
+          make("JPEG", b.big_endian(at + 5, 2), b.big_endian(at + 3, 2));
+      const std::optional<std::uint8_t> precision = b.at(at + 2), components = b.at(at + 7);
+      if (header && precision && components) {
+        header->channels = *components == 1 ? 1 : *components == 4 ? 4 : 3;
+        header->bytes_per_channel = bytes_per_channel_of(*precision);
+      }
+      if (header) header->scans = count_jpeg_scans(b);
+      return header;
+    }
     at += *length;
   }
 }
@@ -87,10 +116,22 @@ std::optional<ImageHeader> tiff_header(const Bytes& b) {
   if (!entries) return std::nullopt;
   const std::size_t first = *ifd + (big ? 8 : 2), entry_size = big ? 20 : 12,
                     value_at = big ? 12 : 8;
-  std::optional<std::uint64_t> width, height;
+  std::optional<std::uint64_t> width, height, bits, samples;
   for (std::uint64_t i = 0; i < *entries && first + i * entry_size + entry_size <= b.size(); ++i) {
     const std::size_t entry = first + static_cast<std::size_t>(i) * entry_size;
     const std::optional<std::uint64_t> tag = read(entry, 2), type = read(entry + 2, 2);
+    // BitsPerSample (258: one SHORT per sample, held in the entry while they fit, else at the
+    // offset it holds; the first is read) and SamplesPerPixel (277: a SHORT).
+    if (tag && type && *type == 3 && (*tag == 258 || *tag == 277)) {
+      const std::optional<std::uint64_t> count = big ? read(entry + 4, 8) : read(entry + 4, 4);
+      const bool inline_values = count && *count * 2 <= (big ? 8u : 4u);
+      const std::optional<std::uint64_t> offset = inline_values ? std::nullopt
+                                                  : big         ? read(entry + value_at, 8)
+                                                                : read(entry + value_at, 4);
+      (*tag == 258 ? bits : samples) = inline_values ? read(entry + value_at, 2)
+                                       : offset      ? read(*offset, 2)
+                                                     : std::nullopt;
+    }
     if (!tag || !type || (*tag != 256 && *tag != 257)) continue;
     // SHORT (3) or LONG (4), or LONG8 (16) in BigTIFF; the value sits in the entry itself.
     const std::optional<std::uint64_t> value = *type == 3    ? read(entry + value_at, 2)
@@ -99,7 +140,10 @@ std::optional<ImageHeader> tiff_header(const Bytes& b) {
                                                              : std::nullopt;
     (*tag == 256 ? width : height) = value;
   }
-  return make("TIFF", width, height);
+  std::optional<ImageHeader> header = make("TIFF", width, height);
+  if (header && bits) header->bytes_per_channel = bytes_per_channel_of(*bits);
+  if (header && samples) header->channels = static_cast<int>(std::min<std::uint64_t>(*samples, 64));
+  return header;
 }
 
 std::optional<ImageHeader> webp_header(const Bytes& b) {
@@ -164,11 +208,21 @@ std::optional<ImageHeader> netpbm_header(const Bytes& b) {
     return value;
   };
   if (kind != '7') {
-    const std::optional<std::uint64_t> width = number();  // two statements: width is read first
-    return make(kind == 'F' || kind == 'f' ? "PFM" : "PNM", width, number());
+    const std::optional<std::uint64_t> width = number();  // three statements: width is read first
+    const std::optional<std::uint64_t> height = number();
+    std::optional<ImageHeader> header =
+        make(kind == 'F' || kind == 'f' ? "PFM" : "PNM", width, height);
+    if (header && kind != 'F' && kind != 'f') {
+      header->channels = kind == '3' || kind == '6' ? 3 : 1;
+      // P2, P3, P5, P6 give the largest sample value next: above 255, 16-bit samples.
+      const std::optional<std::uint64_t> max_value =
+          kind == '1' || kind == '4' ? std::optional<std::uint64_t>(1) : number();
+      header->bytes_per_channel = max_value && *max_value > 255 ? 2 : 1;
+    }
+    return header;
   }
-  std::optional<std::uint64_t> width, height;
-  for (int token = 0; token < 64 && !(width && height); ++token) {
+  std::optional<std::uint64_t> width, height, depth, max_value;
+  for (int token = 0; token < 64; ++token) {
     skip_space();
     if (b.starts_with("WIDTH", at)) {
       at += 5;
@@ -176,13 +230,22 @@ std::optional<ImageHeader> netpbm_header(const Bytes& b) {
     } else if (b.starts_with("HEIGHT", at)) {
       at += 6;
       height = number();
-    } else if (b.starts_with("ENDHDR", at)) {
+    } else if (b.starts_with("DEPTH", at)) {
+      at += 5;
+      depth = number();
+    } else if (b.starts_with("MAXVAL", at)) {
+      at += 6;
+      max_value = number();
+    } else if (b.starts_with("ENDHDR", at) || !b.at(at)) {
       break;
     } else {
-      while (b.at(at) && *b.at(at) != '\n') ++at;  // another field: DEPTH, MAXVAL, TUPLTYPE
+      while (b.at(at) && *b.at(at) != '\n') ++at;  // another field: TUPLTYPE
     }
   }
-  return make("PAM", width, height);
+  std::optional<ImageHeader> header = make("PAM", width, height);
+  if (header && depth) header->channels = static_cast<int>(std::min<std::uint64_t>(*depth, 64));
+  if (header && max_value) header->bytes_per_channel = *max_value > 255 ? 2 : 1;
+  return header;
 }
 
 // Radiance: text lines up to an empty one, then the resolution line, e.g. "-Y 480 +X 640".
@@ -213,7 +276,15 @@ std::optional<ImageHeader> j2k_header(const Bytes& b, std::size_t at) {
   const auto x = b.big_endian(at + 8, 4), y = b.big_endian(at + 12, 4),
              x0 = b.big_endian(at + 16, 4), y0 = b.big_endian(at + 20, 4);
   if (!x || !y || !x0 || !y0 || *x0 > *x || *y0 > *y) return std::nullopt;
-  return make("JPEG 2000", *x - *x0, *y - *y0);
+  std::optional<ImageHeader> header = make("JPEG 2000", *x - *x0, *y - *y0);
+  // Csiz components, each with Ssiz: its bit depth - 1 (bit 7: signed).
+  const auto components = b.big_endian(at + 40, 2);
+  const auto depth = b.at(at + 42);
+  if (header && components && depth) {
+    header->channels = static_cast<int>(std::min<std::uint64_t>(*components, 64));
+    header->bytes_per_channel = bytes_per_channel_of((*depth & 0x7F) + 1u);
+  }
+  return header;
 }
 
 // JP2: boxes (32-bit length, type); the jp2h super box holds ihdr (height, then width).
@@ -226,8 +297,18 @@ std::optional<ImageHeader> jp2_header(const Bytes& b) {
       at += 8;  // into the super box
       continue;
     }
-    if (b.starts_with("ihdr", at + 4))
-      return make("JPEG 2000", b.big_endian(at + 12, 4), b.big_endian(at + 8, 4));
+    if (b.starts_with("ihdr", at + 4)) {
+      // ihdr: height, width, NC components (2 bytes), BPC (bit depth - 1; 255: per component).
+      std::optional<ImageHeader> header =
+          make("JPEG 2000", b.big_endian(at + 12, 4), b.big_endian(at + 8, 4));
+      const auto components = b.big_endian(at + 16, 2);
+      const auto depth = b.at(at + 18);
+      if (header && components && depth) {
+        header->channels = static_cast<int>(std::min<std::uint64_t>(*components, 64));
+        header->bytes_per_channel = *depth == 255 ? 2 : bytes_per_channel_of((*depth & 0x7F) + 1u);
+      }
+      return header;
+    }
     if (*length < 8) return std::nullopt;
     at += *length;
   }

@@ -4,7 +4,9 @@
 // ask for gigabytes. OpenCV 4.6 has no header-only API (cv::imdecode allocates the full image),
 // hence this parser of the formats its imgcodecs reads here: PNG (IHDR), JPEG (SOFn), TIFF and
 // BigTIFF (first IFD's ImageWidth / ImageLength), WebP (VP8, VP8L, VP8X), BMP, PNM / PAM / PFM,
-// Sun raster, Radiance HDR, JPEG 2000 (JP2 ihdr box, J2K SIZ marker).
+// Sun raster, Radiance HDR, JPEG 2000 (JP2 ihdr box, J2K SIZ marker). Besides the size: the
+// decoded pixel layout where the header gives it (PNG, JPEG, TIFF, PNM, PAM, JPEG 2000), and a
+// JPEG's number of scans, so that what decoding would cost is known before it starts.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -15,6 +17,13 @@ namespace aief::io {
 struct ImageHeader {
   std::string format;  // "PNG", "JPEG", ...
   long long width = 0, height = 0;
+  // A pixel as OpenCV decodes it (imdecode, IMREAD_UNCHANGED): channels of bytes_per_channel
+  // each (2 for 16-bit samples). Where the header does not say: 4 of 1, the most an 8-bit format
+  // decodes to (BGRA).
+  int channels = 4, bytes_per_channel = 1;
+  // JPEG: the start-of-scan markers in the whole file (a progressive JPEG has about ten; each
+  // costs the decoder a pass over the image's coefficients). 0 for other formats.
+  long long scans = 0;
 };
 
 // The declared size, or nullopt when the bytes start with no format above or its header is cut

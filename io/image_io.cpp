@@ -1,6 +1,7 @@
 #include "io/image_io.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -9,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
+#include "io/image_formats.hpp"
 #include "io/image_header.hpp"
 
 namespace aief::io {
@@ -51,30 +53,56 @@ GrayImage gray_from_decoded(cv::Mat image, const std::string& path) {
   return out;
 }
 
+constexpr long long kMaxDecodedBytesPerPixel = 4;  // 8-bit BGRA
+// The scan limit libjpeg-turbo's own tools and fuzz targets set (djpeg -maxscans).
+constexpr long long kMaxJpegScans = 500;
+
 // Refuses what cannot be decoded safely or used: an unknown format, more pixels than allowed, a
 // format of float pixels.
 void check_header_before_decoding(const std::vector<std::uint8_t>& bytes, const std::string& name,
                                   long long max_pixels) {
   const std::optional<ImageHeader> header = read_image_header(bytes.data(), bytes.size());
   if (!header)
-    throw Error("cannot read image '" + name +
-                "': not an image aief can read (PNG, JPEG, TIFF, WebP, BMP, PNM/PAM, Sun raster, "
-                "JPEG 2000; 8- or "
-                "16-bit), or its header is damaged");
+    throw Error("cannot read image '" + name + "': not an image aief can read (" +
+                readable_image_format_names() + "; 8- or 16-bit), or its header is damaged");
   // Compared by division: width x height may not fit in 64 bits.
   if (header->width > 0 && header->height > max_pixels / header->width)
     throw Error("image '" + name + "' declares " + std::to_string(header->width) + "x" +
                 std::to_string(header->height) + " pixels in its " + header->format +
                 " header, more than max_image_pixels = " + std::to_string(max_pixels) +
                 " (refused before decoding)");
-  // Formats of floating-point pixels only (their size is still read, so the limit holds): refused
-  // by name before decoding.
-  if (header->format == "HDR" || header->format == "PFM")
-    throw Error("cannot use image '" + name + "': a " +
-                (header->format == "HDR" ? "Radiance HDR" : "PFM") +
-                " file holds floating-point pixels, which aief does not read (no conversion to 8 "
-                "bits is right for "
-                "every use: tone-map it first)");
+  // What the decoder allocates is bytes, not pixels: a 16-bit RGBA PNG takes 8 bytes a pixel
+  // (522 KB of PNG decoded to 0.9 GB at the pixel limit). The bytes allowed are those of an
+  // 8-bit BGRA image of max_image_pixels, so an 8-bit image is bounded by its pixels as above.
+  const long long pixel_bytes =
+      static_cast<long long>(header->channels) * header->bytes_per_channel;
+  const long long max_bytes = max_pixels > LLONG_MAX / kMaxDecodedBytesPerPixel
+                                  ? LLONG_MAX
+                                  : max_pixels * kMaxDecodedBytesPerPixel;
+  if (header->width > 0 && header->height > max_bytes / (header->width * pixel_bytes))
+    throw Error("image '" + name + "' would decode to " +
+                std::to_string(header->width * header->height * pixel_bytes) + " bytes (" +
+                std::to_string(header->width) + "x" + std::to_string(header->height) +
+                " pixels of " + std::to_string(header->channels) + " channels x " +
+                std::to_string(header->bytes_per_channel) + " bytes, by its " + header->format +
+                " header), more than the " + std::to_string(max_bytes) +
+                " bytes allowed (max_image_pixels = " + std::to_string(max_pixels) + " x " +
+                std::to_string(kMaxDecodedBytesPerPixel) +
+                " bytes, an 8-bit 4-channel image; refused before decoding)");
+  // Each scan of a progressive JPEG is a pass of the decoder over the whole image: a file of
+  // 824 KB of repeated scans took 113 s, linear in the scans. Encoders write about ten.
+  if (header->scans > kMaxJpegScans)
+    throw Error("image '" + name + "' is a JPEG of " + std::to_string(header->scans) +
+                " scans, more than the " + std::to_string(kMaxJpegScans) +
+                " aief decodes (an encoder writes about ten; so many take minutes to decode; "
+                "refused before decoding)");
+  // Formats aief does not read (floating-point pixels only; their size is still read, so the
+  // limit holds): refused by name before decoding.
+  const ImageFormat* format = image_format_named(header->format);
+  if (format != nullptr && !format->refusal.empty())
+    throw Error("cannot use image '" + name + "': " + std::string(format->refusal) +
+                ", which aief does not read (no conversion to 8 bits is right for every use: "
+                "tone-map it first)");
 }
 
 // A JPEG whose last scan (SOS, FF DA) is not followed by the end-of-image marker (FF D9) was cut

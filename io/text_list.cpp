@@ -57,7 +57,10 @@ void for_each_text_line(const std::string& path, const std::string& what, int na
                          : " is a binary file (it holds a NUL byte)") +
                   ", not a text file of names (one per line)");
     }
-    for (std::size_t i = 0; i < got; ++i) {
+    // A UTF-8 byte order mark (Windows editors write one) is no part of the first name.
+    const bool byte_order_mark =
+        first_block && got >= 3 && std::memcmp(block, "\xEF\xBB\xBF", 3) == 0;
+    for (std::size_t i = byte_order_mark ? 3 : 0; i < got; ++i) {
       const char c = block[i];
       if (c == '\n') {
         ++lines_read;

@@ -14,7 +14,8 @@ namespace aief::io {
 // The longest path the system can open (PATH_MAX): a list of paths has no longer line.
 std::size_t longest_path();
 
-// The lines of `path` without their '\n' (a final line without one included). `what` names the
+// The lines of `path` without their '\n' (a final line without one included; a UTF-8 byte order
+// mark at the start skipped). `what` names the
 // file in errors ("batch list", "pairs file"); a line of `names_per_line` names separated by one
 // byte may be that many longest paths long. Throws aief::Error: missing, unreadable, a folder,
 // a NUL byte (with the image format when the bytes start like one), a line too long.

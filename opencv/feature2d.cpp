@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <variant>
 
 #include "aief/error.hpp"
@@ -50,10 +52,10 @@ void Feature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
     given_.reserve(keypoints.size());
     for (const cv::KeyPoint& kp : keypoints) given_.push_back(from_cv_keypoint(kp));
     extractor_.describe(view_of(gray), given_, features_, &kept_, given_angles_);
-    // The kept keypoints as given (class_id and all), with the recomputed angle.
+    // The kept keypoints as given (class_id and all), with the angle the descriptor used.
     for (std::size_t k = 0; k < kept_.size(); ++k) {
       keypoints[k] = keypoints[static_cast<std::size_t>(kept_[k])];
-      keypoints[k].angle = features_.keypoints[k].angle_deg;
+      keypoints[k].angle = features_.keypoints[k].angle_deg;  // the given one when kept
     }
     keypoints.resize(kept_.size());
   } else {
@@ -80,7 +82,48 @@ void Feature2D::write(cv::FileStorage& storage) const {
   }
 }
 
+namespace {
+
+// cv::ORB's keys (what cv::ORB::write writes), each with what aief has instead.
+constexpr std::pair<std::string_view, std::string_view> kCvOrbKeys[] = {
+    {"nfeatures", "aief's key is n_features"},
+    {"scaleFactor", "aief's key is scale_factor"},
+    {"nlevels", "aief's key is n_levels"},
+    {"fastThreshold", "aief's key is fast_threshold"},
+    {"edgeThreshold", "aief's border is fixed (19 pixels, the rBRIEF patch's reach)"},
+    {"patchSize", "aief's patch is fixed (31 pixels)"},
+    {"firstLevel", "aief's pyramid starts at the image (level 0)"},
+    {"wta_k", "aief's descriptor compares pairs (WTA_K 2)"},
+    {"scoreType", "aief ranks by the FAST score"},
+};
+
+// Refuses a key read() would not read: a typo or another detector's setting left unread would
+// leave the detector other than the file says, without a word.
+void refuse_unknown_keys(const cv::FileNode& node) {
+  if (!node.isMap()) return;
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const std::string key = (*it).name();
+    if (key == "name") continue;  // write()'s getDefaultName()
+    const option_table::OptionRow* row = nullptr;
+    for (const option_table::OptionRow& r : option_table::rows())
+      if (r.key == key) row = &r;
+    if (row && row->is_field()) continue;
+    for (const auto& [orb_key, instead] : kCvOrbKeys)
+      if (key == orb_key)
+        throw Error("Feature2D::read: '" + key + "' is cv::ORB's setting, not aief's (" +
+                    std::string(instead) + ")");
+    std::string keys;
+    for (const option_table::OptionRow& r : option_table::rows())
+      if (r.is_field()) keys += (keys.empty() ? "" : ", ") + std::string(r.key);
+    throw Error("Feature2D::read: unknown key '" + key +
+                "' (it reads what write() writes: " + keys + ")");
+  }
+}
+
+}  // namespace
+
 void Feature2D::read(const cv::FileNode& node) {
+  refuse_unknown_keys(node);
   ExtractorOptions options = this->options();
   for (const option_table::OptionRow& row : option_table::rows()) {
     if (!row.is_field()) continue;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include <opencv2/core/check.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
@@ -15,7 +16,9 @@ namespace detail {
 const cv::Mat& gray_of(const cv::Mat& image, cv::Mat& buffer) {
   if (image.empty()) throw Error("image is empty");
   if (image.depth() != CV_8U)
-    throw Error("image depth " + std::to_string(image.depth()) + " is not 8-bit unsigned (CV_8U)");
+    throw Error("image of type " + cv::typeToString(image.type()) + " (depth " +
+                cv::depthToString(image.depth()) +
+                ") is not 8-bit unsigned (CV_8U): convert it first (convertTo)");
   switch (image.channels()) {
     case 1: return image;
     case 3: cv::cvtColor(image, buffer, cv::COLOR_BGR2GRAY); return buffer;

@@ -10,16 +10,16 @@ namespace aief::python {
 void bind_batch(py::module_& m) {
   m.def(
       "batch_inputs",
-      [](const std::string& folder_or_list) {
+      [](const py::object& folder_or_list_given) {
+        const std::string folder_or_list = filesystem_path(folder_or_list_given);
         std::vector<io::BatchInput> inputs;
         {
           py::gil_scoped_release no_gil;
           inputs = io::list_batch_inputs(folder_or_list);
         }
-        std::vector<std::pair<std::string, std::string>> out;
-        out.reserve(inputs.size());
-        for (io::BatchInput& input : inputs)
-          out.emplace_back(std::move(input.path), std::move(input.name));
+        py::list out;
+        for (const io::BatchInput& input : inputs)  // names that are not UTF-8 as os.fsdecode
+          out.append(py::make_tuple(python_path(input.path), python_path(input.name)));
         return out;
       },
       py::arg("folder_or_list"),

@@ -194,8 +194,8 @@ void bind_extractor(py::module_& m) {
           "level-0 pixels, with optional per-keypoint octave (pyramid level, default 0), size "
           "(default 31), "
           "angle and response. The angle is recomputed (intensity centroid) unless keep_angles "
-          "(then each must "
-          "be in [0, 360), as cv2.ORB keeps it). Keypoints closer than 19 pixels to their level's "
+          "(then each is used as given, any finite number of degrees, as cv2.ORB.compute uses "
+          "it). Keypoints closer than 19 pixels to their level's "
           "edge are "
           "removed; kept: int32 indices of the kept keypoints in the given ones. An octave outside "
           "[0, levels) raises aief.Error.")
@@ -211,7 +211,8 @@ void bind_extractor(py::module_& m) {
                              "CPU or by `kernels`");
   m.def(
       "read_image",
-      [](const std::string& path) {
+      [](const py::object& path_given) {
+        const std::string path = filesystem_path(path_given);
         GrayImage image;
         {
           py::gil_scoped_release no_gil;

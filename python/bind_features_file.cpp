@@ -70,21 +70,25 @@ io::SourceRecord source_record(const std::string& name, const std::array<long lo
 // caller at a time.
 class FeaturesFile {
  public:
-  explicit FeaturesFile(const std::string& path)
-      : file_(std::make_unique<io::Hdf5File>(path, io::Hdf5File::Mode::read_write)) {}
+  explicit FeaturesFile(const py::object& path)
+      : file_(std::make_unique<io::Hdf5File>(filesystem_path(path),
+                                             io::Hdf5File::Mode::read_write)) {}
 
-  bool is_current(const std::string& name, const std::array<long long, 2>& source,
+  // Names as batch_inputs gives them (os.fsdecode): their bytes are the CLI's group names.
+  bool is_current(const py::object& name_given, const std::array<long long, 2>& source,
                   const PyExtractor& extractor) const {
+    const std::string name = filesystem_path(name_given);
     const io::Hdf5File& file = open();
     return file.features_belong_to(name, source_record(name, source)) &&
            io::option_changes(file.option_record(name), extractor.options()).empty();
   }
-  void write(const std::string& name, const PyFeatures& features,
+  void write(const py::object& name_given, const PyFeatures& features,
              const std::array<long long, 2>& source, const PyExtractor& extractor) {
+    const std::string name = filesystem_path(name_given);
     const io::SourceRecord record = source_record(name, source);
     open().write_features(name, engine_features(features), &record, &extractor.options());
   }
-  void remove(const std::string& name) { open().remove_features(name); }
+  void remove(const py::object& name) { open().remove_features(filesystem_path(name)); }
   void close() {
     if (!file_) return;
     const std::unique_ptr<io::Hdf5File> file = std::move(file_);
@@ -104,15 +108,15 @@ class FeaturesFile {
 // A build without libhdf5: the class exists and says why it cannot open a file.
 class FeaturesFile {
  public:
-  explicit FeaturesFile(const std::string&) {
+  explicit FeaturesFile(const py::object&) {
     throw Error("this aief was built without HDF5 (install libhdf5-dev and rebuild)");
   }
-  bool is_current(const std::string&, const std::array<long long, 2>&, const PyExtractor&) const {
+  bool is_current(const py::object&, const std::array<long long, 2>&, const PyExtractor&) const {
     return false;
   }
-  void write(const std::string&, const PyFeatures&, const std::array<long long, 2>&,
+  void write(const py::object&, const PyFeatures&, const std::array<long long, 2>&,
              const PyExtractor&) {}
-  void remove(const std::string&) {}
+  void remove(const py::object&) {}
   void close() {}
 };
 
@@ -127,7 +131,7 @@ void bind_features_file(py::module_& m) {
       "--format h5 writes it: opened for reading and writing (created when missing). A failed "
       "write (a full disk) raises aief.Error and keeps every group complete before it; use it "
       "as a context manager, or call close() to know that the writes are on disk")
-      .def(py::init<const std::string&>(), py::arg("path"))
+      .def(py::init<const py::object&>(), py::arg("path"))
       .def("is_current", &FeaturesFile::is_current, py::arg("name"), py::arg("source"),
            py::arg("extractor"),
            "Whether `name` is a complete group written from the image file `source` describes "

@@ -49,6 +49,12 @@ PyFeatures to_python(const Features& features);
 // N x 32 uint8 rows of a numpy array (or of a PyFeatures) as engine descriptors.
 std::vector<Descriptor> descriptors_from(const py::object& value, const char* name);
 
+// A file name given from Python (str, bytes or os.PathLike) as the bytes the system takes
+// (os.fsencode: a str's undecodable bytes, kept as surrogates, come back as they were).
+std::string filesystem_path(const py::handle& path);
+// Bytes of a file name as Python gives file names (os.fsdecode): a str, never a decoding error.
+py::object python_path(const std::string& bytes);
+
 void bind_extractor(py::module_& m);
 void bind_matching(py::module_& m);
 void bind_batch(py::module_& m);

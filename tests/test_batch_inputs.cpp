@@ -14,6 +14,7 @@
 #include "aief/error.hpp"
 #include "io/batch_inputs.hpp"
 #include "io/batch_output_names.hpp"
+#include "io/pairs_file.hpp"
 #include "io/text_list.hpp"
 #include "tests/test_support.hpp"
 
@@ -128,6 +129,27 @@ TEST(TextList, AFolderABinaryFileAndEndlessLinesAreRefusedNamingTheReason) {
   EXPECT_EQ(aief::io::read_text_list(temp.file("pairs.txt"), "pairs file", 2).size(), 1u);
   // The batch and the pairs reader go through it.
   EXPECT_THROW(aief::io::list_batch_inputs(temp.file("image.png")), aief::Error);
+}
+
+// A list or pairs file saved with a UTF-8 byte order mark (Windows editors): the mark is skipped,
+// not read as part of the first name. Was: the first image "\xEF\xBB\xBFa.png" not found, named
+// with an invisible character.
+TEST(TextList, AUtf8ByteOrderMarkIsSkipped) {
+  const aief::test::TempFolder folder("aief_text_list_bom");
+  std::ofstream(folder.path() / "list.txt") << "\xEF\xBB\xBF"
+                                            << "a.png\nb.png\n";
+  EXPECT_EQ(aief::io::read_text_list(folder.file("list.txt"), "batch list"),
+            (std::vector<std::string>{"a.png", "b.png"}));
+  std::ofstream(folder.path() / "pairs.txt") << "\xEF\xBB\xBF"
+                                             << "a.png b.png\n";
+  const aief::io::PairsList pairs = aief::io::read_pairs(folder.file("pairs.txt"));
+  ASSERT_EQ(pairs.names.size(), 2u);
+  EXPECT_EQ(pairs.names[0], "a.png");
+  std::ofstream(folder.path() / "inside.txt") << "a.png\n\xEF\xBB\xBF"
+                                              << "b.png\n";  // kept
+  EXPECT_EQ(aief::io::read_text_list(folder.file("inside.txt"), "batch list")[1],
+            "\xEF\xBB\xBF"
+            "b.png");
 }
 
 TEST(TextList, APipeIsReadAsAStream) {

@@ -10,7 +10,9 @@
 #include <sys/stat.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
+#include "io/image_formats.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -136,8 +138,6 @@ TEST(CliBadInputs, PicturePathsAreCheckedBeforeAnyWork) {
       << "any extension OpenCV writes";
 }
 
-}  // namespace
-
 // Each output flag pointed at an input image, by its own name, by another spelling and through a
 // hard link: refused before any work (exit 2), the image left as it was. Was: replaced, exit 0.
 TEST(CliBadInputs, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
@@ -178,3 +178,40 @@ TEST(CliBadInputs, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
   EXPECT_EQ(run("extract " + a + " --draw " + (dir / "drawn.png").string()).status, 0)
       << "a new name is fine";
 }
+
+// A folder batch takes every file single-image extract reads: one list of formats
+// (io/image_formats.hpp). Each readable format's file under each of its extensions is extracted
+// alone and by the batch; a float-only HDR or PFM beside them is not taken. Was: .jp2 .pnm .pam
+// .ras .sr .jpe .dib skipped, "0 images", exit 0.
+TEST(CliBadInputs, AFolderBatchTakesEveryTypeSingleExtractReads) {
+  const aief::test::TempFolder folder("aief_cli_image_types");
+  const fs::path images = folder.path() / "images";
+  fs::create_directories(images);
+  const cv::Mat colour = cv::imread(aief::test::sample_path("graf", "img1.png"));
+  cv::Mat gray;
+  cv::cvtColor(colour, gray, cv::COLOR_BGR2GRAY);
+  int count = 0;
+  for (const aief::io::ImageFormat& format : aief::io::image_formats()) {
+    // The bytes of the format, from the first extension (one OpenCV writes it by).
+    const std::string first(format.extensions.front());
+    const fs::path encoded = folder.path() / ("encoded" + first);
+    ASSERT_TRUE(cv::imwrite(encoded.string(), first == ".pbm" ? gray : colour)) << format.name;
+    if (!format.refusal.empty()) {
+      fs::copy_file(encoded, images / ("float" + first));
+      continue;
+    }
+    for (const std::string_view extension : format.extensions) {
+      const fs::path image = images / ("image" + std::to_string(count++) + std::string(extension));
+      fs::copy_file(encoded, image);
+      const CliResult single = run("extract " + image.string());
+      EXPECT_EQ(single.status, 0) << image << "\n" << single.output;
+    }
+  }
+  const CliResult batch =
+      run("extract --batch " + images.string() + " -o " + (folder.path() / "out").string());
+  EXPECT_EQ(batch.status, 0) << batch.output;
+  EXPECT_TRUE(says(batch, std::to_string(count) + " extracted") && says(batch, " 0 failed"))
+      << batch.output;
+}
+
+}  // namespace

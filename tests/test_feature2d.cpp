@@ -1,5 +1,6 @@
 // aief::opencv::Feature2D: a cv::Feature2D bit-exact with the engine; compute() for given keypoints
 // (Extractor::describe) and its rules: level from the octave, border rule, angle recomputed.
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -74,6 +75,35 @@ TEST(Feature2D, OptionsGoThroughFileStorage) {
   EXPECT_EQ(read->options().n_features, 777) << "a bad setting leaves the detector as it was";
 }
 
+// read() refuses a key it would not read, naming it: a typo, cv::ORB's own settings (what
+// cv::ORB::write writes), leaving the detector as it was. Was: ignored without a word.
+TEST(Feature2D, ReadRefusesKeysItDoesNotReadNamingThem) {
+  const cv::Ptr<opencv::Feature2D> detector = opencv::Feature2D::create();
+  const auto message_of = [&](const std::string& yaml) {
+    cv::FileStorage in("%YAML:1.0\n" + yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+    try {
+      detector->read(in.root());
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message_of("n_features: 500\nn_featres: 300\n").find("unknown key 'n_featres'"),
+            std::string::npos);
+  EXPECT_NE(message_of("nfeatures: 300\n").find("'nfeatures' is cv::ORB's setting"),
+            std::string::npos);
+  EXPECT_NE(message_of("nfeatures: 300\n").find("n_features"), std::string::npos);
+  EXPECT_EQ(detector->options().n_features, ExtractorOptions{}.n_features) << "left as it was";
+  // What cv::ORB::write writes in the OpenCV versions that write its settings.
+  EXPECT_NE(message_of("name: Feature2D.ORB\nnfeatures: 500\nscaleFactor: 1.2\nnlevels: 8\n"
+                       "edgeThreshold: 31\nfirstLevel: 0\nwta_k: 2\nscoreType: 0\n"
+                       "patchSize: 31\nfastThreshold: 20\n")
+                .find("cv::ORB's setting"),
+            std::string::npos);
+  EXPECT_EQ(message_of("name: Feature2D.AIEF\nn_features: 500\n"), "no error");
+  EXPECT_EQ(detector->options().n_features, 500);
+}
+
 TEST(Feature2D, DetectAndComputeGivesTheEnginesFeatures) {
   const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
   for (Mode mode : kEveryMode) {
@@ -129,7 +159,7 @@ TEST(Feature2D, TheMaskIsTheEnginesDetectionMask) {
                Error);
 }
 
-TEST(Feature2D, ComputeKeepsEachKeypointsFieldsButTheAngleAndRemovesThoseNearTheEdge) {
+TEST(Feature2D, ComputeKeepsEachKeypointsFieldsAndRemovesThoseNearTheEdge) {
   const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
   const int w = gray.cols, h = gray.rows;
   // Level 0 of the default mode maps x to the pixel round(x): 19 is the first pixel kept.
@@ -153,11 +183,53 @@ TEST(Feature2D, ComputeKeepsEachKeypointsFieldsButTheAngleAndRemovesThoseNearThe
     EXPECT_EQ(keypoints[k].size, original.size);
     EXPECT_EQ(keypoints[k].response, original.response);
     EXPECT_EQ(keypoints[k].octave, original.octave);
-    EXPECT_GE(keypoints[k].angle, 0.f);
-    EXPECT_LT(keypoints[k].angle, 360.f);
+    EXPECT_EQ(keypoints[k].angle, original.angle);  // -1 (OpenCV's "no angle") too, as cv::ORB
   }
   EXPECT_EQ(descriptors.rows, 5);
   EXPECT_EQ(descriptors.type(), CV_8U);
+}
+
+// compute() keeps the angles it is given, as cv::ORB::compute does: graf's keypoints carried to
+// the image turned by 30 degrees, with their true angles, come back with those angles (and so
+// with the descriptors of the true orientation). GivenAngles::recompute re-estimates them on the
+// turned, re-interpolated image. Was: recomputed by default.
+TEST(Feature2D, ComputeKeepsTheGivenAnglesAsCvOrb) {
+  const cv::Mat gray = test::load_sample_gray("graf", "img1.png");
+  constexpr double kTurnDeg = 30;
+  const cv::Mat rotation =
+      cv::getRotationMatrix2D(cv::Point2f(gray.cols / 2.f, gray.rows / 2.f), kTurnDeg, 1.0);
+  cv::Mat turned;
+  cv::warpAffine(gray, turned, rotation, gray.size());
+  std::vector<cv::KeyPoint> detected;
+  opencv::Feature2D::create()->detect(gray, detected);
+  std::vector<cv::KeyPoint> moved;
+  for (const cv::KeyPoint& kp : detected) {
+    const cv::Matx23d m = rotation;
+    const cv::Point2f p(static_cast<float>(m(0, 0) * kp.pt.x + m(0, 1) * kp.pt.y + m(0, 2)),
+                        static_cast<float>(m(1, 0) * kp.pt.x + m(1, 1) * kp.pt.y + m(1, 2)));
+    // The image turns counter-clockwise (y down): an orientation theta becomes theta - 30.
+    const float angle = static_cast<float>(std::fmod(kp.angle - kTurnDeg + 360.0, 360.0));
+    moved.emplace_back(p, kp.size, angle, kp.response, kp.octave, static_cast<int>(moved.size()));
+  }
+  std::vector<cv::KeyPoint> kept = moved, recomputed = moved;
+  cv::Mat descriptors, recomputed_descriptors;
+  opencv::Feature2D::create()->compute(turned, kept, descriptors);
+  opencv::Feature2D::create({}, GivenAngles::recompute)
+      ->compute(turned, recomputed, recomputed_descriptors);
+  ASSERT_GT(kept.size(), moved.size() * 3 / 4);
+  ASSERT_EQ(kept.size(), recomputed.size());
+  int angles_moved = 0;
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    EXPECT_EQ(kept[k].angle, moved[static_cast<std::size_t>(kept[k].class_id)].angle);
+    angles_moved += recomputed[k].angle != kept[k].angle ? 1 : 0;
+  }
+  EXPECT_GT(angles_moved, static_cast<int>(kept.size()) / 2) << "recompute re-estimates them";
+  // cv::ORB, given the same keypoints, keeps the same angles.
+  std::vector<cv::KeyPoint> orb_kept = moved;
+  cv::Mat orb_descriptors;
+  cv::ORB::create()->compute(turned, orb_kept, orb_descriptors);
+  for (const cv::KeyPoint& kp : orb_kept)
+    EXPECT_EQ(kp.angle, moved[static_cast<std::size_t>(kp.class_id)].angle);
 }
 
 TEST(Feature2D, ComputeRefusesAnOctaveOutsideTheLevels) {

@@ -215,6 +215,88 @@ TEST(ImageIo, RefusesMorePixelsThanAllowedBeforeDecoding) {
   EXPECT_NE(error_of(dir.file("x.gif")).find("not an image aief can read"), std::string::npos);
 }
 
+// The guard counts the bytes the decoder allocates, not pixels: a 16-bit RGBA PNG (8 bytes a
+// pixel) at the pixel limit is refused, naming the limit; the header gives each format's layout.
+// Was: only pixels counted (a 522 KB 16-bit RGBA PNG decoded to 0.9 GB).
+TEST(ImageIo, RefusesMoreDecodedBytesThanAllowedBeforeDecoding) {
+  TempDir dir;
+  const cv::Mat gray = test::random_image(41, 33, 7);
+  cv::Mat bgra, bgra16, bgr16, gray16;
+  cv::cvtColor(gray, bgra, cv::COLOR_GRAY2BGRA);
+  bgra.convertTo(bgra16, CV_16UC4, 257);
+  cv::cvtColor(bgra16, bgr16, cv::COLOR_BGRA2BGR);
+  gray.convertTo(gray16, CV_16U, 257);
+  struct Case {
+    const char* extension;
+    const cv::Mat* image;
+    int channels, bytes_per_channel;
+  };
+  for (const Case& c :
+       {Case{".png", &bgra16, 4, 2}, Case{".png", &gray, 1, 1}, Case{".png", &bgra, 4, 1},
+        Case{".pgm", &gray16, 1, 2}, Case{".ppm", &bgr16, 3, 2}, Case{".tiff", &bgr16, 3, 2},
+        Case{".tiff", &gray, 1, 1}, Case{".pam", &gray, 1, 1}, Case{".jpg", &gray, 1, 1},
+        Case{".jp2", &bgr16, 3, 2}}) {
+    SCOPED_TRACE(std::string(c.extension) + " " + std::to_string(c.image->channels()));
+    std::vector<std::uint8_t> bytes;
+    ASSERT_TRUE(cv::imencode(c.extension, *c.image, bytes));
+    const std::optional<io::ImageHeader> header = io::read_image_header(bytes.data(), bytes.size());
+    ASSERT_TRUE(header.has_value());
+    EXPECT_EQ(header->channels, c.channels);
+    EXPECT_EQ(header->bytes_per_channel, c.bytes_per_channel);
+  }
+  const std::string path = dir.file("deep.png");
+  ASSERT_TRUE(cv::imwrite(path, bgra16));
+  const long long pixels = 41 * 33;
+  try {
+    io::read_gray_image(path, pixels);
+    ADD_FAILURE() << "a 16-bit RGBA PNG at the pixel limit was decoded";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("would decode to " + std::to_string(pixels * 8) + " bytes"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find(std::to_string(pixels * 4) +
+                           " bytes allowed (max_image_pixels = " + std::to_string(pixels)),
+              std::string::npos)
+        << message;
+  }
+  EXPECT_EQ(io::read_gray_image(path, pixels * 2).width(), 41);  // 8 bytes a pixel fit
+  ASSERT_TRUE(cv::imwrite(dir.file("bgra.png"), bgra));
+  EXPECT_EQ(io::read_gray_image(dir.file("bgra.png"), pixels).width(), 41);  // as before
+}
+
+// A progressive JPEG's scans are counted from its bytes before decoding: more than 500 (each a
+// pass of the decoder over the image) is refused; an encoder's ten are read. Was: 113 s for a
+// file of 824 KB of repeated scans.
+TEST(ImageIo, AJpegOfTooManyScansIsRefusedBeforeDecoding) {
+  TempDir dir;
+  const cv::Mat colour = cv::imread(test::sample_path("boat", "img1.png"));
+  std::vector<std::uint8_t> bytes;
+  ASSERT_TRUE(cv::imencode(".jpg", colour, bytes, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}));
+  const std::optional<io::ImageHeader> header = io::read_image_header(bytes.data(), bytes.size());
+  ASSERT_TRUE(header.has_value());
+  EXPECT_GT(header->scans, 1);
+  EXPECT_LE(header->scans, 20);
+  EXPECT_EQ(io::decode_gray_image(bytes, "progressive.jpg").width(), colour.cols);
+  // The last scan (its SOS segment and data, up to the end-of-image marker) repeated.
+  std::size_t last_scan = 0;
+  for (std::size_t i = 2; i + 1 < bytes.size(); ++i)
+    if (bytes[i] == 0xFF && bytes[i + 1] == 0xDA) last_scan = i;
+  ASSERT_GT(last_scan, 0u);
+  const std::vector<std::uint8_t> scan(bytes.begin() + static_cast<std::ptrdiff_t>(last_scan),
+                                       bytes.end() - 2);
+  std::vector<std::uint8_t> many(bytes.begin(), bytes.end() - 2);
+  for (int copy = 0; copy < 600; ++copy) many.insert(many.end(), scan.begin(), scan.end());
+  many.insert(many.end(), {0xFF, 0xD9});
+  std::ofstream(dir.file("scans.jpg"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(many.data()), static_cast<std::streamsize>(many.size()));
+  const std::string message = error_of(dir.file("scans.jpg"));
+  EXPECT_NE(message.find("is a JPEG of " + std::to_string(header->scans + 600) + " scans"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("more than the 500"), std::string::npos) << message;
+}
+
 TEST(ImageIo, AJpegCutShortIsDecodedWithAWarning) {
   TempDir dir;
   const cv::Mat colour = cv::imread(test::sample_path("boat", "img1.png"));

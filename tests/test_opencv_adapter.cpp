@@ -1,6 +1,7 @@
 // The OpenCV adapter gives exactly the engine's features, as cv::KeyPoint and CV_8U rows.
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
+#include "aief/feature2d.hpp"
 #include "aief/opencv.hpp"
 #include "tests/test_support.hpp"
 
@@ -91,6 +93,23 @@ TEST(OpenCvAdapter, RefusesWhatItCannotRead) {
   cv::Mat descriptors;
   EXPECT_THROW(cv_extract(cv::Mat(), keypoints, descriptors), Error);
   EXPECT_THROW(cv_extract(cv::Mat(100, 100, CV_32F, cv::Scalar(0)), keypoints, descriptors), Error);
+  // The depth by its name, not its number (was "image depth 5"), in the adapter and Feature2D.
+  for (const int type : {CV_32FC1, CV_16UC3}) {
+    const cv::Mat image(100, 100, type, cv::Scalar(0));
+    for (const auto& run : std::vector<std::function<void()>>{
+             [&] { cv_extract(image, keypoints, descriptors); },
+             [&] { opencv::Feature2D::create()->detect(image, keypoints); }}) {
+      try {
+        run();
+        ADD_FAILURE() << "accepted";
+      } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(type == CV_32FC1 ? "CV_32F" : "CV_16UC3"), std::string::npos)
+            << message;
+        EXPECT_EQ(message.find("depth 5"), std::string::npos) << message;
+      }
+    }
+  }
   EXPECT_THROW(cv_extract(cv::Mat(100, 100, CV_8UC2, cv::Scalar(0)), keypoints, descriptors),
                Error);
   EXPECT_THROW(cv_extract(cv::Mat(10, 10, CV_8U, cv::Scalar(0)), keypoints, descriptors),

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "aief/error.hpp"  // what the functions below throw
 #include "aief/features.hpp"
 #include "aief/homography.hpp"
 #include "aief/image.hpp"

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "aief/error.hpp"  // what the functions below throw
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
@@ -16,7 +17,7 @@ namespace aief {
 // Where the angle of a given keypoint comes from (Extractor::describe).
 enum class GivenAngles {
   recompute,  // the intensity centroid, as for detected keypoints (describe gives extract's bytes)
-  keep,       // the given angle, each in [0, 360), as cv::ORB::compute keeps it
+  keep,       // the given angle (any finite number of degrees), as cv::ORB::compute keeps it
 };
 
 class Extractor {
@@ -45,7 +46,7 @@ class Extractor {
   // cv::ORB removes those near the image's edge); the rules are in docs/opencv.md. out.keypoints
   // holds the kept ones in their given order, out.info is left empty; kept_indices (when given)
   // receives each kept keypoint's index in `keypoints`. Throws aief::Error for an image
-  // extract() refuses, an octave outside [0, n_levels), or a kept angle outside [0, 360).
+  // extract() refuses, an octave outside [0, n_levels), or a kept angle that is not finite.
   void describe(ImageView image, const std::vector<Keypoint>& keypoints, Features& out,
                 std::vector<std::int32_t>* kept_indices = nullptr,
                 GivenAngles angles = GivenAngles::recompute);

@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
+#include "aief/error.hpp"  // what the functions below throw
 #include "aief/extractor.hpp"
 
 namespace aief::opencv {
@@ -21,19 +22,20 @@ namespace aief::opencv {
 class Feature2D : public cv::Feature2D {
  public:
   // Validates the options (throws aief::Error). given_angles: what compute() does with the
-  // angles of the keypoints it is given (recomputes them, the default, or keeps them as cv::ORB).
+  // angles of the keypoints it is given: keeps them, as cv::ORB::compute does (the default), or
+  // recomputes them (the intensity centroid, as for detected keypoints).
   static cv::Ptr<Feature2D> create(const ExtractorOptions& options = {},
-                                   GivenAngles given_angles = GivenAngles::recompute);
+                                   GivenAngles given_angles = GivenAngles::keep);
   explicit Feature2D(const ExtractorOptions& options = {},
-                     GivenAngles given_angles = GivenAngles::recompute);
+                     GivenAngles given_angles = GivenAngles::keep);
 
   // image: CV_8UC1, or CV_8UC3 / CV_8UC4 (BGR / BGRA, converted to gray as cv::cvtColor does).
   // mask (detection): CV_8UC1 of the image's size; keypoints are detected where it is non-zero,
   // and the feature budget is filled there (Extractor::extract with a mask). Ignored with
   // useProvidedKeypoints, as cv::ORB ignores it.
   // useProvidedKeypoints: the given keypoints are described (Extractor::describe): each keeps its
-  // fields (class_id included) but the angle, which is recomputed unless the detector was made
-  // with GivenAngles::keep; those too close to their level's edge are removed from `keypoints`,
+  // fields (class_id included), and its angle too unless the detector was made with
+  // GivenAngles::recompute; those too close to their level's edge are removed from `keypoints`,
   // as cv::ORB::compute removes some.
   // descriptors: N x 32 CV_8U, released when there is no keypoint (as cv::ORB). Keypoints carry
   // pt (level-0 pixels), size, angle (degrees), response (FAST score), octave, class_id -1.
@@ -51,7 +53,8 @@ class Feature2D : public cv::Feature2D {
 
   // The options, one key per option as the output files record them (core/option_table.hpp);
   // read() takes any subset of the keys (the others keep their value) and throws aief::Error for
-  // a bad value, leaving the detector as it was.
+  // a bad value or a key it does not read (a typo, cv::ORB's `nfeatures`: named, with aief's key
+  // where there is one), leaving the detector as it was.
   void write(cv::FileStorage& storage) const override;
   void read(const cv::FileNode& node) override;
   using cv::Feature2D::read;

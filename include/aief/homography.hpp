@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "aief/error.hpp"  // what the functions below throw
+
 namespace aief {
 
 struct Point2 {

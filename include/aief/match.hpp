@@ -3,6 +3,7 @@
 #include <string_view>
 #include <vector>
 
+#include "aief/error.hpp"  // what the functions below throw
 #include "aief/features.hpp"
 
 namespace aief {

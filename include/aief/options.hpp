@@ -4,6 +4,8 @@
 #include <string>
 #include <string_view>
 
+#include "aief/error.hpp"  // what the functions below throw
+
 namespace aief {
 
 // How the keypoints of a level are spread over its blocks (docs/design.md §6).

@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "aief/error.hpp"  // what the functions below throw
 #include "aief/extractor.hpp"
 
 namespace aief {

@@ -41,21 +41,27 @@ def _detect(self, image, mask=None):
     return _cv_keypoints(self.extract(image, mask))
 
 
-def _compute(self, image, keypoints):
+def _compute(self, image, keypoints, recompute_angles=False):
     """As cv2.Feature2D.compute: (keypoints, N x 32 uint8 descriptors) of the given cv2.KeyPoints.
 
-    Each keypoint is described on the pyramid level its octave names; its angle is recomputed as
-    for detected keypoints, its other fields (class_id too) are kept; keypoints closer than 19
-    pixels to their level's edge are left out, as cv2.ORB leaves some out. detect() followed by
-    compute() gives detectAndCompute() bit for bit. See Extractor.describe for arrays.
+    Each keypoint is described on the pyramid level its octave names with the angle it is given,
+    as cv2.ORB.compute does (recompute_angles=True: the angle is recomputed as for detected
+    keypoints); its other fields (class_id too) are kept; keypoints closer than 19 pixels to their
+    level's edge are left out, as cv2.ORB leaves some out. detect() followed by compute() gives
+    detectAndCompute() bit for bit. See Extractor.describe for arrays.
     """
     import numpy
 
-    keypoints = list(keypoints)
+    keypoints = None if isinstance(keypoints, (numpy.ndarray, Features)) else list(keypoints)
+    if keypoints is None or not all(hasattr(k, "pt") for k in keypoints):
+        raise TypeError("compute() takes a list of cv2.KeyPoint (as cv2.ORB.compute); for an N x 2 array of "
+                        "positions or aief.Features use describe(image, keypoints, octave=...)")
     xy = numpy.float32([k.pt for k in keypoints]).reshape(-1, 2)
     features, kept = self.describe(image, xy, octave=numpy.int32([k.octave for k in keypoints]),
                                    size=numpy.float32([k.size for k in keypoints]),
-                                   response=numpy.float32([k.response for k in keypoints]))
+                                   angle=numpy.float32([k.angle for k in keypoints]),
+                                   response=numpy.float32([k.response for k in keypoints]),
+                                   keep_angles=not recompute_angles)
     return _cv_keypoints(features, [keypoints[i].class_id for i in kept]), features.descriptors
 
 

@@ -1,5 +1,6 @@
 # Types of the compiled module aief._aief (python/*.cpp), for IDEs and mypy; python/aief/__init__.py
 # re-exports it. python/tests/test_api_docs.py checks that every public name of the module is here.
+import os
 from typing import Any, Literal, Optional, Sequence, TypedDict, Union
 
 import numpy
@@ -7,6 +8,8 @@ import numpy.typing
 
 # A 2-D uint8 gray image, or H x W x 3 BGR / H x W x 4 BGRA uint8 (anything numpy.asarray takes).
 ImageLike = numpy.typing.ArrayLike
+# A file name: str (undecodable bytes as os.fsdecode keeps them), bytes or os.PathLike.
+PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 # N x 2 points (x, y).
 PointsLike = numpy.typing.ArrayLike
 MatcherName = Literal["mutual", "ratio", "paper"]
@@ -110,7 +113,7 @@ class Extractor:
     # Defined in python/aief/__init__.py (need cv2): as cv2.Feature2D's methods.
     def detectAndCompute(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> tuple[list[Any], numpy.ndarray]: ...
     def detect(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> list[Any]: ...
-    def compute(self, image: ImageLike, keypoints: list[Any]) -> tuple[list[Any], numpy.ndarray]: ...
+    def compute(self, image: ImageLike, keypoints: list[Any], recompute_angles: bool = False) -> tuple[list[Any], numpy.ndarray]: ...
     @property
     def options(self) -> dict[str, Any]:
         """Every option in effect, as a dict."""
@@ -172,13 +175,13 @@ def adapt(
 ) -> AdaptResult:
     """The paper's sweep of F over a pair: the chosen threshold, the curve, features and matches at it."""
 
-def read_image(path: str) -> numpy.ndarray:
+def read_image(path: PathLike) -> numpy.ndarray:
     """An image file as the aief CLI reads it: 2-D uint8 gray."""
 
 class FeaturesFile:
     """An hloc features file (HDF5) written by the engine's writer, as aief extract --batch --format h5
     writes it; a failed write (a full disk) raises aief.Error and keeps every group complete before it."""
-    def __init__(self, path: str) -> None: ...
+    def __init__(self, path: PathLike) -> None: ...
     def is_current(self, name: str, source: tuple[int, int], extractor: Extractor) -> bool:
         """Whether `name` is a complete group of the image file `source` ((size, mtime in ns)) with `extractor`'s options."""
     def write(self, name: str, features: Features, source: tuple[int, int], extractor: Extractor) -> None:
@@ -190,7 +193,7 @@ class FeaturesFile:
     def __enter__(self) -> FeaturesFile: ...
     def __exit__(self, *exc: Any) -> None: ...
 
-def batch_inputs(folder_or_list: str) -> list[tuple[str, str]]:
+def batch_inputs(folder_or_list: PathLike) -> list[tuple[str, str]]:
     """The images `aief extract --batch FOLDER_OR_LIST` takes, as (path, name) pairs sorted by name."""
 
 def option_changes(record: Optional[str], extractor: Extractor) -> list[str]:

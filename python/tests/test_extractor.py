@@ -1,4 +1,9 @@
 """aief.Extractor: same bytes as the CLI (and so the C++ API), image layouts, options, errors."""
+import os
+import pathlib
+import shutil
+import subprocess
+
 import cv2
 import numpy
 import pytest
@@ -180,3 +185,23 @@ def test_every_kernel_set_gives_the_same_bytes():
             assert "not available" in str(e) or "support" in str(e), e
             continue
         assert_same_features(extractor.extract(image), reference)
+
+
+def test_file_names_as_path_objects_bytes_and_names_that_are_not_utf8(cli, tmp_path):
+    """read_image and batch_inputs take str, bytes and os.PathLike (pathlib.Path was a TypeError);
+    a file name that is not UTF-8, which the CLI extracts, comes back as os.fsdecode gives it (was
+    UnicodeDecodeError) and reads back."""
+    image = pathlib.Path(sample_path("graf"))
+    expected = aief.read_image(str(image))
+    for given in (image, os.fsencode(str(image))):
+        numpy.testing.assert_array_equal(aief.read_image(given), expected)
+    with pytest.raises(TypeError):
+        aief.read_image(42)
+    folder = os.fsencode(str(tmp_path / "images"))
+    os.mkdir(folder)
+    shutil.copy(str(image), os.path.join(folder, b"caf\xe9.png"))  # Latin-1, not UTF-8
+    inputs = aief.batch_inputs(tmp_path / "images")
+    assert [os.fsencode(name) for _, name in inputs] == [b"caf\xe9.png"]
+    numpy.testing.assert_array_equal(aief.read_image(inputs[0][0]), expected)
+    run = subprocess.run([cli, "extract", "--batch", folder, "-o", str(tmp_path / "out")], capture_output=True)
+    assert run.returncode == 0 and b"1 extracted" in run.stdout, run.stdout

@@ -88,3 +88,43 @@ def test_mask_of_another_shape_is_an_error():
             assert "is not the image's size" in str(e) or "uint8 or bool" in str(e)
         else:
             raise AssertionError("no error")
+
+
+def test_compute_keeps_the_given_angles_as_cv2_orb_does():
+    """graf's keypoints carried to the image turned by 30 degrees with their true angles come back
+    with those angles, as from cv2.ORB.compute; recompute_angles=True re-estimates them (the
+    recomputation used to be the only behaviour)."""
+    gray = cv2.cvtColor(read_unchanged(sample_path("graf")), cv2.COLOR_BGR2GRAY)
+    h, w = gray.shape
+    turn = 30.0
+    rotation = cv2.getRotationMatrix2D((w / 2, h / 2), turn, 1.0)
+    turned = cv2.warpAffine(gray, rotation, (w, h))
+    extractor = aief.Extractor()
+    moved = []
+    for k in extractor.detect(gray):
+        x, y = rotation @ numpy.float64([k.pt[0], k.pt[1], 1.0])
+        # The image turns counter-clockwise (y down): an orientation theta becomes theta - 30.
+        moved.append(cv2.KeyPoint(float(x), float(y), k.size, (k.angle - turn) % 360, k.response, k.octave,
+                                  len(moved)))
+    kept, descriptors = extractor.compute(turned, moved)
+    assert len(kept) > len(moved) * 3 // 4 and descriptors.shape == (len(kept), 32)
+    given = numpy.float32([moved[k.class_id].angle for k in kept])
+    numpy.testing.assert_array_equal(numpy.float32([k.angle for k in kept]), given)
+    orb_kept, _ = cv2.ORB_create().compute(turned, moved)
+    numpy.testing.assert_array_equal(numpy.float32([k.angle for k in orb_kept]),
+                                     numpy.float32([moved[k.class_id].angle for k in orb_kept]))
+    recomputed, _ = extractor.compute(turned, moved, recompute_angles=True)
+    assert sum(a.angle != b.angle for a, b in zip(recomputed, kept)) > len(kept) // 2
+
+
+def test_compute_of_an_array_or_features_says_to_use_describe():
+    image = read_unchanged(sample_path("graf"))
+    extractor = aief.Extractor()
+    features = extractor.extract(image)
+    for wrong in (features.keypoints, features):
+        try:
+            extractor.compute(image, wrong)
+        except TypeError as e:
+            assert "cv2.KeyPoint" in str(e) and "describe(" in str(e)
+        else:
+            raise AssertionError("no error")
