@@ -17,7 +17,12 @@ struct NamedImage {
   cv::Mat gray;
 };
 
-// The benchmark images: 640x480, the bundled Oxford samples at their sizes, 1920x1080.
+// Extra images the end-to-end benchmarks also run on, comma-separated paths.
+inline constexpr const char* kBenchFramesVariable = "AIEF_BENCH_FRAMES";
+
+// The benchmark images: 640x480, the bundled Oxford samples at their sizes, 1920x1080, and the
+// frames AIEF_BENCH_FRAMES names.
+
 const std::vector<NamedImage>& benchmark_images();
 
 const cv::Mat& sample_gray(const std::string& sequence);  // img1 of a bundled sequence
