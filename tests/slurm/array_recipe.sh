@@ -141,12 +141,15 @@ wait_for_job() {  # wait_for_job JOB: until none of its tasks is pending or runn
 
 # 16 tasks of one CPU each (the recipe asks 8, this node has $cpus): sbatch's options override #SBATCH.
 job=$(sbatch --parsable --cpus-per-task=1 -o "slurm-%A_%a.out" extract.sbatch)
+# Mid-run: once the task's own progress line says an image is done (its shard has 20).
 cancelled=15
-for _ in $(seq 3000); do
-  [ "$(squeue -h -j "${job}_$cancelled" -o %T 2> /dev/null)" = RUNNING ] && break
-  sleep 0.2
+progress=""
+for _ in $(seq 6000); do
+  progress=$(grep -m 1 -E '^batch: [1-9][0-9]*/' "slurm-${job}_$cancelled.out" 2> /dev/null || true)
+  [ -n "$progress" ] && break
+  sleep 0.1
 done
-sleep 0.5
+[ -n "$progress" ] || fail "task $cancelled showed no progress within 10 minutes"
 scancel "${job}_$cancelled"
 wait_for_job "$job"
 states=$(task_states "$job")
@@ -154,7 +157,7 @@ echo "$states" | awk -v c="$cancelled" '$1 != c && !($2 == "COMPLETED" && $3 == 
   fail "a task other than $cancelled did not complete: $states"
 echo "$states" | grep -q "^$cancelled CANCELLED " ||
   fail "task $cancelled was not cancelled mid-run (it finished before scancel reached it?): $states"
-echo "array job $job: 15 tasks completed, task $cancelled cancelled mid-run by scancel (SIGTERM)"
+echo "array job $job: 15 tasks completed, task $cancelled cancelled by scancel (SIGTERM) after '$progress'"
 
 # Resubmitted alone, as docs/scale_out.md says.
 resubmit=$(sed -nE 's/.*`(sbatch --array=[0-9]+ extract\.sbatch)`.*/\1/p' "$source_dir/docs/scale_out.md" | head -n 1)
@@ -163,7 +166,7 @@ rejob=$(sbatch --parsable --cpus-per-task=1 -o "slurm-%A_%a.out" --array=$cancel
 wait_for_job "$rejob"
 restate=$(task_states "$rejob")
 grep -q "^$cancelled COMPLETED 0:0" <<< "$restate" || fail "the resubmitted task $cancelled did not complete: $restate"
-echo "task $cancelled resubmitted alone ($resubmit with $cancelled): completed"
+echo "task $cancelled resubmitted alone ($resubmit with $cancelled): completed, $(grep -h 'images in this shard' "slurm-${rejob}_$cancelled.out" || true)"
 
 merge=$(sed -nE 's/.*`(build\/aief merge [^`]*)`.*/\1/p' "$source_dir/docs/scale_out.md" | head -n 1)
 [ -n "$merge" ] || fail "docs/scale_out.md names no merge command"
