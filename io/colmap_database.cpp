@@ -11,7 +11,7 @@
 #include <sqlite3.h>
 
 #include "aief/error.hpp"
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #include "io/json_writer.hpp"
 #include "io/pairs_file.hpp"
 #include "io/utf8.hpp"

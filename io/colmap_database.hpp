@@ -1,5 +1,5 @@
 #pragma once
-// COLMAP's database (SQLite, COLMAP 3.x schema) from hloc-layout files (io/hdf5_features.hpp),
+// COLMAP's database (SQLite, COLMAP 3.x schema) from hloc-layout files (io/hdf5_file.hpp),
 // so `colmap matches_importer --match_type pairs` verifies the matches geometrically and
 // `colmap mapper` reconstructs from them. Built when libsqlite3 and libhdf5 are found.
 //

@@ -69,22 +69,6 @@ std::string read_bytes(const std::string& path, std::ios::off_type from_end, std
   return text;
 }
 
-// The source record comes right after "image", the options after "width" and "height" (a few
-// KiB in; strings are escaped, so `"options":` cannot occur in a name); a complete file ends with
-// the descriptor list and the closing brace.
-OutputRecord json_file_record(const std::string& path, const SourceRecord& source) {
-  constexpr std::size_t kHeadBytes = 64 * 1024;
-  const std::string head = read_bytes(path, 0, kHeadBytes);
-  OutputRecord record;
-  record.of_source = read_bytes(path, 4, 4) == "]\n}\n" &&
-                     head.find(source_json_fragment(source)) != std::string::npos;
-  const std::size_t key = head.find("\"options\":");
-  const std::size_t begin = head.find('{', key), end = head.find('}', key);
-  if (key != std::string::npos && begin < end && end != std::string::npos)
-    record.options = head.substr(begin, end + 1 - begin);
-  return record;
-}
-
 // A string value for OpenCV's YAML writer, quoted and escaped here. The writer takes a string
 // beginning with '{' or '[' for the start of a map or a list (`image: !!b}.png`) and leaves one
 // that begins and ends with the same quote unquoted (its reader then strips them); a string it is
@@ -121,6 +105,24 @@ std::string yaml_quoted(const std::string& value, const char* key) {
   return quoted + "\"";
 }
 
+}  // namespace
+
+// The source record comes right after "image", the options after "width" and "height" (a few
+// KiB in; strings are escaped, so `"options":` cannot occur in a name); a complete file ends with
+// the descriptor list and the closing brace.
+OutputRecord json_file_record(const std::string& path, const SourceRecord& source) {
+  constexpr std::size_t kHeadBytes = 64 * 1024;
+  const std::string head = read_bytes(path, 0, kHeadBytes);
+  OutputRecord record;
+  record.of_source = read_bytes(path, 4, 4) == "]\n}\n" &&
+                     head.find(source_json_fragment(source)) != std::string::npos;
+  const std::size_t key = head.find("\"options\":");
+  const std::size_t begin = head.find('{', key), end = head.find('}', key);
+  if (key != std::string::npos && begin < end && end != std::string::npos)
+    record.options = head.substr(begin, end + 1 - begin);
+  return record;
+}
+
 OutputRecord yaml_file_record(const std::string& path, const SourceRecord& source) {
   // Read here and parsed from memory: OpenCV cannot open a file whose path holds a newline.
   std::ifstream in(path, std::ios::binary);
@@ -141,35 +143,7 @@ OutputRecord yaml_file_record(const std::string& path, const SourceRecord& sourc
   return record;
 }
 
-std::string extension_of(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-}  // namespace
-
-OutputRecord features_file_record(const std::string& output_path, const SourceRecord& source) {
-  const std::string ext = extension_of(output_path);
-  if (ext == ".json") return json_file_record(output_path, source);
-  if (ext == ".yml" || ext == ".yaml") return yaml_file_record(output_path, source);
-  if (ext == ".npz") return npz_file_record(output_path, source);
-  return {};
-}
-
-bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source) {
-  return features_file_record(output_path, source).of_source;
-}
-
-bool is_features_file_name(const std::string& path) {
-  const std::string ext = extension_of(path);
-  return ext == ".json" || ext == ".yml" || ext == ".yaml" || ext == ".npz";
-}
-
-void check_features_file_can_hold(const std::string& output_path, const std::string& image_path,
-                                  const std::string& source_name) {
-  const std::string ext = extension_of(output_path);
-  if (ext != ".yml" && ext != ".yaml") return;
+void check_yaml_can_hold(const std::string& image_path, const std::string& source_name) {
   yaml_quoted(image_path, "image name");
   yaml_quoted(source_name, "image name");
 }
@@ -240,17 +214,6 @@ void write_features_yaml(const std::string& path, const std::string& image_path,
     throw Error("cannot write '" + path + "': " + e.what());
   }
   write_file_atomically(path, text);
-}
-
-void write_features(const std::string& path, const std::string& image_path,
-                    const Features& features, const ExtractorOptions& options,
-                    const std::optional<SourceRecord>& source) {
-  const std::string ext = extension_of(path);
-  if (ext == ".json") return write_features_json(path, image_path, features, options, source);
-  if (ext == ".yml" || ext == ".yaml")
-    return write_features_yaml(path, image_path, features, options, source);
-  if (ext == ".npz") return write_features_npz(path, features, options, source);
-  throw Error("output '" + path + "' must end in .json, .yml, .yaml or .npz");
 }
 
 }  // namespace aief::io

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "aief/features.hpp"
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 
 namespace aief::io {
 

@@ -7,19 +7,19 @@
 
 namespace aief::io {
 
-void SameOptionsCheck::check(const Hdf5File& file, const std::string& name) {
-  const std::optional<std::string> record = file.option_record(name);
+void SameOptionsCheck::check(const std::optional<std::string>& record, const std::string& path,
+                             const std::string& name) {
   if (!any_checked_) {
     any_checked_ = true;
     first_record_ = record;
-    first_file_ = file.path();
+    first_file_ = path;
     first_name_ = name;
     return;
   }
   if (record == first_record_ ||
       (record && std::find(agreeing_.begin(), agreeing_.end(), *record) != agreeing_.end()))
     return;
-  const std::string here = "'" + file.path() + "' (image '" + name + "')",
+  const std::string here = "'" + path + "' (image '" + name + "')",
                     first = "'" + first_file_ + "' (image '" + first_name_ + "')";
   const std::string refusal =
       "; merge the shards of one run, or extract again with the same "

@@ -1,5 +1,5 @@
 #pragma once
-// Merge's rule on options (io/hdf5_features.hpp, merge_feature_files): every image group merged
+// Merge's rule on options (io/hdf5_merge.hpp, merge_feature_files): every image group merged
 // was extracted with the same options, as far as they change the output (io/option_record.hpp).
 // Shards of one run agree; a shard extracted with other options, or by an aief that recorded none
 // beside one that did, would mix features that cannot be compared.
@@ -7,15 +7,15 @@
 #include <string>
 #include <vector>
 
-#include "io/hdf5_features.hpp"
-
 namespace aief::io {
 
 class SameOptionsCheck {
  public:
-  // Throws aief::Error naming both files, both images and the fields that differ when the group
-  // `name` of `file` records other options than the first group checked.
-  void check(const Hdf5File& file, const std::string& name);
+  // Throws aief::Error naming both files, both images and the fields that differ when the image
+  // `name` of the file `path`, recording `record` (its option record, nullopt when it has none),
+  // records other options than the first image checked.
+  void check(const std::optional<std::string>& record, const std::string& path,
+             const std::string& name);
 
  private:
   bool any_checked_ = false;

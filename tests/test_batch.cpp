@@ -18,10 +18,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 #include "io/json_writer.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #endif
 #include "tests/test_support.hpp"
 

@@ -15,7 +15,7 @@
 
 #include "tests/test_support.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #endif
 
 namespace {

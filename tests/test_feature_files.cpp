@@ -21,7 +21,8 @@
 #include "io/pairs_file.hpp"
 #include "tests/test_support.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/hdf5_merge.hpp"
 #endif
 #ifdef AIEF_HAVE_COLMAP_EXPORT
 #include "io/colmap_database.hpp"
@@ -177,7 +178,7 @@ TEST(Hdf5Features, OpenFailuresSayWhich) {
     ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
     EXPECT_NE(message([&] {
                 io::Hdf5File(dir.file("good.h5"), Mode::read_write);
-              }).find("another process holds it locked"),
+              }).find("it is locked by a writer"),
               std::string::npos);
     ::close(held);
   }

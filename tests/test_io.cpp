@@ -12,7 +12,7 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 #include "io/image_header.hpp"
 #include "io/image_io.hpp"
 #include "io/npz_writer.hpp"

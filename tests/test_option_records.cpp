@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 #include "io/option_record.hpp"
 #include "io/source_record.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
 #endif
 #include "tests/test_support.hpp"
 

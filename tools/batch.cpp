@@ -16,7 +16,7 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "io/batch_output_names.hpp"
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 #include "io/image_io.hpp"
 #include "parallel/tsan_handoff.hpp"
 #include "tools/batch_sink.hpp"

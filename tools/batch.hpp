@@ -27,7 +27,7 @@
 
 #include "aief/options.hpp"
 #include "io/batch_inputs.hpp"
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 
 namespace aief::cli {
 
@@ -35,7 +35,7 @@ struct BatchSettings {
   std::string input;  // a folder (its images, recursively) or a text file of paths, one per line
   std::string output_dir;       // for format h5: the HDF5 file
   std::string format = "json";  // json | yml | npz (a file per image: the output extension) | h5
-                                // (one hloc file, io/hdf5_features.hpp)
+                                // (one hloc file, io/hdf5_file.hpp)
   int shard_index = 0, shard_count = 1;
   ExtractorOptions options;
 };

@@ -1,12 +1,14 @@
 #pragma once
-// Where a batch's features go (tools/batch.hpp): a file per image (json, yml, npz) or one HDF5
-// file (h5). The batch pipeline knows nothing of formats; it asks its sink these three things.
+// Where a batch's features go (tools/batch.hpp): a file per image (json, yml, npz) or one file
+// for the batch (h5), as the format's row says (io/feature_formats.hpp). The batch pipeline knows
+// nothing of formats; it asks its sink these three things.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "aief/error.hpp"
 #include "aief/features.hpp"
+#include "io/feature_formats.hpp"
 #include "io/source_record.hpp"
 #include "tools/batch.hpp"
 
@@ -52,8 +54,11 @@ class BatchSink {
 // build lacks, an output that cannot be created).
 std::unique_ptr<BatchSink> make_batch_sink(const BatchSettings& settings);
 
-// One file per image (io::batch_output_path) and one HDF5 file (io/hdf5_features.hpp).
-std::unique_ptr<BatchSink> make_file_per_image_sink(const BatchSettings& settings);
-std::unique_ptr<BatchSink> make_hdf5_sink(const BatchSettings& settings);
+// By the format's layout (io/feature_formats.hpp): one file per image (io::batch_output_path),
+// or one file for the batch (io::FeatureCollectionFile; throws when this build lacks it).
+std::unique_ptr<BatchSink> make_file_per_image_sink(const BatchSettings& settings,
+                                                    const io::FeatureFormat& format);
+std::unique_ptr<BatchSink> make_collection_sink(const BatchSettings& settings,
+                                                const io::FeatureFormat& format);
 
 }  // namespace aief::cli

@@ -1,7 +1,7 @@
 #include <filesystem>
 
 #include "io/batch_output_names.hpp"
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 #include "io/json_writer.hpp"
 #include "io/option_record.hpp"
 #include "tools/batch_sink.hpp"
@@ -15,7 +15,8 @@ namespace {
 // OUTDIR/<name>.<format>, each written atomically (io::write_file_atomically).
 class FilePerImageSink : public BatchSink {
  public:
-  explicit FilePerImageSink(const BatchSettings& settings) : settings_(settings) {
+  FilePerImageSink(const BatchSettings& settings, const io::FeatureFormat& format)
+      : settings_(settings), format_(format) {
     std::error_code ec;
     fs::create_directories(settings.output_dir, ec);
     if (ec)
@@ -30,13 +31,13 @@ class FilePerImageSink : public BatchSink {
     Existing found;
     found.present = fs::exists(output, ignored);
     if (found.present) {
-      const io::OutputRecord record = io::features_file_record(output, source);
+      const io::OutputRecord record = format_.record(output, source);
       found.of_this_input = record.of_source;
       if (found.of_this_input)
         found.option_changes = io::option_changes(record.options, settings_.options);
     }
     // Before the work: a name the format cannot hold (YAML: control characters).
-    if (!found.current()) io::check_features_file_can_hold(output, input.path, input.name);
+    if (!found.current() && format_.check_can_hold) format_.check_can_hold(input.path, input.name);
     return found;
   }
 
@@ -51,7 +52,7 @@ class FilePerImageSink : public BatchSink {
       throw Error(reason);
     }
     try {
-      io::write_features(output, input.path, features, settings_.options, source);
+      format_.write(output, input.path, features, settings_.options, source);
     } catch (const io::WriteError& e) {
       if (e.of_the_disk()) throw SinkFailure(e.what());
       throw;
@@ -66,19 +67,27 @@ class FilePerImageSink : public BatchSink {
 
  private:
   std::string output_of(const BatchInput& input) const {
-    return io::batch_output_path(settings_.output_dir, input.name, settings_.format);
+    return io::batch_output_path(settings_.output_dir, input.name, format_.name);
   }
   BatchSettings settings_;
+  const io::FeatureFormat& format_;
 };
 
 }  // namespace
 
-std::unique_ptr<BatchSink> make_file_per_image_sink(const BatchSettings& settings) {
-  return std::make_unique<FilePerImageSink>(settings);
+std::unique_ptr<BatchSink> make_file_per_image_sink(const BatchSettings& settings,
+                                                    const io::FeatureFormat& format) {
+  return std::make_unique<FilePerImageSink>(settings, format);
 }
 
 std::unique_ptr<BatchSink> make_batch_sink(const BatchSettings& settings) {
-  return settings.format == "h5" ? make_hdf5_sink(settings) : make_file_per_image_sink(settings);
+  const io::FeatureFormat* format = io::feature_format_named(settings.format);
+  if (!format)
+    throw Error("no features format '" + settings.format + "' (" + io::feature_format_names() +
+                ")");
+  return format->layout == io::FeatureFormat::Layout::file_per_image
+             ? make_file_per_image_sink(settings, *format)
+             : make_collection_sink(settings, *format);
 }
 
 }  // namespace aief::cli

@@ -6,7 +6,7 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "io/drawing.hpp"
-#include "io/features_files.hpp"
+#include "io/feature_formats.hpp"
 #include "io/image_io.hpp"
 #include "io/option_record.hpp"
 #include "tools/batch.hpp"
@@ -66,9 +66,9 @@ int run_extract_batch(const Args& args) {
   if (!output) throw UsageError("--batch needs -o OUTDIR");
   settings.output_dir = *output;
   settings.format = args.get("--format").value_or("json");
-  if (settings.format != "json" && settings.format != "yml" && settings.format != "npz" &&
-      settings.format != "h5")
-    throw UsageError("--format expects json, yml, npz or h5, got '" + settings.format + "'");
+  if (!io::feature_format_named(settings.format))
+    throw UsageError("--format expects " + io::feature_format_names() + ", got '" +
+                     settings.format + "'");
   if (const auto shard = args.get("--shard")) {
     try {
       const Shard parsed = parse_shard(*shard);
@@ -122,7 +122,8 @@ int run_extract(const Arguments& arguments) {
   if (args.positionals().size() != 1)
     throw UsageError("extract expects one IMAGE (aief extract --help)");
   if (const auto output = args.get("--output"); output && !io::is_features_file_name(*output))
-    throw UsageError("-o " + *output + ": the output must end in .json, .yml, .yaml or .npz");
+    throw UsageError("-o " + *output + ": the output must end in " +
+                     io::feature_format_extensions(io::FeatureFormat::Layout::file_per_image));
   if (const auto output = args.get("--output"))
     io::check_features_file_can_hold(*output, args.positionals()[0], args.positionals()[0]);
   check_picture_flag(args, "--draw");

@@ -1,4 +1,4 @@
-// Feature files for SfM tools (io/hdf5_features.hpp, io/colmap_database.hpp):
+// Feature files for SfM tools (io/hdf5_file.hpp, io/colmap_database.hpp):
 //   aief match --pairs pairs.txt --features features.h5 -o matches.h5 [--matcher K] [--ratio R]
 //   aief merge -o features.h5 shard0.h5 shard1.h5 ...
 //   aief colmap --features features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
@@ -11,7 +11,8 @@
 #include "tools/commands.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_descriptor_cache.hpp"
-#include "io/hdf5_features.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/hdf5_merge.hpp"
 #include "io/pairs_file.hpp"
 #endif
 #ifdef AIEF_HAVE_COLMAP_EXPORT

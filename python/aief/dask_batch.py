@@ -1,5 +1,5 @@
 """Batch extraction over a Dask cluster: one task per shard, each writing its own HDF5 feature
-file in hloc's layout (the layout of `aief extract --batch --format h5`, io/hdf5_features.hpp).
+file in hloc's layout (the layout of `aief extract --batch --format h5`, io/hdf5_file.hpp).
 
 The images and their group names are the CLI's (aief.batch_inputs). Shard i of n takes images
 i, i+n, i+2n ... of the sorted list, as `aief extract --shard i/n` does, so `aief merge -o features.h5 OUTDIR/features.*-of-n.h5` gives the single-process file's

@@ -22,6 +22,11 @@
 //   string attributes name0 and name1 (fixed length, UTF-8; variable-length ones are read too)
 //   record the pair's own names, since two pairs can share a group name ("a/b.png c.png" and
 //   "a-b.png c.png"): a pair never reads or keeps another's.
+//
+// One class, defined by job: io/hdf5_file.cpp opens and closes the file and keeps its space
+// policy (reservation, fence, batched flushes); io/hdf5_features.cpp the image groups;
+// io/hdf5_matches.cpp the pair groups; io/hdf5_merge.cpp the copy of groups between files
+// (merge, io/hdf5_merge.hpp). libhdf5's objects they share are io/hdf5_objects.hpp.
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -52,11 +57,16 @@ namespace aief::io {
 // anyway, the file's descriptor is diverted to a scratch file in memory: nothing more reaches the
 // file, which stays as of its last flush, libhdf5 closes it cleanly, and every later write is
 // refused with the first reason.
-// (File systems without fallocate, and copy-on-write ones such as btrfs, get the diversion only.)
+// A file system without fallocate gets the reservation by zeros written past the end; copy-on-
+// write ones such as btrfs, where a reserved block is no promise, get the diversion only.
+//
+// A file is readable from its creation on: it is flushed when created and after its first write,
+// so a run killed (kill -9, Ctrl-C, SIGTERM, SIGHUP) before its first batch of writes leaves a
+// file that opens and resumes.
 class Hdf5File {
  public:
   // read_in_name_order: for a reader that goes through the file once, image after image in name
-  // order (merge's passes), which needs only a small metadata cache (io/hdf5_features.cpp,
+  // order (merge's passes), which needs only a small metadata cache (io/hdf5_file.cpp,
   // read_access); read: for any order of reads.
   enum class Mode { read, read_in_name_order, read_write };
   Hdf5File(const std::string& path, Mode mode);
@@ -118,11 +128,15 @@ class Hdf5File {
   // reserved separately before it.
   static constexpr std::uint64_t kMetadataAllowance = 64 * 1024;
   // Reserves disk blocks up to libhdf5's end of allocation plus `extra` bytes; throws on ENOSPC.
+  // On a file system without fallocate (NFSv3, FUSE, older ZFS), by writing zeros past the end.
   void reserve(std::uint64_t extra);
+  void reserve_by_writing_zeros(std::uint64_t until);
   // Diverts the file's descriptor to a scratch file: nothing more reaches the file.
   void fence();
   // Reserves and flushes; throws on failure.
   void flush_now();
+  // Flushes a file just created, or removes it and throws "cannot create".
+  void flush_created_file();
   // Whether the file may hold a group named `group`: false only when it certainly does not (a
   // written file keeps the hashes of its groups, so a new name costs no lookup in libhdf5).
   bool may_hold(const std::string& group) const;
@@ -137,23 +151,17 @@ class Hdf5File {
                      Flush flush = Flush::batched);
 
   std::string path_;
-  long long file_ = -1;  // hid_t
-  int descriptor_ = -1;  // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
+  std::string creating_as_;  // the temporary a new file is created as, until its first flush
+  long long file_ = -1;      // hid_t
+  int descriptor_ = -1;      // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
   std::uint64_t reserved_until_ = 0;
+  bool without_fallocate_ = false;  // fallocate said EOPNOTSUPP: reserve writes zeros
   int unflushed_writes_ = 0;
+  bool flushed_a_write_ = false;
   bool groups_known_ = false;  // read_write: groups_ holds the hash of every group's name
   std::unordered_set<std::uint64_t> groups_;
   std::mutex failure_mutex_;  // writes come from one thread at a time; the lock orders the record
   std::string failure_;       // the first failed write's reason; later writes are refused
 };
-
-// Copies every image group of `inputs` (shard files) into `output` (created or extended); an
-// image already in `output` is kept, an image in two inputs is an error, and so is a group whose
-// option record differs from the first group's in a field that changes the output (a group
-// without a record and one with a record differ; groups without records all agree). Atomic: every
-// input is checked before anything is written, the result is written to a temporary and renamed
-// over `output`, so a failed merge (a bad input, a full disk) leaves `output` as it was (or
-// absent). Linear in the images (hash sets). Returns the images copied.
-int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs);
 
 }  // namespace aief::io

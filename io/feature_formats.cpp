@@ -1,0 +1,175 @@
+#include "io/feature_formats.hpp"
+
+#include <cctype>
+#include <filesystem>
+
+#include "aief/error.hpp"
+#include "io/features_files.hpp"
+#include "io/npz_writer.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_file.hpp"
+#endif
+
+namespace aief::io {
+
+namespace {
+
+using Layout = FeatureFormat::Layout;
+
+void write_npz(const std::string& path, const std::string&, const Features& features,
+               const ExtractorOptions& options, const std::optional<SourceRecord>& source) {
+  write_features_npz(path, features, options, source);
+}
+
+#ifdef AIEF_HAVE_HDF5
+// hloc's features.h5, a group per image.
+class Hdf5Collection : public FeatureCollectionFile {
+ public:
+  explicit Hdf5Collection(const std::string& path) : file_(path, Hdf5File::Mode::read_write) {}
+  bool holds(const std::string& name) const override { return file_.has_features(name); }
+  bool holds_from(const std::string& name, const SourceRecord& source) const override {
+    return file_.features_belong_to(name, source);
+  }
+  std::optional<std::string> option_record(const std::string& name) const override {
+    return file_.option_record(name);
+  }
+  void write(const std::string& name, const Features& features, const SourceRecord& source,
+             const ExtractorOptions& options) override {
+    file_.write_features(name, features, &source, &options);
+  }
+  void remove(const std::string& name) override { file_.remove_features(name); }
+  void close() override { file_.close(); }
+
+ private:
+  Hdf5File file_;
+};
+
+std::unique_ptr<FeatureCollectionFile> open_hdf5(const std::string& path) {
+  return std::make_unique<Hdf5Collection>(path);
+}
+#else
+constexpr std::unique_ptr<FeatureCollectionFile> (*open_hdf5)(const std::string&) = nullptr;
+#endif
+
+std::string extension_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// "a, b or c"
+std::string or_list(const std::vector<std::string>& items) {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
+  return text;
+}
+
+}  // namespace
+
+const std::vector<FeatureFormat>& feature_formats() {
+  static const std::vector<FeatureFormat> formats = {
+      {"json",
+       {".json"},
+       Layout::file_per_image,
+       &write_features_json,
+       &json_file_record,
+       nullptr,
+       nullptr,
+       nullptr},
+      {"yml",
+       {".yml", ".yaml"},
+       Layout::file_per_image,
+       &write_features_yaml,
+       &yaml_file_record,
+       &check_yaml_can_hold,
+       nullptr,
+       nullptr},
+      {"npz",
+       {".npz"},
+       Layout::file_per_image,
+       &write_npz,
+       &npz_file_record,
+       nullptr,
+       nullptr,
+       nullptr},
+      {"h5",
+       {".h5"},
+       Layout::one_file_per_batch,
+       nullptr,
+       nullptr,
+       nullptr,
+       open_hdf5,
+       "this aief was built without HDF5 (install libhdf5-dev and rebuild)"},
+  };
+  return formats;
+}
+
+const FeatureFormat* feature_format_named(const std::string& name) {
+  for (const FeatureFormat& format : feature_formats())
+    if (name == format.name) return &format;
+  return nullptr;
+}
+
+const FeatureFormat* feature_format_of_path(const std::string& path) {
+  const std::string ext = extension_of(path);
+  for (const FeatureFormat& format : feature_formats())
+    for (const char* extension : format.extensions)
+      if (ext == extension) return &format;
+  return nullptr;
+}
+
+std::string feature_format_names() {
+  std::vector<std::string> names;
+  for (const FeatureFormat& format : feature_formats()) names.push_back(format.name);
+  return or_list(names);
+}
+
+std::string feature_format_extensions(FeatureFormat::Layout layout) {
+  std::vector<std::string> extensions;
+  for (const FeatureFormat& format : feature_formats())
+    if (format.layout == layout)
+      for (const char* extension : format.extensions) extensions.push_back(extension);
+  return or_list(extensions);
+}
+
+namespace {
+
+// The file-per-image format of `path`, or nullptr.
+const FeatureFormat* file_per_image_format_of(const std::string& path) {
+  const FeatureFormat* format = feature_format_of_path(path);
+  return format && format->layout == Layout::file_per_image ? format : nullptr;
+}
+
+}  // namespace
+
+void write_features(const std::string& path, const std::string& image_path,
+                    const Features& features, const ExtractorOptions& options,
+                    const std::optional<SourceRecord>& source) {
+  const FeatureFormat* format = file_per_image_format_of(path);
+  if (!format)
+    throw Error("output '" + path + "' must end in " +
+                feature_format_extensions(Layout::file_per_image));
+  format->write(path, image_path, features, options, source);
+}
+
+OutputRecord features_file_record(const std::string& output_path, const SourceRecord& source) {
+  const FeatureFormat* format = file_per_image_format_of(output_path);
+  return format ? format->record(output_path, source) : OutputRecord{};
+}
+
+bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source) {
+  return features_file_record(output_path, source).of_source;
+}
+
+bool is_features_file_name(const std::string& path) {
+  return file_per_image_format_of(path) != nullptr;
+}
+
+void check_features_file_can_hold(const std::string& output_path, const std::string& image_path,
+                                  const std::string& source_name) {
+  const FeatureFormat* format = file_per_image_format_of(output_path);
+  if (format && format->check_can_hold) format->check_can_hold(image_path, source_name);
+}
+
+}  // namespace aief::io

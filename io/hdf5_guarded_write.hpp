@@ -1,0 +1,47 @@
+#pragma once
+// Hdf5File::write_guarded, the one way a write reaches the file (io/hdf5_file.hpp: reserved
+// before, fenced on failure, flushed in batches): for the files that define Hdf5File's writes.
+#include <mutex>
+
+#include "io/hdf5_file.hpp"
+#include "io/hdf5_objects.hpp"
+
+namespace aief::io {
+
+template <class Write>
+void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
+                             Flush flush) {
+  hdf5::silence_hdf5();
+  const std::lock_guard<std::mutex> lock(failure_mutex_);
+  if (!failure_.empty())
+    throw Error("cannot write " + what + " to '" + path_ + "': an earlier write failed (" +
+                failure_ + ")");
+  try {
+    reserve(bytes + kMetadataAllowance);
+  } catch (const std::exception& e) {
+    // Nothing of this write happened: the writes before it are whole in memory, flushed here
+    // into space reserved before them.
+    failure_ = e.what();
+    try {
+      flush_now();
+    } catch (const std::exception&) {
+    }
+    fence();
+    throw Error("cannot write " + what + " to '" + path_ + "': " + failure_ +
+                " (what was complete before is kept)");
+  }
+  try {
+    write();
+    // The first write is flushed at once: a run killed before its first batch keeps it.
+    if (flush == Flush::now ||
+        (flush == Flush::batched && (++unflushed_writes_ >= kWritesPerFlush || !flushed_a_write_)))
+      flush_now();
+  } catch (const std::exception& e) {
+    failure_ = e.what();
+    fence();
+    throw Error("cannot write " + what + " to '" + path_ + "': " + failure_ +
+                " (what was complete before is kept)");
+  }
+}
+
+}  // namespace aief::io

@@ -1,0 +1,156 @@
+#include "io/hdf5_merge.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include <fcntl.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include "aief/error.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/hdf5_guarded_write.hpp"
+#include "io/hdf5_objects.hpp"
+#include "io/json_writer.hpp"
+#include "io/merge_option_check.hpp"
+
+namespace aief::io {
+
+using namespace hdf5;
+
+namespace {
+
+// The bytes the datasets of group `name` hold (what a copy of it writes besides metadata).
+std::uint64_t group_storage_bytes(hid_t file, const std::string& name) {
+  const Handle group(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!group.ok()) throw Error("'" + name + "' is not a group");
+  const auto visit = [](hid_t parent, const char* link, const H5L_info_t*, void* data) -> herr_t {
+    const Handle set(H5Dopen2(parent, link, H5P_DEFAULT), H5Dclose);
+    if (set.ok()) *static_cast<std::uint64_t*>(data) += H5Dget_storage_size(set.get());
+    return 0;
+  };
+  std::uint64_t bytes = 0;
+  H5Literate(group.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, visit, &bytes);
+  return bytes;
+}
+// Copies the file `from` to `to` (created), throwing the system's reason (std::filesystem's
+// copy reports a full disk as "Input/output error").
+void copy_file(const std::string& from, const std::string& to) {
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) throw Error("cannot read '" + from + "': " + std::strerror(errno));
+  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (out < 0) {
+    const int code = errno;
+    ::close(in);
+    throw Error("cannot create '" + to + "': " + std::strerror(code));
+  }
+  std::vector<char> buffer(1 << 20);
+  int code = 0;
+  for (ssize_t n; code == 0 && (n = ::read(in, buffer.data(), buffer.size())) != 0;) {
+    if (n < 0) {
+      if (errno != EINTR) code = errno;
+      continue;
+    }
+    for (ssize_t done = 0; done < n;) {
+      const ssize_t w = ::write(out, buffer.data() + done, static_cast<std::size_t>(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w < 0) {
+        code = errno;
+        break;
+      }
+      done += w;
+    }
+  }
+  ::close(in);
+  if (::close(out) != 0 && code == 0) code = errno;
+  if (code != 0) throw Error(std::strerror(code) + std::string(" (copying '") + from + "')");
+}
+
+}  // namespace
+void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& name) {
+  silence_hdf5();
+  const std::uint64_t bytes = group_storage_bytes(source.file_, name);
+  write_guarded(
+      bytes, "'" + name + "' from '" + source.path_ + "'",
+      [&] {
+        if (may_hold(name)) remove_group(file_, name);  // an incomplete group of the same name
+        if (H5Ocopy(source.file_, name.c_str(), file_, name.c_str(), H5P_DEFAULT, with_parents()) <
+            0)
+          throw Error(hdf5_reason());
+        note_group(name);
+      },
+      Flush::at_close);
+}
+int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  // Every input checked first: each opens, no image is in two of them (a hash set: linear), and
+  // every image, those already in the output included, was extracted with the same options.
+  SameOptionsCheck same_options;
+  std::unordered_set<std::string> kept;  // images already in the output, from an earlier merge
+  const bool extending = fs::exists(output, ec);
+  if (extending) {
+    const Hdf5File previous(output, Hdf5File::Mode::read_in_name_order);
+    for (std::string& name : previous.feature_names()) {
+      same_options.check(previous.option_record(name), previous.path(), name);
+      kept.insert(std::move(name));
+    }
+  }
+  std::vector<std::unique_ptr<Hdf5File>> shards;
+  std::vector<std::vector<std::string>> names;  // each shard's, kept for the copy
+  names.reserve(inputs.size());
+  // Each image's shard, keyed by the names above (not copies of them: 48 bytes less an image).
+  std::unordered_map<std::string_view, std::size_t> first_shard;
+  for (const std::string& input : inputs) {
+    shards.push_back(std::make_unique<Hdf5File>(input, Hdf5File::Mode::read_in_name_order));
+    names.push_back(shards.back()->feature_names());
+    for (const std::string& name : names.back()) {
+      const auto [at, inserted] = first_shard.emplace(name, shards.size() - 1);
+      if (!inserted)
+        throw Error("image '" + name + "' is in two of the files merged, '" + inputs[at->second] +
+                    "' and '" + input + "'; nothing was written");
+      if (!kept.count(name)) same_options.check(shards.back()->option_record(name), input, name);
+    }
+  }
+  if (const fs::path folder = fs::path(output).parent_path();
+      !extending && !folder.empty() && !fs::is_directory(folder, ec))
+    throw Error("cannot create '" + output + "': the folder '" + folder.string() +
+                "' does not exist");
+
+  // Then written to a temporary beside the output (a copy of it when extending), renamed over it
+  // only when complete: a failed merge leaves the output as it was.
+  const std::string temporary = temporary_path_of(output);
+  fs::remove(temporary, ec);
+  int copied = 0;
+  try {
+    if (extending) copy_file(output, temporary);
+    Hdf5File out(temporary, Hdf5File::Mode::read_write);
+    for (std::size_t s = 0; s < shards.size(); ++s)
+      for (const std::string& name : names[s]) {
+        if (kept.count(name)) continue;
+        out.copy_group_from(*shards[s], name);
+        ++copied;
+      }
+    out.close();
+  } catch (const fs::filesystem_error& e) {
+    fs::remove(temporary, ec);
+    throw Error("cannot merge into '" + output + "' (left as it was): " + e.code().message());
+  } catch (const std::exception& e) {
+    fs::remove(temporary, ec);
+    throw Error("cannot merge into '" + output + "' (left as it was): " + e.what());
+  }
+  fs::rename(temporary, output, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    throw Error("cannot merge into '" + output + "' (left as it was): " + ec.message());
+  }
+  return copied;
+}
+
+}  // namespace aief::io

@@ -1,0 +1,17 @@
+#pragma once
+// Shards of one collection merged into one features file (io/hdf5_file.hpp), `aief merge`.
+#include <string>
+#include <vector>
+
+namespace aief::io {
+
+// Copies every image group of `inputs` (shard files) into `output` (created or extended); an
+// image already in `output` is kept, an image in two inputs is an error, and so is a group whose
+// option record differs from the first group's in a field that changes the output (a group
+// without a record and one with a record differ; groups without records all agree). Atomic: every
+// input is checked before anything is written, the result is written to a temporary and renamed
+// over `output`, so a failed merge (a bad input, a full disk) leaves `output` as it was (or
+// absent). Linear in the images (hash sets). Returns the images copied.
+int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs);
+
+}  // namespace aief::io

@@ -1,0 +1,73 @@
+// The sink of a one-file-per-batch format (io::FeatureCollectionFile: HDF5).
+#include <mutex>
+
+#include "io/feature_formats.hpp"
+#include "io/option_record.hpp"
+#include "tools/batch_sink.hpp"
+
+namespace aief::cli {
+
+namespace {
+
+// One file, an entry per input named by its name. Calls are serialised here: the pipeline asks
+// from several threads, and a libhdf5 built without its thread-safe option allows one caller at a
+// time.
+class CollectionSink : public BatchSink {
+ public:
+  CollectionSink(const BatchSettings& settings, const io::FeatureFormat& format)
+      : options_(settings.options), file_(format.open(settings.output_dir)) {}
+
+  Existing existing(const BatchInput& input, const io::SourceRecord& source) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    Existing found;
+    found.of_this_input = file_->holds_from(input.name, source);
+    found.present = found.of_this_input || file_->holds(input.name);
+    if (found.of_this_input)
+      found.option_changes = io::option_changes(file_->option_record(input.name), options_);
+    return found;
+  }
+
+  void write(const BatchInput& input, const Features& features,
+             const io::SourceRecord& source) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    try {
+      file_->write(input.name, features, source, options_);
+    } catch (const Error& e) {
+      throw SinkFailure(e.what());  // the file refuses every later write (io::Hdf5File)
+    }
+  }
+
+  void finish() override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    try {
+      file_->close();
+    } catch (const Error& e) {
+      throw SinkFailure(e.what());
+    }
+  }
+
+  std::string remove(const BatchInput& input) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    try {
+      file_->remove(input.name);
+      return "";
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  ExtractorOptions options_;
+  std::unique_ptr<io::FeatureCollectionFile> file_;
+};
+
+}  // namespace
+
+std::unique_ptr<BatchSink> make_collection_sink(const BatchSettings& settings,
+                                                const io::FeatureFormat& format) {
+  if (!format.open) throw Error(format.missing);
+  return std::make_unique<CollectionSink>(settings, format);
+}
+
+}  // namespace aief::cli
