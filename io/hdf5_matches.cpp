@@ -48,6 +48,15 @@ std::vector<Match> read_pair_group(hid_t group, const std::string& group_name,
                          static_cast<int>(std::lround((1.0f - scores0[i]) * 256.0f))});
   return matches;
 }
+
+// The pair group `group_name` when it is complete (its last dataset written), else none.
+Handle open_complete_pair_group(hid_t file, const std::string& group_name) {
+  Handle group = open_group_if_any(file, group_name);
+  if (group.ok() && H5Lexists(group.get(), "matching_scores0", H5P_DEFAULT) <= 0)
+    return Handle(-1, H5Gclose);
+  return group;
+}
+
 }  // namespace
 
 void Hdf5File::check_pair_owner(const std::string& group_name, const std::string& name0,
@@ -59,8 +68,8 @@ void Hdf5File::check_pair_owner(const std::string& group_name, const std::string
 bool Hdf5File::has_matches(const std::string& name0, const std::string& name1) const {
   const std::string group_name = hloc_pair_name(name0, name1);
   if (!may_hold(group_name)) return false;
-  const Handle group = open_group_if_any(file_, group_name);
-  if (!group.ok() || H5Lexists(group.get(), "matching_scores0", H5P_DEFAULT) <= 0) return false;
+  const Handle group = open_complete_pair_group(file_, group_name);
+  if (!group.ok()) return false;
   check_recorded_names(group.get(), group_name, name0, name1, path_);
   return true;
 }
@@ -78,19 +87,18 @@ std::optional<std::vector<Match>> Hdf5File::find_matches(const std::string& name
                                                          const std::string& name1) const {
   const std::string group_name = hloc_pair_name(name0, name1);
   if (!may_hold(group_name)) return std::nullopt;
-  const Handle group = open_group_if_any(file_, group_name);
-  if (!group.ok() || H5Lexists(group.get(), "matching_scores0", H5P_DEFAULT) <= 0)
-    return std::nullopt;
+  const Handle group = open_complete_pair_group(file_, group_name);
+  if (!group.ok()) return std::nullopt;
   check_recorded_names(group.get(), group_name, name0, name1, path_);
   return read_pair_group(group.get(), group_name, path_);
 }
+
 std::optional<PairRecord> Hdf5File::pair_record(const std::string& name0,
                                                 const std::string& name1) const {
   const std::string group_name = hloc_pair_name(name0, name1);
   if (!may_hold(group_name)) return std::nullopt;
-  const Handle group = open_group_if_any(file_, group_name);
-  if (!group.ok() || H5Lexists(group.get(), "matching_scores0", H5P_DEFAULT) <= 0)
-    return std::nullopt;
+  const Handle group = open_complete_pair_group(file_, group_name);
+  if (!group.ok()) return std::nullopt;
   PairRecord record{
       string_attribute(group.get(), "matcher"), string_attribute(group.get(), "options0"),
       string_attribute(group.get(), "options1"), string_attribute(group.get(), "source0"),

@@ -16,6 +16,7 @@
 #include "aief/match.hpp"
 #include "core/option_names.hpp"
 #include "core/option_table.hpp"
+#include "tests/field_count.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -23,18 +24,7 @@ namespace {
 
 namespace table = option_table;
 
-// The number of fields of an aggregate: the most initialisers it takes.
-struct AnyValue {
-  template <class T>
-  operator T() const;
-};
-template <class T, class... Values>
-constexpr std::size_t field_count() {
-  if constexpr (requires { T{Values{}..., AnyValue{}}; })
-    return field_count<T, Values..., AnyValue>();
-  else
-    return sizeof...(Values);
-}
+using test::field_count;
 
 template <class Options>
 std::set<std::string_view> keys_of() {
