@@ -81,8 +81,9 @@ struct FieldAccess {
 };
 
 // One option of one options struct (ExtractorOptions, MatchOptions, SweepOptions, RansacOptions):
-// the only place it is described. The columns after `words` are the extractor's (its modes, its
-// settings files); the last two, the matcher's ratio rule.
+// the only place it is described. yaml_key, per_mode and needs_mask are the extractor's (its
+// settings files, its modes, its entropy mask); applies_with_* the matcher's ratio rule; the
+// other tables leave them empty.
 template <class Options>
 struct Row {
   std::string_view key = {};  // the field's name and the record key ("mode": the preset)

@@ -77,16 +77,19 @@ OptionCall adapt_call() {
 }
 
 // The call's signature, then its text and keywords: a docstring; the signature kept for the stub
-// test.
+// test. "NAME(...)\n--\n\n" first is CPython's __text_signature__, so inspect.signature and
+// help() show the rows' parameters rather than (*args, **kwargs).
 std::string documented(const OptionCall& call, const std::string& text,
                        const std::string& keywords) {
   keep_signature(call);
-  return call.signature() + "\n\n" + text + "\n\nKeywords:\n" + keywords;
+  return call.signature() + "\n--\n\n" + text + "\n\nKeywords:\n" + keywords;
 }
 
 }  // namespace
 
 void bind_matching(py::module_& m) {
+  py::options signatures_from_the_rows;  // pybind11's own would say (*args, **kwargs)
+  signatures_from_the_rows.disable_function_signatures();
   static const std::string match_doc = documented(
       match_call(),
       "Hamming matches of descriptors a (N x 32 uint8, or Features) into b: an M x 3 int32 array "

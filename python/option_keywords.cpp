@@ -47,13 +47,11 @@ std::string text_of_keyword(const Keyword& keyword, const py::handle& value) {
 
 }  // namespace
 
-py::object python_default(const table::ValueSpec& spec, const table::OptionValue& value,
-                          bool depends_on_others) {
+py::object python_default(const table::OptionValue& value, bool depends_on_others) {
   if (depends_on_others) return py::none();
   if (const bool* flag = std::get_if<bool>(&value)) return py::bool_(*flag);
   if (const long long* integer = std::get_if<long long>(&value)) return py::int_(*integer);
   if (const double* number = std::get_if<double>(&value)) return py::float_(*number);
-  (void)spec;
   return py::str(std::string(std::get<std::string_view>(value)));
 }
 

@@ -27,14 +27,13 @@ struct Keyword {
 // The Python default of a row, as the stub and the docstrings show it: None where the value
 // depends on other options (the extractor's mode sets it, or it applies with another option
 // only: ratio), else the struct's default.
-py::object python_default(const table::ValueSpec& spec, const table::OptionValue& value,
-                          bool depends_on_others);
+py::object python_default(const table::OptionValue& value, bool depends_on_others);
 template <class Options>
 py::object python_default(const table::Row<Options>& row) {
   bool depends = !row.applies_with_key.empty();
   for (std::string_view set_by_mode : row.per_mode) depends = depends || !set_by_mode.empty();
   if (!row.is_field()) return py::str(table::defaults_text(row));  // the mode: its default name
-  return python_default(row.spec(), row.field.get(Options{}), depends);
+  return python_default(row.field.get(Options{}), depends);
 }
 
 class OptionCall {
