@@ -530,9 +530,13 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
       if (fixed && *by_mode != value)
         throw Error(mode_named + " " + mode_name + " means " + g.named + " " +
                     text_of(row, *by_mode) + ", so " + g.named + " " + g.text + " cannot apply");
+      if (row.needs_mask.empty()) {
+        row.field.set(options, value);
+        continue;
+      }
       const auto before = record_of(options);
       row.field.set(options, value);
-      if (!row.needs_mask.empty() && record_of(options) != before) needing_mask.push_back(&g);
+      if (record_of(options) != before) needing_mask.push_back(&g);
     }
   }
   if (options.entropy == EntropyMeasure::off)
