@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include "aief/error.hpp"
 #include "core/frame_pipeline.hpp"
@@ -15,20 +14,6 @@
 #include "parallel/scheduler.hpp"
 
 namespace aief {
-
-void SweepOptions::validate() const {
-  const auto fail = [](const std::string& field, double value, const std::string& rule) {
-    std::ostringstream message;
-    message << field << " must be " << rule << ", got " << value;
-    throw Error(message.str());
-  };
-  if (!std::isfinite(first_threshold) || first_threshold < 0)
-    fail("first_threshold", first_threshold, "finite and >= 0");
-  if (!std::isfinite(step) || step < 0.01 || step > 8) fail("step", step, "in [0.01, 8]");
-  if (min_inliers < 4) fail("min_inliers", min_inliers, ">= 4");
-  match.validate();
-  ransac.validate();
-}
 
 namespace {
 

@@ -2,24 +2,11 @@
 #include <array>
 #include <cmath>
 #include <numeric>
-#include <sstream>
 
 #include "aief/error.hpp"
 #include "aief/homography.hpp"
 
 namespace aief {
-
-void RansacOptions::validate() const {
-  const auto fail = [](const char* field, double value, const char* rule) {
-    std::ostringstream message;
-    message << field << " must be " << rule << ", got " << value;
-    throw Error(message.str());
-  };
-  if (!(threshold_px > 0.0) || !std::isfinite(threshold_px))
-    fail("threshold_px", threshold_px, "finite and > 0");
-  if (!(confidence > 0.0 && confidence < 1.0)) fail("confidence", confidence, "in (0, 1)");
-  if (max_iterations < 1) fail("max_iterations", max_iterations, ">= 1");
-}
 
 namespace {
 

@@ -3,57 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <string>
-
-#include <tbb/parallel_for.h>
 
 #include "aief/error.hpp"
 #include "core/kernel_table.hpp"
-#include "parallel/tsan_handoff.hpp"
+#include "parallel/scheduler.hpp"
 
 namespace aief {
-
-std::string_view to_string(MatcherKind kind) {
-  switch (kind) {
-    case MatcherKind::mutual: return "mutual";
-    case MatcherKind::ratio: return "ratio";
-    case MatcherKind::paper: return "paper";
-  }
-  return "?";
-}
-
-MatcherKind parse_matcher_kind(std::string_view name) {
-  if (name == "mutual") return MatcherKind::mutual;
-  if (name == "ratio") return MatcherKind::ratio;
-  if (name == "paper") return MatcherKind::paper;
-  throw Error("unknown matcher '" + std::string(name) + "' (expected mutual, ratio or paper)");
-}
-
-void MatchOptions::validate() const {
-  if (kind != MatcherKind::mutual && kind != MatcherKind::ratio && kind != MatcherKind::paper)
-    throw Error("matcher kind has an unknown value " + std::to_string(static_cast<int>(kind)));
-  if (!(ratio > 0.0 && ratio <= 1.0)) {
-    std::ostringstream message;
-    message << "ratio must be in (0, 1], got " << ratio;
-    throw Error(message.str());
-  }
-  if (max_distance < 0 || max_distance > 256)
-    throw Error("max_distance must be in [0, 256], got " + std::to_string(max_distance));
-}
-
-MatchOptions match_options_given(std::optional<std::string_view> matcher,
-                                 std::optional<double> ratio, std::string_view ratio_named,
-                                 std::string_view matcher_named) {
-  MatchOptions options;
-  if (matcher) options.kind = parse_matcher_kind(*matcher);
-  if (ratio && options.kind != MatcherKind::ratio)
-    throw Error(std::string(ratio_named) + " applies to " + std::string(matcher_named) +
-                " ratio only, not " + std::string(to_string(options.kind)));
-  if (ratio) options.ratio = *ratio;
-  options.validate();
-  return options;
-}
 
 namespace {
 
@@ -84,10 +40,8 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
   std::vector<int> band_col_best(band_col_distance.size());
   const std::uint8_t* train = b.front().data();  // Descriptor is a plain byte array: contiguous
 
-  const char bands_ended = 0;  // TBB's start of the bands and wait for them, for TSan
-  parallel::handoff_release(&parallel::kBodyStartTag);
-  tbb::parallel_for(0, bands, [&](int band) {
-    parallel::handoff_acquire(&parallel::kBodyStartTag);
+  // Each band writes its own rows and its own column minima: any schedule, the same matches.
+  parallel::Scheduler().for_each(bands, [&](int band) {
     std::vector<std::uint16_t> distances(static_cast<std::size_t>(n_b));
     int* col_distance =
         mutual ? band_col_distance.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
@@ -114,9 +68,7 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
       }
       row_nearest[static_cast<std::size_t>(i)] = nearest;
     }
-    parallel::handoff_release(&bands_ended);
   });
-  parallel::handoff_acquire(&bands_ended);
 
   std::vector<int> col_best;
   if (mutual) {

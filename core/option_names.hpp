@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "aief/error.hpp"
+#include "aief/match.hpp"
 #include "aief/options.hpp"
 
 namespace aief::option_names {
@@ -81,6 +82,14 @@ struct Table<CandidateRanking> {
   static constexpr Name<CandidateRanking> names[] = {
       {CandidateRanking::cross_score, "cross", "cross_score"},
       {CandidateRanking::peak_score, "peak", "peak_score"}};
+};
+
+template <>
+struct Table<MatcherKind> {
+  static constexpr std::string_view what = "matcher";
+  static constexpr Name<MatcherKind> names[] = {{MatcherKind::mutual, "mutual", "mutual"},
+                                                {MatcherKind::ratio, "ratio", "ratio"},
+                                                {MatcherKind::paper, "paper", "paper"}};
 };
 
 // The name of `value`; "?" for a value outside the table (an invalid cast).

@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "aief/error.hpp"
+#include "core/option_access.hpp"
 #include "core/option_names.hpp"
 
 namespace aief::option_table {
@@ -17,70 +18,9 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-template <class Enum>
-const ChoiceNames* choices_of() {
-  static const ChoiceNames names = [] {
-    ChoiceNames out{option_names::Table<Enum>::what, {}, {}};
-    for (const auto& n : option_names::Table<Enum>::names) {
-      out.names.push_back(n.name);
-      out.enumerators.push_back(n.enumerator);
-    }
-    return out;
-  }();
-  return &names;
-}
-
-template <auto Member>
-OptionValue get_field(const ExtractorOptions& options) {
-  const auto& value = options.*Member;
-  using T = std::decay_t<decltype(value)>;
-  if constexpr (std::is_enum_v<T>)
-    return option_names::name_of(value);
-  else if constexpr (std::is_same_v<T, bool>)
-    return value;
-  else if constexpr (std::is_integral_v<T>)
-    return static_cast<long long>(value);
-  else
-    return static_cast<double>(value);
-}
-
-template <auto Member>
-void set_field(ExtractorOptions& options, const OptionValue& value) {
-  auto& field = options.*Member;
-  using T = std::decay_t<decltype(field)>;
-  if constexpr (std::is_enum_v<T>)
-    field = option_names::parse<T>(std::get<std::string_view>(value));
-  else if constexpr (std::is_same_v<T, bool>)
-    field = std::get<bool>(value);
-  else if constexpr (std::is_integral_v<T>)
-    field = static_cast<T>(std::get<long long>(value));
-  else
-    field = std::get<double>(value);
-}
-
-template <class T>
-constexpr ValueKind kind_of() {
-  if constexpr (std::is_enum_v<T>)
-    return ValueKind::choice;
-  else if constexpr (std::is_same_v<T, bool>)
-    return ValueKind::toggle;
-  else if constexpr (std::is_integral_v<T>)
-    return ValueKind::integer;
-  else
-    return ValueKind::number;
-}
-
-// A field's access, from its member pointer: kind, get, set and (enums) names.
-template <auto Member>
-constexpr FieldAccess access = [] {
-  using T = std::decay_t<decltype(std::declval<ExtractorOptions>().*Member)>;
-  FieldAccess a{kind_of<T>(), get_field<Member>, set_field<Member>, nullptr};
-  if constexpr (std::is_enum_v<T>) a.choices = choices_of<T>;
-  return a;
-}();
-
 // The mode: a preset over the fields, no field of its own.
-constexpr FieldAccess kPreset{ValueKind::choice, nullptr, nullptr, choices_of<Mode>};
+constexpr FieldAccess<ExtractorOptions> kPreset{ValueKind::choice, nullptr, nullptr,
+                                                choices_of<Mode>};
 
 // F, "auto" (the automatic threshold) or "carried" (F carried through a video).
 void set_threshold(ExtractorOptions& options, const OptionValue& value) {
@@ -342,13 +282,14 @@ std::string number_text(double value) {
   return std::string(buffer, end);
 }
 
-std::string range_text(const OptionRow& row) {
+std::string range_text(const ValueSpec& spec) {
   const auto bound = [&](double v) {
-    return row.kind() == ValueKind::integer ? std::to_string(static_cast<long long>(v))
-                                            : number_text(v);
+    return spec.kind == ValueKind::integer ? std::to_string(static_cast<long long>(v))
+                                           : number_text(v);
   };
-  if (std::isinf(row.high)) return (row.low_is_open ? "> " : ">= ") + bound(row.low);
-  return std::string(row.low_is_open ? "(" : "[") + bound(row.low) + ", " + bound(row.high) + "]";
+  if (std::isinf(spec.high)) return (spec.low_is_open ? "> " : ">= ") + bound(spec.low);
+  return std::string(spec.low_is_open ? "(" : "[") + bound(spec.low) + ", " + bound(spec.high) +
+         (spec.high_is_open ? ")" : "]");
 }
 
 std::string joined(const std::vector<std::string_view>& items) {
@@ -360,9 +301,10 @@ std::string joined(const std::vector<std::string_view>& items) {
   return out;
 }
 
-bool in_range(const OptionRow& row, double value) {
-  const bool above_low = row.low_is_open ? value > row.low : value >= row.low;
-  return above_low && value <= row.high;
+bool in_range(const ValueSpec& spec, double value) {
+  const bool above_low = spec.low_is_open ? value > spec.low : value >= spec.low;
+  const bool below_high = spec.high_is_open ? value < spec.high : value <= spec.high;
+  return above_low && below_high;
 }
 
 const OptionValue* mode_value(const OptionRow& row, Mode mode, OptionValue& storage, bool& fixed) {
@@ -376,15 +318,10 @@ const OptionValue* mode_value(const OptionRow& row, Mode mode, OptionValue& stor
 
 }  // namespace
 
-const std::vector<OptionRow>& rows() {
+template <>
+const std::vector<Row<ExtractorOptions>>& rows_of<ExtractorOptions>() {
   static const std::vector<OptionRow> table = make_rows();
   return table;
-}
-
-const OptionRow& row(std::string_view key) {
-  for (const OptionRow& r : rows())
-    if (r.key == key) return r;
-  throw Error("no option '" + std::string(key) + "'");
 }
 
 bool parse_integer(std::string_view text, long long& value) {
@@ -424,52 +361,52 @@ bool parse_decimal(std::string_view text, double& value) {
   return true;
 }
 
-std::string expected_values(const OptionRow& row) {
-  const std::vector<std::string_view> words = split_words(row.words);
-  switch (row.kind()) {
-    case ValueKind::integer: return "an integer in " + range_text(row);
+std::string expected_values(const ValueSpec& spec) {
+  const std::vector<std::string_view> words = split_words(spec.words);
+  switch (spec.kind) {
+    case ValueKind::integer: return "an integer in " + range_text(spec);
     case ValueKind::number: {
       std::vector<std::string_view> items;
       const std::string number =
-          "a number " + std::string(std::isinf(row.high) ? "" : "in ") + range_text(row);
+          "a number " + std::string(std::isinf(spec.high) ? "" : "in ") + range_text(spec);
       items.push_back(number);
       items.insert(items.end(), words.begin(), words.end());
       return joined(items);
     }
-    case ValueKind::choice: return joined(row.field.choices()->names);
+    case ValueKind::choice: return joined(spec.choices()->names);
     case ValueKind::toggle: return joined(words);
   }
   return "";
 }
 
-OptionValue parse_value(const OptionRow& row, std::string_view text, std::string_view named) {
+OptionValue parse_value(const ValueSpec& spec, std::string_view text, std::string_view named) {
   const auto refuse = [&]() -> OptionValue {
-    throw Error(std::string(named) + " expects " + expected_values(row) + ", got '" +
+    throw Error(std::string(named) + " expects " + expected_values(spec) + ", got '" +
                 std::string(text) + "'");
   };
-  switch (row.kind()) {
+  switch (spec.kind) {
     case ValueKind::integer: {
       long long value = 0;
-      if (!parse_integer(text, value) || !in_range(row, static_cast<double>(value)))
+      if (!parse_integer(text, value) || !in_range(spec, static_cast<double>(value)))
         return refuse();
       return value;
     }
     case ValueKind::number: {
-      for (std::string_view word : split_words(row.words))
+      for (std::string_view word : split_words(spec.words))
         if (text == word) return word;
       double value = 0;
-      if (!parse_decimal(text, value) || !in_range(row, value)) return refuse();
+      if (!parse_decimal(text, value) || !in_range(spec, value)) return refuse();
       return value;
     }
     case ValueKind::choice: {
-      const ChoiceNames& choices = *row.field.choices();
+      const ChoiceNames& choices = *spec.choices();
       for (std::size_t i = 0; i < choices.names.size(); ++i)
         if (text == choices.names[i] || text == choices.enumerators[i]) return choices.names[i];
       throw Error("unknown " + std::string(choices.what) + " '" + std::string(text) + "' for " +
                   std::string(named) + " (expected " + joined(choices.names) + ")");
     }
     case ValueKind::toggle: {
-      const std::vector<std::string_view> words = split_words(row.words);
+      const std::vector<std::string_view> words = split_words(spec.words);
       if (text == words[0] || text == "1") return true;  // 1 / 0: settings files' custom
       if (text == words[1] || text == "0") return false;
       return refuse();
@@ -478,9 +415,9 @@ OptionValue parse_value(const OptionRow& row, std::string_view text, std::string
   return refuse();
 }
 
-std::string text_of(const OptionRow& row, const OptionValue& value) {
+std::string text_of(const ValueSpec& spec, const OptionValue& value) {
   if (const bool* flag = std::get_if<bool>(&value))
-    return std::string(split_words(row.words)[*flag ? 0 : 1]);
+    return std::string(split_words(spec.words)[*flag ? 0 : 1]);
   if (const long long* integer = std::get_if<long long>(&value)) return std::to_string(*integer);
   if (const double* number = std::get_if<double>(&value)) return number_text(*number);
   return std::string(std::get<std::string_view>(value));
@@ -512,16 +449,28 @@ std::string defaults_text(const OptionRow& row) {
   return text;
 }
 
-std::vector<std::pair<std::string_view, OptionValue>> record_of(const ExtractorOptions& options) {
-  std::vector<std::pair<std::string_view, OptionValue>> record;
-  for (const OptionRow& r : rows()) {
-    if (!r.is_field()) continue;
-    OptionValue value = r.field.get(options);
-    if (const double* number = std::get_if<double>(&value); number && std::isinf(*number))
-      value = std::string_view("inf");
-    record.emplace_back(r.key, value);
+void check_value(std::string_view key, const ValueSpec& spec, const OptionValue& value) {
+  bool ok = true;
+  std::string shown;
+  if (const long long* integer = std::get_if<long long>(&value)) {
+    ok = in_range(spec, static_cast<double>(*integer));
+    shown = std::to_string(*integer);
+  } else if (const double* number = std::get_if<double>(&value)) {
+    // A row whose words name infinity (the pool's "inf") takes it; NaN is never in range.
+    const bool infinity_named = std::isinf(*number) && *number > 0 &&
+                                std::string_view(spec.words).find("inf") != std::string_view::npos;
+    ok = infinity_named || (std::isfinite(*number) && in_range(spec, *number));
+    shown = number_text(*number);
+  } else if (const std::string_view* name = std::get_if<std::string_view>(&value)) {
+    if (*name == "?") throw Error(std::string(key) + " has an unknown value");
   }
-  return record;
+  if (!ok) throw Error(std::string(key) + " must be " + expected_values(spec) + ", got " + shown);
+}
+
+OptionValue recorded(const OptionValue& value) {
+  if (const double* number = std::get_if<double>(&value); number && std::isinf(*number))
+    return std::string_view("inf");
+  return value;
 }
 
 namespace {
@@ -543,16 +492,11 @@ bool same_recorded_value(std::string_view a, std::string_view b) {
 
 }  // namespace
 
-std::vector<OptionDifference> output_differences(const RecordedOptions& before,
-                                                 const RecordedOptions& after) {
-  std::vector<OptionDifference> differences;
-  for (const OptionRow& r : rows()) {
-    if (!r.is_field() || !r.changes_output) continue;
-    const std::string_view was = recorded_value(before, r.key), is = recorded_value(after, r.key);
-    if (!same_recorded_value(was, is))
-      differences.push_back({std::string(r.key), std::string(was), std::string(is)});
-  }
-  return differences;
+void add_difference(std::string_view key, const RecordedOptions& before,
+                    const RecordedOptions& after, std::vector<OptionDifference>& differences) {
+  const std::string_view was = recorded_value(before, key), is = recorded_value(after, key);
+  if (!same_recorded_value(was, is))
+    differences.push_back({std::string(key), std::string(was), std::string(is)});
 }
 
 std::string text_of(const OptionDifference& difference) {
@@ -573,23 +517,33 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
   }
   ExtractorOptions options = options_for_mode(mode);
   const std::string mode_name(option_names::name_of(mode));
-  for (const GivenOption& g : given) {
-    if (!g.row->is_field()) continue;
-    const OptionValue value = parse_value(*g.row, g.text, g.named);
-    OptionValue storage;
-    bool fixed = false;
-    const OptionValue* by_mode = mode_value(*g.row, mode, storage, fixed);
-    if (fixed && *by_mode != value)
-      throw Error(mode_named + " " + mode_name + " means " + g.named + " " +
-                  text_of(*g.row, *by_mode) + ", so " + g.named + " " + g.text + " cannot apply");
-    g.row->field.set(options, value);
+  // Options that need the mask and change a value (given the value the options hold, one changes
+  // nothing and is no request: Extractor(**extractor.options) of an orbslam2 extractor).
+  std::vector<const GivenOption*> needing_mask;
+  for (const OptionRow& row : rows()) {
+    for (const GivenOption& g : given) {
+      if (g.row != &row || !row.is_field()) continue;
+      const OptionValue value = parse_value(row, g.text, g.named);
+      OptionValue storage;
+      bool fixed = false;
+      const OptionValue* by_mode = mode_value(row, mode, storage, fixed);
+      if (fixed && *by_mode != value)
+        throw Error(mode_named + " " + mode_name + " means " + g.named + " " +
+                    text_of(row, *by_mode) + ", so " + g.named + " " + g.text + " cannot apply");
+      if (row.needs_mask.empty()) {
+        row.field.set(options, value);
+        continue;
+      }
+      const auto before = record_of(options);
+      row.field.set(options, value);
+      if (record_of(options) != before) needing_mask.push_back(&g);
+    }
   }
   if (options.entropy == EntropyMeasure::off)
-    for (const GivenOption& g : given)
-      if (!g.row->needs_mask.empty())
-        throw Error(g.named + " " + std::string(g.row->needs_mask) + ", which " +
-                    (entropy_given ? entropy_given->named + " off" : mode_named + " " + mode_name) +
-                    " turns off: drop one of the two");
+    for (const GivenOption* g : needing_mask)
+      throw Error(g->named + " " + std::string(g->row->needs_mask) + ", which " +
+                  (entropy_given ? entropy_given->named + " off" : mode_named + " " + mode_name) +
+                  " turns off: drop one of the two");
   options.validate();
   return options;
 }
@@ -598,28 +552,9 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
 
 namespace aief {
 
-// Generated from the table: each row's range and names; two rules that span fields follow.
+// Generated from the table: each row's range and names; the rules that span fields follow.
 void ExtractorOptions::validate() const {
-  for (const option_table::OptionRow& row : option_table::rows()) {
-    if (!row.is_field()) continue;
-    const option_table::OptionValue value = row.field.get(*this);
-    const std::string name(row.key);
-    bool ok = true;
-    std::string shown;
-    if (const long long* integer = std::get_if<long long>(&value)) {
-      ok = option_table::in_range(row, static_cast<double>(*integer));
-      shown = std::to_string(*integer);
-    } else if (const double* number = std::get_if<double>(&value)) {
-      // A row whose words stand for infinity (the pool's "inf") takes it; NaN is never in range.
-      const bool infinity_named = std::isinf(*number) && *number > 0 && std::isinf(row.high);
-      ok = infinity_named || (std::isfinite(*number) && option_table::in_range(row, *number));
-      shown = option_table::number_text(*number);
-    } else if (const std::string_view* name_of_value = std::get_if<std::string_view>(&value)) {
-      if (*name_of_value == "?") throw Error(name + " has an unknown value");
-    }
-    if (!ok)
-      throw Error(name + " must be " + option_table::expected_values(row) + ", got " + shown);
-  }
+  option_table::check_fields(*this);
   // The pyramid computes in float (ORB-SLAM2's arithmetic, core/level_geometry.cpp): check the
   // value it will use, so 1.00000001 (1.0 as a float, which makes every level budget 0/0) is
   // refused rather than accepted and silently rounded.

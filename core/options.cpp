@@ -14,6 +14,7 @@ std::string_view to_string(Mode value) { return option_names::name_of(value); }
 std::string_view to_string(CoordinateMap value) { return option_names::name_of(value); }
 std::string_view to_string(StarvationGuard value) { return option_names::name_of(value); }
 std::string_view to_string(CandidateRanking value) { return option_names::name_of(value); }
+std::string_view to_string(MatcherKind value) { return option_names::name_of(value); }
 
 Distribution parse_distribution(std::string_view name) {
   return option_names::parse<Distribution>(name);
@@ -31,6 +32,10 @@ StarvationGuard parse_starvation_guard(std::string_view name) {
 }
 CandidateRanking parse_candidate_ranking(std::string_view name) {
   return option_names::parse<CandidateRanking>(name);
+}
+
+MatcherKind parse_matcher_kind(std::string_view name) {
+  return option_names::parse<MatcherKind>(name);
 }
 
 double parse_candidate_pool(std::string_view text) {

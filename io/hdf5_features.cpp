@@ -32,26 +32,19 @@ bool Hdf5File::has_features(const std::string& image) const {
   return may_hold(name) && exists(file_, name + "/image_size");
 }
 bool Hdf5File::features_belong_to(const std::string& image, const SourceRecord& source) const {
-  const std::string name = image_group(image);
-  if (!has_features(image) || !exists(file_, name + "/source")) return false;
-  const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
-  std::vector<hsize_t> dims;
-  const std::vector<std::int64_t> stored =
-      read_dataset<std::int64_t>(group.get(), "source", dims, name);
-  return stored.size() == 2 && static_cast<std::uintmax_t>(stored[0]) == source.bytes &&
-         stored[1] == source.mtime_ns;
+  const std::optional<SourceRecord> stored = recorded_source(image);
+  return stored && stored->bytes == source.bytes && stored->mtime_ns == source.mtime_ns;
 }
 
-std::optional<std::pair<std::int64_t, std::int64_t>> Hdf5File::recorded_source(
-    const std::string& image) const {
+std::optional<SourceRecord> Hdf5File::recorded_source(const std::string& image) const {
   const std::string name = image_group(image);
-  if (!exists(file_, name + "/source")) return std::nullopt;
+  if (!has_features(image) || !exists(file_, name + "/source")) return std::nullopt;
   const Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose);
   std::vector<hsize_t> dims;
   const std::vector<std::int64_t> stored =
       read_dataset<std::int64_t>(group.get(), "source", dims, name);
   if (stored.size() != 2) return std::nullopt;
-  return std::make_pair(stored[0], stored[1]);
+  return SourceRecord{image, static_cast<std::uintmax_t>(stored[0]), stored[1], {}};
 }
 
 std::optional<std::string> Hdf5File::option_record(const std::string& image) const {

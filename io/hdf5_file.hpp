@@ -23,7 +23,9 @@
 //   float16, its readers take any width, and int32 holds more than 32767 keypoints. The group's
 //   string attributes name0 and name1 (fixed length, UTF-8; variable-length ones are read too)
 //   record the pair's own names, since two pairs can share a group name ("a/b.png c.png" and
-//   "a-b.png c.png"): a pair never reads or keeps another's.
+//   "a-b.png c.png"): a pair never reads or keeps another's. The string attributes matcher,
+//   options0, options1, source0 and source1 record the matcher options and the features matched
+//   (io/match_record.hpp), so a resumed run redoes a pair whose matcher or features changed.
 //
 // One class, defined by job: io/hdf5_file.cpp opens and closes the file and keeps its space
 // policy (reservation, fence, batched flushes); io/hdf5_features.cpp the image groups;
@@ -41,6 +43,7 @@
 #include "aief/features.hpp"
 #include "aief/match.hpp"
 #include "aief/options.hpp"
+#include "io/match_record.hpp"
 #include "io/pairs_file.hpp"
 #include "io/source_record.hpp"
 
@@ -93,10 +96,9 @@ class Hdf5File {
   // Whether `name` is a complete image group written from the file `source` describes (same
   // size and modification time; a group written without a source never is).
   bool features_belong_to(const std::string& name, const SourceRecord& source) const;
-  // The source the image group `name` records (file size, modification time in ns); nullopt
-  // when it records none.
-  std::optional<std::pair<std::int64_t, std::int64_t>> recorded_source(
-      const std::string& name) const;
+  // The source record of the complete image group `name` (bytes and mtime_ns; the name is
+  // `name`); nullopt when it has none.
+  std::optional<SourceRecord> recorded_source(const std::string& name) const;
   // The option record of the image group `name` (its JSON text); nullopt when it has none.
   std::optional<std::string> option_record(const std::string& name) const;
   // Writes one image's group, replacing any group of that name; with `source` and `options`,
@@ -111,8 +113,12 @@ class Hdf5File {
   Features read_features(const std::string& name) const;
   // Only the descriptors of an image (what matching needs).
   std::vector<Descriptor> read_descriptors(const std::string& name) const;
+  // Writes one pair's group, replacing any group of the pair; with `record`, records it
+  // (io/match_record.hpp).
   void write_matches(const std::string& name0, const std::string& name1, int keypoints0,
-                     const std::vector<Match>& matches);
+                     const std::vector<Match>& matches, const PairRecord* record = nullptr);
+  // The record of the pair's complete group; nullopt when it has none (or no complete group).
+  std::optional<PairRecord> pair_record(const std::string& name0, const std::string& name1) const;
   // The matches of a pair (query = index in image 0); distance from matching_scores0. Throws as
   // has_matches does for another pair's group.
   std::vector<Match> read_matches(const std::string& name0, const std::string& name1) const;

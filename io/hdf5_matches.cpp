@@ -63,6 +63,15 @@ std::vector<Match> read_pair_group(hid_t group, const std::string& group_name,
                          static_cast<int>(std::lround((1.0f - scores0[i]) * 256.0f))});
   return matches;
 }
+
+// The pair group `group_name` when it is complete (its last dataset written), else none.
+Handle open_complete_pair_group(hid_t file, const std::string& group_name) {
+  Handle group = open_group_if_any(file, group_name);
+  if (group.ok() && H5Lexists(group.get(), "matching_scores0", H5P_DEFAULT) <= 0)
+    return Handle(-1, H5Gclose);
+  return group;
+}
+
 }  // namespace
 
 void Hdf5File::check_pair_owner(const std::string& group_name, const std::string& name0,
@@ -74,8 +83,8 @@ void Hdf5File::check_pair_owner(const std::string& group_name, const std::string
 bool Hdf5File::has_matches(const std::string& name0, const std::string& name1) const {
   const std::string group_name = hloc_pair_name(name0, name1);
   if (!may_hold(group_name)) return false;
-  const Handle group = open_group_if_any(file_, group_name);
-  if (!group.ok() || H5Lexists(group.get(), "matching_scores0", H5P_DEFAULT) <= 0) return false;
+  const Handle group = open_complete_pair_group(file_, group_name);
+  if (!group.ok()) return false;
   check_recorded_names(group.get(), group_name, name0, name1, path_);
   return true;
 }
@@ -94,14 +103,28 @@ std::optional<std::vector<Match>> Hdf5File::find_matches(const std::string& name
                                                          std::size_t* queries) const {
   const std::string group_name = hloc_pair_name(name0, name1);
   if (!may_hold(group_name)) return std::nullopt;
-  const Handle group = open_group_if_any(file_, group_name);
-  if (!group.ok() || H5Lexists(group.get(), "matching_scores0", H5P_DEFAULT) <= 0)
-    return std::nullopt;
+  const Handle group = open_complete_pair_group(file_, group_name);
+  if (!group.ok()) return std::nullopt;
   check_recorded_names(group.get(), group_name, name0, name1, path_);
   return read_pair_group(group.get(), group_name, path_, queries);
 }
+
+std::optional<PairRecord> Hdf5File::pair_record(const std::string& name0,
+                                                const std::string& name1) const {
+  const std::string group_name = hloc_pair_name(name0, name1);
+  if (!may_hold(group_name)) return std::nullopt;
+  const Handle group = open_complete_pair_group(file_, group_name);
+  if (!group.ok()) return std::nullopt;
+  PairRecord record{
+      string_attribute(group.get(), "matcher"), string_attribute(group.get(), "options0"),
+      string_attribute(group.get(), "options1"), string_attribute(group.get(), "source0"),
+      string_attribute(group.get(), "source1")};
+  if (record.matcher.empty()) return std::nullopt;
+  return record;
+}
+
 void Hdf5File::write_matches(const std::string& name0, const std::string& name1, int keypoints0,
-                             const std::vector<Match>& matches) {
+                             const std::vector<Match>& matches, const PairRecord* record) {
   silence_hdf5();
   const std::string pair_name = hloc_pair_name(name0, name1);
   if (may_hold(pair_name) && exists(file_, pair_name)) {
@@ -117,14 +140,26 @@ void Hdf5File::write_matches(const std::string& name0, const std::string& name1,
     scores0[static_cast<std::size_t>(m.query)] = 1.0f - static_cast<float>(m.distance) / 256.0f;
   }
   const hsize_t n = matches0.size();
-  write_guarded(n * (sizeof(std::int32_t) + sizeof(float)), "pair '" + pair_name + "'", [&] {
-    const Handle group = create_group(file_, pair_name, path_);
-    note_group(pair_name);
-    write_string_attribute(group.get(), "name0", name0, StringLength::fixed);
-    write_string_attribute(group.get(), "name1", name1, StringLength::fixed);
-    write_dataset(group.get(), "matches0", {n}, matches0, pair_name);
-    write_dataset(group.get(), "matching_scores0", {n}, scores0,
-                  pair_name);  // last: marks the pair complete
-  });
+  const std::uint64_t record_bytes = record ? record->matcher.size() + record->options0.size() +
+                                                  record->options1.size() + record->source0.size() +
+                                                  record->source1.size()
+                                            : 0;
+  write_guarded(n * (sizeof(std::int32_t) + sizeof(float)) + record_bytes,
+                "pair '" + pair_name + "'", [&] {
+                  const Handle group = create_group(file_, pair_name, path_);
+                  note_group(pair_name);
+                  write_string_attribute(group.get(), "name0", name0, StringLength::fixed);
+                  write_string_attribute(group.get(), "name1", name1, StringLength::fixed);
+                  if (record) {
+                    write_string_attribute(group.get(), "matcher", record->matcher);
+                    write_string_attribute(group.get(), "options0", record->options0);
+                    write_string_attribute(group.get(), "options1", record->options1);
+                    write_string_attribute(group.get(), "source0", record->source0);
+                    write_string_attribute(group.get(), "source1", record->source1);
+                  }
+                  write_dataset(group.get(), "matches0", {n}, matches0, pair_name);
+                  write_dataset(group.get(), "matching_scores0", {n}, scores0,
+                                pair_name);  // last: marks the pair complete
+                });
 }
 }  // namespace aief::io

@@ -32,13 +32,13 @@ namespace {
 // time) and its option record.
 std::uint64_t making_record_hash(const Hdf5File& file, const std::string& name) {
   const std::optional<std::string> options = file.option_record(name);
-  const std::optional<std::pair<std::int64_t, std::int64_t>> source = file.recorded_source(name);
+  const std::optional<SourceRecord> source = file.recorded_source(name);
   std::string record = options ? "1" + *options : "0";
   if (source)
     record.append("|")
-        .append(std::to_string(source->first))
+        .append(std::to_string(source->bytes))
         .append("|")
-        .append(std::to_string(source->second));
+        .append(std::to_string(source->mtime_ns));
   return std::hash<std::string>{}(record);
 }
 

@@ -7,7 +7,10 @@
 
 namespace aief::io {
 
-void write_option_record(JsonWriter& json, const ExtractorOptions& options) {
+namespace {
+
+template <class Options>
+void write_record(JsonWriter& json, const Options& options) {
   json.begin_object();
   for (const auto& [key, value] : option_table::record_of(options)) {
     json.key(key);
@@ -16,15 +19,26 @@ void write_option_record(JsonWriter& json, const ExtractorOptions& options) {
   json.end_object();
 }
 
-std::string option_record_json(const ExtractorOptions& options) {
+template <class Options>
+std::string record_json(const Options& options) {
   std::ostringstream out;
   JsonWriter json(out);
   json.set_newline_depth(0);
-  write_option_record(json, options);
+  write_record(json, options);
   std::string text = out.str();
   if (!text.empty() && text.back() == '\n') text.pop_back();
   return text;
 }
+
+}  // namespace
+
+void write_option_record(JsonWriter& json, const ExtractorOptions& options) {
+  write_record(json, options);
+}
+
+std::string option_record_json(const ExtractorOptions& options) { return record_json(options); }
+
+std::string match_option_record_json(const MatchOptions& options) { return record_json(options); }
 
 namespace {
 
@@ -76,12 +90,13 @@ std::optional<option_table::RecordedOptions> read_option_record_json(std::string
   }
 }
 
+template <class Options = ExtractorOptions>
 std::vector<std::string> changes_between(
     const std::optional<option_table::RecordedOptions>& first,
     const std::optional<option_table::RecordedOptions>& other) {
   if (!first || !other) return {std::string(kNoOptionRecord)};
   std::vector<std::string> changes;
-  for (const auto& difference : option_table::output_differences(*first, *other))
+  for (const auto& difference : option_table::output_differences<Options>(*first, *other))
     changes.push_back(option_table::text_of(difference));
   return changes;
 }
@@ -96,6 +111,11 @@ std::vector<std::string> option_changes(const std::optional<std::string>& record
 
 std::vector<std::string> option_changes(const std::string& first, const std::string& other) {
   return changes_between(read_option_record_json(first), read_option_record_json(other));
+}
+
+std::vector<std::string> match_option_changes(const std::string& first, const std::string& other) {
+  return changes_between<MatchOptions>(read_option_record_json(first),
+                                       read_option_record_json(other));
 }
 
 std::string listed(const std::vector<std::string>& changes) {

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "aief/match.hpp"
 #include "aief/options.hpp"
 #include "io/json_writer.hpp"
 
@@ -33,6 +34,12 @@ std::vector<std::string> option_changes(const std::optional<std::string>& record
 // The same between two records: what `other` does not share with `first` ("n_features 500 ->
 // 1000", first's value first); an unreadable record is kNoOptionRecord.
 std::vector<std::string> option_changes(const std::string& first, const std::string& other);
+
+// The same for the matcher options a matches file records (io/match_record.hpp): the record
+// {"kind":"mutual","ratio":0.8,"max_distance":256}, and what `other` does not share with `first`
+// ("kind mutual -> ratio"; kNoOptionRecord for an unreadable record).
+std::string match_option_record_json(const MatchOptions& options);
+std::vector<std::string> match_option_changes(const std::string& first, const std::string& other);
 
 // "n_features 500 -> 3000, entropy histogram -> off": changes as messages list them.
 std::string listed(const std::vector<std::string>& changes);

@@ -1,6 +1,5 @@
 // aief.Extractor: ExtractorOptions as keyword arguments (the option table's Python keywords,
 // core/option_table.hpp), extract() with the GIL released, and the options back as a dict.
-#include <algorithm>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -15,84 +14,26 @@
 #include "io/option_record.hpp"
 #include "python/bindings.hpp"
 #include "python/extraction_rendezvous.hpp"
+#include "python/option_keywords.hpp"
 #include "python/py_extractor.hpp"
 
 namespace aief::python {
 
 namespace {
 
-namespace table = option_table;
-
-bool is_bool(const py::handle& value) {
-  const std::string type = py::str(py::type::of(value).attr("__name__"));
-  return py::isinstance<py::bool_>(value) || type == "bool_" || type == "bool";  // numpy.bool_ too
+// Extractor(*args, **kwargs): the table's keywords, by position or name, or the record's keys
+// (what Extractor.options holds); None means not given (the mode's value). Resolved by the
+// table, as the CLI is.
+OptionCall extractor_call() {
+  OptionCall call("Extractor", {}, 0);
+  call.add_group<ExtractorOptions>(/*record_keys=*/true);
+  return call;
 }
 
-[[noreturn]] void wrong_type(const table::OptionRow& row, const py::handle& value,
-                             const char* wanted) {
-  throw py::type_error(std::string(row.python_keyword) + " must be " + wanted + ", got " +
-                       std::string(py::repr(value)) + " (" +
-                       py::type::of(value).attr("__name__").cast<std::string>() + ")");
-}
-
-// A keyword's value as the text the option table parses: integers by their digits, numbers by
-// their shortest repr (which reads back as the same double), names and words as they are. numpy
-// scalars count as the numbers they are; a bool is no number. Wrong types raise TypeError; wrong
-// values raise aief.Error from the table's parser, as the CLI's do.
-std::string text_of_keyword(const table::OptionRow& row, const py::handle& value) {
-  const bool is_text = py::isinstance<py::str>(value);
-  switch (row.kind()) {
-    case table::ValueKind::integer:
-      if (is_bool(value) || !PyIndex_Check(value.ptr())) wrong_type(row, value, "an integer");
-      return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
-    case table::ValueKind::number:
-      if (is_text && !row.words.empty()) return value.cast<std::string>();
-      if (is_bool(value) || is_text || !PyNumber_Check(value.ptr()))
-        wrong_type(row, value, row.words.empty() ? "a number" : "a number or a word");
-      return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
-    case table::ValueKind::choice:
-      if (!is_text) wrong_type(row, value, "a name (str)");
-      return value.cast<std::string>();
-    case table::ValueKind::toggle:
-      if (is_text) return value.cast<std::string>();
-      if (!is_bool(value)) wrong_type(row, value, "a bool");
-      return table::text_of(row, value.cast<bool>());
-  }
-  return {};
-}
-
-// Extractor(*args, **kwargs): positional arguments in the table's python_position order, then the
-// keywords; None means not given (the mode's value). Resolved by the table, as the CLI is.
 ExtractorOptions options_from(const py::args& args, const py::kwargs& kwargs) {
-  std::vector<const table::OptionRow*> positional;
-  for (const table::OptionRow& row : table::rows())
-    if (row.python_position > 0) positional.push_back(&row);
-  std::sort(positional.begin(), positional.end(),
-            [](const table::OptionRow* a, const table::OptionRow* b) {
-              return a->python_position < b->python_position;
-            });
-  if (args.size() > positional.size())
-    throw py::type_error("Extractor() takes at most " + std::to_string(positional.size()) +
-                         " positional arguments (" + std::to_string(args.size()) + " given)");
-  std::vector<std::pair<const table::OptionRow*, py::handle>> values;
-  for (std::size_t i = 0; i < args.size(); ++i) values.emplace_back(positional[i], args[i]);
-  for (const auto& [key, value] : kwargs) {
-    const std::string keyword = py::str(key);
-    const table::OptionRow* row = nullptr;
-    for (const table::OptionRow& r : table::rows())
-      if (r.has_front_ends() && r.python_keyword == keyword) row = &r;
-    if (!row)
-      throw py::type_error("Extractor() got an unexpected keyword argument '" + keyword + "'");
-    for (const auto& [given, unused] : values)
-      if (given == row)
-        throw py::type_error("Extractor() got multiple values for argument '" + keyword + "'");
-    values.emplace_back(row, value);
-  }
-  std::vector<table::GivenOption> given;
-  for (const auto& [row, value] : values)
-    if (!value.is_none())
-      given.push_back({row, text_of_keyword(*row, value), std::string(row->python_keyword)});
-  return table::resolve_options(given);
+  OptionCall call = extractor_call();
+  call.read(args, kwargs);
+  return table::resolve_options(call.given<ExtractorOptions>(0));
 }
 
 // The record of the options, as Python values ("inf" as float('inf')).
@@ -117,26 +58,17 @@ py::dict options_dict(const ExtractorOptions& options) {
   return d;
 }
 
-// The constructor's docstring: every keyword with its default, from the table.
+// The constructor's docstring: the call and every keyword with its default, from the table.
 std::string extractor_doc() {
-  std::string doc =
-      "ORB features with the AIEF entropy mask. Extractor(n_features, mode, threshold, levels, "
-      "scale, threads, "
-      "kernels, **keywords): a mode sets its options first, the keywords given override them, and "
-      "a keyword the "
-      "mode cannot honour is refused (as aief's CLI does). None keeps the mode's value. A wrong "
-      "type raises "
-      "TypeError, a wrong value aief.Error.\n\nKeywords:\n";
-  for (const table::OptionRow& row : table::rows()) {
-    if (!row.has_front_ends()) continue;
-    doc += "  " + std::string(row.python_keyword) + ": " + std::string(row.help) + " (";
-    if (row.kind() == table::ValueKind::choice)
-      doc += table::expected_values(row) + "; ";
-    else if (row.kind() == table::ValueKind::toggle)
-      doc += "True / False; ";
-    doc += "default " + table::defaults_text(row) + ")\n";
-  }
-  return doc;
+  const OptionCall call = extractor_call();
+  keep_signature(call);
+  return call.signature() +
+         "\n\nORB features with the AIEF entropy mask: a mode sets its options first, the keywords "
+         "given override them, and a keyword the mode cannot honour is refused (as aief's CLI "
+         "does). None keeps the mode's value. The keys of Extractor.options are keywords too, so "
+         "Extractor(**extractor.options) makes the same extractor. A wrong type raises TypeError, "
+         "a wrong value aief.Error.\n\nKeywords:\n" +
+         keywords_doc<ExtractorOptions>();
 }
 
 }  // namespace
@@ -256,6 +188,7 @@ void bind_testing(py::module_& m) {
                                   : row.kind() == table::ValueKind::number ? "number"
                                   : row.kind() == table::ValueKind::choice ? "choice"
                                                                            : "toggle");
+          r["words"] = std::string(row.words);
           r["low"] = row.low;
           r["high"] = row.high;
           py::list names;
@@ -268,6 +201,15 @@ void bind_testing(py::module_& m) {
         return rows;
       },
       "Test hook: the option table's rows that have front ends (core/option_table.hpp)");
+  m.def(
+      "_signatures",
+      [] {
+        py::dict out;
+        for (const auto& [function, signature] : kept_signatures())
+          out[function.c_str()] = signature;
+        return out;
+      },
+      "Test hook: each call that takes options, as its option rows write it (for the stub test)");
   m.def("_arm_extraction_rendezvous", &arm_extraction_rendezvous, py::arg("parties"),
         py::arg("timeout_s"),
         "Test hook: every extraction waits, GIL released, until `parties` are inside at once (0 "

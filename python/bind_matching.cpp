@@ -1,6 +1,4 @@
 // aief.match, aief.find_homography and aief.adapt on numpy arrays.
-#include <optional>
-#include <sstream>
 #include <string>
 
 #include <pybind11/stl.h>
@@ -9,8 +7,8 @@
 #include "aief/error.hpp"
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
-#include "core/matcher.hpp"
 #include "python/bindings.hpp"
+#include "python/option_keywords.hpp"
 #include "python/py_extractor.hpp"
 
 namespace aief::python {
@@ -56,32 +54,56 @@ py::tuple homography_tuple(const HomographyResult& result, std::size_t n) {
   return py::make_tuple(H, mask);
 }
 
-// The CLI's rule (core/matcher.hpp): ratio only with matcher="ratio".
-MatchOptions match_options(const std::string& matcher, const std::optional<double>& ratio,
-                           int max_distance) {
-  MatchOptions options = match_options_given(matcher, ratio, "ratio", "matcher");
-  options.max_distance = max_distance;
-  options.validate();
-  return options;
+// The calls that take options: their leading parameters, then the rows of their structs
+// (python/option_keywords.hpp), so keywords, positions and defaults are the tables'.
+OptionCall match_call() {
+  OptionCall call("match", {"a", "b"}, 2);
+  call.add_group<MatchOptions>();
+  return call;
+}
+
+OptionCall find_homography_call() {
+  OptionCall call("find_homography", {"src", "dst"}, 2);
+  call.add_group<RansacOptions>();
+  return call;
+}
+
+// adapt's options: the sweep's (group 0), then its matcher's (group 1).
+OptionCall adapt_call() {
+  OptionCall call("adapt", {"image_a", "image_b", "extractor"}, 2);
+  call.add_group<SweepOptions>();
+  call.add_group<MatchOptions>();
+  return call;
+}
+
+// The call's signature, then its text and keywords: a docstring; the signature kept for the stub
+// test. "NAME(...)\n--\n\n" first is CPython's __text_signature__, so inspect.signature and
+// help() show the rows' parameters rather than (*args, **kwargs).
+std::string documented(const OptionCall& call, const std::string& text,
+                       const std::string& keywords) {
+  keep_signature(call);
+  return call.signature() + "\n--\n\n" + text + "\n\nKeywords:\n" + keywords;
 }
 
 }  // namespace
 
 void bind_matching(py::module_& m) {
-  const MatchOptions md;
-  std::ostringstream ratio_default;
-  ratio_default << md.ratio;
-  static const std::string match_doc =
+  py::options signatures_from_the_rows;  // pybind11's own would say (*args, **kwargs)
+  signatures_from_the_rows.disable_function_signatures();
+  static const std::string match_doc = documented(
+      match_call(),
       "Hamming matches of descriptors a (N x 32 uint8, or Features) into b: an M x 3 int32 array "
-      "of (query, train, "
-      "distance), sorted by query. matcher: mutual | ratio | paper; ratio (Lowe's, default " +
-      ratio_default.str() + ") goes with matcher='ratio' only, as aief match --ratio.";
+      "of (query, train, distance), sorted by query; ratio goes with matcher='ratio' only, as "
+      "aief match --ratio.",
+      keywords_doc<MatchOptions>());
   m.def(
       "match",
-      [](const py::object& a, const py::object& b, const std::string& matcher,
-         const std::optional<double>& ratio, int max_distance) {
-        const MatchOptions options = match_options(matcher, ratio, max_distance);
-        const std::vector<Descriptor> da = descriptors_from(a, "a"), db = descriptors_from(b, "b");
+      [](const py::args& args, const py::kwargs& kwargs) {
+        OptionCall call = match_call();
+        call.read(args, kwargs);
+        const MatchOptions options = call.options<MatchOptions>(0);
+        const std::vector<Descriptor> da = descriptors_from(call.leading(0), "a"),
+                                      db = descriptors_from(call.leading(1), "b");
         std::vector<Match> matches;
         {
           py::gil_scoped_release no_gil;
@@ -89,21 +111,21 @@ void bind_matching(py::module_& m) {
         }
         return matches_array(matches);
       },
-      py::arg("a"), py::arg("b"), py::arg("matcher") = std::string(to_string(md.kind)),
-      py::arg("ratio") = py::none(), py::arg("max_distance") = md.max_distance, match_doc.c_str());
+      match_doc.c_str());
 
-  const RansacOptions rd;
+  static const std::string find_homography_doc = documented(
+      find_homography_call(),
+      "RANSAC homography src -> dst (N x 2 points each): (H 3 x 3 float64, or None when there is "
+      "no model, N uint8 inlier mask). Fixed seed: the same input, the same answer.",
+      keywords_doc<RansacOptions>());
   m.def(
       "find_homography",
-      [](const py::object& src, const py::object& dst, double threshold_px, double confidence,
-         int max_iterations, std::uint64_t seed) {
-        RansacOptions options;
-        options.threshold_px = threshold_px;
-        options.confidence = confidence;
-        options.max_iterations = max_iterations;
-        options.seed = seed;
-        options.validate();
-        const std::vector<Point2> s = points_from(src, "src"), d = points_from(dst, "dst");
+      [](const py::args& args, const py::kwargs& kwargs) {
+        OptionCall call = find_homography_call();
+        call.read(args, kwargs);
+        const RansacOptions options = call.options<RansacOptions>(0);
+        const std::vector<Point2> s = points_from(call.leading(0), "src"),
+                                  d = points_from(call.leading(1), "dst");
         HomographyResult result;
         {
           py::gil_scoped_release no_gil;
@@ -111,12 +133,7 @@ void bind_matching(py::module_& m) {
         }
         return homography_tuple(result, s.size());
       },
-      py::arg("src"), py::arg("dst"), py::arg("threshold_px") = rd.threshold_px,
-      py::arg("confidence") = rd.confidence, py::arg("max_iterations") = rd.max_iterations,
-      py::arg("seed") = rd.seed,
-      "RANSAC homography src -> dst (N x 2 points each): (H 3 x 3 float64, or None when there is "
-      "no model, "
-      "N uint8 inlier mask). Fixed seed: the same input, the same answer.");
+      find_homography_doc.c_str());
 
   py::class_<AdaptResult>(m, "AdaptResult", "The sweep of the entropy threshold F over a pair")
       .def_readonly("found", &AdaptResult::found, "some threshold had enough inliers")
@@ -161,19 +178,25 @@ void bind_matching(py::module_& m) {
           "(H 3 x 3 float64 or None, M uint8 inlier mask over matches), as find_homography() "
           "returns");
 
-  const SweepOptions sd;
+  static const std::string adapt_doc = documented(
+      adapt_call(),
+      "The paper's sweep of F over a pair (images as for Extractor.extract), with the extractor's "
+      "options (default options when None): the chosen threshold, the curve, features and "
+      "matches at it.",
+      keywords_doc<SweepOptions>() + keywords_doc<MatchOptions>());
   m.def(
       "adapt",
-      [](const py::object& image_a, const py::object& image_b, const PyExtractor* extractor,
-         double first_threshold, double step, int min_inliers, const std::string& matcher) {
-        SweepOptions sweep;
-        sweep.first_threshold = first_threshold;
-        sweep.step = step;
-        sweep.min_inliers = min_inliers;
-        sweep.match.kind = parse_matcher_kind(matcher);
-        sweep.validate();
-        const ExtractorOptions options = extractor ? extractor->options() : ExtractorOptions{};
-        const ImageInput a(image_a, options.max_image_pixels), b(image_b, options.max_image_pixels);
+      [](const py::args& args, const py::kwargs& kwargs) {
+        OptionCall call = adapt_call();
+        call.read(args, kwargs);
+        SweepOptions sweep = call.options<SweepOptions>(0);
+        sweep.match = call.options<MatchOptions>(1);
+        const py::object extractor_object = call.leading(2);
+        const ExtractorOptions options =
+            extractor_object.is_none() ? ExtractorOptions{}
+                                       : extractor_object.cast<const PyExtractor&>().options();
+        const ImageInput a(call.leading(0), options.max_image_pixels),
+            b(call.leading(1), options.max_image_pixels);
         AdaptResult result;
         {
           py::gil_scoped_release no_gil;
@@ -182,13 +205,7 @@ void bind_matching(py::module_& m) {
         }
         return result;
       },
-      py::arg("image_a"), py::arg("image_b"), py::arg("extractor") = py::none(),
-      py::arg("first_threshold") = sd.first_threshold, py::arg("step") = sd.step,
-      py::arg("min_inliers") = sd.min_inliers,
-      py::arg("matcher") = std::string(to_string(sd.match.kind)),
-      "The paper's sweep of F over a pair (images as for Extractor.extract), with the extractor's "
-      "options "
-      "(default options when None): the chosen threshold, the curve, features and matches at it.");
+      adapt_doc.c_str());
 }
 
 }  // namespace aief::python

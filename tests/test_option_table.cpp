@@ -19,6 +19,7 @@
 #include "aief/version.hpp"
 #include "core/option_names.hpp"
 #include "core/option_table.hpp"
+#include "tests/field_count.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -26,18 +27,7 @@ namespace {
 
 namespace table = option_table;
 
-// The number of fields of an aggregate: the most initialisers it takes.
-struct AnyValue {
-  template <class T>
-  operator T() const;
-};
-template <class T, class... Values>
-constexpr std::size_t field_count() {
-  if constexpr (requires { T{Values{}..., AnyValue{}}; })
-    return field_count<T, Values..., AnyValue>();
-  else
-    return sizeof...(Values);
-}
+using test::field_count;
 
 std::vector<const table::OptionRow*> field_rows() {
   std::vector<const table::OptionRow*> out;

@@ -52,6 +52,12 @@ bool Args::has(const std::string& name) const {
   return false;
 }
 
+std::vector<std::string> Args::flags_given() const {
+  std::vector<std::string> flags;
+  for (const auto& [flag, value] : values_) flags.push_back(flag);
+  return flags;
+}
+
 std::optional<std::string> Args::get(const std::string& name) const {
   std::optional<std::string> result;
   for (const auto& [flag, value] : values_)
@@ -69,57 +75,16 @@ int Args::get_int(const std::string& name, int fallback, int min, int max) const
   return static_cast<int>(value);
 }
 
-double Args::get_double(const std::string& name, double fallback, double min, double max,
-                        bool min_is_exclusive) const {
-  const std::optional<std::string> text = get(name);
-  if (!text) return fallback;
-  double value = 0;
-  const bool parsed = option_table::parse_decimal(*text, value);
-  const bool below = min_is_exclusive ? value <= min : value < min;
-  if (!parsed || below || value > max) {
-    std::ostringstream message;
-    message << name << " expects a number in " << (min_is_exclusive ? "(" : "[") << min << ", "
-            << max << "], got '" << *text << "'";
-    throw UsageError(message.str());
-  }
-  return value;
-}
+namespace {
 
-std::vector<FlagSpec> extractor_flags() {
-  std::vector<FlagSpec> flags;
-  for (const option_table::OptionRow& row : option_table::rows())
-    if (row.has_front_ends()) flags.push_back({std::string(row.cli_flag), "", true});
-  return flags;
-}
-
-ExtractorOptions extractor_options(const Args& args) {
-  std::vector<option_table::GivenOption> given;
-  for (const option_table::OptionRow& row : option_table::rows())
-    if (row.has_front_ends())
-      if (const auto text = args.get(std::string(row.cli_flag)))
-        given.push_back({&row, *text, std::string(row.cli_flag)});
-  ExtractorOptions options;
-  try {
-    options = option_table::resolve_options(given);
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
-  // More threads than the machine runs gains nothing (output never depends on the count) and
-  // makes TBB print its own warning: use what there is, and say so.
-  if (const int available = tbb::info::default_concurrency(); options.threads > available) {
-    std::cerr << "aief: note: --threads " << options.threads << " is more than the " << available
-              << " hardware threads this process may use; using " << available << "\n";
-    options.threads = available;
-  }
-  return options;
-}
-
-std::string extractor_flags_help() {
-  // Two columns: the flag and its placeholder, then the help wrapped at 100 columns.
+// --help's lines of `Options`' flags: the flag and its placeholder, then the help (the names of a
+// choice, the default) wrapped at 100 columns.
+template <class Options>
+std::string help_of_rows() {
   constexpr std::size_t kColumn = 24, kWidth = 100;
   std::ostringstream out;
-  for (const option_table::OptionRow& row : option_table::rows()) {
-    if (!row.has_front_ends()) continue;
+  for (const option_table::Row<Options>& row : option_table::rows_of<Options>()) {
+    if (row.cli_flag.empty()) continue;
     std::string line = "  " + std::string(row.cli_flag) + " " + std::string(row.cli_value);
     line += line.size() + 1 < kColumn ? std::string(kColumn - line.size(), ' ')
                                       : "\n" + std::string(kColumn, ' ');
@@ -142,8 +107,85 @@ std::string extractor_flags_help() {
     }
     out << line << "\n";
   }
-  out << "  (a mode sets the options it names; the options given apply after it)\n";
   return out.str();
+}
+
+template <class Options>
+std::vector<option_table::Given<Options>> given_flags(const Args& args) {
+  std::vector<option_table::Given<Options>> given;
+  for (const option_table::Row<Options>& row : option_table::rows_of<Options>())
+    if (!row.cli_flag.empty())
+      if (const auto text = args.get(std::string(row.cli_flag)))
+        given.push_back({&row, *text, std::string(row.cli_flag)});
+  return given;
+}
+
+}  // namespace
+
+template <class Options>
+std::vector<FlagSpec> flags_of() {
+  std::vector<FlagSpec> flags;
+  for (const option_table::Row<Options>& row : option_table::rows_of<Options>())
+    if (!row.cli_flag.empty()) flags.push_back({std::string(row.cli_flag), "", true});
+  return flags;
+}
+
+template <class Options>
+Options options_from_flags(const Args& args, Options base) {
+  try {
+    return option_table::resolve_options(given_flags<Options>(args), option_table::FrontEnd::cli,
+                                         base);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
+template <class Options>
+std::string flags_help() {
+  return help_of_rows<Options>();
+}
+
+template std::vector<FlagSpec> flags_of<MatchOptions>();
+template std::vector<FlagSpec> flags_of<SweepOptions>();
+template MatchOptions options_from_flags(const Args&, MatchOptions);
+template SweepOptions options_from_flags(const Args&, SweepOptions);
+template std::string flags_help<MatchOptions>();
+template std::string flags_help<SweepOptions>();
+
+std::vector<FlagSpec> extractor_flags() { return flags_of<ExtractorOptions>(); }
+
+ExtractorOptions extractor_options(const Args& args) {
+  ExtractorOptions options;
+  try {
+    options = option_table::resolve_options(given_flags<ExtractorOptions>(args));
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  // More threads than the machine runs gains nothing (output never depends on the count) and
+  // makes TBB print its own warning: use what there is, and say so.
+  if (const int available = tbb::info::default_concurrency(); options.threads > available) {
+    std::cerr << "aief: note: --threads " << options.threads << " is more than the " << available
+              << " hardware threads this process may use; using " << available << "\n";
+    options.threads = available;
+  }
+  return options;
+}
+
+std::string extractor_flags_help() {
+  return help_of_rows<ExtractorOptions>() +
+         "  (a mode sets the options it names; the options given apply after it)\n";
+}
+
+std::vector<std::string> flags_outside(const Args& args, const std::vector<FlagSpec>& applying) {
+  std::vector<std::string> outside;
+  for (const std::string& flag : args.flags_given()) {
+    bool applies = false;
+    for (const FlagSpec& spec : applying) applies = applies || spec.name == flag;
+    bool listed = false;
+    for (const std::string& seen : outside) listed = listed || seen == flag;
+    if (!applies && !listed) outside.push_back(flag);
+  }
+  return outside;
 }
 
 }  // namespace aief::cli

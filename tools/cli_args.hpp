@@ -30,16 +30,27 @@ class Args {
   bool has(const std::string& name) const;
   std::optional<std::string> get(const std::string& name) const;
   const std::vector<std::string>& positionals() const { return positionals_; }
+  // The flags given, by their names (aliases as their flag), in command-line order.
+  std::vector<std::string> flags_given() const;
 
   int get_int(const std::string& name, int fallback, int min, int max) const;
-  // The value must lie in [min, max], or in (min, max] when min_is_exclusive.
-  double get_double(const std::string& name, double fallback, double min, double max,
-                    bool min_is_exclusive = false) const;
 
  private:
   std::vector<std::pair<std::string, std::string>> values_;  // flag name, value ("" for switches)
   std::vector<std::string> positionals_;
 };
+
+// The flags of an options struct's rows (core/option_table.hpp: MatchOptions, SweepOptions), the
+// options they set over `base` (throws UsageError), and their --help lines with the defaults.
+template <class Options>
+std::vector<FlagSpec> flags_of();
+template <class Options>
+Options options_from_flags(const Args& args, Options base = {});
+template <class Options>
+std::string flags_help();
+
+// The flags given that are not among `applying`, each once: what a command refuses.
+std::vector<std::string> flags_outside(const Args& args, const std::vector<FlagSpec>& applying);
 
 // Flags every command that extracts shares, and the options they set (defaults from
 // ExtractorOptions, never repeated here).

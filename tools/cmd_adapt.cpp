@@ -30,23 +30,17 @@ void print_help() {
          "keypoints_a, keypoints_b,\n"
       << "                        putative, inliers, cmr}, ...]} as JSON\n"
       << "  --plot FILE           CMR, inliers and keypoints against F, chosen F marked, PNG\n"
-      << "  --step S              sweep step S_p in bits (default " << d.step << ")\n"
-      << "  --min-inliers N       inliers a threshold needs to be chosen (default " << d.min_inliers
-      << ")\n"
-      << "  --matcher K           mutual (default) | ratio | paper\n"
-      << extractor_flags_help();
+      << flags_help<SweepOptions>() << flags_help<MatchOptions>() << extractor_flags_help();
 }
 
 }  // namespace
 
 int run_adapt(const Arguments& arguments) {
   std::vector<FlagSpec> spec = extractor_flags();
-  spec.insert(spec.end(), {{"--output", "-o", true},
-                           {"--plot", "", true},
-                           {"--step", "", true},
-                           {"--min-inliers", "", true},
-                           {"--matcher", "", true},
-                           {"--help", "-h", false}});
+  for (const auto& flags : {flags_of<SweepOptions>(), flags_of<MatchOptions>()})
+    spec.insert(spec.end(), flags.begin(), flags.end());
+  spec.insert(spec.end(),
+              {{"--output", "-o", true}, {"--plot", "", true}, {"--help", "-h", false}});
   const Args args(arguments, spec);
   if (args.has("--help")) {
     print_help();
@@ -58,14 +52,8 @@ int run_adapt(const Arguments& arguments) {
   const ExtractorOptions options = extractor_options(args);
   if (options.entropy == EntropyMeasure::off)
     throw UsageError("adapt needs an entropy mode (aief or quadtree-entropy)");
-  SweepOptions sweep;
-  sweep.step = args.get_double("--step", sweep.step, 0.01, 8.0);
-  sweep.min_inliers = args.get_int("--min-inliers", sweep.min_inliers, 4, 1'000'000);
-  try {
-    if (const auto kind = args.get("--matcher")) sweep.match.kind = parse_matcher_kind(*kind);
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
+  SweepOptions sweep = options_from_flags<SweepOptions>(args);
+  sweep.match = options_from_flags<MatchOptions>(args);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
   refuse_outputs_that_are_inputs(args, {"--output", "--plot"}, {path_a, path_b});

@@ -1,7 +1,7 @@
-// aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o matches.json] [--draw matches.png]
+// aief match A B [--adaptive] [--matcher K] [-o matches.json] [--draw matches.png], and
+// aief match --pairs (tools/cmd_sfm.cpp)
 #include <cstdio>
 #include <iostream>
-#include <optional>
 #include <sstream>
 
 #include "aief/adapt.hpp"
@@ -9,7 +9,6 @@
 #include "aief/extractor.hpp"
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
-#include "core/matcher.hpp"
 #include "io/drawing.hpp"
 #include "io/image_io.hpp"
 #include "io/json_writer.hpp"
@@ -23,25 +22,30 @@ namespace aief::cli {
 
 namespace {
 
+// The flags of a pair of images beside the matcher's and the extractor's; --pairs matches the
+// features of a file, so only the matcher's flags and these apply to it.
+const std::vector<FlagSpec> kImagePairFlags = {
+    {"--adaptive", "", false}, {"--output", "-o", true}, {"--draw", "", true}};
+const std::vector<FlagSpec> kPairsFlags = {
+    {"--pairs", "", true}, {"--features", "", true}, {"--output", "-o", true}};
+
 void print_help() {
   std::cout
-      << "usage: aief match A B [--adaptive] [--matcher mutual|ratio|paper] [-o OUT.json] [--draw "
-         "OUT.png]\n"
+      << "usage: aief match A B [--adaptive] [--matcher K] [-o OUT.json] [--draw OUT.png]\n"
       << "       aief match --pairs PAIRS.txt --features FEATURES.h5 -o MATCHES.h5 [--matcher "
          "K]\n\n"
       << "Extracts both images, matches them, estimates the homography A -> B with RANSAC (3 "
          "px).\n\n"
+      << flags_help<MatchOptions>()
       << "  --adaptive            choose the entropy threshold F by the sweep over this pair (aief "
          "adapt)\n"
-      << "  --matcher K           mutual (default) | ratio | paper\n"
-      << "  --ratio R             Lowe ratio for --matcher ratio (default " << MatchOptions{}.ratio
-      << ")\n"
       << "  -o, --output FILE     matches, inliers and homography as JSON\n"
       << "  --draw FILE           both images side by side, inliers green, outliers red, PNG\n"
       << "  --pairs FILE          hloc pairs (\"name0 name1\" per line) matched from --features "
          "(aief extract\n"
       << "                        --format h5) into -o MATCHES.h5, hloc's matches0 / "
-         "matching_scores0 layout\n"
+         "matching_scores0 layout;\n"
+      << "                        only the matcher's flags apply (the features are as extracted)\n"
       << extractor_flags_help();
 }
 
@@ -56,32 +60,39 @@ std::vector<Point2> points_of(const Features& features, const std::vector<Match>
   return points;
 }
 
+// --pairs: the flags that do not apply to a features file are refused, never ignored.
+int run_pairs(const Args& args) {
+  std::vector<FlagSpec> applying = flags_of<MatchOptions>();
+  applying.insert(applying.end(), kPairsFlags.begin(), kPairsFlags.end());
+  const std::vector<std::string> outside = flags_outside(args, applying);
+  if (!outside.empty()) {
+    std::string listed;
+    for (const std::string& flag : outside) listed += (listed.empty() ? "" : ", ") + flag;
+    throw UsageError(
+        "--pairs matches the features of --features as they were extracted: " + listed +
+        (outside.size() == 1 ? " does" : " do") + " not apply (aief match --help)");
+  }
+  return run_match_pairs(args, options_from_flags<MatchOptions>(args));
+}
+
 }  // namespace
 
 int run_match(const Arguments& arguments) {
   std::vector<FlagSpec> spec = extractor_flags();
-  spec.push_back({"--adaptive", "", false});
-  spec.push_back({"--matcher", "", true});
-  spec.push_back({"--ratio", "", true});
-  spec.push_back({"--output", "-o", true});
-  spec.push_back({"--draw", "", true});
-  spec.push_back({"--pairs", "", true});
+  for (const auto& flags : {flags_of<MatchOptions>(), kImagePairFlags, kPairsFlags})
+    for (const FlagSpec& flag : flags) {
+      bool known = false;
+      for (const FlagSpec& seen : spec) known = known || seen.name == flag.name;
+      if (!known) spec.push_back(flag);  // --features: n_features, or --pairs' file
+    }
   spec.push_back({"--help", "-h", false});
   const Args args(arguments, spec);
   if (args.has("--help")) {
     print_help();
     return 0;
   }
-  std::optional<double> ratio;
-  if (args.has("--ratio"))
-    ratio = args.get_double("--ratio", 0.0, 0.0, 1.0, /*min_is_exclusive=*/true);
-  MatchOptions match_options;
-  try {
-    match_options = match_options_given(args.get("--matcher"), ratio, "--ratio", "--matcher");
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
-  if (args.has("--pairs")) return run_match_pairs(args, match_options);
+  if (args.has("--pairs")) return run_pairs(args);
+  const MatchOptions match_options = options_from_flags<MatchOptions>(args);
   if (args.positionals().size() != 2)
     throw UsageError("match expects two images A B (aief match --help)");
   check_picture_flag(args, "--draw");

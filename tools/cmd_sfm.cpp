@@ -2,6 +2,7 @@
 //   aief match --pairs pairs.txt --features features.h5 -o matches.h5 [--matcher K] [--ratio R]
 //   aief merge -o features.h5 shard0.h5 shard1.h5 ...
 //   aief colmap --features features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -14,6 +15,7 @@
 #include "io/hdf5_descriptor_cache.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/hdf5_merge.hpp"
+#include "io/match_record.hpp"
 #include "io/pairs_file.hpp"
 #endif
 #ifdef AIEF_HAVE_COLMAP_EXPORT
@@ -29,6 +31,17 @@ namespace {
     "this aief was built without HDF5 (install libhdf5-dev and rebuild)";
 // Descriptors kept in memory by match --pairs: about 16k images of 2000 features.
 [[maybe_unused]] constexpr std::size_t kDescriptorCacheBytes = std::size_t{1} << 30;
+
+// "with other options or features (kind mutual -> ratio; the features of 'a.png': ...)": the
+// first reasons, so that a million re-extracted images make one line.
+[[maybe_unused]] std::string redone_reasons(const std::vector<std::string>& reasons) {
+  constexpr std::size_t kShown = 4;
+  std::string text;
+  for (std::size_t i = 0; i < reasons.size() && i < kShown; ++i)
+    text += (i > 0 ? "; " : "") + reasons[i];
+  if (reasons.size() > kShown) text += "; and " + std::to_string(reasons.size() - kShown) + " more";
+  return "otherwise (" + text + ")";
+}
 
 }  // namespace
 
@@ -51,17 +64,28 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
     throw Error("-o '" + *output + "' holds features (image '" + image +
                 "'): matches go to a file of their own (hloc's matches.h5); nothing was written");
   io::DescriptorCache descriptors(features, kDescriptorCacheBytes);
-  int written = 0, skipped = 0;
+  io::PairRecords records(features, match_options);
+  int written = 0, skipped = 0, redone = 0;
+  std::vector<std::string> redone_for;  // each reason once
   long long total = 0;
   for (std::size_t pair = 0; pair < pairs.size(); ++pair) {
     const std::string &name0 = pairs.name0(pair), &name1 = pairs.name1(pair);
-    if (matches_file.has_matches(name0, name1)) {  // a resumed run
-      ++skipped;
-      continue;
+    const io::PairRecord record = records.of(name0, name1);
+    if (matches_file.has_matches(name0, name1)) {  // a resumed run: kept only if made as now
+      const std::vector<std::string> changes =
+          io::pair_changes(matches_file.pair_record(name0, name1), record, name0, name1);
+      if (changes.empty()) {
+        ++skipped;
+        continue;
+      }
+      ++redone;
+      for (const std::string& change : changes)
+        if (std::find(redone_for.begin(), redone_for.end(), change) == redone_for.end())
+          redone_for.push_back(change);
     }
     const auto a = descriptors.get(name0), b = descriptors.get(name1);
     const std::vector<Match> matches = match_descriptors(*a, *b, match_options);
-    matches_file.write_matches(name0, name1, static_cast<int>(a->size()), matches);
+    matches_file.write_matches(name0, name1, static_cast<int>(a->size()), matches, &record);
     ++written;
     total += static_cast<long long>(matches.size());
   }
@@ -69,6 +93,9 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
   std::printf("%d pairs matched (%s), %lld matches, %d already in %s; %zu images read\n", written,
               std::string(to_string(match_options.kind)).c_str(), total, skipped, output->c_str(),
               descriptors.reads());
+  if (redone > 0)
+    std::cerr << "aief: note: " << redone << " pairs of " << *output
+              << " matched again, since they were matched " << redone_reasons(redone_for) << "\n";
   return 0;
 #else
   (void)args;

@@ -70,11 +70,13 @@ class Features:
 
 class Extractor:
     """ORB features with the AIEF entropy mask; invalid options raise aief.Error."""
+    # Parameters, their order and defaults: the option table's rows (core/option_table.cpp);
+    # python/tests/test_stub.py holds them to it. The keys of Extractor.options are keywords too.
     def __init__(
         self,
         n_features: int = 1000,
         mode: str = "aief",
-        threshold: Union[float, Literal["auto"]] = 4.0,
+        threshold: Union[float, Literal["auto", "carried"]] = 4.0,
         levels: int = 8,
         scale: float = 1.2,
         threads: int = 0,
@@ -84,14 +86,16 @@ class Extractor:
         fast_min_threshold: int = 7,
         block_size: int = 32,
         entropy: Optional[str] = None,
-        max_image_pixels: int = 67108864,
-        pool: Optional[float] = None,
+        carry_every: int = 30,
         coordinates: Optional[str] = None,
         subpixel: Optional[bool] = None,
+        pool: Optional[Union[float, Literal["inf", "off"]]] = None,
+        ranking: Optional[str] = None,
         starvation_guard: Optional[str] = None,
         auto_skips_uniform_blocks: Optional[bool] = None,
-        ranking: Optional[str] = None,
         auto_requires_two_classes: Optional[bool] = None,
+        max_image_pixels: int = 67108864,
+        **record_keys: Any,
     ) -> None: ...
     def extract(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> Features:
         """Features of a gray, BGR or BGRA uint8 image; mask (2-D uint8 or bool, non-zero where
@@ -145,11 +149,13 @@ class AdaptResult:
     @property
     def homography(self) -> tuple[Optional[numpy.ndarray], numpy.ndarray]: ...
 
+# The options of match, find_homography and adapt: the rows of core/matching_option_rows.cpp
+# (python/tests/test_stub.py holds them to it).
 def match(
     a: Union[numpy.typing.ArrayLike, Features],
     b: Union[numpy.typing.ArrayLike, Features],
     matcher: MatcherName = "mutual",
-    ratio: float = 0.8,
+    ratio: Optional[float] = None,
     max_distance: int = 256,
 ) -> numpy.ndarray:
     """Hamming matches of a into b: M x 3 int32 (query, train, distance), sorted by query."""
@@ -172,6 +178,8 @@ def adapt(
     step: float = 0.2,
     min_inliers: int = 20,
     matcher: MatcherName = "mutual",
+    ratio: Optional[float] = None,
+    max_distance: int = 256,
 ) -> AdaptResult:
     """The paper's sweep of F over a pair: the chosen threshold, the curve, features and matches at it."""
 

@@ -97,3 +97,40 @@ def test_ratio_goes_with_the_ratio_matcher_only():
         aief.match(descriptors, descriptors, ratio=0.1)
     assert len(aief.match(descriptors, descriptors, matcher="ratio", ratio=0.9)) > 0
     assert len(aief.match(descriptors, descriptors)) == 40
+
+
+# Extractor.options holds the record's keys (scale_factor, candidate_pool, distribution, ...), which
+# were not the constructor's keywords: Extractor(**e.options) raised TypeError. Now every record key
+# is a keyword too, and giving the value an option already holds is no request (an orbslam2
+# extractor's entropy_threshold with its mask off).
+@pytest.mark.parametrize("kwargs", [dict(), dict(mode="aief-paper"), dict(mode="orbslam2"),
+                                    dict(mode="quadtree-entropy", threshold="auto"), dict(threshold="carried"),
+                                    dict(pool="inf", levels=3, scale=1.5, ranking="peak"),
+                                    dict(entropy="off"), dict(n_features=123, kernels="scalar", threads=1)])
+def test_the_options_rebuild_the_extractor(kwargs):
+    extractor = aief.Extractor(**kwargs)
+    rebuilt = aief.Extractor(**extractor.options)
+    assert rebuilt.options == extractor.options
+    assert rebuilt.option_record == extractor.option_record
+
+
+def test_a_record_key_and_its_keyword_are_one_option():
+    assert aief.Extractor(scale_factor=1.5).options["scale_factor"] == 1.5
+    with pytest.raises(TypeError, match="multiple values"):
+        aief.Extractor(scale=1.3, scale_factor=1.5)
+    # Giving a value that changes nothing is no request; changing F with the mask off still is refused.
+    assert aief.Extractor(entropy="off", entropy_threshold=4.0).options["entropy"] == "off"
+    with pytest.raises(aief.Error, match="which entropy off turns off"):
+        aief.Extractor(entropy="off", entropy_threshold=5.0)
+
+
+def test_match_and_adapt_take_their_options_from_the_rows():
+    descriptors = numpy.arange(4 * 32, dtype=numpy.uint8).reshape(4, 32)
+    assert aief.match(descriptors, descriptors, "ratio", 0.9, 10).shape == (4, 3)
+    assert aief.match(a=descriptors, b=descriptors, matcher="paper").shape == (4, 3)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'rato'"):
+        aief.match(descriptors, descriptors, rato=0.5)
+    with pytest.raises(TypeError, match="missing required argument 'b'"):
+        aief.match(descriptors)
+    with pytest.raises(aief.Error, match="ratio applies to matcher ratio only, not mutual"):
+        aief.adapt(numpy.zeros((64, 64), numpy.uint8), numpy.zeros((64, 64), numpy.uint8), ratio=0.5)
