@@ -14,7 +14,7 @@ namespace {
 void register_extract_benchmarks() {
   for (const NamedImage& image : benchmark_images()) {
     const cv::Mat* gray = &image.gray;
-    for (Mode mode : {Mode::aief, Mode::orbslam2, Mode::quadtree_entropy}) {
+    for (Mode mode : {Mode::aief, Mode::orbslam2, Mode::quadtree_entropy, Mode::faithful}) {
       for (KernelSet set : available_kernel_sets()) {
         for (int threads : {1, 2}) {
           // Other modes: one thread, the best set and AVX2 (the CPUs without AVX-512).

@@ -20,11 +20,14 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options,
     throw Error("mask " + std::to_string(detection_mask.width) + "x" +
                 std::to_string(detection_mask.height) + " is not the image's size " +
                 std::to_string(image.width) + "x" + std::to_string(image.height));
+  if (!detection_mask.empty() && options.detection_cells == DetectionCells::orbslam)
+    throw Error("a detection mask needs detection_cells blocks (ORB-SLAM's cells take no mask)");
   detection_mask_ = detection_mask;
   const bool same_geometry =
       image.width == width_ && image.height == height_ && options.n_levels == options_.n_levels &&
       options.scale_factor == options_.scale_factor && options.block_size == options_.block_size &&
-      options.n_features == options_.n_features && !levels_.empty();
+      options.n_features == options_.n_features &&
+      options.pyramid_resampling == options_.pyramid_resampling && !levels_.empty();
   options_ = options;
   selections_ = selections;
   kernels_ = &kernels;
@@ -44,6 +47,9 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options,
         const LevelGeometry& above = levels_[n - 1].pyramid.geometry;
         pyramid.resize_plan = make_resize_plan(above.width, above.height, pyramid.geometry.width,
                                                pyramid.geometry.height);
+        if (options_.pyramid_resampling == PyramidResampling::opencv)
+          pyramid.opencv_plan = make_opencv_resize_plan(
+              above.width, above.height, pyramid.geometry.width, pyramid.geometry.height);
       }
       size_detection_scratch(pyramid.geometry, levels_[n].detection);
     }
@@ -57,6 +63,7 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options,
       level.pyramid.detection_mask.resize(level.pyramid.geometry.width,
                                           level.pyramid.geometry.height);
     level.descriptions.start(level.pyramid.geometry, selections_);
+    level.descriptions.set_orientation(options_.orientation);
     level.blocks.reset(level.pyramid.geometry.grid.count());
     level.raster_ranks.clear();
   }
@@ -65,7 +72,10 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options,
 void FrameAnalysis::build_level_rows(int n, int y_begin, int y_end) {
   PyramidLevel& pyramid = at(n).pyramid;
   if (!pyramid.usable()) return;
-  if (n > 0)  // level 0 is the input itself
+  if (n > 0 && options_.pyramid_resampling == PyramidResampling::opencv)
+    resize_opencv_linear_rows(level(n - 1).pixels, pyramid.opencv_plan,
+                              pyramid.image.mutable_view(), y_begin, y_end);
+  else if (n > 0)  // level 0 is the input itself
     kernels_->resize_bilinear_rows(level(n - 1).pixels, pyramid.resize_plan,
                                    pyramid.image.mutable_view(), y_begin, y_end);
   if (detection_mask_.empty()) return;

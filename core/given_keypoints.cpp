@@ -6,6 +6,7 @@
 #include <string>
 
 #include "aief/error.hpp"
+#include "core/fast_atan2.hpp"
 #include "core/keypoint_position.hpp"
 
 namespace aief {
@@ -82,8 +83,10 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
       scratch.m01.resize(members.size());
       kernels.ic_moments(level.pixels, scratch.points.data(), m, scratch.m10.data(),
                          scratch.m01.data());
+      const auto angle =
+          options.orientation == Orientation::opencv_fast ? orbslam_ic_angle_deg : ic_angle_deg;
       for (std::size_t k = 0; k < members.size(); ++k)
-        angles[k] = ic_angle_deg(scratch.m10[k], scratch.m01[k]);
+        angles[k] = angle(scratch.m10[k], scratch.m01[k]);
     } else {
       for (std::size_t k = 0; k < members.size(); ++k)
         angles[k] = keypoints[static_cast<std::size_t>(members[k])].angle_deg;

@@ -20,6 +20,9 @@ struct LevelBlocks {
   // With a detection mask, per block: 1 when any of its pixels is allowed (made by detection on
   // first need; core/detection_mask.hpp). Empty otherwise.
   std::vector<std::uint8_t> allowed;
+  // DetectionCells::orbslam: the candidates in ORB-SLAM's order (core/orbslam_cells.hpp), which
+  // its octree's tie-breaks read; `candidates` holds them grouped by block. Empty otherwise.
+  std::vector<std::int32_t> orbslam_order;
 
   // A new frame: `blocks` blocks, none detected.
   void reset(int blocks) {
@@ -29,6 +32,7 @@ struct LevelBlocks {
     candidate_range.assign(static_cast<std::size_t>(blocks), BlockRange{});
     candidates.clear();
     allowed.clear();
+    orbslam_order.clear();
   }
 };
 

@@ -1,5 +1,7 @@
 #include "core/level_description.hpp"
 
+#include "core/fast_atan2.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <cstring>
@@ -59,9 +61,10 @@ void LevelDescriptions::describe(const PyramidLevel& level,
 
   // Orientation on the raw level, descriptors on the blurred one (as ORB-SLAM2).
   kernels.ic_moments(level.pixels, points_.data(), count, m10_.data(), m01_.data());
+  const auto angle = orientation_ == Orientation::opencv_fast ? orbslam_ic_angle_deg : ic_angle_deg;
   for (int i = 0; i < count; ++i)
     angles_[static_cast<std::size_t>(i)] =
-        ic_angle_deg(m10_[static_cast<std::size_t>(i)], m01_[static_cast<std::size_t>(i)]);
+        angle(m10_[static_cast<std::size_t>(i)], m01_[static_cast<std::size_t>(i)]);
   if (selections_ == Selections::many) {
     if (blurred_end_ == 0) {
       kernels.gaussian7_rows(level.pixels, blurred_.mutable_view(), 0, level.geometry.height, 0,

@@ -8,6 +8,7 @@
 
 #include "aief/features.hpp"
 #include "aief/image.hpp"
+#include "aief/options.hpp"
 #include "core/candidate.hpp"
 #include "core/kernel_table.hpp"
 #include "core/pixel_point.hpp"
@@ -27,6 +28,8 @@ class LevelDescriptions {
   void start(const LevelGeometry& geometry, Selections selections);
   // Room in the memo for candidates [0, count) (after detection adds some).
   void track(std::size_t count) { memo_slot_.resize(count, -1); }
+  // The angle formula of ExtractorOptions::orientation (for the frames that follow).
+  void set_orientation(Orientation orientation) { orientation_ = orientation; }
 
   // Describes the candidates `indices` (raster order) not described yet.
   void describe(const PyramidLevel& level, const std::vector<Candidate>& candidates,
@@ -37,6 +40,7 @@ class LevelDescriptions {
   const Descriptor& descriptor(std::int32_t i) const { return memo_descriptor_[slot(i)]; }
 
  private:
+  Orientation orientation_ = Orientation::atan2;
   std::size_t slot(std::int32_t i) const;
   void describe_through_band(const PyramidLevel& level, const KernelTable& kernels, int count);
 

@@ -5,6 +5,7 @@
 
 #include "core/detection_mask.hpp"
 #include "core/fast9.hpp"
+#include "core/orbslam_cells.hpp"
 #include "core/score_band.hpp"
 
 namespace aief {
@@ -113,6 +114,32 @@ void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const Extract
                         DetectionScratch& scratch) {
   if (!level.usable()) return;
   const BlockGrid& grid = level.geometry.grid;
+  if (options.detection_cells == DetectionCells::orbslam) {
+    // ORB-SLAM's cells, once for the whole level (FrameAnalysis::start refuses a detection mask),
+    // then grouped by block, ORB-SLAM's order kept within each, so the entropy mask and the
+    // proportional distribution read block ranges as usual; blocks.orbslam_order keeps the order.
+    if (blocks.detected.empty() || blocks.detected[0]) return;
+    std::vector<Candidate>& found = scratch.cell_candidates;
+    found.clear();
+    detect_orbslam_cells(level.pixels, options, kernels, scratch.cell_scores, found);
+    std::vector<std::int32_t> starts(static_cast<std::size_t>(grid.count()) + 1, 0);
+    for (const Candidate& c : found)
+      ++starts[static_cast<std::size_t>(block_of(grid, c.x, c.y)) + 1];
+    for (std::size_t b = 1; b < starts.size(); ++b) starts[b] += starts[b - 1];
+    for (int b = 0; b < grid.count(); ++b)
+      blocks.candidate_range[static_cast<std::size_t>(b)] = {
+          starts[static_cast<std::size_t>(b)], starts[static_cast<std::size_t>(b) + 1]};
+    blocks.candidates.resize(found.size());
+    blocks.orbslam_order.resize(found.size());
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      const std::int32_t at =
+          starts[static_cast<std::size_t>(block_of(grid, found[i].x, found[i].y))]++;
+      blocks.candidates[static_cast<std::size_t>(at)] = found[i];
+      blocks.orbslam_order[i] = at;
+    }
+    std::fill(blocks.detected.begin(), blocks.detected.end(), std::uint8_t{1});
+    return;
+  }
   const bool masked = level.has_detection_mask();
   if (masked && blocks.allowed.empty())
     blocks_allowed(level.detection_mask.view(), grid, blocks.allowed);

@@ -22,6 +22,9 @@ struct BlockGrid {
 
 BlockGrid make_block_grid(int width, int height, int block_size);
 
+// The block holding level pixel (x, y), which lies in the grid's area.
+int block_of(const BlockGrid& grid, int x, int y);
+
 struct LevelGeometry {
   int width = 0;
   int height = 0;

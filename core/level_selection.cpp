@@ -1,6 +1,7 @@
 #include "core/level_selection.hpp"
 
 #include "core/level_geometry.hpp"
+#include "core/octree_orbslam.hpp"
 
 namespace aief {
 
@@ -37,18 +38,33 @@ void select_candidates(const PyramidLevel& level, const LevelBlocks& blocks, Blo
     std::vector<std::int32_t>& set_index = scratch.quadtree_index;
     set.clear();
     set_index.clear();
-    for (int b = 0; b < grid.count(); ++b) {
-      if (!mask.kept(b)) continue;
-      const BlockRange range = blocks.candidate_range[static_cast<std::size_t>(b)];
-      for (std::int32_t i = range.begin; i < range.end; ++i) {
-        set.push_back(blocks.candidates[static_cast<std::size_t>(i)]);
+    if (options.detection_cells == DetectionCells::orbslam) {
+      // ORB-SLAM's order (its octree's tie-breaks read it), the kept blocks' candidates only.
+      for (std::int32_t i : blocks.orbslam_order) {
+        const Candidate& c = blocks.candidates[static_cast<std::size_t>(i)];
+        if (!mask.kept(block_of(grid, c.x, c.y))) continue;
+        set.push_back(c);
         set_index.push_back(i);
+      }
+    } else {
+      for (int b = 0; b < grid.count(); ++b) {
+        if (!mask.kept(b)) continue;
+        const BlockRange range = blocks.candidate_range[static_cast<std::size_t>(b)];
+        for (std::int32_t i = range.begin; i < range.end; ++i) {
+          set.push_back(blocks.candidates[static_cast<std::size_t>(i)]);
+          set_index.push_back(i);
+        }
       }
     }
     constexpr int kQuadtreeMargin = kEdgeBorder - 3;  // ORB-SLAM2's minBorderX
-    distribute_quadtree(set, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin,
-                        kQuadtreeMargin, level.geometry.height - kQuadtreeMargin, budget, selected,
-                        scratch.distribution);
+    if (options.quadtree_ties == QuadtreeTies::orbslam)
+      distribute_octree_orbslam(set, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin,
+                                kQuadtreeMargin, level.geometry.height - kQuadtreeMargin, budget,
+                                selected);
+    else
+      distribute_quadtree(set, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin,
+                          kQuadtreeMargin, level.geometry.height - kQuadtreeMargin, budget,
+                          selected, scratch.distribution);
     for (std::int32_t& index : selected) index = set_index[static_cast<std::size_t>(index)];
   }
 }

@@ -32,7 +32,8 @@ struct Table<Mode> {
       {Mode::aief, "aief", "aief"},
       {Mode::aief_paper, "aief-paper", "aief_paper"},
       {Mode::orbslam2, "orbslam2", "orbslam2"},
-      {Mode::quadtree_entropy, "quadtree-entropy", "quadtree_entropy"}};
+      {Mode::quadtree_entropy, "quadtree-entropy", "quadtree_entropy"},
+      {Mode::faithful, "faithful", "faithful"}};
 };
 
 template <>
@@ -90,6 +91,35 @@ struct Table<MatcherKind> {
   static constexpr Name<MatcherKind> names[] = {{MatcherKind::mutual, "mutual", "mutual"},
                                                 {MatcherKind::ratio, "ratio", "ratio"},
                                                 {MatcherKind::paper, "paper", "paper"}};
+};
+
+template <>
+struct Table<PyramidResampling> {
+  static constexpr std::string_view what = "pyramid resampling";
+  static constexpr Name<PyramidResampling> names[] = {
+      {PyramidResampling::q8, "q8", "q8"}, {PyramidResampling::opencv, "opencv", "opencv"}};
+};
+
+template <>
+struct Table<DetectionCells> {
+  static constexpr std::string_view what = "detection cells";
+  static constexpr Name<DetectionCells> names[] = {{DetectionCells::blocks, "blocks", "blocks"},
+                                                   {DetectionCells::orbslam, "orbslam", "orbslam"}};
+};
+
+template <>
+struct Table<Orientation> {
+  static constexpr std::string_view what = "orientation";
+  static constexpr Name<Orientation> names[] = {
+      {Orientation::atan2, "atan2", "atan2"},
+      {Orientation::opencv_fast, "fast-atan2", "opencv_fast"}};
+};
+
+template <>
+struct Table<QuadtreeTies> {
+  static constexpr std::string_view what = "quadtree ties";
+  static constexpr Name<QuadtreeTies> names[] = {{QuadtreeTies::full, "full", "full"},
+                                                 {QuadtreeTies::orbslam, "orbslam", "orbslam"}};
 };
 
 // The name of `value`; "?" for a value outside the table (an invalid cast).

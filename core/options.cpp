@@ -15,6 +15,10 @@ std::string_view to_string(CoordinateMap value) { return option_names::name_of(v
 std::string_view to_string(StarvationGuard value) { return option_names::name_of(value); }
 std::string_view to_string(CandidateRanking value) { return option_names::name_of(value); }
 std::string_view to_string(MatcherKind value) { return option_names::name_of(value); }
+std::string_view to_string(PyramidResampling value) { return option_names::name_of(value); }
+std::string_view to_string(DetectionCells value) { return option_names::name_of(value); }
+std::string_view to_string(QuadtreeTies value) { return option_names::name_of(value); }
+std::string_view to_string(Orientation value) { return option_names::name_of(value); }
 
 Distribution parse_distribution(std::string_view name) {
   return option_names::parse<Distribution>(name);

@@ -3,6 +3,7 @@
 #include "aief/image.hpp"
 #include "core/level_geometry.hpp"
 #include "core/pyramid_resize.hpp"
+#include "core/pyramid_resize_opencv.hpp"
 
 namespace aief {
 
@@ -11,6 +12,8 @@ struct PyramidLevel {
   ResizePlan resize_plan;  // from the previous level (empty for level 0)
   ImageView pixels;        // the level: the caller's image for level 0, else `image`
   GrayImage image;         // pixels of levels >= 1 (unused for level 0)
+  // With PyramidResampling::opencv the pixels' plan (the detection mask keeps resize_plan).
+  OpenCvResizePlan opencv_plan;
   // The detection mask at this level, 255 where keypoints may be and 0 elsewhere; 0 x 0 without
   // a mask (core/detection_mask.hpp).
   GrayImage detection_mask;

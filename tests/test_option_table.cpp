@@ -336,7 +336,8 @@ TEST(OptionTable, EnumNamesAndTheirEnumeratorsRead) {
     ADD_FAILURE();
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
-                 "unknown mode 'orb' (expected aief, aief-paper, orbslam2 or quadtree-entropy)");
+                 "unknown mode 'orb' (expected aief, aief-paper, orbslam2, quadtree-entropy or "
+                 "faithful)");
   }
 }
 

@@ -1,9 +1,9 @@
 // The whole pipeline across the option space, bit for bit: seeded random options (sizes 39..539,
 // scale 1.01..4, blocks 8..1024, levels 1..14, every mode, both entropy measures, fixed and
-// automatic F) on textured random images and crops of the real samples; under every kernel set
-// this CPU runs at 1, 2 and 5 threads, the same bytes as the scalar reference at 1 thread
-// (docs/design.md §12). Each case is its own test, named by its index, and prints its options
-// when it fails, so a failure reproduces alone: --gtest_filter='*/17'.
+// automatic F, the faithful mode's choices in any mode) on textured random images and crops of the
+// real samples; under every kernel set this CPU runs at 1, 2 and 5 threads, the same bytes as the
+// scalar reference at 1 thread (docs/design.md §12). Each case is its own test, named by its index,
+// and prints its options when it fails, so a failure reproduces alone: --gtest_filter='*/17'.
 //
 // Cost: about 12 extractions of an image of at most 539 x 539 per case; the case count is kept
 // small enough for the sanitizer jobs (scripts/ci_sanitizers), which run it too.
@@ -51,8 +51,8 @@ const cv::Mat& sample_image(int index) {
 }
 
 // Case `index` of the seeded sequence: every case depends only on the seed and its index.
-constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2,
-                               Mode::quadtree_entropy};
+constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy,
+                               Mode::faithful};
 
 Case make_case(int index) {
   std::mt19937 rng(kSeed + static_cast<std::uint32_t>(index) * 7919u);
@@ -74,7 +74,16 @@ Case make_case(int index) {
   base.entropy_threshold = uniform(rng, 0.0, 8.0);
   base.auto_threshold = uniform_int(rng, 0, 2) == 0;
   c.options = options_for_mode(c.mode, base);
-  if (c.mode != Mode::orbslam2) c.options.entropy = base.entropy;
+  if (c.mode != Mode::orbslam2 && c.mode != Mode::faithful) c.options.entropy = base.entropy;
+
+  // The faithful mode's four choices also in the other modes, a quarter of the cases each (their
+  // own draws, so the other options of a case stay as they were).
+  std::mt19937 faithful_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 104729u));
+  if (uniform_int(faithful_rng, 0, 3) == 0)
+    c.options.pyramid_resampling = PyramidResampling::opencv;
+  if (uniform_int(faithful_rng, 0, 3) == 0) c.options.detection_cells = DetectionCells::orbslam;
+  if (uniform_int(faithful_rng, 0, 3) == 0) c.options.quadtree_ties = QuadtreeTies::orbslam;
+  if (uniform_int(faithful_rng, 0, 3) == 0) c.options.orientation = Orientation::opencv_fast;
 
   const int width = uniform_int(rng, 39, 539), height = uniform_int(rng, 39, 539);
   const int source = uniform_int(rng, 0, 3);
@@ -95,7 +104,10 @@ Case make_case(int index) {
                                    : std::to_string(c.options.entropy_threshold))
       << ", scale " << c.options.scale_factor << ", levels " << c.options.n_levels << ", block "
       << c.options.block_size << ", features " << c.options.n_features << ", FAST "
-      << c.options.fast_threshold << "/" << c.options.fast_min_threshold;
+      << c.options.fast_threshold << "/" << c.options.fast_min_threshold << ", pyramid "
+      << to_string(c.options.pyramid_resampling) << ", cells "
+      << to_string(c.options.detection_cells) << ", ties " << to_string(c.options.quadtree_ties)
+      << ", orientation " << to_string(c.options.orientation);
   c.description = out.str();
   return c;
 }

@@ -49,12 +49,37 @@ enum class CandidateRanking {
   cross_score,  // FAST scores summed over the corner and its 4 neighbours (docs/design.md §6)
 };
 
+// How a pyramid level is resampled from the level above (docs/design.md §2).
+enum class PyramidResampling {
+  q8,      // the engine's Q8 bilinear, vector kernels (core/pyramid_resize.hpp)
+  opencv,  // cv::resize INTER_LINEAR to the byte: ORB-SLAM's pixels (core/pyramid_resize_opencv)
+};
+
+// Where detection's threshold retry and non-maximum suppression act (docs/design.md §5).
+enum class DetectionCells {
+  blocks,   // the engine's blocks, suppression over the whole level (core/level_detection.hpp)
+  orbslam,  // ORB-SLAM3's 35-pixel cells, each suppressed as its own image (core/orbslam_cells.hpp)
+};
+
+// How the quadtree breaks ties (docs/design.md §6).
+enum class QuadtreeTies {
+  full,     // a written tie-break for every ordering, exactly N per level (core/distribution.hpp)
+  orbslam,  // ORB-SLAM's list order and overshoot of up to 3 (core/octree_orbslam.hpp)
+};
+
+// The angle of the intensity centroid (docs/design.md §7).
+enum class Orientation {
+  atan2,        // atan2 in double, rounded to float
+  opencv_fast,  // cv::fastAtan2 in float, ORB-SLAM's IC_Angle (core/fast_atan2.hpp)
+};
+
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
   aief,              // AIEF with six measured departures (docs/design.md §11; the defaults below)
   aief_paper,        // AIEF exactly as published: x * scale, no sub-pixel, no pool, frame guard
   orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
+  faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells and octree tie-breaks
 };
 
 struct ExtractorOptions {
@@ -109,6 +134,14 @@ struct ExtractorOptions {
   // (core/auto_threshold.hpp); otherwise the frame has no low-information class and F = 0 keeps
   // every block. false: always Otsu's split (capped to keep three quarters of the blocks).
   bool auto_requires_two_classes = true;
+  // The choices of the faithful mode, each on its own for measurement: ORB-SLAM3's ORBextractor
+  // to the keypoint (docs/design.md §2, §5, §6, §7). The octree ties act on the quadtree only;
+  // ORB-SLAM's cells take no detection mask (the entropy mask then drops their candidates by
+  // block).
+  PyramidResampling pyramid_resampling = PyramidResampling::q8;
+  DetectionCells detection_cells = DetectionCells::blocks;
+  QuadtreeTies quadtree_ties = QuadtreeTies::full;
+  Orientation orientation = Orientation::atan2;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
@@ -130,6 +163,10 @@ std::string_view to_string(Mode value);
 std::string_view to_string(CoordinateMap value);
 std::string_view to_string(StarvationGuard value);
 std::string_view to_string(CandidateRanking value);
+std::string_view to_string(PyramidResampling value);
+std::string_view to_string(DetectionCells value);
+std::string_view to_string(QuadtreeTies value);
+std::string_view to_string(Orientation value);
 Distribution parse_distribution(std::string_view name);
 EntropyMeasure parse_entropy_measure(std::string_view name);
 KernelSet parse_kernel_set(std::string_view name);
