@@ -94,6 +94,10 @@ class Extractor:
         starvation_guard: Optional[str] = None,
         auto_skips_uniform_blocks: Optional[bool] = None,
         auto_requires_two_classes: Optional[bool] = None,
+        pyramid: Optional[Literal["q8", "opencv"]] = None,
+        detection_cells: Optional[Literal["blocks", "orbslam"]] = None,
+        quadtree_ties: Optional[Literal["full", "orbslam"]] = None,
+        orientation: Optional[Literal["atan2", "fast-atan2"]] = None,
         max_image_pixels: int = 67108864,
         **record_keys: Any,
     ) -> None: ...
