@@ -25,7 +25,11 @@ struct PairRecord {
   std::string options0, options1;  // each image's features' option record, JSON text, or ""
   std::string source0, source1;    // each image's source record, "BYTES MTIME_NS", or ""
 
-  bool operator==(const PairRecord&) const = default;
+  // Written out, not defaulted: installed headers stay C++17 (tests/consumer builds with it).
+  bool operator==(const PairRecord& other) const {
+    return matcher == other.matcher && options0 == other.options0 && options1 == other.options1 &&
+           source0 == other.source0 && source1 == other.source1;
+  }
 };
 
 // What a recorded pair group does not share with this run's record `now`, for a message: the
