@@ -14,7 +14,7 @@
 // (h0 * b0 + h1 * b1 + 2^21) >> 22; measured on the OpenCV this repository builds against
 // (Debian's 4.6, x86-64), every column of every size takes the vector one, also the columns a
 // 16-byte loop would leave to a scalar tail, also exact halvings (INTER_AREA there). Integers
-// only, so one answer in every build; tests/test_pyramid_resize_opencv.cpp checks it against
+// only, so one answer in every build; tests/test_faithful_mode.cpp checks it against
 // cv::resize on random sizes, scale factors and images.
 #include <cstdint>
 #include <vector>

@@ -81,9 +81,11 @@ std::string unique_temporary_path_of(const std::string& path);
 // this process or another, holds its own). Returns how many it removed.
 int remove_stale_temporaries(const std::string& folder);
 
-// The temporary file beside `path` that write_file_atomically (and the writers of HDF5 and
-// COLMAP files) use: "." + 16 hex digits of a hash of the file name + ".tmp", the same for the
-// same path, so a batch removes the stale one a killed run left. Short, so any legal file name
+// The temporary file beside `path` that the writers of HDF5 files (a new file, aief merge) and
+// of COLMAP databases use (write_file_atomically's own are unique_temporary_path_of): "." + 16
+// hex digits of a hash of the file name + ".tmp", the same for the same path, so a rerun removes
+// the stale one a killed run left (as the batch's file sink does for older aief's temporaries,
+// tools/batch_sink_files.cpp). Short, so any legal file name
 // has one (name + ".tmp" would pass NAME_MAX for a name of 252 bytes or more); hidden, and never
 // ending in an output extension, so it is no output's name and no image's.
 std::string temporary_path_of(const std::string& path);
