@@ -41,7 +41,7 @@ void print_help() {
       << "  --sequences LIST      comma-separated (default all eight present)\n"
       << "  --pairs P             1-2 or all (1 -> 2..6; default all)\n"
       << "  -o, --output FILE     the markdown report (default evaluation.md)\n"
-      << "  --matcher K           mutual (default) | ratio | paper\n"
+      << flags_help<MatchOptions>()
       << "  --repeat N            interleaved timing rounds per pair, median (default 5)\n"
       << "  --methods LIST        comma-separated JSON keys of the rows to run (default all):\n"
       << "                        orbslam2, quadtree_entropy, aief_paper_adaptive, "
@@ -68,20 +68,21 @@ cv::Mat as_mat(const GrayImage& image) {
 }  // namespace
 
 int run_eval(const Arguments& arguments) {
-  const Args args(arguments, {{"--dataset", "", true},
-                              {"--sequences", "", true},
-                              {"--pairs", "", true},
-                              {"--output", "-o", true},
-                              {"--matcher", "", true},
-                              {"--repeat", "", true},
-                              {"--methods", "", true},
-                              {"--pool", "", true},
-                              {"--coordinates", "", true},
-                              {"--subpixel", "", true},
-                              {"--starvation-guard", "", true},
-                              {"--ranking", "", true},
-                              {"--auto-two-classes", "", true},
-                              {"--help", "-h", false}});
+  std::vector<FlagSpec> spec = flags_of<MatchOptions>();
+  spec.insert(spec.end(), {{"--dataset", "", true},
+                           {"--sequences", "", true},
+                           {"--pairs", "", true},
+                           {"--output", "-o", true},
+                           {"--repeat", "", true},
+                           {"--methods", "", true},
+                           {"--pool", "", true},
+                           {"--coordinates", "", true},
+                           {"--subpixel", "", true},
+                           {"--starvation-guard", "", true},
+                           {"--ranking", "", true},
+                           {"--auto-two-classes", "", true},
+                           {"--help", "-h", false}});
+  const Args args(arguments, spec);
   if (args.has("--help")) {
     print_help();
     return 0;
@@ -103,11 +104,7 @@ int run_eval(const Arguments& arguments) {
   }
   eval::EvalSettings settings;
   settings.timing_repeats = args.get_int("--repeat", settings.timing_repeats, 1, 1000);
-  try {
-    if (const auto kind = args.get("--matcher")) settings.match.kind = parse_matcher_kind(*kind);
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
+  settings.match = options_from_flags<MatchOptions>(args);  // the matcher's rows, as in match
   settings.aief =
       extractor_options(args);  // the AIEF rows' flags, by the option table as in extract
   std::vector<eval::Method> methods = eval::kAllMethods;
