@@ -273,7 +273,8 @@ TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {
       "extract " + bomb_path, "match " + bomb_path + " " + good, "adapt " + good + " " + bomb_path,
       "eval --dataset " + (dir / "eval").string() + " --sequences graf --pairs 1-2 -o " +
           (dir / "report.md").string(),
-      "extract --batch " + (dir / "batch").string() + " -o " + (dir / "out").string()};
+      "extract --batch " + (dir / "batch").string() + " -o " + (dir / "out").string(),
+      "bench " + bomb_path, "bench " + good + " --pair " + bomb_path};
   for (const std::string& command : commands) {
     const CliResult r = run(command);
     EXPECT_EQ(r.status, 1) << command << "\n" << r.output;
@@ -283,6 +284,12 @@ TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {
     EXPECT_NE(r.output.find("refused before decoding"), std::string::npos) << command << "\n"
                                                                            << r.output;
   }
+  // bench reads as every command does, by the limit given (--max-image-pixels), not the default.
+  const CliResult small_limit = run("bench " + good + " --max-image-pixels 1000 --repeat 1");
+  EXPECT_EQ(small_limit.status, 1) << small_limit.output;
+  EXPECT_NE(small_limit.output.find("more than max_image_pixels = 1000 (refused before decoding)"),
+            std::string::npos)
+      << small_limit.output;
 }
 
 TEST(Cli, AJpegCutShortIsExtractedWithTheDecodersWarning) {

@@ -17,11 +17,11 @@
 #include "aief/match.hpp"
 #include "core/frame_pipeline.hpp"
 #include "core/stage_times.hpp"
-#include "io/image_io.hpp"
 #include "io/json_writer.hpp"
 #include "simd/kernels.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/read_image.hpp"
 
 namespace aief::cli {
 
@@ -218,11 +218,12 @@ int run_bench(const Arguments& arguments) {
   const int repeat = args.get_int("--repeat", 21, 1, 100000);
   const ExtractorOptions options = extractor_options(args);
   const std::string& path = args.positionals()[0];
-  const GrayImage image = io::read_gray_image(path);
+  const GrayImage image = read_image_reporting(path, options.max_image_pixels);
   const std::optional<std::string> pair_path = args.get("--pair");
   if (pair_path && options.entropy == EntropyMeasure::off)
     throw UsageError("bench --pair needs an entropy mode (the sweep is over entropy thresholds)");
-  const GrayImage second = pair_path ? io::read_gray_image(*pair_path) : GrayImage();
+  const GrayImage second =
+      pair_path ? read_image_reporting(*pair_path, options.max_image_pixels) : GrayImage();
   const BenchMeasures measures = measure(options, image, pair_path ? &second : nullptr, repeat);
   std::cout << bench_json(path, image, options, repeat, pair_path, measures);
   return 0;
