@@ -52,6 +52,12 @@ void register_extract_benchmarks() {
     };
     for (Mode mode : {Mode::orbslam2, Mode::faithful}) {
       for (const Variant& variant : kVariants) {
+        ExtractorOptions probe = options_for_mode(mode);
+        variant.apply(probe);
+        // The per-block thresholds act on the engine's blocks, not ORB-SLAM's cells: no row.
+        if (probe.fast_threshold_from == FastThresholdFrom::entropy &&
+            probe.detection_cells != DetectionCells::blocks)
+          continue;
         const std::string name = "extract/" + std::string(to_string(mode)) + "+" + variant.name +
                                  "/" + std::string(to_string(best_kernel_set())) + "/t1/" +
                                  image.name;
