@@ -38,7 +38,7 @@ void register_extract_benchmarks() {
         }
       }
     }
-    // Issue 24's entropy-guided variants, each alone on the quadtree modes: one thread, the best
+    // The entropy-guided variants, each alone on the quadtree modes: one thread, the best
     // set; the mode's own row above is the baseline.
     struct Variant {
       const char* name;

@@ -1,6 +1,6 @@
 #pragma once
 // The FAST threshold of a block from its entropy (FastThresholdFrom::entropy, docs/design.md §5,
-// "per-block thresholds"): issue 24's variant (a). A block of entropy H bits tries
+// "per-block thresholds"): an entropy-guided variant. A block of entropy H bits tries
 //   T(H) = fast_min + floor((fast - fast_min) * min(round(256 H), 256 * kFullThresholdBits)
 //                           / (256 * kFullThresholdBits))
 // first instead of fast_threshold: fast_min at 0 bits, rising linearly (monotone, integers) to

@@ -59,7 +59,7 @@ void select_candidates(const PyramidLevel& level, const LevelBlocks& blocks, Blo
     }
     constexpr int kQuadtreeMargin = kEdgeBorder - 3;  // ORB-SLAM2's minBorderX
     if (options.quadtree_weight == QuadtreeWeight::entropy) {
-      // Issue 24's variant (c): each candidate weighs its block's entropy (computed for this
+      // The entropy-weighted quadtree: each candidate weighs its block's entropy (computed for this
       // option when the mask is off, core/frame_analysis.cpp). It replaces either tie rule.
       std::vector<std::int64_t>& weights = scratch.quadtree_weights;
       weights.resize(set.size());

@@ -1,6 +1,6 @@
 #pragma once
 // The quadtree with its splits weighted by block entropy (QuadtreeWeight::entropy,
-// docs/design.md §6, "entropy-weighted quadtree"): issue 24's variant (c). The nodes start as
+// docs/design.md §6, "entropy-weighted quadtree"): an entropy-guided variant. The nodes start as
 // distribute_quadtree's (side by side, about square); then, instead of splitting every node each
 // round, the node of the largest weight splits next, one at a time, until the level has n_wanted
 // nodes or no node holds two candidates. A node's weight is the sum over its candidates of their

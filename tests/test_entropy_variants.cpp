@@ -1,4 +1,4 @@
-// Issue 24's entropy-guided variants that never drop a region, each on its own: what each does on
+// The entropy-guided variants that never drop a region, each on its own: what each does on
 // a synthetic image made for it, and that it keeps every region with candidates. The default
 // (none) is the existing bytes (the hash tests); every kernel set and thread count giving the
 // same bytes is tests/test_pipeline_differential.cpp.

@@ -1,7 +1,7 @@
 // The whole pipeline across the option space, bit for bit: seeded random options (sizes 39..539,
 // scale 1.01..4, blocks 8..1024, levels 1..14, every mode, both entropy measures, fixed and
-// automatic F, the faithful mode's choices and issue 24's variants in any mode) on textured random
-// images and crops of the real samples; under every kernel set this CPU runs at 1, 2 and 5
+// automatic F, the faithful mode's choices and the entropy-guided variants in any mode) on textured
+// random images and crops of the real samples; under every kernel set this CPU runs at 1, 2 and 5
 // threads, the same bytes as the scalar reference at 1 thread (docs/design.md §12). Each case is
 // its own test, named by its index, and prints its options when it fails, so a failure reproduces
 // alone: --gtest_filter='*/17'.
@@ -85,7 +85,7 @@ Case make_case(int index) {
   if (uniform_int(faithful_rng, 0, 3) == 0) c.options.detection_cells = DetectionCells::orbslam;
   if (uniform_int(faithful_rng, 0, 3) == 0) c.options.quadtree_ties = QuadtreeTies::orbslam;
   if (uniform_int(faithful_rng, 0, 3) == 0) c.options.orientation = Orientation::opencv_fast;
-  // Issue 24's entropy-guided variants, a quarter of the cases each, their own draws likewise.
+  // The entropy-guided variants, a quarter of the cases each, their own draws likewise.
   std::mt19937 variant_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 15485863u));
   if (uniform_int(variant_rng, 0, 3) == 0) c.options.quadtree_weight = QuadtreeWeight::entropy;
   if (uniform_int(variant_rng, 0, 3) == 0)

@@ -67,14 +67,14 @@ enum class QuadtreeTies {
   orbslam,  // ORB-SLAM's list order and overshoot of up to 3 (core/octree_orbslam.hpp)
 };
 
-// Where a block's first FAST threshold comes from (docs/design.md §5): issue 24's variant (a).
+// Where a block's first FAST threshold comes from (docs/design.md §5).
 enum class FastThresholdFrom {
   none,     // fast_threshold in every block (ORB-SLAM's iniThFAST)
   entropy,  // fast_min_threshold up to fast_threshold by block entropy
             // (core/entropy_fast_threshold)
 };
 
-// What weights the quadtree's splits (docs/design.md §6): issue 24's variant (c).
+// What weights the quadtree's splits (docs/design.md §6).
 enum class QuadtreeWeight {
   none,     // every node splits each round (distribute_quadtree / ORB-SLAM's octree)
   entropy,  // the node of the largest block-entropy weight splits next (core/quadtree_weighted)
@@ -155,10 +155,10 @@ struct ExtractorOptions {
   DetectionCells detection_cells = DetectionCells::blocks;
   QuadtreeTies quadtree_ties = QuadtreeTies::full;
   Orientation orientation = Orientation::atan2;
-  // Entropy-guided variant (issue 24), the quadtree only: its splits weighted by block entropy
+  // Entropy-guided variant, the quadtree only: its splits weighted by block entropy
   // (the entropy measure's, histogram when the mask is off), every leaf keeping its strongest.
   QuadtreeWeight quadtree_weight = QuadtreeWeight::none;
-  // Entropy-guided variant (issue 24), the engine's blocks only (not ORB-SLAM's cells): a block's
+  // Entropy-guided variant, the engine's blocks only (not ORB-SLAM's cells): a block's
   // first FAST threshold falls with its entropy, so weak-texture and dark blocks keep weaker
   // corners; the retry at fast_min_threshold stays.
   FastThresholdFrom fast_threshold_from = FastThresholdFrom::none;
