@@ -38,6 +38,42 @@ void register_extract_benchmarks() {
         }
       }
     }
+    // The entropy-guided variants, each alone on the quadtree modes: one thread, the best
+    // set; the mode's own row above is the baseline.
+    struct Variant {
+      const char* name;
+      void (*apply)(ExtractorOptions&);
+    };
+    static constexpr Variant kVariants[] = {
+        {"quadtree-weight-entropy",
+         [](ExtractorOptions& o) { o.quadtree_weight = QuadtreeWeight::entropy; }},
+        {"fast-threshold-from-entropy",
+         [](ExtractorOptions& o) { o.fast_threshold_from = FastThresholdFrom::entropy; }},
+    };
+    for (Mode mode : {Mode::orbslam2, Mode::faithful}) {
+      for (const Variant& variant : kVariants) {
+        ExtractorOptions probe = options_for_mode(mode);
+        variant.apply(probe);
+        // The per-block thresholds act on the engine's blocks, not ORB-SLAM's cells: no row.
+        if (probe.fast_threshold_from == FastThresholdFrom::entropy &&
+            probe.detection_cells != DetectionCells::blocks)
+          continue;
+        const std::string name = "extract/" + std::string(to_string(mode)) + "+" + variant.name +
+                                 "/" + std::string(to_string(best_kernel_set())) + "/t1/" +
+                                 image.name;
+        benchmark::RegisterBenchmark(name.c_str(), [gray, mode, variant](benchmark::State& state) {
+          ExtractorOptions options = options_for_mode(mode);
+          variant.apply(options);
+          options.kernels = best_kernel_set();
+          options.threads = 1;
+          Extractor extractor(options);
+          Features features;
+          for (auto _ : state) extractor.extract(view_of(*gray), features);
+          state.counters["keypoints"] = static_cast<double>(features.keypoints.size());
+          state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
+        })->Unit(benchmark::kMillisecond);
+      }
+    }
     benchmark::RegisterBenchmark(
         ("extract/opencv_orb/" + image.name).c_str(),
         [gray](benchmark::State& state) {

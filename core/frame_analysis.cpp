@@ -90,11 +90,19 @@ void FrameAnalysis::build_level_rows(int n, int y_begin, int y_end) {
 
 void FrameAnalysis::compute_entropies(int n) {
   Level& level = at(n);
-  if (options_.entropy == EntropyMeasure::off || !level.pyramid.usable()) return;
+  const bool mask_on = options_.entropy != EntropyMeasure::off;
+  // The entropy-weighted quadtree and the per-block FAST thresholds read the block entropies with
+  // the mask off too (histogram); the frame's own entropy stays the mask's (0 without it).
+  const bool entropies_needed = (options_.distribution == Distribution::quadtree &&
+                                 options_.quadtree_weight == QuadtreeWeight::entropy) ||
+                                (options_.detection_cells == DetectionCells::blocks &&
+                                 options_.fast_threshold_from == FastThresholdFrom::entropy);
+  if ((!mask_on && !entropies_needed) || !level.pyramid.usable()) return;
   std::uint32_t whole[256] = {};
-  compute_block_entropies(level.pyramid.pixels, level.pyramid.geometry.grid, options_.entropy,
-                          *kernels_, level.blocks, n == 0 ? whole : nullptr);
-  if (n == 0)
+  compute_block_entropies(level.pyramid.pixels, level.pyramid.geometry.grid,
+                          mask_on ? options_.entropy : EntropyMeasure::histogram, *kernels_,
+                          level.blocks, n == 0 && mask_on ? whole : nullptr);
+  if (n == 0 && mask_on)
     image_entropy_bits_ =
         whole_level_entropy_bits(level.pyramid.pixels, options_.entropy, *kernels_, whole);
 }

@@ -4,6 +4,7 @@
 #include <bit>
 
 #include "core/detection_mask.hpp"
+#include "core/entropy_fast_threshold.hpp"
 #include "core/fast9.hpp"
 #include "core/orbslam_cells.hpp"
 #include "core/score_band.hpp"
@@ -23,6 +24,7 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options,
   const int y0 = grid.row_edges[static_cast<std::size_t>(r)],
             y1 = grid.row_edges[static_cast<std::size_t>(r) + 1];
   const MutableImageView scores = scratch.score_band.mutable_view();
+  const bool per_block_threshold = options.fast_threshold_from == FastThresholdFrom::entropy;
 
   // Local maxima of the score map (threshold-free, see core/fast9.hpp) over the whole run, one
   // bit row per level row, and the strong ones (score >= fast_threshold) likewise, also OR-ed
@@ -73,6 +75,18 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options,
     for (int k = k_first; k <= k_last; ++k)
       any_strong = any_strong || block_bits(strong_any, k) != 0;
     const std::uint64_t* taken_rows = any_strong ? strong_rows : maxima_rows;
+    // FastThresholdFrom::entropy (core/entropy_fast_threshold.hpp): a block with a strong maximum
+    // whose entropy lowers its threshold takes its maxima scoring at least that (a superset of
+    // the strong ones); without a strong one it retries at fast_min_threshold as before.
+    int lowest_score = 0;
+    if (per_block_threshold && any_strong) {
+      const int threshold =
+          entropy_fast_threshold(blocks.entropy_bits[static_cast<std::size_t>(block)], options);
+      if (threshold < options.fast_threshold) {
+        taken_rows = maxima_rows;
+        lowest_score = threshold;
+      }
+    }
     const bool rank_by_cross = options.candidate_ranking == CandidateRanking::cross_score;
     const std::size_t first = candidates.size();
     const std::ptrdiff_t stride = scores.stride;
@@ -81,6 +95,7 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options,
       const std::uint8_t* row = scores.row(y - score_top);
       for (; word != 0; word &= word - 1) {
         const int x = x_begin + 64 * k + std::countr_zero(word);
+        if (row[x] < lowest_score) continue;
         const std::uint8_t left = row[x - 1], right = row[x + 1], up = row[x - stride],
                            down = row[x + stride];
         candidates.push_back(Candidate{x, y, row[x], left, right, up, down,

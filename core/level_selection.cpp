@@ -2,6 +2,7 @@
 
 #include "core/level_geometry.hpp"
 #include "core/octree_orbslam.hpp"
+#include "core/quadtree_weighted.hpp"
 
 namespace aief {
 
@@ -57,7 +58,18 @@ void select_candidates(const PyramidLevel& level, const LevelBlocks& blocks, Blo
       }
     }
     constexpr int kQuadtreeMargin = kEdgeBorder - 3;  // ORB-SLAM2's minBorderX
-    if (options.quadtree_ties == QuadtreeTies::orbslam)
+    if (options.quadtree_weight == QuadtreeWeight::entropy) {
+      // The entropy-weighted quadtree: each candidate weighs its block's entropy (computed for this
+      // option when the mask is off, core/frame_analysis.cpp). It replaces either tie rule.
+      std::vector<std::int64_t>& weights = scratch.quadtree_weights;
+      weights.resize(set.size());
+      for (std::size_t i = 0; i < set.size(); ++i)
+        weights[i] = entropy_weight(
+            blocks.entropy_bits[static_cast<std::size_t>(block_of(grid, set[i].x, set[i].y))]);
+      distribute_quadtree_weighted(set, weights, kQuadtreeMargin,
+                                   level.geometry.width - kQuadtreeMargin, kQuadtreeMargin,
+                                   level.geometry.height - kQuadtreeMargin, budget, selected);
+    } else if (options.quadtree_ties == QuadtreeTies::orbslam)
       distribute_octree_orbslam(set, kQuadtreeMargin, level.geometry.width - kQuadtreeMargin,
                                 kQuadtreeMargin, level.geometry.height - kQuadtreeMargin, budget,
                                 selected);

@@ -21,8 +21,9 @@ struct SelectionScratch {
   std::vector<std::int32_t> pooled_index;  // ... each one's index in the level's candidates
   std::vector<BlockRange> pooled_blocks;   // ... and the kept blocks' ranges in the pool
   CandidatePoolScratch pool;
-  std::vector<Candidate> quadtree_set;       // quadtree: the kept blocks' candidates
-  std::vector<std::int32_t> quadtree_index;  // ... each one's index in the level's candidates
+  std::vector<Candidate> quadtree_set;         // quadtree: the kept blocks' candidates
+  std::vector<std::int32_t> quadtree_index;    // ... each one's index in the level's candidates
+  std::vector<std::int64_t> quadtree_weights;  // QuadtreeWeight::entropy: each one's weight
   DistributionScratch distribution;
 };
 

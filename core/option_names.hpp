@@ -122,6 +122,21 @@ struct Table<QuadtreeTies> {
                                                  {QuadtreeTies::orbslam, "orbslam", "orbslam"}};
 };
 
+template <>
+struct Table<QuadtreeWeight> {
+  static constexpr std::string_view what = "quadtree weight";
+  static constexpr Name<QuadtreeWeight> names[] = {{QuadtreeWeight::none, "none", "none"},
+                                                   {QuadtreeWeight::entropy, "entropy", "entropy"}};
+};
+
+template <>
+struct Table<FastThresholdFrom> {
+  static constexpr std::string_view what = "FAST threshold source";
+  static constexpr Name<FastThresholdFrom> names[] = {
+      {FastThresholdFrom::none, "none", "none"},
+      {FastThresholdFrom::entropy, "entropy", "entropy"}};
+};
+
 // The name of `value`; "?" for a value outside the table (an invalid cast).
 template <class Enum>
 std::string_view name_of(Enum value) {

@@ -266,6 +266,24 @@ std::vector<OptionRow> make_rows() {
        .help = "the angle of the intensity centroid: atan2 (in double) or fast-atan2 "
                "(cv::fastAtan2, ORB-SLAM's, about 0.01 degrees off)",
        .per_mode = {"", "", "", "", "fast-atan2"}},
+      {.key = "quadtree_weight",
+       .field = access<&M::quadtree_weight>,
+       .cli_flag = "--quadtree-weight",
+       .cli_value = "W",
+       .python_keyword = "quadtree_weight",
+       .yaml_key = "ORBextractor.quadtreeWeight",
+       .help = "what orders the quadtree's splits: none (every node each round) or entropy (the "
+               "node whose candidates' block entropies sum highest splits next; every leaf keeps "
+               "its strongest); the quadtree only"},
+      {.key = "fast_threshold_from",
+       .field = access<&M::fast_threshold_from>,
+       .cli_flag = "--fast-threshold-from",
+       .cli_value = "S",
+       .python_keyword = "fast_threshold_from",
+       .yaml_key = "ORBextractor.fastThresholdFrom",
+       .help = "a block's first FAST threshold: none (the FAST threshold) or entropy (from the "
+               "retry threshold at 0 bits up to the FAST threshold at 6 bits, linearly); the "
+               "engine's blocks only"},
       {.key = "kernels",
        .field = access<&M::kernels>,
        .cli_flag = "--kernels",

@@ -19,6 +19,8 @@ std::string_view to_string(PyramidResampling value) { return option_names::name_
 std::string_view to_string(DetectionCells value) { return option_names::name_of(value); }
 std::string_view to_string(QuadtreeTies value) { return option_names::name_of(value); }
 std::string_view to_string(Orientation value) { return option_names::name_of(value); }
+std::string_view to_string(QuadtreeWeight value) { return option_names::name_of(value); }
+std::string_view to_string(FastThresholdFrom value) { return option_names::name_of(value); }
 
 Distribution parse_distribution(std::string_view name) {
   return option_names::parse<Distribution>(name);

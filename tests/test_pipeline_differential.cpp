@@ -1,9 +1,10 @@
 // The whole pipeline across the option space, bit for bit: seeded random options (sizes 39..539,
 // scale 1.01..4, blocks 8..1024, levels 1..14, every mode, both entropy measures, fixed and
-// automatic F, the faithful mode's choices in any mode) on textured random images and crops of the
-// real samples; under every kernel set this CPU runs at 1, 2 and 5 threads, the same bytes as the
-// scalar reference at 1 thread (docs/design.md §12). Each case is its own test, named by its index,
-// and prints its options when it fails, so a failure reproduces alone: --gtest_filter='*/17'.
+// automatic F, the faithful mode's choices and the entropy-guided variants in any mode) on textured
+// random images and crops of the real samples; under every kernel set this CPU runs at 1, 2 and 5
+// threads, the same bytes as the scalar reference at 1 thread (docs/design.md §12). Each case is
+// its own test, named by its index, and prints its options when it fails, so a failure reproduces
+// alone: --gtest_filter='*/17'.
 //
 // Cost: about 12 extractions of an image of at most 539 x 539 per case; the case count is kept
 // small enough for the sanitizer jobs (scripts/ci_sanitizers), which run it too.
@@ -84,6 +85,11 @@ Case make_case(int index) {
   if (uniform_int(faithful_rng, 0, 3) == 0) c.options.detection_cells = DetectionCells::orbslam;
   if (uniform_int(faithful_rng, 0, 3) == 0) c.options.quadtree_ties = QuadtreeTies::orbslam;
   if (uniform_int(faithful_rng, 0, 3) == 0) c.options.orientation = Orientation::opencv_fast;
+  // The entropy-guided variants, a quarter of the cases each, their own draws likewise.
+  std::mt19937 variant_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 15485863u));
+  if (uniform_int(variant_rng, 0, 3) == 0) c.options.quadtree_weight = QuadtreeWeight::entropy;
+  if (uniform_int(variant_rng, 0, 3) == 0)
+    c.options.fast_threshold_from = FastThresholdFrom::entropy;
 
   const int width = uniform_int(rng, 39, 539), height = uniform_int(rng, 39, 539);
   const int source = uniform_int(rng, 0, 3);
@@ -107,7 +113,9 @@ Case make_case(int index) {
       << c.options.fast_threshold << "/" << c.options.fast_min_threshold << ", pyramid "
       << to_string(c.options.pyramid_resampling) << ", cells "
       << to_string(c.options.detection_cells) << ", ties " << to_string(c.options.quadtree_ties)
-      << ", orientation " << to_string(c.options.orientation);
+      << ", orientation " << to_string(c.options.orientation) << ", quadtree weight "
+      << to_string(c.options.quadtree_weight) << ", FAST threshold from "
+      << to_string(c.options.fast_threshold_from);
   c.description = out.str();
   return c;
 }

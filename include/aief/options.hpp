@@ -67,6 +67,19 @@ enum class QuadtreeTies {
   orbslam,  // ORB-SLAM's list order and overshoot of up to 3 (core/octree_orbslam.hpp)
 };
 
+// Where a block's first FAST threshold comes from (docs/design.md §5).
+enum class FastThresholdFrom {
+  none,     // fast_threshold in every block (ORB-SLAM's iniThFAST)
+  entropy,  // fast_min_threshold up to fast_threshold by block entropy
+            // (core/entropy_fast_threshold)
+};
+
+// What weights the quadtree's splits (docs/design.md §6).
+enum class QuadtreeWeight {
+  none,     // every node splits each round (distribute_quadtree / ORB-SLAM's octree)
+  entropy,  // the node of the largest block-entropy weight splits next (core/quadtree_weighted)
+};
+
 // The angle of the intensity centroid (docs/design.md §7).
 enum class Orientation {
   atan2,        // atan2 in double, rounded to float
@@ -142,6 +155,13 @@ struct ExtractorOptions {
   DetectionCells detection_cells = DetectionCells::blocks;
   QuadtreeTies quadtree_ties = QuadtreeTies::full;
   Orientation orientation = Orientation::atan2;
+  // Entropy-guided variant, the quadtree only: its splits weighted by block entropy
+  // (the entropy measure's, histogram when the mask is off), every leaf keeping its strongest.
+  QuadtreeWeight quadtree_weight = QuadtreeWeight::none;
+  // Entropy-guided variant, the engine's blocks only (not ORB-SLAM's cells): a block's
+  // first FAST threshold falls with its entropy, so weak-texture and dark blocks keep weaker
+  // corners; the retry at fast_min_threshold stays.
+  FastThresholdFrom fast_threshold_from = FastThresholdFrom::none;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
@@ -167,6 +187,8 @@ std::string_view to_string(PyramidResampling value);
 std::string_view to_string(DetectionCells value);
 std::string_view to_string(QuadtreeTies value);
 std::string_view to_string(Orientation value);
+std::string_view to_string(QuadtreeWeight value);
+std::string_view to_string(FastThresholdFrom value);
 Distribution parse_distribution(std::string_view name);
 EntropyMeasure parse_entropy_measure(std::string_view name);
 KernelSet parse_kernel_set(std::string_view name);

@@ -98,6 +98,8 @@ class Extractor:
         detection_cells: Optional[Literal["blocks", "orbslam"]] = None,
         quadtree_ties: Optional[Literal["full", "orbslam"]] = None,
         orientation: Optional[Literal["atan2", "fast-atan2"]] = None,
+        quadtree_weight: Literal["none", "entropy"] = "none",
+        fast_threshold_from: Literal["none", "entropy"] = "none",
         max_image_pixels: int = 67108864,
         **record_keys: Any,
     ) -> None: ...
