@@ -33,6 +33,23 @@ constexpr const char* kLockedByAWriter =
 
 // Why `path` cannot be opened or created as an HDF5 file, in the words a user acts on: a missing
 // folder, a directory, a file another process holds locked, a file that is not HDF5 or is damaged.
+// Creates `path` with a first block of zeros: the system's reason when the disk cannot hold it
+// (the file removed), "" otherwise, also when the file cannot be made at all (open_failure then
+// says why). A disk already full is found here, before libhdf5, whose failed create keeps its
+// file structures allocated.
+std::string first_block_does_not_fit(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) return {};
+  const char block[4096] = {};
+  const ssize_t wrote = ::write(fd, block, sizeof block);
+  const int write_error = wrote < 0 ? errno : ENOSPC;  // a short write: no room for the rest
+  ::close(fd);
+  if (wrote == static_cast<ssize_t>(sizeof block)) return {};
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+  return std::strerror(write_error);
+}
+
 std::string open_failure(const std::string& path, bool creating, const std::string& hdf5_said) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -127,8 +144,10 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
     creating = true;
     creating_as_ = temporary_path_of(path);
     std::filesystem::remove(creating_as_, ec);  // a killed run's
+    const std::string no_room = first_block_does_not_fit(creating_as_);
+    if (!no_room.empty()) throw Error("cannot create '" + path + "': " + no_room);
     const Handle creation = file_creation();
-    file_ = H5Fcreate(creating_as_.c_str(), H5F_ACC_EXCL, creation.get(), H5P_DEFAULT);
+    file_ = H5Fcreate(creating_as_.c_str(), H5F_ACC_TRUNC, creation.get(), H5P_DEFAULT);
     if (file_ < 0) reason = hdf5_reason();
   }
   if (file_ < 0) {
