@@ -74,8 +74,9 @@ void check_header_before_decoding(const std::vector<std::uint8_t>& bytes, const 
   // What the decoder allocates is bytes, not pixels: a 16-bit RGBA PNG takes 8 bytes a pixel
   // (522 KB of PNG decoded to 0.9 GB at the pixel limit). The bytes allowed are those of an
   // 8-bit BGRA image of max_image_pixels, so an 8-bit image is bounded by its pixels as above.
-  const long long pixel_bytes =
-      static_cast<long long>(header->channels) * header->bytes_per_channel;
+  // At least a byte: a malformed header may declare no channels (the decoder then refuses it).
+  const long long pixel_bytes = std::max<long long>(
+      1, static_cast<long long>(header->channels) * header->bytes_per_channel);
   const long long max_bytes = max_pixels > LLONG_MAX / kMaxDecodedBytesPerPixel
                                   ? LLONG_MAX
                                   : max_pixels * kMaxDecodedBytesPerPixel;
