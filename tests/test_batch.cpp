@@ -74,7 +74,9 @@ pid_t start(const std::vector<std::string>& arguments, const fs::path& log = "/d
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  // stderr beside the log (a sanitizer's report, a message), or nowhere when there is no log.
+  const std::string errors = log == "/dev/null" ? log.string() : log.string() + ".err";
+  posix_spawn_file_actions_addopen(&actions, 2, errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = -1;
   posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -169,8 +171,8 @@ TEST(Batch, TwoRunsOfOneBatchAtOnceBothSucceed) {
     const pid_t a = start(round_args, log_a), b = start(round_args, log_b);
     ASSERT_GT(a, 0);
     ASSERT_GT(b, 0);
-    EXPECT_EQ(wait_for(a), 0) << text_of(log_a);
-    EXPECT_EQ(wait_for(b), 0) << text_of(log_b);
+    EXPECT_EQ(wait_for(a), 0) << text_of(log_a) << text_of(log_a.string() + ".err");
+    EXPECT_EQ(wait_for(b), 0) << text_of(log_b) << text_of(log_b.string() + ".err");
     EXPECT_NE(text_of(log_a).find(" 0 failed"), std::string::npos) << text_of(log_a);
     EXPECT_NE(text_of(log_b).find(" 0 failed"), std::string::npos) << text_of(log_b);
   }

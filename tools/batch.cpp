@@ -217,6 +217,9 @@ BatchSummary run_batch(const BatchSettings& settings) {
               items[item->position].reset();
             }));
   });
+  // Every stage's last call happens before this line (its final call of the list stage is the
+  // one that stops the pipeline, followed by no extraction): joined here for TSan.
+  parallel::handoff_acquire(&kListStage);
   parallel::handoff_acquire(&kExtractStage);
   parallel::handoff_acquire(&kWriteStage);
   if (summary.stopped.empty()) {
