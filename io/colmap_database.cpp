@@ -14,6 +14,7 @@
 #include "io/hdf5_file.hpp"
 #include "io/json_writer.hpp"
 #include "io/pairs_file.hpp"
+#include "io/temporary_files.hpp"
 #include "io/utf8.hpp"
 
 namespace aief::io {
@@ -215,27 +216,23 @@ ColmapExport export_colmap_database(const std::string& database, const std::stri
   const Hdf5File features(features_h5, Hdf5File::Mode::read);
   const Hdf5File matches(matches_h5, Hdf5File::Mode::read);
   PairsList pairs = read_pairs(pairs_txt);
-  const std::string temporary = temporary_path_of(database), journal = temporary + "-journal";
-  const auto remove_temporaries = [&] {
-    std::filesystem::remove(temporary, ec);
-    std::filesystem::remove(journal, ec);
-  };
-  remove_temporaries();
+  // Written to a locked temporary of this export's own, then renamed to `database` unless
+  // another export created it meanwhile: a killed or failed export leaves no database.
+  remove_stale_temporaries_of(database);
+  LockedTemporary temporary(database);
+  const std::string journal = temporary.path() + "-journal";
   ColmapExport summary;
   summary.notes = std::move(pairs.notes);
   try {
-    Database db(temporary);
+    Database db(temporary.path());
     write_database(db, features, matches, pairs, summary);
   } catch (...) {
-    remove_temporaries();
+    std::filesystem::remove(journal, ec);
     throw;
   }
-  std::filesystem::rename(temporary, database, ec);
-  if (ec) {
-    const std::string reason = ec.message();
-    remove_temporaries();
-    throw Error("cannot write COLMAP database '" + database + "': " + reason);
-  }
+  std::filesystem::remove(journal, ec);
+  if (!temporary.rename_unless_output_exists())
+    throw Error("COLMAP database '" + database + "' was created by another run meanwhile (remove it first)");
   return summary;
 }
 

@@ -19,6 +19,7 @@
 #include "aief/error.hpp"
 #include "io/hdf5_objects.hpp"
 #include "io/json_writer.hpp"
+#include "io/temporary_files.hpp"
 
 namespace aief::io {
 
@@ -142,8 +143,10 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
     // Created under a temporary name, renamed once its structure is on disk (flush_created_file):
     // a run killed in between leaves no file that cannot be opened.
     creating = true;
-    creating_as_ = temporary_path_of(path);
-    std::filesystem::remove(creating_as_, ec);  // a killed run's
+    // A temporary of its own (another run may be creating the same file): a killed run's are
+    // unlocked and removed; libhdf5 holds a lock on each it has open.
+    remove_stale_temporaries_of(path);
+    creating_as_ = unique_temporary_path_of(path);
     const std::string no_room = first_block_does_not_fit(creating_as_);
     if (!no_room.empty()) throw Error("cannot create '" + path + "': " + no_room);
     const Handle creation = file_creation();

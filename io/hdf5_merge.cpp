@@ -21,6 +21,7 @@
 #include "io/hdf5_objects.hpp"
 #include "io/json_writer.hpp"
 #include "io/merge_option_check.hpp"
+#include "io/temporary_files.hpp"
 
 namespace aief::io {
 
@@ -157,9 +158,10 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
                 "' does not exist");
 
   // Then written to a temporary beside the output (a copy of it when extending), renamed over it
-  // only when complete: a failed merge leaves the output as it was.
-  const std::string temporary = temporary_path_of(output);
-  fs::remove(temporary, ec);
+  // only when complete: a failed merge leaves the output as it was. The temporary is this
+  // merge's own: two merges into one output each rename a whole file.
+  remove_stale_temporaries_of(output);
+  const std::string temporary = unique_temporary_path_of(output);
   int copied = 0;
   try {
     if (extending) copy_file(output, temporary);

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "aief/error.hpp"
+#include "io/temporary_files.hpp"
 
 namespace aief::io {
 
@@ -142,59 +143,8 @@ std::string hex_of(const std::uint8_t* bytes, std::size_t count) {
   return out;
 }
 
-std::string temporary_path_of(const std::string& path) {
-  const std::filesystem::path file(path);
-  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits: stable across runs and builds
-  for (const char c : file.filename().string())
-    hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
-  char name[32];
-  std::snprintf(name, sizeof name, ".%016llx.tmp", static_cast<unsigned long long>(hash));
-  return (file.parent_path() / name).string();
-}
-
 bool is_disk_failure(int code) {
   return code == ENOSPC || code == EDQUOT || code == EROFS || code == EIO;
-}
-
-std::string unique_temporary_path_of(const std::string& path) {
-  static thread_local std::mt19937_64 random{std::random_device{}() ^
-                                             (static_cast<std::uint64_t>(::getpid()) << 32)};
-  const std::string shared = temporary_path_of(path);  // ".<16 hex>.tmp"
-  char suffix[16];
-  std::snprintf(suffix, sizeof suffix, ".%08x.tmp", static_cast<unsigned>(random()));
-  return shared.substr(0, shared.size() - 4) + suffix;
-}
-
-namespace {
-
-// ".<16 hex>.<8 hex>.tmp", as unique_temporary_path_of names them.
-bool is_unique_temporary_name(const std::string& name) {
-  const auto hex = [&](std::size_t from, std::size_t count) {
-    for (std::size_t i = from; i < from + count; ++i)
-      if (!std::isxdigit(static_cast<unsigned char>(name[i]))) return false;
-    return true;
-  };
-  return name.size() == 30 && name[0] == '.' && hex(1, 16) && name[17] == '.' && hex(18, 8) &&
-         name.compare(26, 4, ".tmp") == 0;
-}
-
-}  // namespace
-
-int remove_stale_temporaries(const std::string& folder) {
-  int removed = 0;
-  std::error_code ec;
-  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
-       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (!is_unique_temporary_name(name) || !it->is_regular_file(ec)) continue;
-    const int fd = ::open(it->path().c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-    if (fd < 0) continue;
-    // A writer holds its temporary locked: only an unlocked one is a killed write's. One created
-    // but not yet locked may be removed; its writer then sees its rename fail and writes again.
-    if (::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::unlink(it->path().c_str()) == 0) ++removed;
-    ::close(fd);
-  }
-  return removed;
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {

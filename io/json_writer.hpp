@@ -72,22 +72,4 @@ bool is_disk_failure(int code);
 // Throws WriteError with the system's reason.
 void write_file_atomically(const std::string& path, const std::string& content);
 
-// The temporary of one write of `path`: "." + the 16 hex digits of temporary_path_of + "." + 8
-// random hex digits + ".tmp", beside it.
-std::string unique_temporary_path_of(const std::string& path);
-
-// Removes, below `folder`, the temporaries write_file_atomically leaves when killed: files named
-// as unique_temporary_path_of names them that no writer holds locked (a write in progress, by
-// this process or another, holds its own). Returns how many it removed.
-int remove_stale_temporaries(const std::string& folder);
-
-// The temporary file beside `path` that the writers of HDF5 files (a new file, aief merge) and
-// of COLMAP databases use (write_file_atomically's own are unique_temporary_path_of): "." + 16
-// hex digits of a hash of the file name + ".tmp", the same for the same path, so a rerun removes
-// the stale one a killed run left (as the batch's file sink does for older aief's temporaries,
-// tools/batch_sink_files.cpp). Short, so any legal file name
-// has one (name + ".tmp" would pass NAME_MAX for a name of 252 bytes or more); hidden, and never
-// ending in an output extension, so it is no output's name and no image's.
-std::string temporary_path_of(const std::string& path);
-
 }  // namespace aief::io

@@ -20,6 +20,7 @@
 
 #include "io/feature_formats.hpp"
 #include "io/json_writer.hpp"
+#include "io/temporary_files.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_file.hpp"
 #endif

@@ -3,6 +3,7 @@
 #include "io/batch_output_names.hpp"
 #include "io/feature_formats.hpp"
 #include "io/json_writer.hpp"
+#include "io/temporary_files.hpp"
 #include "io/option_record.hpp"
 #include "tools/batch_sink.hpp"
 
