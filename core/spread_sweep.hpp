@@ -13,6 +13,8 @@
 // on a clock or a kernel set, so the frame at which the sweep ends, and every output, is a function
 // of the frames alone. The pieces are SweepPipeline's (core/adaptive_sweep.hpp), the ones its run()
 // is made of: the answer is adapt()'s on the pair, bit for bit.
+#include <cstddef>
+
 #include "aief/adapt.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
@@ -63,6 +65,7 @@ class SpreadSweep {
   void next_threshold(AdaptResult& out);
 
   SweepPipeline sweep_;
+  std::size_t distribution_;  // the options' Distribution, for the estimates
   ImageView images_[2];
   Phase phase_ = Phase::idle;
   int image_ = 0, level_ = 0, c_ = 0, thresholds_ = 0;
