@@ -8,7 +8,7 @@
 // frame (core/spread_sweep.hpp: analyses a level at a time, descriptions and matching rows in
 // runs), on the caller's thread (no background thread: every output stays a function of the
 // frames alone, whatever the timing, kernel set or thread count). A sweep that starts with frame
-// t (pair t - 1, t) thus runs after frames t, t + 1, ... until it completes (about 45 frames at
+// t (pair t - 1, t) thus runs after frames t, t + 1, ... until it completes (48-58 frames at
 // 640x480, 1000 features), and its F applies from the frame after the one it completed with. The
 // answer is AdaptiveSweep::run's on that pair, bit for bit; a sweep with no eligible threshold
 // keeps F.

@@ -30,7 +30,7 @@ constexpr double kFixedPiece = 20000;  // sorting entropies, a repeat, the choic
 // A plain extraction costs about this much per pixel of level 0 and per feature asked (docs/
 // speed.md: 18.4 M at 640x480 and 28.5 M at 800x640 with 1000 features), and a frame may add
 // this share of it for the sweep (3.1 M at 640x480): with the estimates' error, the worst frame
-// stays below 1.3x a plain frame's median (docs/design.md §10), and a sweep takes about 45
+// stays below 1.3x a plain frame's median (docs/design.md §10), and a sweep takes 48-58
 // frames at 640x480.
 constexpr double kFramePerPixel = 49;
 constexpr double kFramePerFeature = 3250;
