@@ -86,8 +86,9 @@ TEST(CarriedThreshold, FirstSweepGivesAdaptsFOnTheFirstPairFromTheFrameAfterItCo
   for (int t = 0; t < static_cast<int>(frames.size()) && carried.sweeps_completed() == 0; ++t) {
     carried.after_frame(view_of(frames[static_cast<std::size_t>(t)]));
     // Within the frame's budget, unless its step is one piece larger than the budget alone.
-    if (carried.last_step_pieces() > 1)
+    if (carried.last_step_pieces() > 1) {
       EXPECT_LE(carried.last_step_work(), budget) << "frame " << t;
+    }
   }
   ASSERT_EQ(carried.sweeps_completed(), 1);
   EXPECT_EQ(carried.last_sweep().threshold, expected.threshold);
