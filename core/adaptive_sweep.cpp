@@ -32,34 +32,6 @@ std::vector<std::int32_t> level_id_offsets(const FrameAnalysis& analysis) {
   return offsets;
 }
 
-// Extracts the features of one image at threshold F from its analysis (no threshold fallback:
-// the sweep measures each F as it is), with the identity of each feature. `chosen` holds each
-// level's selection at `previous` (when there is one, i.e. previous >= 0); a level whose kept
-// blocks did not change since keeps it.
-void features_at(FramePipeline& frame, const SortedBlockEntropies& entropies, double threshold,
-                 double previous, const std::vector<std::int32_t>& id_offsets,
-                 std::vector<std::vector<std::int32_t>>& chosen, ThresholdFeatures& result) {
-  const FrameAnalysis& analysis = frame.analysis();
-  const int levels = analysis.level_count();
-  chosen.resize(static_cast<std::size_t>(levels));
-  result.ids.clear();
-  for (int n = 0; n < levels; ++n) {
-    std::vector<std::int32_t>& level_chosen = chosen[static_cast<std::size_t>(n)];
-    if (previous < 0 || !entropies.same_level_blocks_kept(n, previous, threshold))
-      frame.select(n, threshold, level_chosen);
-    for (std::int32_t i : level_chosen)
-      result.ids.push_back(id_offsets[static_cast<std::size_t>(n)] + i);
-  }
-  Features& out = result.features;
-  analysis.assemble(chosen, out);
-  out.info.entropy_threshold_requested = threshold;
-  out.info.entropy_threshold_used = threshold;
-  out.info.threshold_lowered = false;
-  out.info.image_entropy_bits = analysis.image_entropy_bits();
-  out.info.blocks_total = analysis.blocks_total();
-  out.info.blocks_kept = entropies.blocks_kept(threshold);
-}
-
 bool same_features(const Features& x, const Features& y) {
   if (x.keypoints.size() != y.keypoints.size() || x.descriptors != y.descriptors) return false;
   for (std::size_t k = 0; k < x.keypoints.size(); ++k)
@@ -126,29 +98,100 @@ int SweepPipeline::begin_thresholds(Repeats repeats) {
   return cycles;
 }
 
-void SweepPipeline::select_threshold(int image, int c) {
+bool SweepPipeline::selects_like_previous(int image, int c) const {
+  // select() reads the threshold only through the mask.
+  return c > 0 && sorted_entropies_[static_cast<std::size_t>(image)].same_blocks_kept(
+                      threshold_at(c - 1), threshold_at(c));
+}
+
+void SweepPipeline::repeat_previous(int image, int c) {
+  std::vector<ThresholdFeatures>& features = image == 0 ? features_.a : features_.b;
+  ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
+  const ThresholdFeatures& before = features[static_cast<std::size_t>(c - 1)];
+  if (repeats_ == Repeats::copied) {
+    here = before;
+  } else {
+    here.features.info = before.features.info;
+    here.repeat_of = before.repeat_of >= 0 ? before.repeat_of : c - 1;
+  }
+  here.features.info.entropy_threshold_requested = threshold_at(c);
+  here.features.info.entropy_threshold_used = threshold_at(c);
+}
+
+// Level n of one image at threshold F (no threshold fallback: the sweep measures each F as it
+// is). A level whose kept blocks did not change since the previous threshold keeps its selection.
+void SweepPipeline::choose_level(int image, int c, int n) {
+  const std::size_t i = static_cast<std::size_t>(image);
+  std::vector<std::vector<std::int32_t>>& chosen = chosen_[i];
+  chosen.resize(static_cast<std::size_t>(frame(image).analysis().level_count()));
+  if (c == 0 ||
+      !sorted_entropies_[i].same_level_blocks_kept(n, threshold_at(c - 1), threshold_at(c)))
+    frame(image).choose(n, threshold_at(c), chosen[static_cast<std::size_t>(n)]);
+}
+
+int SweepPipeline::candidates_considered(int image, int c, int n) {
+  return static_cast<int>(frame(image).analysis().level_candidate_count(n, threshold_at(c)));
+}
+
+int SweepPipeline::undescribed(int image, int n) {
+  const FrameAnalysis& analysis = frame(image).analysis();
+  int count = 0;
+  for (std::int32_t k : chosen_[static_cast<std::size_t>(image)][static_cast<std::size_t>(n)])
+    count += analysis.described(n, k) ? 0 : 1;
+  return count;
+}
+
+void SweepPipeline::describe_next(int image, int n, int count) {
+  const FrameAnalysis& analysis = frame(image).analysis();
+  to_describe_.clear();
+  for (std::int32_t k : chosen_[static_cast<std::size_t>(image)][static_cast<std::size_t>(n)]) {
+    if (static_cast<int>(to_describe_.size()) == count) break;
+    if (!analysis.described(n, k)) to_describe_.push_back(k);
+  }
+  frame(image).describe(n, to_describe_);
+}
+
+// The features of one image at threshold c from its levels' selections, with the identity of
+// each feature.
+void SweepPipeline::finish_threshold(int image, int c) {
   const std::size_t i = static_cast<std::size_t>(image);
   std::vector<ThresholdFeatures>& features = image == 0 ? features_.a : features_.b;
-  const SortedBlockEntropies& entropies = sorted_entropies_[i];
-  const double threshold = sweep_.first_threshold + sweep_.step * c;
-  const double previous = sweep_.first_threshold + sweep_.step * (c - 1);
-  ThresholdFeatures& here = features[static_cast<std::size_t>(c)];
-  here.repeat_of = -1;
-  if (c > 0 && entropies.same_blocks_kept(previous, threshold)) {
-    // select() reads the threshold only through the mask.
-    const ThresholdFeatures& before = features[static_cast<std::size_t>(c - 1)];
-    if (repeats_ == Repeats::copied) {
-      here = before;
-    } else {
-      here.features.info = before.features.info;
-      here.repeat_of = before.repeat_of >= 0 ? before.repeat_of : c - 1;
-    }
-    here.features.info.entropy_threshold_requested = threshold;
-    here.features.info.entropy_threshold_used = threshold;
-  } else {
-    features_at(frame(image), entropies, threshold, c > 0 ? previous : -1.0, id_offsets_[i],
-                chosen_[i], here);
+  ThresholdFeatures& result = features[static_cast<std::size_t>(c)];
+  result.repeat_of = -1;
+  const FrameAnalysis& analysis = frame(image).analysis();
+  const double threshold = threshold_at(c);
+  result.ids.clear();
+  for (int n = 0; n < analysis.level_count(); ++n)
+    for (std::int32_t k : chosen_[i][static_cast<std::size_t>(n)])
+      result.ids.push_back(id_offsets_[i][static_cast<std::size_t>(n)] + k);
+  Features& out = result.features;
+  analysis.assemble(chosen_[i], out);
+  out.info.entropy_threshold_requested = threshold;
+  out.info.entropy_threshold_used = threshold;
+  out.info.threshold_lowered = false;
+  out.info.image_entropy_bits = analysis.image_entropy_bits();
+  out.info.blocks_total = analysis.blocks_total();
+  out.info.blocks_kept = sorted_entropies_[i].blocks_kept(threshold);
+}
+
+int SweepPipeline::chosen_total(int image) const {
+  std::size_t total = 0;
+  for (const std::vector<std::int32_t>& level : chosen_[static_cast<std::size_t>(image)])
+    total += level.size();
+  return static_cast<int>(total);
+}
+
+void SweepPipeline::select_threshold(int image, int c) {
+  if (selects_like_previous(image, c)) {
+    repeat_previous(image, c);
+    return;
   }
+  const int levels = frame(image).analysis().level_count();
+  for (int n = 0; n < levels; ++n) {
+    choose_level(image, c, n);
+    frame(image).describe(n, chosen_[static_cast<std::size_t>(image)][static_cast<std::size_t>(n)]);
+  }
+  finish_threshold(image, c);
 }
 
 const SweepFeatures& SweepPipeline::features(ImageView a, ImageView b, Repeats repeats) {
@@ -180,18 +223,45 @@ bool SweepPipeline::mark_distinct(int c) {
 }
 
 void SweepPipeline::evaluate_in_order(int c) {
+  if (!begin_evaluation(c)) return;
+  matcher().offer_rows(matcher().rows_left());
+  finish_matching(c);
+  fit_threshold(c);
+}
+
+bool SweepPipeline::begin_evaluation(int c) {
   evaluated_.resize(features_.a.size());
   if (runs_.empty()) runs_.push_back({SweepMatcher(sweep_.match, *kernels_), {}, {}});
   if (c == 0) runs_[0].matcher.reset();
-  if (mark_distinct(c)) evaluate(runs_[0], static_cast<std::size_t>(c));
+  if (!mark_distinct(c)) return false;
+  const std::size_t i = static_cast<std::size_t>(c);
+  const ThresholdFeatures& a = features_.a[i].resolved(features_.a);
+  const ThresholdFeatures& b = features_.b[i].resolved(features_.b);
+  runs_[0].matcher.begin(a.features.descriptors, a.ids, b.features.descriptors, b.ids);
+  return true;
+}
+
+void SweepPipeline::finish_matching(int c) {
+  evaluated_[static_cast<std::size_t>(c)].matches = runs_[0].matcher.finish();
+}
+
+int SweepPipeline::feature_count(int image, int c) const {
+  const std::vector<ThresholdFeatures>& all = image == 0 ? features_.a : features_.b;
+  return static_cast<int>(all[static_cast<std::size_t>(c)].resolved(all).ids.size());
 }
 
 void SweepPipeline::evaluate(MatchRun& run, std::size_t c) {
   const ThresholdFeatures& a = features_.a[c].resolved(features_.a);
   const ThresholdFeatures& b = features_.b[c].resolved(features_.b);
-  Evaluated& evaluated = evaluated_[c];
-  evaluated.matches =
+  evaluated_[c].matches =
       run.matcher.match(a.features.descriptors, a.ids, b.features.descriptors, b.ids);
+  fit(run, c);
+}
+
+void SweepPipeline::fit(MatchRun& run, std::size_t c) {
+  const ThresholdFeatures& a = features_.a[c].resolved(features_.a);
+  const ThresholdFeatures& b = features_.b[c].resolved(features_.b);
+  Evaluated& evaluated = evaluated_[c];
   homography_of(a.features, b.features, evaluated.matches, sweep_.ransac, run.src, run.dst,
                 evaluated.homography);
 }

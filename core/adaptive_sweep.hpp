@@ -68,6 +68,48 @@ class SweepPipeline {
   void evaluate_in_order(int c);            // matches and model of threshold c, unless repeated
   void choose(AdaptResult& out) const;      // the curve and the choice, after every threshold
 
+  // Each of those steps in smaller pieces, for a caller that spreads one sweep over frames with a
+  // bound on each frame's work (core/spread_sweep.hpp); the steps above are made of them, so the
+  // answer is the same.
+  // analyse(image, view) = start_analysis(image, view), then level_entropies(image, n) and
+  // detect_level(image, n) for each n in turn.
+  void start_analysis(int image, ImageView view) { frame(image).start_analysis(view); }
+  int level_count(int image) { return frame(image).analysis().level_count(); }
+  void level_entropies(int image, int n) { frame(image).level_entropies(n); }
+  void detect_level(int image, int n) { frame(image).detect_at(n, sweep_.first_threshold); }
+  // select_threshold(image, c) = the repeat of c - 1 when selects_like_previous(image, c), else
+  // choose_level(image, c, n) and the descriptions of level n for each n, then
+  // finish_threshold(image, c). The descriptions: blur_level(image, n) unless level_blurred,
+  // then describe_next(image, n, k) until undescribed(image, n) is 0.
+  bool selects_like_previous(int image, int c) const;
+  void repeat_previous(int image, int c);
+  void choose_level(int image, int c, int n);
+  // Candidates level n's chosen list holds (the distribution read that many), and of those the
+  // ones not described yet.
+  int candidates_considered(int image, int c, int n);
+  bool level_blurred(int image, int n) { return frame(image).analysis().level_blurred(n); }
+  void blur_level(int image, int n) { frame(image).blur_level(n); }
+  int undescribed(int image, int n);
+  void describe_next(int image, int n, int count);
+  void finish_threshold(int image, int c);
+  // Candidates chosen over the levels (the features finish_threshold puts together).
+  int chosen_total(int image) const;
+  // evaluate_in_order(c) = begin_evaluation(c) (false: a repeat, nothing more to do), then the
+  // matcher's rows (matcher().offer_rows) until none is left, then finish_matching(c) and
+  // fit_threshold(c) (RANSAC on putative_matches(c)).
+  bool begin_evaluation(int c);
+  SweepMatcher& matcher() { return runs_[0].matcher; }
+  void finish_matching(int c);
+  int putative_matches(int c) const {
+    return static_cast<int>(evaluated_[static_cast<std::size_t>(c)].matches.size());
+  }
+  void fit_threshold(int c) { fit(runs_[0], static_cast<std::size_t>(c)); }
+  // Features of image at threshold c (after finish_threshold or repeat_previous).
+  int feature_count(int image, int c) const;
+  // Level n's size, for estimates of the work.
+  int level_width(int image, int n) { return frame(image).analysis().level(n).geometry.width; }
+  int level_height(int image, int n) { return frame(image).analysis().level(n).geometry.height; }
+
  private:
   // The matches of one threshold and the model fitted to them.
   struct Evaluated {
@@ -82,6 +124,8 @@ class SweepPipeline {
 
   FramePipeline& frame(int image);
   void evaluate(MatchRun& run, std::size_t c);
+  void fit(MatchRun& run, std::size_t c);
+  double threshold_at(int c) const { return sweep_.first_threshold + sweep_.step * c; }
   // Whether threshold c selects other features than c - 1 (both images); records its source.
   bool mark_distinct(int c);
   // Where the distinct thresholds are cut into `runs` runs (core/sweep_runs.hpp).
@@ -99,6 +143,7 @@ class SweepPipeline {
   std::array<std::vector<std::int32_t>, 2> id_offsets_;
   std::array<SortedBlockEntropies, 2> sorted_entropies_;
   std::array<std::vector<std::vector<std::int32_t>>, 2> chosen_;
+  std::vector<std::int32_t> to_describe_;  // describe_next's piece
   std::vector<int> source_, distinct_;
   std::vector<Evaluated> evaluated_;
   std::vector<MatchRun> runs_;

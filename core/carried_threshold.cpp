@@ -25,11 +25,12 @@ void copy_into(ImageView frame, GrayImage& copy) {
 
 CarriedThreshold::CarriedThreshold(const ExtractorOptions& options, const KernelTable& kernels)
     : carry_every_(options.carry_every),
+      n_features_(options.n_features),
       threshold_(options.entropy_threshold),
-      sweep_(sweep_options(options), SweepOptions{}, kernels) {}
+      sweep_(sweep_options(options), kernels) {}
 
 bool CarriedThreshold::sweep_due() const {
-  if (step_ >= 0 || frame_index_ < 1) return false;  // one runs, or no pair yet
+  if (sweep_.running() || frame_index_ < 1) return false;  // one runs, or no pair yet
   return requested_ || last_start_ < 0 || frame_index_ - last_start_ >= carry_every_;
 }
 
@@ -38,8 +39,21 @@ void CarriedThreshold::after_frame(ImageView frame) {
     start_sweep();
     std::swap(sweep_a_, previous_);  // the previous frame is A: no copy
     copy_into(frame, sweep_b_);
+    sweep_.start(sweep_a_.view(), sweep_b_.view());
   }
-  if (step_ >= 0) run_step();
+  last_step_work_ = 0;
+  last_step_pieces_ = 0;
+  if (sweep_.running()) {
+    const bool completed =
+        sweep_.advance(SpreadSweep::frame_budget(frame, n_features_), last_sweep_);
+    last_step_work_ = sweep_.last_work();
+    last_step_pieces_ = sweep_.last_pieces();
+    if (completed) {
+      if (last_sweep_.found) threshold_ = last_sweep_.threshold;
+      ++sweeps_completed_;
+      last_completed_after_ = frame_index_;
+    }
+  }
   copy_into(frame, previous_);
   ++frame_index_;
 }
@@ -47,33 +61,6 @@ void CarriedThreshold::after_frame(ImageView frame) {
 void CarriedThreshold::start_sweep() {
   requested_ = false;
   last_start_ = frame_index_;
-  step_ = 0;
-  thresholds_ = 0;
-}
-
-void CarriedThreshold::run_step() {
-  if (step_ == 0) {
-    sweep_.analyse(0, sweep_a_.view());
-  } else if (step_ == 1) {
-    sweep_.analyse(1, sweep_b_.view());
-    thresholds_ = sweep_.begin_thresholds(Repeats::referenced);
-  } else {
-    const int first = (step_ - 2) * kThresholdsPerStep;
-    const int end = std::min(thresholds_, first + kThresholdsPerStep);
-    for (int c = first; c < end; ++c) {
-      sweep_.select_threshold(0, c);
-      sweep_.select_threshold(1, c);
-      sweep_.evaluate_in_order(c);
-    }
-    if (end == thresholds_) {
-      sweep_.choose(last_sweep_);
-      if (last_sweep_.found) threshold_ = last_sweep_.threshold;
-      ++sweeps_completed_;
-      step_ = -1;
-      return;
-    }
-  }
-  ++step_;
 }
 
 }  // namespace aief

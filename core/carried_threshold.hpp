@@ -3,35 +3,28 @@
 // there is always a previous frame, so the paper's adaptive sweep can choose F from the pair
 // (previous frame, current frame) and the frames that follow use it.
 //
-// No frame waits for a sweep: it runs in steps, one step after each frame's own extraction, on
-// the caller's thread (no background thread: every output stays a function of the frames alone,
-// whatever the timing or the thread count). Step 0 analyses the previous frame, step 1 the
-// current one, then each step selects, matches and fits kThresholdsPerStep thresholds of the
-// sweep, and the last one chooses. A sweep that starts with frame t (pair t - 1, t) over C
-// thresholds thus runs its steps after frames t .. t + 1 + ceil(C / kThresholdsPerStep), and its
-// F applies from the next frame on (steps_of(C) frames after t). The answer is
-// AdaptiveSweep::run's on that pair, bit for bit; a sweep with no eligible threshold keeps F.
+// No frame waits for a sweep, and no frame carries much of one: after each frame's extraction the
+// running sweep advances by pieces whose estimated work fits SpreadSweep::frame_budget of that
+// frame (core/spread_sweep.hpp: analyses a level at a time, descriptions and matching rows in
+// runs), on the caller's thread (no background thread: every output stays a function of the
+// frames alone, whatever the timing, kernel set or thread count). A sweep that starts with frame
+// t (pair t - 1, t) thus runs after frames t, t + 1, ... until it completes (48-58 frames at
+// 640x480, 1000 features), and its F applies from the frame after the one it completed with. The
+// answer is AdaptiveSweep::run's on that pair, bit for bit; a sweep with no eligible threshold
+// keeps F.
 //
 // Sweeps start with frame 1 (the first pair), then every carry_every frames from one start to the
 // next, and never while one runs; request_sweep() starts one with the next frame.
 #include "aief/adapt.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
-#include "core/adaptive_sweep.hpp"
 #include "core/kernel_table.hpp"
+#include "core/spread_sweep.hpp"
 
 namespace aief {
 
 class CarriedThreshold {
  public:
-  // Thresholds of the sweep each step selects, matches and fits (with C <= 40 thresholds, at most
-  // 10 threshold steps).
-  static constexpr int kThresholdsPerStep = 4;
-  // Steps of a sweep over C thresholds: the two analyses, then the thresholds.
-  static int steps_of(int thresholds) {
-    return 2 + (thresholds + kThresholdsPerStep - 1) / kThresholdsPerStep;
-  }
-
   // `options` must be valid; F starts at options.entropy_threshold.
   CarriedThreshold(const ExtractorOptions& options, const KernelTable& kernels);
 
@@ -44,27 +37,33 @@ class CarriedThreshold {
   // then right after the one that runs.
   void request_sweep() { requested_ = true; }
 
-  // For tests and records: frames seen, sweeps completed, and the last completed sweep's result.
+  // For tests and records: frames seen, sweeps completed, the last completed sweep's result and
+  // the index of the frame it completed after (its F applies from the next one), and the
+  // estimated work the last frame's step did (core/spread_sweep.hpp).
   long long frames_seen() const { return frame_index_; }
   int sweeps_completed() const { return sweeps_completed_; }
   const AdaptResult& last_sweep() const { return last_sweep_; }
+  long long last_sweep_completed_after() const { return last_completed_after_; }
+  double last_step_work() const { return last_step_work_; }
+  int last_step_pieces() const { return last_step_pieces_; }
 
  private:
   bool sweep_due() const;
   void start_sweep();
-  void run_step();
 
   int carry_every_;
+  int n_features_;
   double threshold_;
-  SweepPipeline sweep_;
+  SpreadSweep sweep_;
   GrayImage previous_;           // the last frame, copied (the caller's pixels do not outlive it)
   GrayImage sweep_a_, sweep_b_;  // the running sweep's pair
   long long frame_index_ = 0;    // frames seen so far
   long long last_start_ = -1;    // frame index of the last sweep's start, -1 before the first
   bool requested_ = false;
-  int step_ = -1;       // the running sweep's next step, -1 when none runs
-  int thresholds_ = 0;  // C of the running sweep (after step 1)
   int sweeps_completed_ = 0;
+  long long last_completed_after_ = -1;
+  double last_step_work_ = 0;
+  int last_step_pieces_ = 0;
   AdaptResult last_sweep_;
 };
 

@@ -125,6 +125,11 @@ void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& c
 }
 
 void FrameAnalysis::select(int n, double threshold, int budget, std::vector<std::int32_t>& chosen) {
+  choose(n, threshold, budget, chosen);
+  describe(n, chosen);
+}
+
+void FrameAnalysis::choose(int n, double threshold, int budget, std::vector<std::int32_t>& chosen) {
   Level& level = at(n);
   chosen.clear();
   if (!level.pyramid.usable() || budget <= 0) return;
@@ -136,8 +141,13 @@ void FrameAnalysis::select(int n, double threshold, int budget, std::vector<std:
                         level.pyramid.geometry.height, level.raster_ranks, selected);
   else
     sort_in_raster_order(level.blocks.candidates, selected);
-  level.descriptions.describe(level.pyramid, level.blocks.candidates, selected, *kernels_);
   chosen.assign(selected.begin(), selected.end());
+}
+
+void FrameAnalysis::describe(int n, const std::vector<std::int32_t>& indices) {
+  Level& level = at(n);
+  if (indices.empty()) return;
+  level.descriptions.describe(level.pyramid, level.blocks.candidates, indices, *kernels_);
 }
 
 std::int64_t FrameAnalysis::level_candidate_count(int n, double threshold) const {

@@ -54,6 +54,15 @@ class FrameAnalysis {
   void select(int n, double threshold, std::vector<std::int32_t>& chosen);
   // The same with a budget other than N_n (the shortfall, core/threshold_fallback.hpp).
   void select(int n, double threshold, int budget, std::vector<std::int32_t>& chosen);
+  // select() in its two parts, for a caller that spreads the work (core/spread_sweep.hpp):
+  // choose() distributes and orders (no descriptions), describe() describes the candidates
+  // `indices` of level n not described yet (any subset, in any pieces: the same descriptors).
+  void choose(int n, double threshold, int budget, std::vector<std::int32_t>& chosen);
+  void describe(int n, const std::vector<std::int32_t>& indices);
+  // Selections::many: level n's whole blurred level (describe() makes it when missing).
+  bool level_blurred(int n) const { return at(n).descriptions.level_blurred(); }
+  void blur_level(int n) { at(n).descriptions.blur_level(at(n).pyramid, *kernels_); }
+  bool described(int n, std::int32_t i) const { return at(n).descriptions.described(i); }
 
   // Eq. 9 on level n at F (every block kept with entropy off).
   BlockMask mask(int n, double threshold) const;

@@ -143,6 +143,10 @@ void FramePipeline::analyse(ImageView image, double lowest_threshold, StageTimes
   times_ = nullptr;
 }
 
+void FramePipeline::choose(int n, double threshold, std::vector<std::int32_t>& chosen) {
+  analysis_.choose(n, threshold, level_budget(n), chosen);
+}
+
 void FramePipeline::select(int n, double threshold, std::vector<std::int32_t>& chosen) {
   select_level(n, threshold, level_budget(n), chosen);
 }

@@ -39,8 +39,21 @@ class FramePipeline final : private CandidateSource {
   // candidates of every block `lowest_threshold` keeps, every level in turn on the caller's
   // thread, no fallback (the sweep measures each F as it is). Then select() at each threshold.
   void analyse(ImageView image, double lowest_threshold, StageTimes* times = nullptr);
+  // analyse() a level at a time, serial, for a caller that spreads it over frames
+  // (core/spread_sweep.hpp): start_analysis(image), then for n = 0, 1, ... level_entropies(n)
+  // (pixels and block entropies) and detect_at(n, F). The same analysis as analyse()'s.
+  void start_analysis(ImageView image) { start(image, Selections::many, nullptr); }
+  void level_entropies(int n) {
+    build_level(n);
+    compute_entropies(n);
+  }
+  void detect_at(int n, double lowest_threshold) { detect_level(n, lowest_threshold); }
   // Stage 4 alone: level n's keypoints at F with budget N_n, after analyse().
   void select(int n, double threshold, std::vector<std::int32_t>& chosen);
+  // Its two parts (FrameAnalysis::choose and describe), with budget N_n.
+  void choose(int n, double threshold, std::vector<std::int32_t>& chosen);
+  void describe(int n, const std::vector<std::int32_t>& indices) { analysis_.describe(n, indices); }
+  void blur_level(int n) { analysis_.blur_level(n); }
 
   const FrameAnalysis& analysis() const { return analysis_; }
   // The fixed F the next extract() requests (the carried F changes it between frames).

@@ -66,11 +66,7 @@ void LevelDescriptions::describe(const PyramidLevel& level,
     angles_[static_cast<std::size_t>(i)] =
         angle(m10_[static_cast<std::size_t>(i)], m01_[static_cast<std::size_t>(i)]);
   if (selections_ == Selections::many) {
-    if (blurred_end_ == 0) {
-      kernels.gaussian7_rows(level.pixels, blurred_.mutable_view(), 0, level.geometry.height, 0,
-                             level.geometry.width);
-      blurred_end_ = level.geometry.height;
-    }
+    if (!level_blurred()) blur_level(level, kernels);
     kernels.rbrief_describe(blurred_.view(), points_.data(), angles_.data(), count,
                             descriptors_.data());
   } else {
@@ -85,6 +81,13 @@ void LevelDescriptions::describe(const PyramidLevel& level,
                 descriptors_.data() + static_cast<std::size_t>(i) * kDescriptorBytes,
                 kDescriptorBytes);
   }
+}
+
+void LevelDescriptions::blur_level(const PyramidLevel& level, const KernelTable& kernels) {
+  assert(selections_ == Selections::many);
+  kernels.gaussian7_rows(level.pixels, blurred_.mutable_view(), 0, level.geometry.height, 0,
+                         level.geometry.width);
+  blurred_end_ = level.geometry.height;
 }
 
 void LevelDescriptions::describe_through_band(const PyramidLevel& level, const KernelTable& kernels,

@@ -34,6 +34,12 @@ class LevelDescriptions {
   // Describes the candidates `indices` (raster order) not described yet.
   void describe(const PyramidLevel& level, const std::vector<Candidate>& candidates,
                 const std::vector<std::int32_t>& indices, const KernelTable& kernels);
+  // Selections::many: whether the whole level is blurred yet, and blurring it (describe does it
+  // on its first call; a caller that spreads the work, core/spread_sweep.hpp, does it first).
+  bool level_blurred() const { return blurred_end_ > 0; }
+  void blur_level(const PyramidLevel& level, const KernelTable& kernels);
+  // Whether candidate i is described.
+  bool described(std::int32_t i) const { return memo_slot_[static_cast<std::size_t>(i)] >= 0; }
 
   // Candidate i's orientation and descriptor (described).
   float angle_deg(std::int32_t i) const { return memo_angle_deg_[slot(i)]; }

@@ -138,8 +138,10 @@ void SweepMatcher::offer_row(Side& query_side, std::int32_t query, Side& train_s
 // the new features of B against all of A), then every pair of a new feature of A with an old one
 // of B (rows of the new features of A against all of B, the new ones of B excluded: offered
 // already). Old-old pairs were offered at an earlier call, when both features were there.
-void SweepMatcher::update_lists(const std::vector<Descriptor>& a,
-                                const std::vector<Descriptor>& b) {
+// update_lists() prepares the lists and the row order; offer_new_row() offers one row.
+void SweepMatcher::update_lists() {
+  const std::vector<Descriptor>& a = *a_descriptors_;
+  const std::vector<Descriptor>& b = *b_descriptors_;
   carry_lists(a_.lists, a_.new_index_of_old, a.size(), b_.new_index_of_old);
   if (mutual_) carry_lists(b_.lists, b_.new_index_of_old, b.size(), a_.new_index_of_old);
   for (Side* side : {&a_, &b_}) {
@@ -147,28 +149,47 @@ void SweepMatcher::update_lists(const std::vector<Descriptor>& a,
     for (std::size_t i = 0; i < side->ids.size(); ++i)
       side->bounds[i] = static_cast<std::int16_t>(keeps_lists(*side) ? side->lists[i].bound() : -1);
   }
+  rows_.clear();
+  next_row_ = 0;
   if (a.empty() || b.empty()) return;
   block_descriptors(a.front().data(), static_cast<int>(a.size()), a_.blocked);
   block_descriptors(b.front().data(), static_cast<int>(b.size()), b_.blocked);
   const int blocks_a = hamming_block_count(static_cast<int>(a.size()));
   const int blocks_b = hamming_block_count(static_cast<int>(b.size()));
   row_.resize(static_cast<std::size_t>(std::max(blocks_a, blocks_b) * kHammingBlock));
+  rows_.assign(b_.new_elements.begin(), b_.new_elements.end());
+  if (b_.new_elements.size() == b.size()) return;  // every pair seen in those rows
+  for (std::int32_t i : a_.new_elements) rows_.push_back(-1 - i);
+}
 
-  for (std::int32_t j : b_.new_elements) {
+int SweepMatcher::next_row_length() const {
+  const std::int32_t row = rows_[next_row_];
+  return static_cast<int>(row >= 0 ? a_descriptors_->size()
+                                   : b_descriptors_->size() - b_.new_elements.size());
+}
+
+void SweepMatcher::offer_new_row(std::int32_t row) {
+  const std::vector<Descriptor>& a = *a_descriptors_;
+  const std::vector<Descriptor>& b = *b_descriptors_;
+  if (row >= 0) {
+    const std::int32_t j = row;
     kernels_->hamming_256_blocked(b[static_cast<std::size_t>(j)].data(), a_.blocked.data(),
-                                  blocks_a, row_.data());
+                                  hamming_block_count(static_cast<int>(a.size())), row_.data());
     distances_computed_ += static_cast<long long>(a.size());
     offer_row(b_, j, a_, static_cast<int>(a.size()));
+    return;
   }
-  if (b_.new_elements.size() == b.size()) return;  // every pair seen above
-  constexpr std::uint16_t kExcluded = 0x7fff;      // above every bound (core/bound_filter.hpp)
-  for (std::int32_t i : a_.new_elements) {
-    kernels_->hamming_256_blocked(a[static_cast<std::size_t>(i)].data(), b_.blocked.data(),
-                                  blocks_b, row_.data());
-    distances_computed_ += static_cast<long long>(b.size() - b_.new_elements.size());
-    for (std::int32_t j : b_.new_elements) row_[static_cast<std::size_t>(j)] = kExcluded;
-    offer_row(a_, i, b_, static_cast<int>(b.size()));
-  }
+  constexpr std::uint16_t kExcluded = 0x7fff;  // above every bound (core/bound_filter.hpp)
+  const std::int32_t i = -1 - row;
+  kernels_->hamming_256_blocked(a[static_cast<std::size_t>(i)].data(), b_.blocked.data(),
+                                hamming_block_count(static_cast<int>(b.size())), row_.data());
+  distances_computed_ += static_cast<long long>(b.size() - b_.new_elements.size());
+  for (std::int32_t j : b_.new_elements) row_[static_cast<std::size_t>(j)] = kExcluded;
+  offer_row(a_, i, b_, static_cast<int>(b.size()));
+}
+
+void SweepMatcher::offer_rows(int count) {
+  for (; count > 0 && next_row_ < rows_.size(); --count) offer_new_row(rows_[next_row_++]);
 }
 
 void SweepMatcher::recompute(NeighbourList& list, const Descriptor& query,
@@ -205,6 +226,13 @@ std::vector<Match> SweepMatcher::match(const std::vector<Descriptor>& a,
                                        const std::vector<std::int32_t>& ids_a,
                                        const std::vector<Descriptor>& b,
                                        const std::vector<std::int32_t>& ids_b) {
+  begin(a, ids_a, b, ids_b);
+  offer_rows(rows_left());
+  return finish();
+}
+
+void SweepMatcher::begin(const std::vector<Descriptor>& a, const std::vector<std::int32_t>& ids_a,
+                         const std::vector<Descriptor>& b, const std::vector<std::int32_t>& ids_b) {
   if (ids_a.size() != a.size() || ids_b.size() != b.size())
     throw Error("SweepMatcher: one id per descriptor");
   const bool a_order_kept = renumber(a_, ids_a);
@@ -213,8 +241,14 @@ std::vector<Match> SweepMatcher::match(const std::vector<Descriptor>& a,
     forget_previous(a_);
     forget_previous(b_);
   }
-  update_lists(a, b);
+  a_descriptors_ = &a;
+  b_descriptors_ = &b;
+  update_lists();
+}
 
+std::vector<Match> SweepMatcher::finish() {
+  const std::vector<Descriptor>& a = *a_descriptors_;
+  const std::vector<Descriptor>& b = *b_descriptors_;
   std::vector<Match> matches;
   if (a.empty() || b.empty()) return matches;
   const int n_a = static_cast<int>(a.size());

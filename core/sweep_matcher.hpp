@@ -93,6 +93,17 @@ class SweepMatcher {
                            const std::vector<Descriptor>& b,
                            const std::vector<std::int32_t>& ids_b);
 
+  // match() in pieces, for a caller that spreads one threshold's matching over frames
+  // (core/spread_sweep.hpp): begin(a, ids_a, b, ids_b), then offer_rows() until rows_left() is 0,
+  // then finish(). The descriptors must stay in place until finish(). The same answer as match().
+  void begin(const std::vector<Descriptor>& a, const std::vector<std::int32_t>& ids_a,
+             const std::vector<Descriptor>& b, const std::vector<std::int32_t>& ids_b);
+  // Rows of new distances left to offer, and the distances of the next one.
+  int rows_left() const { return static_cast<int>(rows_.size() - next_row_); }
+  int next_row_length() const;
+  void offer_rows(int count);
+  std::vector<Match> finish();
+
   // Forgets the previous calls (a new pair of images), keeping the buffers.
   void reset();
 
@@ -116,7 +127,8 @@ class SweepMatcher {
   static bool renumber(Side& side, const std::vector<std::int32_t>& ids);
   static void forget_previous(Side& side);
   bool keeps_lists(const Side& side) const { return &side == &a_ || mutual_; }
-  void update_lists(const std::vector<Descriptor>& a, const std::vector<Descriptor>& b);
+  void update_lists();
+  void offer_new_row(std::int32_t row);
   void offer_row(Side& query_side, std::int32_t query, Side& train_side, int n_train);
   void recompute(NeighbourList& list, const Descriptor& query,
                  const std::vector<Descriptor>& others);
@@ -128,6 +140,13 @@ class SweepMatcher {
   const KernelTable* kernels_;
   bool mutual_;  // the cross check needs the lists of B too
   Side a_, b_;
+  // The call under way: its descriptors, and its rows of new distances, in order: each new
+  // feature of B (against all of A), then, unless every feature of B is new, each new feature of
+  // A (against the old ones of B); a row is j >= 0 for B's feature j, -1 - i for A's feature i.
+  const std::vector<Descriptor>* a_descriptors_ = nullptr;
+  const std::vector<Descriptor>* b_descriptors_ = nullptr;
+  std::vector<std::int32_t> rows_;
+  std::size_t next_row_ = 0;
   std::vector<std::uint16_t> row_;       // one query's distances to the other set
   std::vector<std::int32_t> positions_;  // the filter's output for one chunk of row_
   std::vector<std::int16_t> no_bounds_;  // -1s: train bounds that take nothing (recompute)

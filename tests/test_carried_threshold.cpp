@@ -1,6 +1,8 @@
 // F carried through a video (core/carried_threshold.hpp): the sweep spread over the frames after a
-// pair gives one-shot adapt()'s F on that pair, after the documented number of frames, and the
-// same bytes twice, with any thread count and any kernel set.
+// pair (core/spread_sweep.hpp) gives one-shot adapt()'s F on that pair from the frame after it
+// completes, no frame's share above its budget, and the same bytes twice, with any thread count
+// and any kernel set.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "aief/extractor.hpp"
 #include "core/carried_threshold.hpp"
 #include "core/option_table.hpp"
+#include "core/spread_sweep.hpp"
 #include "simd/kernels.hpp"
 #include "tests/features_hash.hpp"
 #include "tests/test_support.hpp"
@@ -18,14 +21,14 @@
 namespace aief {
 namespace {
 
-// A short video: a 320 x 240 window panning over leuven's first image, 3 px right and 2 px down
-// per frame, dimming by 2 gray levels per frame (leuven's own theme: light change).
+// A video: a 320 x 240 window panning over leuven's first image, 3 px right and 1 px down
+// per frame, dimming by 1 gray level per frame (leuven's own theme: light change).
 std::vector<cv::Mat> panning_frames(int count) {
   const cv::Mat scene = test::load_sample_gray("leuven", "img1.png");
   std::vector<cv::Mat> frames;
   for (int t = 0; t < count; ++t) {
     cv::Mat frame;
-    scene(cv::Rect(100 + 3 * t, 80 + 2 * t, 320, 240)).convertTo(frame, CV_8U, 1.0, -2.0 * t);
+    scene(cv::Rect(100 + 3 * t, 80 + t, 320, 240)).convertTo(frame, CV_8U, 1.0, -1.0 * t);
     frames.push_back(frame);
   }
   return frames;
@@ -57,70 +60,113 @@ VideoRun run_video(const std::vector<cv::Mat>& frames, const ExtractorOptions& o
   return run;
 }
 
-TEST(CarriedThreshold, FirstSweepGivesAdaptsFOnTheFirstPairAfterTheDocumentedFrames) {
-  const std::vector<cv::Mat> frames = panning_frames(24);
-  ExtractorOptions one_shot = carried_options();
+// Runs CarriedThreshold over frames [begin, end), as the Extractor does after each extraction;
+// returns the F each frame requested.
+std::vector<double> run_carried(CarriedThreshold& carried, const std::vector<cv::Mat>& frames,
+                                int begin, int end) {
+  std::vector<double> f;
+  for (int t = begin; t < end; ++t) {
+    f.push_back(carried.threshold());
+    carried.after_frame(view_of(frames[static_cast<std::size_t>(t)]));
+  }
+  return f;
+}
+
+TEST(CarriedThreshold, FirstSweepGivesAdaptsFOnTheFirstPairFromTheFrameAfterItCompletes) {
+  const std::vector<cv::Mat> frames = panning_frames(90);
+  const ExtractorOptions options = carried_options();
+  ExtractorOptions one_shot = options;
   one_shot.carried_threshold = false;
   const AdaptResult expected = adapt(view_of(frames[0]), view_of(frames[1]), one_shot);
   ASSERT_TRUE(expected.found);
   ASSERT_NE(expected.threshold, ExtractorOptions{}.entropy_threshold) << "no change to see";
-  // The sweep starts with frame 1 and its F applies from frame 1 + steps_of(C) on.
-  const int applies_from = 1 + CarriedThreshold::steps_of(static_cast<int>(expected.curve.size()));
-  ASSERT_LE(applies_from, 1 + carried_options().carry_every) << "the second sweep must not start before the first F applies";
 
-  const VideoRun run = run_video(frames, carried_options());
-  for (int t = 0; t < static_cast<int>(frames.size()); ++t) {
+  CarriedThreshold carried(options, kernel_table(KernelSet::scalar));
+  const double budget = SpreadSweep::frame_budget(view_of(frames[0]), options.n_features);
+  for (int t = 0; t < static_cast<int>(frames.size()) && carried.sweeps_completed() == 0; ++t) {
+    carried.after_frame(view_of(frames[static_cast<std::size_t>(t)]));
+    // Within the frame's budget, unless its step is one piece larger than the budget alone.
+    if (carried.last_step_pieces() > 1) {
+      EXPECT_LE(carried.last_step_work(), budget) << "frame " << t;
+    }
+  }
+  ASSERT_EQ(carried.sweeps_completed(), 1);
+  EXPECT_EQ(carried.last_sweep().threshold, expected.threshold);
+  EXPECT_EQ(carried.last_sweep().curve.size(), expected.curve.size());
+  // Spread over many frames.
+  const long long completed_after = carried.last_sweep_completed_after();
+  EXPECT_GT(completed_after, 10);
+  ASSERT_LT(completed_after + 1, static_cast<long long>(frames.size()));
+
+  // The Extractor: the default F up to that frame, the sweep's from the next one on.
+  const VideoRun run = run_video(frames, options);
+  for (int t = 0; t <= completed_after + 1; ++t) {
     const double wanted =
-        t < applies_from ? ExtractorOptions{}.entropy_threshold : expected.threshold;
+        t <= completed_after ? ExtractorOptions{}.entropy_threshold : expected.threshold;
     EXPECT_EQ(run.thresholds[static_cast<std::size_t>(t)], wanted) << "frame " << t;
   }
 }
 
-TEST(CarriedThreshold, SweepsStartEveryNFramesAndOnRequest) {
-  const std::vector<cv::Mat> frames = panning_frames(30);
+// Runs frames from t on until `completed` sweeps have completed or the frames run out; returns
+// the next frame.
+int run_until_completed(CarriedThreshold& carried, const std::vector<cv::Mat>& frames, int t,
+                        int completed) {
+  for (; t < static_cast<int>(frames.size()) && carried.sweeps_completed() < completed; ++t)
+    carried.after_frame(view_of(frames[static_cast<std::size_t>(t)]));
+  return t;
+}
+
+TEST(CarriedThreshold, SweepsStartEveryNFramesNeverWhileOneRunsAndOnRequest) {
+  const std::vector<cv::Mat> frames = panning_frames(150);
   ExtractorOptions options = carried_options();
+  options.n_features = 250;
   options.n_levels = 4;
   options.carry_every = 12;
   ExtractorOptions one_shot = options;
   one_shot.carried_threshold = false;
   const KernelTable& kernels = kernel_table(KernelSet::scalar);
   CarriedThreshold carried(options, kernels);
-  std::vector<double> f;
-  for (const cv::Mat& frame : frames) {
-    f.push_back(carried.threshold());
-    carried.after_frame(view_of(frame));
-  }
-  // Sweeps on the pairs (0, 1), (12, 13), (24, 25); the last one's F is adapt's on its pair.
-  EXPECT_EQ(carried.sweeps_completed(), 2 + (25 + CarriedThreshold::steps_of(40) <= 30 ? 1 : 0));
-  const AdaptResult second = adapt(view_of(frames[12]), view_of(frames[13]), one_shot);
-  const int second_applies = 13 + CarriedThreshold::steps_of(static_cast<int>(second.curve.size()));
-  if (second.found) {
-    EXPECT_EQ(f[static_cast<std::size_t>(second_applies)], second.threshold);
-  }
-  EXPECT_EQ(carried.frames_seen(), 30);
+  int t = run_until_completed(carried, frames, 0, 1);
+  ASSERT_EQ(carried.sweeps_completed(), 1);
+  const long long first_end = carried.last_sweep_completed_after();
+  ASSERT_GT(first_end, 1 + options.carry_every) << "the test wants a sweep longer than carry_every";
+  // The second sweep was due since frame 13: it starts with the frame after the first completed,
+  // on the pair (first_end, first_end + 1), and gives adapt's answer on it.
+  t = run_until_completed(carried, frames, t, 2);
+  ASSERT_EQ(carried.sweeps_completed(), 2);
+  const AdaptResult second =
+      adapt(view_of(frames[static_cast<std::size_t>(first_end)]),
+            view_of(frames[static_cast<std::size_t>(first_end + 1)]), one_shot);
+  EXPECT_EQ(carried.last_sweep().threshold, second.threshold);
+  EXPECT_EQ(carried.last_sweep().curve.size(), second.curve.size());
+  EXPECT_EQ(carried.frames_seen(), t);
 
   // On request: a sweep starts with the next frame, whatever carry_every says.
   options.carry_every = 1000;
   CarriedThreshold requested(options, kernels);
-  for (int t = 0; t < 20; ++t) {
-    if (t == 14) requested.request_sweep();
-    requested.after_frame(view_of(frames[static_cast<std::size_t>(t)]));
-  }
-  EXPECT_EQ(requested.sweeps_completed(), 1);  // the first pair's; the requested one runs
-  for (int t = 20; t < 30; ++t) requested.after_frame(view_of(frames[static_cast<std::size_t>(t)]));
-  EXPECT_EQ(requested.sweeps_completed(), 2);
-  const AdaptResult on_request = adapt(view_of(frames[13]), view_of(frames[14]), one_shot);
+  t = run_until_completed(requested, frames, 0, 1);
+  ASSERT_EQ(requested.sweeps_completed(), 1);
+  const int asked_at = t + 2;
+  run_carried(requested, frames, t, asked_at);
+  requested.request_sweep();
+  run_until_completed(requested, frames, asked_at, 2);
+  ASSERT_EQ(requested.sweeps_completed(), 2);
+  const AdaptResult on_request =
+      adapt(view_of(frames[static_cast<std::size_t>(asked_at - 1)]),
+            view_of(frames[static_cast<std::size_t>(asked_at)]), one_shot);
   EXPECT_EQ(requested.last_sweep().threshold, on_request.threshold);
   EXPECT_EQ(requested.last_sweep().curve.size(), on_request.curve.size());
 }
 
 TEST(CarriedThreshold, SameBytesTwiceWithAnyThreadCountAndKernelSet) {
-  const std::vector<cv::Mat> frames = panning_frames(12);
+  // Long enough for a spread sweep to complete and the next to start: the F switches mid-video.
+  const std::vector<cv::Mat> frames = panning_frames(70);
   ExtractorOptions options = carried_options();
   options.carry_every = 3;  // sweeps back to back: every frame runs a step
   options.kernels = KernelSet::scalar;
   options.threads = 1;
   const VideoRun reference = run_video(frames, options);
+  ASSERT_NE(reference.thresholds.front(), reference.thresholds.back()) << "no sweep completed";
   EXPECT_EQ(run_video(frames, options).hashes, reference.hashes) << "run twice";
   options.threads = 2;
   EXPECT_EQ(run_video(frames, options).hashes, reference.hashes) << "2 threads";

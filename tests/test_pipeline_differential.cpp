@@ -223,6 +223,99 @@ TEST_P(PipelineDifferential, DescribingGivenKeypointsGivesTheScalarBytesAndTheEx
 
 INSTANTIATE_TEST_SUITE_P(SeededCases, PipelineDifferential, testing::Range(0, kCases));
 
+// The carried F through a video (docs/design.md §10): the sweep spread over frames by its
+// estimates of work (core/spread_sweep.hpp) must switch F at the same frame and give the same
+// bytes on every frame under every kernel set and thread count. A case takes a seeded case's
+// options in a mode with an entropy mask, carried F, a sweep due every 1-4 frames, and a video
+// panning over a crop of it, long enough for sweeps to complete.
+constexpr int kCarriedCases = 6;
+constexpr int kCarriedFrames = 60;
+
+struct CarriedCase {
+  ExtractorOptions options;
+  std::vector<cv::Mat> frames;
+  std::string description;
+};
+
+CarriedCase make_carried_case(int index) {
+  const Case base = make_case(index);
+  std::mt19937 rng(kSeed ^ (static_cast<std::uint32_t>(index) * 2654435761u));
+  CarriedCase c;
+  ExtractorOptions asked;
+  asked.n_features = uniform_int(rng, 50, 400);
+  asked.n_levels = uniform_int(rng, 1, 6);
+  asked.scale_factor = base.options.scale_factor < 1.1 ? 1.2 : base.options.scale_factor;
+  asked.block_size = std::min(base.options.block_size, 64);
+  const Mode modes[] = {Mode::aief, Mode::aief_paper, Mode::quadtree_entropy};
+  c.options = options_for_mode(modes[index % 3], asked);
+  c.options.entropy =
+      uniform_int(rng, 0, 1) == 0 ? EntropyMeasure::histogram : EntropyMeasure::intensity;
+  c.options.auto_threshold = false;
+  c.options.carried_threshold = true;
+  c.options.carry_every = uniform_int(rng, 1, 4);
+  const cv::Mat& sample = sample_image(index % 3);
+  const int width = uniform_int(rng, 120, 240), height = uniform_int(rng, 90, 180);
+  const int dx = uniform_int(rng, -3, 3), dy = uniform_int(rng, -2, 2);
+  const int x0 = sample.cols / 2 - width / 2, y0 = sample.rows / 2 - height / 2;
+  for (int t = 0; t < kCarriedFrames; ++t)
+    c.frames.push_back(sample(cv::Rect(x0 + dx * t, y0 + dy * t, width, height)).clone());
+  std::ostringstream out;
+  out << "carried case " << index << ": " << width << "x" << height << " panning " << dx << ","
+      << dy << ", mode " << to_string(modes[index % 3]) << ", entropy "
+      << to_string(c.options.entropy) << ", features " << c.options.n_features << ", levels "
+      << c.options.n_levels << ", scale " << c.options.scale_factor << ", block "
+      << c.options.block_size << ", carry every " << c.options.carry_every;
+  c.description = out.str();
+  return c;
+}
+
+std::vector<Features> run_frames(const CarriedCase& c, const ExtractorOptions& options) {
+  Extractor extractor(options);
+  std::vector<Features> out(c.frames.size());
+  for (std::size_t t = 0; t < c.frames.size(); ++t) extractor.extract(view_of(c.frames[t]), out[t]);
+  return out;
+}
+
+class CarriedVideoDifferential : public testing::TestWithParam<int> {};
+
+TEST_P(CarriedVideoDifferential, EveryKernelSetAndThreadCountGivesTheScalarBytesOnEveryFrame) {
+  const CarriedCase c = make_carried_case(GetParam());
+  SCOPED_TRACE(c.description);
+  ExtractorOptions reference_options = c.options;
+  reference_options.kernels = KernelSet::scalar;
+  reference_options.threads = 1;
+  const std::vector<Features> reference = run_frames(c, reference_options);
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 5);
+  for (KernelSet set : available_kernel_sets()) {
+    for (int threads : {1, 2, 5}) {
+      if (set == KernelSet::scalar && threads == 1) continue;
+      ExtractorOptions options = c.options;
+      options.kernels = set;
+      options.threads = threads;
+      const std::vector<Features> other = run_frames(c, options);
+      for (std::size_t t = 0; t < reference.size(); ++t)
+        ASSERT_EQ(first_difference(reference[t], other[t]), "")
+            << to_string(set) << " at " << threads << " thread(s), frame " << t;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SeededCases, CarriedVideoDifferential, testing::Range(0, kCarriedCases));
+
+// The carried cases do what they are for: in most, a sweep completes and changes F mid-video.
+TEST(PipelineDifferentialCases, CarriedCasesChangeFMidVideo) {
+  int changed = 0;
+  for (int i = 0; i < kCarriedCases; ++i) {
+    const CarriedCase c = make_carried_case(i);
+    ExtractorOptions options = c.options;
+    options.kernels = KernelSet::scalar;
+    const std::vector<Features> frames = run_frames(c, options);
+    changed += frames.front().info.entropy_threshold_requested !=
+               frames.back().info.entropy_threshold_requested;
+  }
+  EXPECT_GE(changed, kCarriedCases / 2);
+}
+
 // The generator reaches the corners of the option space it claims to cover.
 TEST(PipelineDifferentialCases, CoverEveryModeMeasureAndBothKindsOfThreshold) {
   std::map<Mode, int> modes;
