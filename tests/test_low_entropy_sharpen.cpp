@@ -1,0 +1,202 @@
+// Sharpened low-entropy blocks (core/low_entropy_sharpen.hpp, core/unsharp_mask.hpp): the row
+// kernel against a direct 5x5 oracle on random odd sizes, the amount rule, the amounts' continuity
+// across block borders (no seam for FAST), what the option does to a weak-texture half and that
+// descriptors stay the unsharpened level's, tiny and one-block images. Every kernel set and thread
+// count giving the same bytes is tests/test_pipeline_differential.cpp.
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <map>
+#include <random>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "aief/extractor.hpp"
+#include "core/low_entropy_sharpen.hpp"
+#include "core/unsharp_mask.hpp"
+#include "tests/test_support.hpp"
+
+namespace aief {
+namespace {
+
+ImageView view_of_mat(const cv::Mat& image) {
+  return ImageView{image.data, image.cols, image.rows, static_cast<std::ptrdiff_t>(image.step)};
+}
+
+// The kernel's formula written directly: 25 taps, 64-bit, floor by std::floor of a double (exact
+// at these magnitudes), replicated borders by clamping each tap.
+std::uint8_t unsharp_oracle(const cv::Mat& image, int x, int y, int amount_q8) {
+  static constexpr int kTaps[5] = {1, 4, 6, 4, 1};
+  std::int64_t blur = 0;
+  for (int j = -2; j <= 2; ++j)
+    for (int i = -2; i <= 2; ++i) {
+      const int xx = std::clamp(x + i, 0, image.cols - 1),
+                yy = std::clamp(y + j, 0, image.rows - 1);
+      blur += kTaps[i + 2] * kTaps[j + 2] * image.at<std::uint8_t>(yy, xx);
+    }
+  const int p = image.at<std::uint8_t>(y, x);
+  const double added = std::floor((amount_q8 * (256.0 * p - blur) + 32768.0) / 65536.0);
+  return static_cast<std::uint8_t>(std::clamp(p + static_cast<int>(added), 0, 255));
+}
+
+TEST(UnsharpRow, EqualsTheDirectFormulaOnRandomOddSizes) {
+  std::mt19937 rng(2024);
+  for (int width : {1, 2, 3, 5, 7, 15, 17, 31, 33, 63, 65, 127, 129}) {
+    for (int height : {1, 2, 3, 4, 5, 9}) {
+      const cv::Mat image = test::random_image(width, height, rng());
+      std::vector<std::int16_t> amounts(static_cast<std::size_t>(width));
+      std::vector<std::uint16_t> sums(static_cast<std::size_t>(width) + 4);
+      std::vector<std::uint8_t> row(static_cast<std::size_t>(width));
+      for (int y = 0; y < height; ++y) {
+        for (std::int16_t& a : amounts)
+          a = static_cast<std::int16_t>(std::uniform_int_distribution<int>(0, 512)(rng));
+        if (y == 0) amounts[0] = 512;  // the extremes
+        unsharp_row_scalar(view_of_mat(image), y, amounts.data(), sums.data(), row.data());
+        for (int x = 0; x < width; ++x)
+          ASSERT_EQ(row[static_cast<std::size_t>(x)],
+                    unsharp_oracle(image, x, y, amounts[static_cast<std::size_t>(x)]))
+              << width << "x" << height << " at " << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(UnsharpRow, AmountZeroAndFlatImagesAreUnchanged) {
+  const cv::Mat image = test::random_image(37, 11, 7);
+  std::vector<std::int16_t> zero(37, 0), full(37, 512);
+  std::vector<std::uint16_t> sums(41);
+  std::vector<std::uint8_t> row(37);
+  for (int y = 0; y < 11; ++y) {
+    unsharp_row_scalar(view_of_mat(image), y, zero.data(), sums.data(), row.data());
+    for (int x = 0; x < 37; ++x)
+      ASSERT_EQ(row[static_cast<std::size_t>(x)], image.at<std::uint8_t>(y, x));
+  }
+  const cv::Mat flat(11, 37, CV_8U, cv::Scalar(93));
+  unsharp_row_scalar(view_of_mat(flat), 5, full.data(), sums.data(), row.data());
+  for (std::uint8_t v : row) EXPECT_EQ(v, 93);
+}
+
+TEST(LowEntropySharpen, AmountFallsLinearlyFromTwoAtZeroBitsToNoneAtSixBits) {
+  EXPECT_EQ(sharpen_amount_q8(0.0), 512);
+  EXPECT_EQ(sharpen_amount_q8(3.0), 256);
+  EXPECT_EQ(sharpen_amount_q8(6.0), 0);
+  EXPECT_EQ(sharpen_amount_q8(7.5), 0);
+  int previous = 512;
+  for (int q = 0; q <= 8 * 256; ++q) {
+    const int amount = sharpen_amount_q8(q / 256.0);
+    EXPECT_LE(amount, previous);
+    previous = amount;
+  }
+}
+
+// Blocks of 0 and 2 alternating like a checkerboard: the amount moves by at most 512 over the
+// half-block between a centre and a border, one pixel at a time, and is the block's own at its
+// centre.
+TEST(LowEntropySharpen, AmountIsContinuousAcrossBlockBordersAndTheBlocksOwnAtItsCentre) {
+  for (int block : {8, 13, 32}) {
+    const int width = 7 * block + 5, height = 5 * block + 3;
+    const BlockGrid grid = make_block_grid(width, height, block);
+    SharpenScratch scratch;
+    scratch.block_amounts.resize(static_cast<std::size_t>(grid.count()));
+    for (int r = 0; r < grid.rows(); ++r)
+      for (int c = 0; c < grid.cols(); ++c)
+        scratch.block_amounts[static_cast<std::size_t>(r * grid.cols() + c)] =
+            (r + c) % 2 ? 512 : 0;
+    prepare_sharpen_columns(grid, width, scratch);
+    int narrowest = width;
+    for (int c = 0; c < grid.cols(); ++c)
+      narrowest = std::min(narrowest, grid.col_edges[c + 1] - grid.col_edges[c]);
+    for (int r = 0; r < grid.rows(); ++r)
+      narrowest = std::min(narrowest, grid.row_edges[r + 1] - grid.row_edges[r]);
+    const int largest_step = 512 / narrowest + 2;  // the slope, plus rounding
+    std::vector<std::int16_t> previous_row;
+    for (int y = 0; y < height; ++y) {
+      sharpen_amount_row(grid, y, scratch);
+      const std::vector<std::int16_t>& row = scratch.amount_row;
+      for (int x = 0; x + 1 < width; ++x)
+        ASSERT_LE(std::abs(row[x + 1] - row[x]), largest_step)
+            << "block " << block << " at " << x << "," << y;
+      if (!previous_row.empty())
+        for (int x = 0; x < width; ++x)
+          ASSERT_LE(std::abs(row[x] - previous_row[x]), largest_step)
+              << "block " << block << " at " << x << "," << y;
+      previous_row = row;
+    }
+    // At the centre pixel of a block whose span is odd, the weight is exactly 0: its own amount.
+    for (int r = 0; r < grid.rows(); ++r)
+      for (int c = 0; c < grid.cols(); ++c) {
+        const int x0 = grid.col_edges[c], x1 = grid.col_edges[c + 1];
+        const int y0 = grid.row_edges[r], y1 = grid.row_edges[r + 1];
+        if ((x1 - x0) % 2 == 0 || (y1 - y0) % 2 == 0) continue;
+        sharpen_amount_row(grid, (y0 + y1 - 1) / 2, scratch);
+        EXPECT_EQ(scratch.amount_row[static_cast<std::size_t>((x0 + x1 - 1) / 2)],
+                  scratch.block_amounts[static_cast<std::size_t>(r * grid.cols() + c)]);
+      }
+  }
+}
+
+// Left half: smoothed noise at full contrast. Right half: the same texture dark and weak (squeezed
+// into 24 gray levels from 8): its blocks' entropy is low, few corners pass FAST's 20.
+cv::Mat textured_left_dark_right(int width, int height) {
+  cv::Mat image = test::random_textured_image(width, height, 25);
+  for (int y = 0; y < height; ++y)
+    for (int x = width / 2; x < width; ++x) {
+      std::uint8_t& pixel = image.at<std::uint8_t>(y, x);
+      pixel = static_cast<std::uint8_t>(8 + pixel * 24 / 255);
+    }
+  return image;
+}
+
+TEST(LowEntropySharpen, GivesTheDarkHalfMoreKeypointsWithTheUnsharpenedLevelsDescriptors) {
+  const cv::Mat image = textured_left_dark_right(640, 480);
+  for (Mode mode : {Mode::orbslam2, Mode::faithful}) {
+    ExtractorOptions options = options_for_mode(mode);
+    options.n_features = 2000;
+    const Features plain = Extractor(options).extract(view_of_mat(image));
+    options.low_entropy_sharpen = true;
+    const Features sharpened = Extractor(options).extract(view_of_mat(image));
+    int right_before = 0, right_after = 0;
+    for (const Keypoint& k : plain.keypoints) right_before += k.x >= 320;
+    for (const Keypoint& k : sharpened.keypoints) right_after += k.x >= 320;
+    EXPECT_GT(right_after, right_before) << to_string(mode);
+    // A keypoint both find (position, level, angle) has the same descriptor: the descriptor is
+    // computed on the level as it is, not the sharpened copy.
+    std::map<std::tuple<float, float, int, float>, std::size_t> plain_at;
+    for (std::size_t i = 0; i < plain.keypoints.size(); ++i) {
+      const Keypoint& k = plain.keypoints[i];
+      plain_at[{k.x, k.y, k.octave, k.angle_deg}] = i;
+    }
+    int shared = 0;
+    for (std::size_t i = 0; i < sharpened.keypoints.size(); ++i) {
+      const Keypoint& k = sharpened.keypoints[i];
+      const auto found = plain_at.find({k.x, k.y, k.octave, k.angle_deg});
+      if (found == plain_at.end()) continue;
+      ++shared;
+      EXPECT_EQ(sharpened.descriptors[i], plain.descriptors[found->second]);
+    }
+    EXPECT_GT(shared, 100) << to_string(mode);
+  }
+}
+
+TEST(LowEntropySharpen, TinyAndOneBlockImagesNeverFail) {
+  for (const auto& [width, height, block] : std::vector<std::tuple<int, int, int>>{
+           {39, 39, 8}, {39, 39, 1024}, {40, 97, 32}, {300, 39, 1024}}) {
+    const cv::Mat image = test::random_textured_image(width, height, 3);
+    for (Mode mode : {Mode::aief, Mode::orbslam2, Mode::faithful}) {
+      ExtractorOptions options = options_for_mode(mode);
+      options.block_size = block;
+      options.low_entropy_sharpen = true;
+      EXPECT_NO_THROW(Extractor(options).extract(view_of_mat(image))) << width << "x" << height;
+    }
+  }
+  const cv::Mat flat(60, 60, CV_8U, cv::Scalar(0));  // every block 0 bits: the strongest amount
+  ExtractorOptions options = options_for_mode(Mode::orbslam2);
+  options.low_entropy_sharpen = true;
+  EXPECT_TRUE(Extractor(options).extract(view_of_mat(flat)).keypoints.empty());
+}
+
+}  // namespace
+}  // namespace aief
