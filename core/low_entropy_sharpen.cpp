@@ -49,35 +49,55 @@ int sharpen_amount_q8(double entropy_bits) {
 }
 
 void prepare_sharpen_columns(const BlockGrid& grid, int width, SharpenScratch& scratch) {
-  scratch.column_block.resize(static_cast<std::size_t>(width));
+  const int cols = grid.cols();
   scratch.column_weight.resize(static_cast<std::size_t>(width));
+  scratch.segment_begin.assign(static_cast<std::size_t>(cols) + 1, width);
   int span = 0, weight = 0;
-  for (int x = 0; x < width; ++x) {
+  for (int x = width - 1; x >= 0; --x) {  // the spans do not decrease with x
     interpolation_of(grid.col_edges, x, span, weight);
-    scratch.column_block[static_cast<std::size_t>(x)] = span;
     scratch.column_weight[static_cast<std::size_t>(x)] = weight;
+    scratch.segment_begin[static_cast<std::size_t>(span)] = x;
   }
+  for (int c = cols - 1; c >= 0; --c)  // a span no pixel falls in is empty, not the rest
+    scratch.segment_begin[static_cast<std::size_t>(c)] =
+        std::min(scratch.segment_begin[static_cast<std::size_t>(c)],
+                 scratch.segment_begin[static_cast<std::size_t>(c) + 1]);
   scratch.amount_row.resize(static_cast<std::size_t>(width));
-  scratch.row_amounts.resize(static_cast<std::size_t>(grid.cols()));
+  scratch.row_amounts.resize(static_cast<std::size_t>(cols));
 }
 
-void sharpen_amount_row(const BlockGrid& grid, int y, SharpenScratch& scratch) {
+bool sharpen_block_column_amounts(const BlockGrid& grid, int y, SharpenScratch& scratch) {
   const int cols = grid.cols();
   int r0 = 0, wy = 0;
   interpolation_of(grid.row_edges, y, r0, wy);
   const int r1 = std::min(r0 + 1, grid.rows() - 1);
   const int* above = scratch.block_amounts.data() + static_cast<std::ptrdiff_t>(r0) * cols;
   const int* below = scratch.block_amounts.data() + static_cast<std::ptrdiff_t>(r1) * cols;
-  for (int c = 0; c < cols; ++c)
-    scratch.row_amounts[static_cast<std::size_t>(c)] = above[c] * (256 - wy) + below[c] * wy;
-  const std::size_t width = scratch.amount_row.size();
-  for (std::size_t x = 0; x < width; ++x) {
-    const int c0 = scratch.column_block[x], wx = scratch.column_weight[x];
-    const int c1 = std::min(c0 + 1, cols - 1);
-    // <= 512 * 256 * 256 = 2^25: fits, and is non-negative, so the shift rounds half up.
-    const std::int32_t sum = scratch.row_amounts[static_cast<std::size_t>(c0)] * (256 - wx) +
-                             scratch.row_amounts[static_cast<std::size_t>(c1)] * wx;
-    scratch.amount_row[x] = static_cast<std::int16_t>((sum + (1 << 15)) >> 16);
+  bool any = false;
+  for (int c = 0; c < cols; ++c) {
+    const std::int32_t amount = above[c] * (256 - wy) + below[c] * wy;
+    scratch.row_amounts[static_cast<std::size_t>(c)] = amount;
+    any = any || amount != 0;
+  }
+  return any;
+}
+
+void sharpen_amount_row(const BlockGrid& grid, int y, SharpenScratch& scratch) {
+  sharpen_block_column_amounts(grid, y, scratch);
+  const int cols = grid.cols();
+  std::int16_t* amounts = scratch.amount_row.data();
+  const std::int32_t* weights = scratch.column_weight.data();
+  // Between two block centres the amount is linear in the weight: one multiply-add a pixel, a
+  // loop the compiler vectorises. a0 (256 - w) + a1 w = 256 a0 + (a1 - a0) w, and the sum
+  // (<= 512 * 256 * 256 = 2^25) is non-negative, so the shift rounds half up.
+  for (int c = 0; c < cols; ++c) {
+    const std::int32_t a0 = scratch.row_amounts[static_cast<std::size_t>(c)];
+    const std::int32_t a1 =
+        scratch.row_amounts[static_cast<std::size_t>(std::min(c + 1, cols - 1))];
+    const std::int32_t base = 256 * a0 + (1 << 15), slope = a1 - a0;
+    const int x_end = scratch.segment_begin[static_cast<std::size_t>(c) + 1];
+    for (int x = scratch.segment_begin[static_cast<std::size_t>(c)]; x < x_end; ++x)
+      amounts[x] = static_cast<std::int16_t>((base + slope * weights[x]) >> 16);
   }
 }
 
@@ -85,7 +105,6 @@ bool sharpen_low_entropy_blocks(ImageView pixels, const BlockGrid& grid,
                                 const std::vector<double>& entropy_bits, const KernelTable& kernels,
                                 SharpenScratch& scratch, GrayImage& out) {
   assert(grid.count() > 0 && entropy_bits.size() == static_cast<std::size_t>(grid.count()));
-  (void)kernels;
   scratch.block_amounts.resize(entropy_bits.size());
   bool any = false;
   for (std::size_t b = 0; b < entropy_bits.size(); ++b) {
@@ -98,15 +117,13 @@ bool sharpen_low_entropy_blocks(ImageView pixels, const BlockGrid& grid,
   prepare_sharpen_columns(grid, pixels.width, scratch);
   scratch.column_sums.resize(static_cast<std::size_t>(pixels.width) + 4);
   for (int y = 0; y < pixels.height; ++y) {
-    sharpen_amount_row(grid, y, scratch);
-    const bool row_sharpened = std::any_of(scratch.row_amounts.begin(), scratch.row_amounts.end(),
-                                           [](std::int32_t amount) { return amount != 0; });
-    if (!row_sharpened) {  // every amount 0: the kernel would copy the row
+    if (!sharpen_block_column_amounts(grid, y, scratch)) {  // all 0: the kernel would copy
       std::memcpy(sharpened.row(y), pixels.row(y), static_cast<std::size_t>(pixels.width));
       continue;
     }
-    unsharp_row_scalar(pixels, y, scratch.amount_row.data(), scratch.column_sums.data(),
-                       sharpened.row(y));
+    sharpen_amount_row(grid, y, scratch);
+    kernels.unsharp_row(pixels, y, scratch.amount_row.data(), scratch.column_sums.data(),
+                        sharpened.row(y));
   }
   return true;
 }

@@ -30,16 +30,18 @@ int sharpen_amount_q8(double entropy_bits);
 // Reused buffers of one level's sharpening.
 struct SharpenScratch {
   std::vector<int> block_amounts;           // A_b, row-major
-  std::vector<std::int32_t> column_weight;  // per pixel column: block column c0, weight of c0 + 1
-  std::vector<std::int32_t> column_block;
+  std::vector<std::int32_t> column_weight;  // per pixel column: weight of the next block column
+  std::vector<int> segment_begin;  // per block column c: first pixel column interpolated from c
   std::vector<std::int32_t> row_amounts;   // per block column, the amount at this row, 1/65536
   std::vector<std::int16_t> amount_row;    // per pixel of the row, 1/256
   std::vector<std::uint16_t> column_sums;  // the kernel's
 };
 
-// The amounts of row y's pixels (amount_row, `pixels.width` entries) from scratch.block_amounts,
-// after prepare_sharpen_columns. Exposed for the tests (continuity across block borders).
+// After prepare_sharpen_columns (once per level): sharpen_block_column_amounts sets the amount of
+// each block column at row y (returns whether any is non-zero), sharpen_amount_row then the
+// amounts of row y's pixels (amount_row). Exposed for the tests (continuity across borders).
 void prepare_sharpen_columns(const BlockGrid& grid, int width, SharpenScratch& scratch);
+bool sharpen_block_column_amounts(const BlockGrid& grid, int y, SharpenScratch& scratch);
 void sharpen_amount_row(const BlockGrid& grid, int y, SharpenScratch& scratch);
 
 // The level `pixels` with its blocks (grid, non-empty, over `pixels`) sharpened by their entropies
