@@ -92,9 +92,9 @@ TEST(LowEntropySharpen, AmountFallsLinearlyFromTwoAtZeroBitsToNoneAtSixBits) {
   }
 }
 
-// Blocks of 0 and 2 alternating like a checkerboard: the amount moves by at most 512 over the
-// half-block between a centre and a border, one pixel at a time, and is the block's own at its
-// centre.
+// Blocks of 0 and 2 alternating like a checkerboard: between two block centres the amount moves
+// from one block's to the other's a pixel at a time (no step at the border between them), and it
+// is the block's own at its centre.
 TEST(LowEntropySharpen, AmountIsContinuousAcrossBlockBordersAndTheBlocksOwnAtItsCentre) {
   for (int block : {8, 13, 32}) {
     const int width = 7 * block + 5, height = 5 * block + 3;
@@ -111,18 +111,22 @@ TEST(LowEntropySharpen, AmountIsContinuousAcrossBlockBordersAndTheBlocksOwnAtIts
       narrowest = std::min(narrowest, grid.col_edges[c + 1] - grid.col_edges[c]);
     for (int r = 0; r < grid.rows(); ++r)
       narrowest = std::min(narrowest, grid.row_edges[r + 1] - grid.row_edges[r]);
-    const int largest_step = 512 / narrowest + 2;  // the slope, plus rounding
+    // The slope (centres at least `narrowest` apart), plus the weights' floor in 1/64: two steps
+    // of 512 / 64 (the last pixel before a centre and the rounding).
+    const int largest_step = 512 / narrowest + 2 * 512 / 64 + 1;
     std::vector<std::int16_t> previous_row;
     for (int y = 0; y < height; ++y) {
-      sharpen_amount_row(grid, y, scratch);
+      sharpen_block_column_amounts(grid, y, scratch);
+      sharpen_amount_row(grid, scratch);
       const std::vector<std::int16_t>& row = scratch.amount_row;
       for (int x = 0; x + 1 < width; ++x)
         ASSERT_LE(std::abs(row[x + 1] - row[x]), largest_step)
             << "block " << block << " at " << x << "," << y;
-      if (!previous_row.empty())
+      if (!previous_row.empty()) {
         for (int x = 0; x < width; ++x)
           ASSERT_LE(std::abs(row[x] - previous_row[x]), largest_step)
               << "block " << block << " at " << x << "," << y;
+      }
       previous_row = row;
     }
     // At the centre pixel of a block whose span is odd, the weight is exactly 0: its own amount.
@@ -131,7 +135,8 @@ TEST(LowEntropySharpen, AmountIsContinuousAcrossBlockBordersAndTheBlocksOwnAtIts
         const int x0 = grid.col_edges[c], x1 = grid.col_edges[c + 1];
         const int y0 = grid.row_edges[r], y1 = grid.row_edges[r + 1];
         if ((x1 - x0) % 2 == 0 || (y1 - y0) % 2 == 0) continue;
-        sharpen_amount_row(grid, (y0 + y1 - 1) / 2, scratch);
+        sharpen_block_column_amounts(grid, (y0 + y1 - 1) / 2, scratch);
+        sharpen_amount_row(grid, scratch);
         EXPECT_EQ(scratch.amount_row[static_cast<std::size_t>((x0 + x1 - 1) / 2)],
                   scratch.block_amounts[static_cast<std::size_t>(r * grid.cols() + c)]);
       }
