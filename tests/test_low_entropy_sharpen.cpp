@@ -1,22 +1,27 @@
 // Sharpened low-entropy blocks (core/low_entropy_sharpen.hpp, core/unsharp_mask.hpp): the row
 // kernel against a direct 5x5 oracle on random odd sizes, the amount rule, the amounts' continuity
 // across block borders (no seam for FAST), what the option does to a weak-texture half and that
-// descriptors stay the unsharpened level's, tiny and one-block images. Every kernel set and thread
-// count giving the same bytes is tests/test_pipeline_differential.cpp.
+// descriptors stay the unsharpened level's, every kernel set and thread count on real and random
+// odd-size images, tiny and one-block images. The option across the whole option space is
+// tests/test_pipeline_differential.cpp.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <random>
+#include <string>
 #include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
+#include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "core/low_entropy_sharpen.hpp"
 #include "core/unsharp_mask.hpp"
+#include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -186,6 +191,46 @@ TEST(LowEntropySharpen, GivesTheDarkHalfMoreKeypointsWithTheUnsharpenedLevelsDes
   }
 }
 
+// The keypoints and descriptors byte for byte; "" when equal.
+std::string first_difference(const Features& a, const Features& b) {
+  if (a.keypoints.size() != b.keypoints.size())
+    return std::to_string(a.keypoints.size()) + " keypoints against " +
+           std::to_string(b.keypoints.size());
+  for (std::size_t i = 0; i < a.keypoints.size(); ++i)
+    if (std::memcmp(&a.keypoints[i], &b.keypoints[i], sizeof(Keypoint)) != 0 ||
+        a.descriptors[i] != b.descriptors[i])
+      return "keypoint " + std::to_string(i);
+  return "";
+}
+
+TEST(LowEntropySharpen, EveryKernelSetAndThreadCountGivesTheScalarBytes) {
+  std::vector<cv::Mat> images = {test::load_sample_gray("graf", "img1.png"),
+                                 test::load_sample_gray("leuven", "img2.png")};
+  std::mt19937 rng(20261203);
+  for (int i = 0; i < 3; ++i)  // odd sizes, block grids with a merged last column and row
+    images.push_back(test::random_textured_image(101 + 2 * static_cast<int>(rng() % 300),
+                                                 77 + 2 * static_cast<int>(rng() % 200), rng()));
+  cv::Mat dark = images[0] * 0.2;  // every block low-entropy: the strongest amounts
+  images.push_back(dark);
+  for (Mode mode : {Mode::orbslam2, Mode::faithful, Mode::aief}) {
+    for (const cv::Mat& image : images) {
+      ExtractorOptions options = options_for_mode(mode);
+      options.low_entropy_sharpen = true;
+      options.kernels = KernelSet::scalar;
+      options.threads = 1;
+      const Features reference = Extractor(options).extract(view_of_mat(image));
+      for (KernelSet set : available_kernel_sets())
+        for (int threads : {1, 3}) {
+          options.kernels = set;
+          options.threads = threads;
+          EXPECT_EQ(first_difference(reference, Extractor(options).extract(view_of_mat(image))), "")
+              << to_string(mode) << ", " << to_string(set) << ", " << threads << " threads, "
+              << image.cols << "x" << image.rows;
+        }
+    }
+  }
+}
+
 TEST(LowEntropySharpen, TinyAndOneBlockImagesNeverFail) {
   for (const auto& [width, height, block] : std::vector<std::tuple<int, int, int>>{
            {39, 39, 8}, {39, 39, 1024}, {40, 97, 32}, {300, 39, 1024}}) {
@@ -197,6 +242,10 @@ TEST(LowEntropySharpen, TinyAndOneBlockImagesNeverFail) {
       EXPECT_NO_THROW(Extractor(options).extract(view_of_mat(image))) << width << "x" << height;
     }
   }
+  const cv::Mat too_small = test::random_textured_image(20, 20, 4);  // refused, named
+  ExtractorOptions sharpened = options_for_mode(Mode::faithful);
+  sharpened.low_entropy_sharpen = true;
+  EXPECT_THROW(Extractor(sharpened).extract(view_of_mat(too_small)), Error);
   const cv::Mat flat(60, 60, CV_8U, cv::Scalar(0));  // every block 0 bits: the strongest amount
   ExtractorOptions options = options_for_mode(Mode::orbslam2);
   options.low_entropy_sharpen = true;
