@@ -16,9 +16,12 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "core/kernel_table.hpp"
 #include "core/low_entropy_sharpen.hpp"
 #include "core/unsharp_mask.hpp"
 #include "simd/kernels.hpp"
@@ -146,6 +149,66 @@ TEST(LowEntropySharpen, AmountIsContinuousAcrossBlockBordersAndTheBlocksOwnAtIts
                   scratch.block_amounts[static_cast<std::size_t>(r * grid.cols() + c)]);
       }
   }
+}
+
+// A weak texture (smoothed noise in 60 gray levels) under blocks whose amounts alternate 0 and 2
+// like a checkerboard. With each block at its own amount (the step the blending avoids), FAST's
+// corners crowd along the block borders; with the blended amounts they lie there no more often
+// than without sharpening.
+TEST(LowEntropySharpen, BlendedAmountsPutNoMoreCornersAtBlockBordersThanNoSharpening) {
+  const int width = 640, height = 480;
+  cv::Mat texture;  // noise smoothed at sigma 2: fewer, larger blobs than random_textured_image's
+  cv::GaussianBlur(test::random_image(width, height, 3), texture, cv::Size(0, 0), 2.0);
+  cv::normalize(texture, texture, 60, 120, cv::NORM_MINMAX);
+  const BlockGrid grid = make_block_grid(width, height, 32);
+  std::vector<double> entropies(static_cast<std::size_t>(grid.count()));
+  for (int r = 0; r < grid.rows(); ++r)
+    for (int c = 0; c < grid.cols(); ++c)
+      entropies[static_cast<std::size_t>(r * grid.cols() + c)] = (r + c) % 2 ? 0.0 : 8.0;
+  SharpenScratch scratch;
+  GrayImage blended;
+  ASSERT_TRUE(sharpen_low_entropy_blocks(view_of_mat(texture), grid, entropies,
+                                         kernel_table(KernelSet::scalar), scratch, blended));
+  cv::Mat stepped(height, width, CV_8U);
+  std::vector<std::int16_t> amounts(static_cast<std::size_t>(width));
+  std::vector<std::uint16_t> sums(static_cast<std::size_t>(width) + 4);
+  for (int y = 0; y < height; ++y) {
+    const int inside_y = std::clamp(y, kEdgeBorder, height - kEdgeBorder - 1);
+    for (int x = 0; x < width; ++x) {
+      const int inside_x = std::clamp(x, kEdgeBorder, width - kEdgeBorder - 1);
+      amounts[static_cast<std::size_t>(x)] = static_cast<std::int16_t>(sharpen_amount_q8(
+          entropies[static_cast<std::size_t>(block_of(grid, inside_x, inside_y))]));
+    }
+    unsharp_row_scalar(view_of_mat(texture), y, amounts.data(), sums.data(), stepped.ptr(y));
+  }
+  // The share of FAST corners (at the retry threshold, 7) within one pixel of a block border.
+  const auto near_edges = [](const std::vector<int>& edges, int p) {
+    for (int e : edges)
+      if (std::abs(p - e) <= 1) return true;
+    return false;
+  };
+  const auto border_share = [&](const cv::Mat& image) {
+    std::vector<cv::KeyPoint> found;
+    cv::FAST(image, found, 7, true);
+    int inside = 0, near = 0;
+    for (const cv::KeyPoint& k : found) {
+      const int x = static_cast<int>(k.pt.x), y = static_cast<int>(k.pt.y);
+      if (x < kEdgeBorder || x >= width - kEdgeBorder || y < kEdgeBorder ||
+          y >= height - kEdgeBorder)
+        continue;
+      ++inside;
+      near +=
+          near_edges(std::vector<int>(grid.col_edges.begin() + 1, grid.col_edges.end() - 1), x) ||
+          near_edges(std::vector<int>(grid.row_edges.begin() + 1, grid.row_edges.end() - 1), y);
+    }
+    EXPECT_GT(inside, 500);
+    return static_cast<double>(near) / inside;
+  };
+  const double plain = border_share(texture), step = border_share(stepped),
+               blend = border_share(cv::Mat(height, width, CV_8U, blended.data()));
+  EXPECT_GT(step, plain + 0.02) << "the stepped amounts show no seam: the test sees nothing";
+  EXPECT_LT(blend, plain + 0.01) << "plain " << plain << ", stepped " << step << ", blended "
+                                 << blend;
 }
 
 // Left half: smoothed noise at full contrast. Right half: the same texture dark and weak (squeezed
