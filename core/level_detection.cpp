@@ -177,8 +177,9 @@ void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const Extract
       }
       int end = c;
       while (end < grid.cols() && needs(r * grid.cols() + end)) ++end;
-      compute_score_rows(level.detection_pixels, kernels, options.fast_min_threshold, scratch.score_band,
-                         score_top, score_top, grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
+      compute_score_rows(level.detection_pixels, kernels, options.fast_min_threshold,
+                         scratch.score_band, score_top, score_top,
+                         grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
                          grid.col_edges[static_cast<std::size_t>(c)] - 1,
                          grid.col_edges[static_cast<std::size_t>(end)] + 1);
       detect_run(level, options, kernels, r, c, end, score_top, blocks, scratch);
