@@ -49,6 +49,7 @@ void register_extract_benchmarks() {
          [](ExtractorOptions& o) { o.quadtree_weight = QuadtreeWeight::entropy; }},
         {"fast-threshold-from-entropy",
          [](ExtractorOptions& o) { o.fast_threshold_from = FastThresholdFrom::entropy; }},
+        {"low-entropy-sharpen", [](ExtractorOptions& o) { o.low_entropy_sharpen = true; }},
     };
     for (Mode mode : {Mode::orbslam2, Mode::faithful}) {
       for (const Variant& variant : kVariants) {

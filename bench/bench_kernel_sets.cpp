@@ -100,6 +100,21 @@ void bench_gaussian7_rows(benchmark::State& state, const Inputs& in, const Kerne
   state.SetItemsProcessed(state.iterations() * in.pixels);
 }
 
+void bench_unsharp_row(benchmark::State& state, const Inputs& in, const KernelTable& k) {
+  // Every row of every level at amounts across the range (the sharpening of low-entropy blocks).
+  std::vector<std::int16_t> amounts(static_cast<std::size_t>(in.levels[0].width()));
+  for (std::size_t x = 0; x < amounts.size(); ++x)
+    amounts[x] = static_cast<std::int16_t>(x * 7 % (kUnsharpMaxAmountQ8 + 1));
+  std::vector<std::uint16_t> sums(amounts.size() + 4);
+  std::vector<std::uint8_t> out(amounts.size());
+  for (auto _ : state)
+    for (const GrayImage& level : in.levels)
+      for (int y = 0; y < level.height(); ++y)
+        k.unsharp_row(level.view(), y, amounts.data(), sums.data(), out.data());
+  benchmark::DoNotOptimize(out.data());
+  state.SetItemsProcessed(state.iterations() * in.pixels);
+}
+
 void bench_accumulate_histogram(benchmark::State& state, const Inputs& in, const KernelTable& k) {
   std::uint32_t hist[256];
   for (auto _ : state)

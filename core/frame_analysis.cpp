@@ -57,6 +57,7 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options,
   for (std::size_t n = 0; n < levels_.size(); ++n) {
     Level& level = levels_[n];
     level.pyramid.pixels = n == 0 ? image : level.pyramid.image.view();
+    level.pyramid.detection_pixels = level.pyramid.pixels;
     if (detection_mask_.empty())
       level.pyramid.detection_mask.resize(0, 0);
     else if (level.pyramid.usable())
@@ -91,12 +92,14 @@ void FrameAnalysis::build_level_rows(int n, int y_begin, int y_end) {
 void FrameAnalysis::compute_entropies(int n) {
   Level& level = at(n);
   const bool mask_on = options_.entropy != EntropyMeasure::off;
-  // The entropy-weighted quadtree and the per-block FAST thresholds read the block entropies with
-  // the mask off too (histogram); the frame's own entropy stays the mask's (0 without it).
+  // The entropy-weighted quadtree, the per-block FAST thresholds and the sharpening read the block
+  // entropies with the mask off too (histogram); the frame's own entropy stays the mask's (0
+  // without it).
   const bool entropies_needed = (options_.distribution == Distribution::quadtree &&
                                  options_.quadtree_weight == QuadtreeWeight::entropy) ||
                                 (options_.detection_cells == DetectionCells::blocks &&
-                                 options_.fast_threshold_from == FastThresholdFrom::entropy);
+                                 options_.fast_threshold_from == FastThresholdFrom::entropy) ||
+                                options_.low_entropy_sharpen;
   if ((!mask_on && !entropies_needed) || !level.pyramid.usable()) return;
   std::uint32_t whole[256] = {};
   compute_block_entropies(level.pyramid.pixels, level.pyramid.geometry.grid,
@@ -105,6 +108,13 @@ void FrameAnalysis::compute_entropies(int n) {
   if (n == 0 && mask_on)
     image_entropy_bits_ =
         whole_level_entropy_bits(level.pyramid.pixels, options_.entropy, *kernels_, whole);
+  // Once per level and frame, before any detection: every threshold F (the fallback, the sweep)
+  // then detects on the same pixels, so candidates stay memoised per block.
+  if (options_.low_entropy_sharpen &&
+      sharpen_low_entropy_blocks(level.pyramid.pixels, level.pyramid.geometry.grid,
+                                 level.blocks.entropy_bits, *kernels_, level.sharpen,
+                                 level.pyramid.sharpened))
+    level.pyramid.detection_pixels = level.pyramid.sharpened.view();
 }
 
 BlockMask FrameAnalysis::mask(int n, double threshold) const {

@@ -21,6 +21,7 @@
 #include "core/level_description.hpp"
 #include "core/level_detection.hpp"
 #include "core/level_selection.hpp"
+#include "core/low_entropy_sharpen.hpp"
 #include "core/pyramid_level.hpp"
 #include "core/raster_order.hpp"
 
@@ -45,7 +46,8 @@ class FrameAnalysis {
   // its detection mask when there is one.
   void build_level_rows(int n, int y_begin, int y_end);
   void build_level(int n) { build_level_rows(n, 0, level(n).geometry.height); }
-  // Stage 2: block entropies of level n (no-op with entropy off).
+  // Stage 2: block entropies of level n (no-op with entropy off and no option reading them),
+  // then with low_entropy_sharpen the sharpened pixels detection reads.
   void compute_entropies(int n);
   // Stage 3: FAST candidates of every block of level n kept at threshold F not yet detected.
   void detect(int n, double threshold);
@@ -91,6 +93,7 @@ class FrameAnalysis {
     LevelDescriptions descriptions;
     RasterRanks raster_ranks;  // Selections::many
     DetectionScratch detection;
+    SharpenScratch sharpen;  // ExtractorOptions::low_entropy_sharpen
     SelectionScratch selection;
     std::vector<std::int32_t> selected;
   };

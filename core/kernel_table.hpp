@@ -15,6 +15,7 @@
 #include "core/orientation.hpp"
 #include "core/pyramid_resize.hpp"
 #include "core/rbrief.hpp"
+#include "core/unsharp_mask.hpp"
 
 // The one list of kernels, in table order: X(name) for a kernel whose scalar reference is
 // name##_scalar. KernelTable's entries, the bit-exact validation (simd/kernel_validation.cpp),
@@ -31,7 +32,8 @@
   X(rbrief_describe)            \
   X(hamming_256_many)           \
   X(hamming_256_blocked)        \
-  X(positions_within_bounds)
+  X(positions_within_bounds)    \
+  X(unsharp_row)
 
 namespace aief {
 

@@ -136,7 +136,7 @@ void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const Extract
     if (blocks.detected.empty() || blocks.detected[0]) return;
     std::vector<Candidate>& found = scratch.cell_candidates;
     found.clear();
-    detect_orbslam_cells(level.pixels, options, kernels, scratch.cell_scores, found);
+    detect_orbslam_cells(level.detection_pixels, options, kernels, scratch.cell_scores, found);
     std::vector<std::int32_t> starts(static_cast<std::size_t>(grid.count()) + 1, 0);
     for (const Candidate& c : found)
       ++starts[static_cast<std::size_t>(block_of(grid, c.x, c.y)) + 1];
@@ -177,8 +177,9 @@ void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const Extract
       }
       int end = c;
       while (end < grid.cols() && needs(r * grid.cols() + end)) ++end;
-      compute_score_rows(level.pixels, kernels, options.fast_min_threshold, scratch.score_band,
-                         score_top, score_top, grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
+      compute_score_rows(level.detection_pixels, kernels, options.fast_min_threshold,
+                         scratch.score_band, score_top, score_top,
+                         grid.row_edges[static_cast<std::size_t>(r) + 1] + 1,
                          grid.col_edges[static_cast<std::size_t>(c)] - 1,
                          grid.col_edges[static_cast<std::size_t>(end)] + 1);
       detect_run(level, options, kernels, r, c, end, score_top, blocks, scratch);

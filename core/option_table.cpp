@@ -284,6 +284,16 @@ std::vector<OptionRow> make_rows() {
        .help = "a block's first FAST threshold: none (the FAST threshold) or entropy (from the "
                "retry threshold at 0 bits up to the FAST threshold at 6 bits, linearly); the "
                "engine's blocks only"},
+      {.key = "low_entropy_sharpen",
+       .field = access<&M::low_entropy_sharpen>,
+       .cli_flag = "--low-entropy-sharpen",
+       .cli_value = "on|off",
+       .python_keyword = "low_entropy_sharpen",
+       .yaml_key = "ORBextractor.lowEntropySharpen",
+       .help = "FAST detects on the level with its low-entropy blocks sharpened (unsharp mask, "
+               "amount 2 at 0 bits falling linearly to none at 6 bits, blended between blocks); "
+               "orientation and descriptors read the level as it is",
+       .words = "on|off"},
       {.key = "kernels",
        .field = access<&M::kernels>,
        .cli_flag = "--kernels",

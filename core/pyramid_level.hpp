@@ -17,6 +17,10 @@ struct PyramidLevel {
   // The detection mask at this level, 255 where keypoints may be and 0 elsewhere; 0 x 0 without
   // a mask (core/detection_mask.hpp).
   GrayImage detection_mask;
+  // What FAST reads: `pixels`, or with ExtractorOptions::low_entropy_sharpen `sharpened` once
+  // stage 2 made it (core/low_entropy_sharpen.hpp). Orientation and descriptors read `pixels`.
+  ImageView detection_pixels;
+  GrayImage sharpened;
 
   bool has_detection_mask() const { return detection_mask.width() > 0; }
 

@@ -303,6 +303,27 @@ std::string check_positions_within_bounds(const KernelTable& scalar, const Kerne
   return "";
 }
 
+std::string check_unsharp_row(const KernelTable& scalar, const KernelTable& other,
+                              const GrayImage& src) {
+  // Amounts over the whole range, 0 and the largest included, from a seed of the image's size.
+  std::mt19937 rng(static_cast<std::uint32_t>(src.width() * 131 + src.height()));
+  std::uniform_int_distribution<int> amount(0, kUnsharpMaxAmountQ8);
+  const std::size_t width = static_cast<std::size_t>(src.width());
+  std::vector<std::int16_t> amounts(width);
+  std::vector<std::uint16_t> sums_a(width + 4), sums_b(width + 4);
+  std::vector<std::uint8_t> a(width), b(width);
+  for (int y = 0; y < src.height(); ++y) {
+    for (std::int16_t& value : amounts) value = static_cast<std::int16_t>(amount(rng));
+    amounts[0] = kUnsharpMaxAmountQ8;
+    amounts[width - 1] = 0;
+    scalar.unsharp_row(src.view(), y, amounts.data(), sums_a.data(), a.data());
+    other.unsharp_row(src.view(), y, amounts.data(), sums_b.data(), b.data());
+    const std::string diff = first_difference(a, b, other.name, "pixel");
+    if (!diff.empty()) return where(src, "row " + std::to_string(y) + " " + diff);
+  }
+  return "";
+}
+
 std::string check_extract(KernelSet set, const GrayImage& src) {
   if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
   // The default mode (sub-pixel, pool, per-level guard, automatic F) and the paper's conventions.

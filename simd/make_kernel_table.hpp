@@ -10,6 +10,7 @@
 #include "simd/fast9_portable.hpp"
 #include "simd/gaussian_blur_portable.hpp"
 #include "simd/rbrief_portable.hpp"
+#include "simd/unsharp_mask_portable.hpp"
 #if defined(__aarch64__)
 #include "simd/bound_filter_neon.hpp"
 #include "simd/hamming_blocked_neon.hpp"

@@ -90,6 +90,10 @@ Case make_case(int index) {
   if (uniform_int(variant_rng, 0, 3) == 0) c.options.quadtree_weight = QuadtreeWeight::entropy;
   if (uniform_int(variant_rng, 0, 3) == 0)
     c.options.fast_threshold_from = FastThresholdFrom::entropy;
+  // The sharpened low-entropy blocks, a quarter of the cases, their own draws (the earlier cases'
+  // options stay as they were).
+  std::mt19937 sharpen_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 32452843u));
+  if (uniform_int(sharpen_rng, 0, 3) == 0) c.options.low_entropy_sharpen = true;
 
   const int width = uniform_int(rng, 39, 539), height = uniform_int(rng, 39, 539);
   const int source = uniform_int(rng, 0, 3);
@@ -115,7 +119,8 @@ Case make_case(int index) {
       << to_string(c.options.detection_cells) << ", ties " << to_string(c.options.quadtree_ties)
       << ", orientation " << to_string(c.options.orientation) << ", quadtree weight "
       << to_string(c.options.quadtree_weight) << ", FAST threshold from "
-      << to_string(c.options.fast_threshold_from);
+      << to_string(c.options.fast_threshold_from) << ", low-entropy sharpen "
+      << (c.options.low_entropy_sharpen ? "on" : "off");
   c.description = out.str();
   return c;
 }

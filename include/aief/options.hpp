@@ -162,6 +162,10 @@ struct ExtractorOptions {
   // first FAST threshold falls with its entropy, so weak-texture and dark blocks keep weaker
   // corners; the retry at fast_min_threshold stays.
   FastThresholdFrom fast_threshold_from = FastThresholdFrom::none;
+  // Entropy-guided variant: FAST detects on a copy of each level whose low-entropy blocks are
+  // sharpened (an unsharp mask whose amount falls with the block's entropy, blended between
+  // blocks; core/low_entropy_sharpen.hpp); orientation and descriptors read the level itself.
+  bool low_entropy_sharpen = false;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels

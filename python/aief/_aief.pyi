@@ -100,6 +100,7 @@ class Extractor:
         orientation: Optional[Literal["atan2", "fast-atan2"]] = None,
         quadtree_weight: Literal["none", "entropy"] = "none",
         fast_threshold_from: Literal["none", "entropy"] = "none",
+        low_entropy_sharpen: bool = False,
         max_image_pixels: int = 67108864,
         **record_keys: Any,
     ) -> None: ...
