@@ -20,9 +20,10 @@
 namespace aief {
 namespace {
 
-cv::Mat opencv_resize(const OpenCvResizePlan& plan, const cv::Mat& src) {
+cv::Mat opencv_resize(const KernelTable& kernels, const OpenCvResizePlan& plan,
+                      const cv::Mat& src) {
   cv::Mat out(plan.dst_height, plan.dst_width, CV_8UC1);
-  resize_opencv_linear_rows(
+  kernels.resize_opencv_linear_rows(
       ImageView{src.data, src.cols, src.rows, static_cast<std::ptrdiff_t>(src.step)}, plan,
       MutableImageView{out.data, out.cols, out.rows, static_cast<std::ptrdiff_t>(out.step)}, 0,
       out.rows);
@@ -40,7 +41,9 @@ std::string first_difference(const cv::Mat& expected, const cv::Mat& actual) {
   return "";
 }
 
-TEST(OpenCvResize, EqualsCvResizeOnRandomSizesScalesAndImages) {
+// Every kernel set: the scalar reference and the vector kernels (simd/pyramid_resize_opencv_*.hpp),
+// whose groups cover only some ratios and widths, the rest going to their scalar spans.
+TEST(OpenCvResize, EqualsCvResizeOnRandomSizesScalesAndImagesUnderEveryKernelSet) {
   std::mt19937 rng(977);
   for (int trial = 0; trial < 300; ++trial) {
     const int width = 1 + static_cast<int>(rng() % 700), height = 1 + static_cast<int>(rng() % 500);
@@ -71,8 +74,10 @@ TEST(OpenCvResize, EqualsCvResizeOnRandomSizesScalesAndImages) {
     cv::resize(src, expected, cv::Size(dst_width, dst_height), 0, 0, cv::INTER_LINEAR);
     const OpenCvResizePlan plan =
         make_opencv_resize_plan(src.cols, src.rows, dst_width, dst_height);
-    EXPECT_EQ(first_difference(expected, opencv_resize(plan, src)), "")
-        << src.cols << "x" << src.rows << " -> " << dst_width << "x" << dst_height;
+    for (const KernelSet set : available_kernel_sets())
+      EXPECT_EQ(first_difference(expected, opencv_resize(kernel_table(set), plan, src)), "")
+          << to_string(set) << ", " << src.cols << "x" << src.rows << " -> " << dst_width << "x"
+          << dst_height;
   }
 }
 
