@@ -5,6 +5,7 @@
 // with the scales in float) on odd-sized random images and the bundled photos. The keypoints'
 // agreement with ORB-SLAM3's own ORBextractor is measured outside the repository (docs/slam.md,
 // "The faithful mode").
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "aief/extractor.hpp"
 #include "core/pyramid_resize_opencv.hpp"
 #include "simd/kernels.hpp"
+#include "tests/features_hash.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -126,6 +128,40 @@ TEST(FaithfulMode, PyramidEqualsOrbSlamUnderEveryKernelSet) {
               << to_string(set) << ", " << image.cols << "x" << image.rows << ", scale "
               << scale_factor << ", level " << n;
         }
+      }
+}
+
+// The faithful mode's whole output, pinned: recorded from the scalar per-cell detection (commit
+// a8ec39c, before the cells read the level's local-maxima bits), which the faithful keypoints were
+// measured against ORB-SLAM3's with (docs/slam.md). Every kernel set and thread count, the bundled
+// photos and a textured 640x480 frame.
+TEST(FaithfulMode, ReproducesTheRecordedOutputToTheByte) {
+  struct Pinned {
+    const char* name;
+    cv::Mat image;
+    std::uint64_t hash;
+  };
+  const Pinned pinned[] = {
+      {"graf", test::load_sample_gray("graf", "img1.png"), 0x96843c1c735beae9ull},
+      {"boat", test::load_sample_gray("boat", "img1.png"), 0x9f17e9d414bf0c06ull},
+      {"leuven", test::load_sample_gray("leuven", "img1.png"), 0x04952274c944fdacull},
+      {"textured 640x480", test::random_textured_image(640, 480, 24), 0x9ae0ab26dae2bf3cull},
+  };
+  for (const Pinned& p : pinned)
+    for (const KernelSet set : available_kernel_sets())
+      for (const int threads : {1, 2}) {
+        ExtractorOptions options = options_for_mode(Mode::faithful);
+        options.kernels = set;
+        options.threads = threads;
+        char hash[32];
+        std::snprintf(hash, sizeof hash, "0x%016llxull",
+                      static_cast<unsigned long long>(
+                          test::features_hash(Extractor(options).extract(view_of(p.image)))));
+        char expected[32];
+        std::snprintf(expected, sizeof expected, "0x%016llxull",
+                      static_cast<unsigned long long>(p.hash));
+        EXPECT_STREQ(hash, expected)
+            << p.name << ", " << to_string(set) << ", " << threads << " threads";
       }
 }
 
