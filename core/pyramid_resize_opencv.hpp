@@ -22,7 +22,6 @@
 // (simd/pyramid_resize_opencv_x86.hpp, _neon.hpp) keep h >> 4 in int16 lanes and take the
 // vertical pass as a 16-bit high multiply, exactly as OpenCV's vector code does.
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "aief/image.hpp"
@@ -75,10 +74,8 @@ template <class Horizontal, class Vertical>
 void resize_opencv_rows_with(ImageView src, const OpenCvResizePlan& plan, MutableImageView dst,
                              int y_begin, int y_end, Horizontal horizontal, Vertical vertical) {
   const std::size_t columns = static_cast<std::size_t>(plan.dst_width);
-  // Not zeroed (every entry is written before it is read): a memset of both rows cost more than
-  // the vertical pass of a small level.
-  const std::unique_ptr<std::int16_t[]> buffer(new std::int16_t[2 * columns]);
-  std::int16_t* rows[2] = {buffer.get(), buffer.get() + columns};
+  std::vector<std::int16_t> buffer(2 * columns);
+  std::int16_t* rows[2] = {buffer.data(), buffer.data() + columns};
   int source_of[2] = {-1, -1};
   const auto horizontal_of = [&](int source_row) -> const std::int16_t* {
     for (int k = 0; k < 2; ++k)
