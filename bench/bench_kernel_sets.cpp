@@ -19,6 +19,7 @@
 #include "core/fast9.hpp"
 #include "core/level_geometry.hpp"
 #include "core/pyramid_resize.hpp"
+#include "core/pyramid_resize_opencv.hpp"
 #include "simd/kernels.hpp"
 #include "tests/pgm_image.hpp"
 
@@ -29,7 +30,8 @@ namespace {
 // FAST score rows, sample keypoints and descriptors.
 struct Inputs {
   std::vector<GrayImage> levels, blurred;
-  std::vector<ResizePlan> plans;  // plans[n] makes level n from level n - 1
+  std::vector<ResizePlan> plans;               // plans[n] makes level n from level n - 1
+  std::vector<OpenCvResizePlan> opencv_plans;  // the same sizes, for the OpenCV resize
   long long pixels = 0;
   std::vector<std::vector<std::uint8_t>> scores;  // FAST scores (t = 7) of level 0, row by row
   std::vector<PixelPoint> points;                 // a grid over level 0, inside the edge border
@@ -47,9 +49,12 @@ std::shared_ptr<const Inputs> make_inputs(const GrayImage& image) {
     if (n == 0) {
       level = image;
       in->plans.emplace_back();
+      in->opencv_plans.emplace_back();
     } else {
       in->plans.push_back(make_resize_plan(geometry[n - 1].width, geometry[n - 1].height,
                                            geometry[n].width, geometry[n].height));
+      in->opencv_plans.push_back(make_opencv_resize_plan(
+          geometry[n - 1].width, geometry[n - 1].height, geometry[n].width, geometry[n].height));
       scalar.resize_bilinear_rows(in->levels.back().view(), in->plans.back(), level.mutable_view(),
                                   0, level.height());
     }
@@ -86,6 +91,18 @@ void bench_resize_bilinear_rows(benchmark::State& state, const Inputs& in, const
     for (std::size_t n = 1; n < in.levels.size(); ++n)
       k.resize_bilinear_rows(in.levels[n - 1].view(), in.plans[n], out[n].mutable_view(), 0,
                              out[n].height());
+  state.SetItemsProcessed(state.iterations() *
+                          (in.pixels - in.levels[0].width() * in.levels[0].height()));
+}
+
+void bench_resize_opencv_linear_rows(benchmark::State& state, const Inputs& in,
+                                     const KernelTable& k) {
+  std::vector<GrayImage> out;
+  for (const GrayImage& level : in.levels) out.emplace_back(level.width(), level.height());
+  for (auto _ : state)
+    for (std::size_t n = 1; n < in.levels.size(); ++n)
+      k.resize_opencv_linear_rows(in.levels[n - 1].view(), in.opencv_plans[n],
+                                  out[n].mutable_view(), 0, out[n].height());
   state.SetItemsProcessed(state.iterations() *
                           (in.pixels - in.levels[0].width() * in.levels[0].height()));
 }

@@ -19,14 +19,15 @@ import tempfile
 # std:: algorithms instantiated for a stage carry that stage's function in their template
 # arguments (a sort's comparator), so those come before the generic rows.
 STAGES = [
-    ("pyramid (resize)", ["resize_bilinear"]),
+    ("pyramid (resize)", ["resize_bilinear", "resize_opencv"]),
     ("entropy: block histograms", ["accumulate_histogram"]),
     ("entropy: sums and logs", ["entropy_bits", "compute_block_entropies", "__log2", "log2"]),
     ("FAST scores", ["fast9_scores_row", "compute_score_rows"]),
     ("local maxima", ["fast9_local_maxima_bits"]),
     ("candidate bookkeeping", ["detect_kept_blocks", "allowed_bits", "blocks_allowed"]),
+    ("ORB-SLAM cells (walk)", ["detect_orbslam_cells"]),
     ("pool + distribution + raster sort",
-     ["pool_candidates", "distribute_", "Quadtree", "select_candidates", "sort_in_raster_order",
+     ["pool_candidates", "distribute_", "Quadtree", "OctreeNode", "select_candidates", "sort_in_raster_order",
       "sort_by_raster_rank", "raster_rank"]),
     ("orientation", ["ic_moments", "ic_angle", "atan2"]),
     ("patch blur", ["gaussian7_rows", "blur_patch_rows", "describe_through_band"]),

@@ -74,8 +74,8 @@ void FrameAnalysis::build_level_rows(int n, int y_begin, int y_end) {
   PyramidLevel& pyramid = at(n).pyramid;
   if (!pyramid.usable()) return;
   if (n > 0 && options_.pyramid_resampling == PyramidResampling::opencv)
-    resize_opencv_linear_rows(level(n - 1).pixels, pyramid.opencv_plan,
-                              pyramid.image.mutable_view(), y_begin, y_end);
+    kernels_->resize_opencv_linear_rows(level(n - 1).pixels, pyramid.opencv_plan,
+                                        pyramid.image.mutable_view(), y_begin, y_end);
   else if (n > 0)  // level 0 is the input itself
     kernels_->resize_bilinear_rows(level(n - 1).pixels, pyramid.resize_plan,
                                    pyramid.image.mutable_view(), y_begin, y_end);

@@ -14,6 +14,7 @@
 #include "core/hamming_blocked.hpp"
 #include "core/orientation.hpp"
 #include "core/pyramid_resize.hpp"
+#include "core/pyramid_resize_opencv.hpp"
 #include "core/rbrief.hpp"
 #include "core/unsharp_mask.hpp"
 
@@ -24,6 +25,7 @@
 // (CONTRIBUTING.md, "Adding a kernel").
 #define AIEF_FOR_EACH_KERNEL(X) \
   X(resize_bilinear_rows)       \
+  X(resize_opencv_linear_rows)  \
   X(gaussian7_rows)             \
   X(accumulate_histogram)       \
   X(fast9_scores_row)           \

@@ -136,10 +136,13 @@ void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const Extract
     if (blocks.detected.empty() || blocks.detected[0]) return;
     std::vector<Candidate>& found = scratch.cell_candidates;
     found.clear();
-    detect_orbslam_cells(level.detection_pixels, options, kernels, scratch.cell_scores, found);
+    detect_orbslam_cells(level.detection_pixels, options, kernels, scratch.cells, found);
+    std::vector<std::int32_t>& block = scratch.cell_blocks;
+    block.resize(found.size());
+    for (std::size_t i = 0; i < found.size(); ++i)
+      block[i] = block_of(grid, found[i].x, found[i].y);
     std::vector<std::int32_t> starts(static_cast<std::size_t>(grid.count()) + 1, 0);
-    for (const Candidate& c : found)
-      ++starts[static_cast<std::size_t>(block_of(grid, c.x, c.y)) + 1];
+    for (const std::int32_t b : block) ++starts[static_cast<std::size_t>(b) + 1];
     for (std::size_t b = 1; b < starts.size(); ++b) starts[b] += starts[b - 1];
     for (int b = 0; b < grid.count(); ++b)
       blocks.candidate_range[static_cast<std::size_t>(b)] = {
@@ -147,8 +150,7 @@ void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const Extract
     blocks.candidates.resize(found.size());
     blocks.orbslam_order.resize(found.size());
     for (std::size_t i = 0; i < found.size(); ++i) {
-      const std::int32_t at =
-          starts[static_cast<std::size_t>(block_of(grid, found[i].x, found[i].y))]++;
+      const std::int32_t at = starts[static_cast<std::size_t>(block[i])]++;
       blocks.candidates[static_cast<std::size_t>(at)] = found[i];
       blocks.orbslam_order[i] = at;
     }

@@ -12,6 +12,7 @@
 #include "core/candidate.hpp"
 #include "core/kernel_table.hpp"
 #include "core/level_blocks.hpp"
+#include "core/orbslam_cells.hpp"
 #include "core/pyramid_level.hpp"
 
 namespace aief {
@@ -21,8 +22,9 @@ struct DetectionScratch {
   GrayImage score_band;                     // core/score_band.hpp
   std::vector<std::uint64_t> maxima_bits;   // local maxima of a run of blocks, bit rows
   std::vector<std::uint64_t> allowed_bits;  // the detection mask over one row of such a run
-  std::vector<std::uint8_t> cell_scores;    // DetectionCells::orbslam (core/orbslam_cells.hpp)
+  OrbSlamCellScratch cells;                 // DetectionCells::orbslam (core/orbslam_cells.hpp)
   std::vector<Candidate> cell_candidates;   // the same, in ORB-SLAM's order
+  std::vector<std::int32_t> cell_blocks;    // the block of each
 };
 
 // Sizes the scratch for a level of `geometry`.

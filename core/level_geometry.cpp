@@ -28,14 +28,6 @@ BlockGrid make_block_grid(int width, int height, int block_size) {
   return grid;
 }
 
-int block_of(const BlockGrid& grid, int x, int y) {
-  const auto column = std::upper_bound(grid.col_edges.begin() + 1, grid.col_edges.end() - 1, x) -
-                      (grid.col_edges.begin() + 1);
-  const auto row = std::upper_bound(grid.row_edges.begin() + 1, grid.row_edges.end() - 1, y) -
-                   (grid.row_edges.begin() + 1);
-  return static_cast<int>(row) * grid.cols() + static_cast<int>(column);
-}
-
 std::vector<LevelGeometry> level_geometry(int width, int height, const ExtractorOptions& options) {
   const int levels = options.n_levels;
   std::vector<LevelGeometry> geometry(static_cast<std::size_t>(levels));

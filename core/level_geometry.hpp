@@ -22,8 +22,26 @@ struct BlockGrid {
 
 BlockGrid make_block_grid(int width, int height, int block_size);
 
-// The block holding level pixel (x, y), which lies in the grid's area.
-int block_of(const BlockGrid& grid, int x, int y);
+// The block holding level pixel (x, y), which lies in the grid's area:
+// block_row(grid, y) * grid.cols() + block_column(grid, x). Pixels outside the area take the
+// nearest column or row. Arithmetic, not a search: the edges are begin + i * block_size but the
+// last (make_block_grid), so the column is the number of inner edges at or left of x, that
+// quotient clamped to [0, cols - 1].
+inline int block_index_on_axis(const std::vector<int>& edges, int v) {
+  const int count = static_cast<int>(edges.size()) - 1;
+  if (count <= 1) return 0;
+  const int index = (v - edges[0]) / (edges[1] - edges[0]);  // truncated: <= 0 left of edges[0]
+  return index < 0 ? 0 : index > count - 1 ? count - 1 : index;
+}
+inline int block_column(const BlockGrid& grid, int x) {
+  return block_index_on_axis(grid.col_edges, x);
+}
+inline int block_row(const BlockGrid& grid, int y) {
+  return block_index_on_axis(grid.row_edges, y);
+}
+inline int block_of(const BlockGrid& grid, int x, int y) {
+  return block_row(grid, y) * grid.cols() + block_column(grid, x);
+}
 
 struct LevelGeometry {
   int width = 0;

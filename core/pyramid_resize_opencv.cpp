@@ -29,6 +29,43 @@ Tap tap(int i, double scale) {
   return {s, f};
 }
 
+// The grouped x taps of the vector kernels (see OpenCvResizePlan).
+void x_groups_plan(OpenCvResizePlan& plan) {
+  constexpr int kGroup = 8, kWindow = 16;
+  int groups = 0;
+  if (plan.src_width >= kWindow) {
+    for (; (groups + 1) * kGroup <= plan.dst_width; ++groups) {
+      const auto first = static_cast<std::size_t>(groups * kGroup);
+      // At the right edge the taps clamp to the last column: the window moves left to stay inside.
+      const int start = std::min(plan.x_left[first], plan.src_width - kWindow);
+      if (plan.x_right[first + kGroup - 1] - start >= kWindow) break;
+    }
+  }
+  plan.x_groups = groups;
+  plan.x_group_start.resize(static_cast<std::size_t>(groups));
+  plan.x_group_shuffle.resize(static_cast<std::size_t>(groups) * 2 * 16);
+  plan.x_group_coef.resize(static_cast<std::size_t>(groups) * 2 * 8);
+  for (int g = 0; g < groups; ++g) {
+    const auto first = static_cast<std::size_t>(g * kGroup);
+    const int start = std::min(plan.x_left[first], plan.src_width - kWindow);
+    plan.x_group_start[static_cast<std::size_t>(g)] = start;
+    for (int i = 0; i < kGroup; ++i) {
+      const std::size_t x = first + static_cast<std::size_t>(i);
+      const std::size_t half_row = static_cast<std::size_t>((i / 4) * groups + g);
+      const int k = i % 4;
+      std::uint8_t* shuffle =
+          &plan.x_group_shuffle[half_row * 16 + 4 * static_cast<std::size_t>(k)];
+      shuffle[0] = static_cast<std::uint8_t>(plan.x_left[x] - start);
+      shuffle[1] = 0x80;
+      shuffle[2] = static_cast<std::uint8_t>(plan.x_right[x] - start);
+      shuffle[3] = 0x80;
+      std::int16_t* coef = &plan.x_group_coef[half_row * 8 + 2 * static_cast<std::size_t>(k)];
+      coef[0] = plan.x_coef0[x];
+      coef[1] = plan.x_coef1[x];
+    }
+  }
+}
+
 }  // namespace
 
 OpenCvResizePlan make_opencv_resize_plan(int src_width, int src_height, int dst_width,
@@ -69,42 +106,42 @@ OpenCvResizePlan make_opencv_resize_plan(int src_width, int src_height, int dst_
     plan.y_coef0[i] = coefficient(1.0f - t.f);
     plan.y_coef1[i] = coefficient(t.f);
   }
+  x_groups_plan(plan);
   return plan;
 }
 
-void resize_opencv_linear_rows(ImageView src, const OpenCvResizePlan& plan, MutableImageView dst,
-                               int y_begin, int y_end) {
-  const std::size_t columns = static_cast<std::size_t>(plan.dst_width);
-  // Two horizontal rows, each remembered with its source row: consecutive outputs share a source
-  // row most of the time (as OpenCV reuses its row buffers).
-  std::vector<std::int32_t> rows[2] = {std::vector<std::int32_t>(columns),
-                                       std::vector<std::int32_t>(columns)};
-  int source_of[2] = {-1, -1};
-  const auto horizontal = [&](int source_row) -> const std::int32_t* {
-    for (int k = 0; k < 2; ++k)
-      if (source_of[k] == source_row) return rows[k].data();
-    // Replace the buffer whose row is not the other tap of this output (the older one).
-    const int k = source_of[0] < source_of[1] ? 0 : 1;
-    const std::uint8_t* row = src.row(source_row);
-    std::int32_t* out = rows[k].data();
-    for (std::size_t x = 0; x < columns; ++x)
-      out[x] = row[plan.x_left[x]] * plan.x_coef0[x] + row[plan.x_right[x]] * plan.x_coef1[x];
-    source_of[k] = source_row;
-    return out;
-  };
-  for (int y = y_begin; y < y_end; ++y) {
-    const auto i = static_cast<std::size_t>(y);
-    // Source rows ascend with y, so the buffer the bottom tap replaces is never the top tap's.
-    const std::int32_t* top = horizontal(plan.y_top[i]);
-    const std::int32_t* bottom = horizontal(plan.y_bottom[i]);
-    const std::int32_t b0 = plan.y_coef0[i], b1 = plan.y_coef1[i];
-    std::uint8_t* out = dst.row(y);
-    for (std::size_t x = 0; x < columns; ++x) {
-      // v_mul_hi of the 16-bit h >> 4 (h <= 255 * 2048, so h >> 4 fits), then v_rshr_pack_u<2>.
-      const std::int32_t sum = ((top[x] >> 4) * b0 >> 16) + ((bottom[x] >> 4) * b1 >> 16);
-      out[x] = static_cast<std::uint8_t>(std::clamp((sum + 2) >> 2, 0, 255));
-    }
+void resize_opencv_horizontal_span_scalar(const std::uint8_t* row, const OpenCvResizePlan& plan,
+                                          int x_begin, int x_end, std::int16_t* out) {
+  for (int x = x_begin; x < x_end; ++x) {
+    const auto i = static_cast<std::size_t>(x);
+    const std::int32_t h =
+        row[plan.x_left[i]] * plan.x_coef0[i] + row[plan.x_right[i]] * plan.x_coef1[i];
+    out[x] = static_cast<std::int16_t>(h >> 4);  // h <= 255 * 2048: h >> 4 fits (header)
   }
+}
+
+void resize_opencv_vertical_span_scalar(const std::int16_t* top, const std::int16_t* bottom,
+                                        std::int16_t b0, std::int16_t b1, int x_begin, int x_end,
+                                        std::uint8_t* out) {
+  for (int x = x_begin; x < x_end; ++x) {
+    // v_mul_hi of the 16-bit h >> 4, then v_rshr_pack_u<2>.
+    const std::int32_t sum = (top[x] * b0 >> 16) + (bottom[x] * b1 >> 16);
+    out[x] = static_cast<std::uint8_t>(std::clamp((sum + 2) >> 2, 0, 255));
+  }
+}
+
+void resize_opencv_linear_rows_scalar(ImageView src, const OpenCvResizePlan& plan,
+                                      MutableImageView dst, int y_begin, int y_end) {
+  const int columns = plan.dst_width;
+  resize_opencv_rows_with(
+      src, plan, dst, y_begin, y_end,
+      [&](const std::uint8_t* row, std::int16_t* out) {
+        resize_opencv_horizontal_span_scalar(row, plan, 0, columns, out);
+      },
+      [&](const std::int16_t* top, const std::int16_t* bottom, std::int16_t b0, std::int16_t b1,
+          std::uint8_t* out) {
+        resize_opencv_vertical_span_scalar(top, bottom, b0, b1, 0, columns, out);
+      });
 }
 
 }  // namespace aief

@@ -79,6 +79,31 @@ std::string check_resize_bilinear_rows(const KernelTable& scalar, const KernelTa
   return "";
 }
 
+std::string check_resize_opencv_linear_rows(const KernelTable& scalar, const KernelTable& other,
+                                            const GrayImage& src) {
+  // ORB-SLAM's pyramid ratio (cvRound of the size over 1.2), the options' range of ratios, an
+  // exact halving, and upscaling (cv::resize's any ratio; no group fits past about 2x down).
+  for (double ratio : {1.2, 1.01, 1.5, 2.0, 2.7, 4.0, 0.6}) {
+    const int w = std::max(1, static_cast<int>(std::lround(src.width() / ratio)));
+    const int h = std::max(1, static_cast<int>(std::lround(src.height() / ratio)));
+    const OpenCvResizePlan plan = make_opencv_resize_plan(src.width(), src.height(), w, h);
+    GrayImage a(w, h), b(w, h);
+    scalar.resize_opencv_linear_rows(src.view(), plan, a.mutable_view(), 0, h);
+    // The other kernel in two bands, the second starting on its own row buffers.
+    other.resize_opencv_linear_rows(src.view(), plan, b.mutable_view(), 0, h / 2);
+    other.resize_opencv_linear_rows(src.view(), plan, b.mutable_view(), h / 2, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if (a.data()[y * w + x] != b.data()[y * w + x])
+          return where(src, "ratio " + std::to_string(ratio) + " -> " + std::to_string(w) + "x" +
+                                std::to_string(h) + " at (" + std::to_string(x) + ", " +
+                                std::to_string(y) + "): scalar " +
+                                std::to_string(a.data()[y * w + x]) + ", " + other.name + " " +
+                                std::to_string(b.data()[y * w + x]));
+  }
+  return "";
+}
+
 std::string check_gaussian7_rows(const KernelTable& scalar, const KernelTable& other,
                                  const GrayImage& src) {
   if (src.width() < 4 || src.height() < 4) return "";

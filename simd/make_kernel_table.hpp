@@ -17,11 +17,13 @@
 #include "simd/hamming_neon.hpp"
 #include "simd/orientation_neon.hpp"
 #include "simd/pyramid_resize_neon.hpp"
+#include "simd/pyramid_resize_opencv_neon.hpp"
 #else
 #include "simd/bound_filter_x86.hpp"
 #include "simd/hamming_blocked_x86.hpp"
 #include "simd/hamming_x86.hpp"
 #include "simd/orientation_x86.hpp"
+#include "simd/pyramid_resize_opencv_x86.hpp"
 #include "simd/pyramid_resize_x86.hpp"
 #endif
 

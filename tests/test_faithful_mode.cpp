@@ -5,6 +5,7 @@
 // with the scales in float) on odd-sized random images and the bundled photos. The keypoints'
 // agreement with ORB-SLAM3's own ORBextractor is measured outside the repository (docs/slam.md,
 // "The faithful mode").
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -15,14 +16,16 @@
 #include "aief/extractor.hpp"
 #include "core/pyramid_resize_opencv.hpp"
 #include "simd/kernels.hpp"
+#include "tests/features_hash.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
 namespace {
 
-cv::Mat opencv_resize(const OpenCvResizePlan& plan, const cv::Mat& src) {
+cv::Mat opencv_resize(const KernelTable& kernels, const OpenCvResizePlan& plan,
+                      const cv::Mat& src) {
   cv::Mat out(plan.dst_height, plan.dst_width, CV_8UC1);
-  resize_opencv_linear_rows(
+  kernels.resize_opencv_linear_rows(
       ImageView{src.data, src.cols, src.rows, static_cast<std::ptrdiff_t>(src.step)}, plan,
       MutableImageView{out.data, out.cols, out.rows, static_cast<std::ptrdiff_t>(out.step)}, 0,
       out.rows);
@@ -40,7 +43,9 @@ std::string first_difference(const cv::Mat& expected, const cv::Mat& actual) {
   return "";
 }
 
-TEST(OpenCvResize, EqualsCvResizeOnRandomSizesScalesAndImages) {
+// Every kernel set: the scalar reference and the vector kernels (simd/pyramid_resize_opencv_*.hpp),
+// whose groups cover only some ratios and widths, the rest going to their scalar spans.
+TEST(OpenCvResize, EqualsCvResizeOnRandomSizesScalesAndImagesUnderEveryKernelSet) {
   std::mt19937 rng(977);
   for (int trial = 0; trial < 300; ++trial) {
     const int width = 1 + static_cast<int>(rng() % 700), height = 1 + static_cast<int>(rng() % 500);
@@ -71,8 +76,10 @@ TEST(OpenCvResize, EqualsCvResizeOnRandomSizesScalesAndImages) {
     cv::resize(src, expected, cv::Size(dst_width, dst_height), 0, 0, cv::INTER_LINEAR);
     const OpenCvResizePlan plan =
         make_opencv_resize_plan(src.cols, src.rows, dst_width, dst_height);
-    EXPECT_EQ(first_difference(expected, opencv_resize(plan, src)), "")
-        << src.cols << "x" << src.rows << " -> " << dst_width << "x" << dst_height;
+    for (const KernelSet set : available_kernel_sets())
+      EXPECT_EQ(first_difference(expected, opencv_resize(kernel_table(set), plan, src)), "")
+          << to_string(set) << ", " << src.cols << "x" << src.rows << " -> " << dst_width << "x"
+          << dst_height;
   }
 }
 
@@ -121,6 +128,40 @@ TEST(FaithfulMode, PyramidEqualsOrbSlamUnderEveryKernelSet) {
               << to_string(set) << ", " << image.cols << "x" << image.rows << ", scale "
               << scale_factor << ", level " << n;
         }
+      }
+}
+
+// The faithful mode's whole output, pinned: recorded from the scalar per-cell detection (commit
+// a8ec39c, before the cells read the level's local-maxima bits), which the faithful keypoints were
+// measured against ORB-SLAM3's with (docs/slam.md). Every kernel set and thread count, the bundled
+// photos and a textured 640x480 frame.
+TEST(FaithfulMode, ReproducesTheRecordedOutputToTheByte) {
+  struct Pinned {
+    const char* name;
+    cv::Mat image;
+    std::uint64_t hash;
+  };
+  const Pinned pinned[] = {
+      {"graf", test::load_sample_gray("graf", "img1.png"), 0x96843c1c735beae9ull},
+      {"boat", test::load_sample_gray("boat", "img1.png"), 0x9f17e9d414bf0c06ull},
+      {"leuven", test::load_sample_gray("leuven", "img1.png"), 0x04952274c944fdacull},
+      {"textured 640x480", test::random_textured_image(640, 480, 24), 0x9ae0ab26dae2bf3cull},
+  };
+  for (const Pinned& p : pinned)
+    for (const KernelSet set : available_kernel_sets())
+      for (const int threads : {1, 2}) {
+        ExtractorOptions options = options_for_mode(Mode::faithful);
+        options.kernels = set;
+        options.threads = threads;
+        char hash[32];
+        std::snprintf(hash, sizeof hash, "0x%016llxull",
+                      static_cast<unsigned long long>(
+                          test::features_hash(Extractor(options).extract(view_of(p.image)))));
+        char expected[32];
+        std::snprintf(expected, sizeof expected, "0x%016llxull",
+                      static_cast<unsigned long long>(p.hash));
+        EXPECT_STREQ(hash, expected)
+            << p.name << ", " << to_string(set) << ", " << threads << " threads";
       }
 }
 
