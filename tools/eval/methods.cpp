@@ -27,6 +27,7 @@ std::string method_name(const Method& method) {
   std::string name;
   switch (method.mode) {
     case Mode::orbslam2: name = "ORB-SLAM2 mode (ours)"; break;
+    case Mode::faithful: name = "ORB-SLAM3 faithful mode (ours)"; break;
     case Mode::quadtree_entropy: name = "Quadtree + entropy (F = 4)"; break;
     case Mode::aief_paper: name = "AIEF paper"; break;
     case Mode::aief: name = "AIEF"; break;
