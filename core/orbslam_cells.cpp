@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <utility>
 
 #include "core/fast9.hpp"
 
@@ -97,7 +98,10 @@ void detect_orbslam_cells(ImageView pixels, const ExtractorOptions& options,
   const auto fast_in_cell = [&](int i, int x0, int x1, int t) {
     const std::size_t first = out.size();
     const int sx0 = x0 + 3, sx1 = x1 - 3;
-    const auto [sy0, sy1] = cell_rows_of(i);
+    // Named copies, not structured bindings: a lambda may not capture those before C++20
+    // (clang 14, the sanitizer job's compiler, refuses it).
+    const std::pair<int, int> scored = cell_rows_of(i);
+    const int sy0 = scored.first, sy1 = scored.second;
     if (sx1 <= sx0 || sy1 <= sy0) return false;
     const auto inside = [&](int nx, int ny) -> int {
       return nx >= sx0 && nx < sx1 && ny >= sy0 && ny < sy1 ? scores[ny * w + nx] : 0;
