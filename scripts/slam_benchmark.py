@@ -3,7 +3,8 @@
 sequences: ATE, frames tracked, losses, keyframes, tracking and extraction time (docs/slam.md).
 
   slam_benchmark.py --stock ORB_SLAM3_STOCK --aief ORB_SLAM3_AIEF --vocabulary VOC.txt \
-                    --sequences SEQ_DIR --out OUT [--runs 5] [--families a,b] [--sensors mono,stereo]
+                    --sequences SEQ_DIR [--sequences SEQ_DIR_2 ...] --out OUT [--runs 5] [--families a,b]
+                    [--sensors mono,stereo]
                     [--variant NAME=BUILD[:KEY=VALUE;KEY=VALUE]]...
 
 --stock / --aief: ORB-SLAM3 folders whose Examples/Monocular/mono_euroc and
@@ -17,9 +18,13 @@ Sequences as scripts/make_sequences.py writes them (EuRoC and TUM files together
 folder) or split into its euroc/ and tum/ sub-folders (slambench/sequences.py); an incomplete one
 is named with what it lacks, and a program that cannot load its libraries is refused before any
 run (set LD_LIBRARY_PATH), so nothing runs that cannot be scored.
+--sequences once per seed (each a folder of family folders, e.g. make_sequences.py OUT/s23 --seed
+23): cells are then named SEED/family (SEED the folder's name) and the report adds a "pooled/family"
+row per sensor and variant, the median and range over the runs of every seed together.
 Writes OUT/results.json, OUT/table.md, OUT/plots/*.png.
 """
 import argparse
+import dataclasses
 import json
 import os
 import sys
@@ -48,7 +53,8 @@ def main():
     parser.add_argument("--stock", required=True)
     parser.add_argument("--aief", required=True)
     parser.add_argument("--vocabulary", required=True)
-    parser.add_argument("--sequences", required=True)
+    parser.add_argument("--sequences", required=True, action="append",
+                        help="a folder of family folders; once per seed to run several seeds and pool them")
     parser.add_argument("--out", required=True)
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--families", default=None, help="default: every folder of --sequences")
@@ -76,7 +82,7 @@ def main():
                 parser.error(f"{program} cannot load {', '.join(missing)}: set LD_LIBRARY_PATH to the folders holding them "
                              "(e.g. Pangolin's lib/ when ORB-SLAM3 was built against an installed Pangolin)")
     try:
-        found = sequence_files.find_all(args.sequences, args.families.split(",") if args.families else None, sensors)
+        found = find_seeds(args.sequences, args.families.split(",") if args.families else None, sensors)
     except sequence_files.SequenceError as error:
         parser.error(str(error))
     families = [sequence.name for sequence in found]
@@ -103,6 +109,26 @@ def main():
     write_report(args.out, families, sensors, [v[0] for v in variants], by_name)
 
 
+def find_seeds(roots, names, sensors):
+    """The sequences of every root; with more than one root, each named ROOT/family after its root's
+    folder (a seed), so that the cells of different seeds stay apart and can be pooled."""
+    if len(roots) == 1:
+        return sequence_files.find_all(roots[0], names, sensors)
+    labels = [os.path.basename(os.path.normpath(root)) for root in roots]
+    if len(set(labels)) != len(labels):
+        raise sequence_files.SequenceError(f"--sequences folders must have different names (one per seed): {labels}")
+    found = []
+    for root, label in zip(roots, labels):
+        found += [dataclasses.replace(sequence, name=f"{label}/{sequence.name}")
+                  for sequence in sequence_files.find_all(root, names, sensors)]
+    return found
+
+
+def pooled_family(name):
+    """"s23/baseline" -> "pooled/baseline"; None for a family of a single --sequences folder."""
+    return "pooled/" + name.split("/", 1)[1] if "/" in name else None
+
+
 def write_report(out, families, sensors, variant_names, sequences):
     """sequences: family name -> slambench.sequences.Sequence."""
     runs, summaries = {}, {}
@@ -113,6 +139,12 @@ def write_report(out, families, sensors, variant_names, sequences):
                 if cell:
                     runs[(family, sensor, name)] = cell
                     summaries[(family, sensor, name)] = evaluate.summarise([result for _, result in cell])
+    pooled = {}
+    for (family, sensor, name), cell in runs.items():
+        if pooled_family(family):
+            pooled.setdefault((pooled_family(family), sensor, name), []).extend(result for _, result in cell)
+    for key in sorted(pooled, key=lambda k: (k[0], k[1], variant_names.index(k[2]))):
+        summaries[key] = evaluate.summarise(pooled[key])
     json.dump({"|".join(key): value for key, value in summaries.items()}, open(os.path.join(out, "results.json"), "w"), indent=1)
     open(os.path.join(out, "table.md"), "w").write(report.table(summaries, variant_names))
     plots = os.path.join(out, "plots")
@@ -122,14 +154,15 @@ def write_report(out, families, sensors, variant_names, sequences):
         if any(key[1] == sensor for key in runs):
             report.plot_ate(results_only, families, variant_names, sensor, os.path.join(plots, f"ate_{sensor}.png"))
         for family in families:
+            file_name = family.replace("/", "_")
             aligned = {}
             for name in variant_names:
                 workdir = evaluate.median_run(runs.get((family, sensor, name), []))
                 if workdir:
                     aligned[name] = evaluate.save_aligned_trajectory(workdir, sequences[family].ground_truth, sensor,
-                                                                      os.path.join(plots, f"aligned_{family}_{sensor}_{name}.npy"))
+                                                                      os.path.join(plots, f"aligned_{file_name}_{sensor}_{name}.npy"))
             if aligned:
-                report.plot_trajectories(aligned, family, sensor, os.path.join(plots, f"trajectory_{family}_{sensor}.png"))
+                report.plot_trajectories(aligned, family, sensor, os.path.join(plots, f"trajectory_{file_name}_{sensor}.png"))
     print(open(os.path.join(out, "table.md")).read())
 
 

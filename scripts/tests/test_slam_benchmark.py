@@ -167,3 +167,40 @@ def test_a_program_that_cannot_load_its_libraries_is_refused_before_any_run(tmp_
     assert not (tmp_path / "out" / "runs").exists()
     env["LD_LIBRARY_PATH"] = str(lib)  # with it, the same programs run (and exit 0 without output: scored as failures)
     assert run_benchmark(stock, stock, tmp_path / "voc.txt", sequences, tmp_path / "out", env=env).returncode == 0
+
+
+def test_sequences_of_several_seeds_are_kept_apart_and_pooled(tmp_path):
+    """--sequences once per seed: cells SEED/family, plus pooled/family over every seed's runs."""
+    for seed in ("s5", "s7"):
+        subprocess.run([sys.executable, os.path.join(SCRIPTS, "make_sequences.py"), str(tmp_path / seed), "--seed", seed[1:],
+                        "--seconds", "0.5", "--width", "96", "--height", "72", "--families", "baseline"],
+                       check=True, capture_output=True)
+    stock = stand_in(tmp_path / "stock", scale=0.5, extract=10, track=20)
+    aief = stand_in(tmp_path / "aief", scale=2.0, extract=2, track=10)
+    (tmp_path / "voc.txt").write_text("x")
+    out = tmp_path / "out"
+    result = run_benchmark(stock, aief, tmp_path / "voc.txt", tmp_path / "s5", out, "--sequences", str(tmp_path / "s7"), "--runs", "2")
+    assert result.returncode == 0, result.stderr
+    summary = json.load(open(out / "results.json"))
+    cells = {f"{family}|{sensor}|{variant}" for family in ("s5/baseline", "s7/baseline", "pooled/baseline")
+             for sensor in ("mono", "stereo") for variant in ("stock", "aief")}
+    assert set(summary) == cells
+    assert summary["s5/baseline|stereo|aief"]["runs"] == 2 and summary["pooled/baseline|stereo|aief"]["runs"] == 4
+    assert summary["pooled/baseline|mono|stock"]["extract_ms_median"]["median"] == 10.0  # 5 frames: 10, 11, 10, 11, 10 ms
+    assert (out / "runs" / "s7" / "baseline" / "mono" / "stock" / "01" / "result.json").exists()
+    table = (out / "table.md").read_text()
+    assert "| s5/baseline | mono | stock | 2 |" in table and "| pooled/baseline | stereo | aief | 4 |" in table
+    assert (out / "plots" / "trajectory_s7_baseline_stereo.png").stat().st_size > 1000
+
+
+def test_two_sequence_folders_of_one_name_are_refused(tmp_path):
+    stock = stand_in(tmp_path / "stock", scale=1.0, extract=1, track=1)
+    (tmp_path / "voc.txt").write_text("x")
+    for parent in ("a", "b"):
+        subprocess.run([sys.executable, os.path.join(SCRIPTS, "make_sequences.py"), str(tmp_path / parent / "seed"), "--seed", "5",
+                        "--seconds", "0.2", "--width", "96", "--height", "72", "--families", "baseline"],
+                       check=True, capture_output=True)
+    result = run_benchmark(stock, stock, tmp_path / "voc.txt", tmp_path / "a" / "seed", tmp_path / "out",
+                           "--sequences", str(tmp_path / "b" / "seed"))
+    assert result.returncode != 0 and "different names" in result.stderr and "Traceback" not in result.stderr
+    assert not (tmp_path / "out" / "runs").exists()
