@@ -16,13 +16,9 @@ namespace aief {
 
 namespace {
 
-// The drop-ins' defaults, each measured inside ORB-SLAM3 (docs/slam.md). The mode is orbslam2:
-// ORB-SLAM's choices (no entropy mask, quadtree distribution) on aief's kernels, because in
-// ORB-SLAM3's stereo tracking the AIEF mask and proportional distribution cost accuracy (baseline
-// 8 mm against 20, fast rotation 41 against 109, light change 7.5 against 13; "Which choice costs
-// what"); `ORBextractor.mode: "aief"` gives them back. No candidate pool in any mode: it left half
-// of ORB-SLAM3's grid cells empty and made its stereo trajectories 2-5x worse ("Results").
-constexpr Mode kDropInMode = Mode::orbslam2;
+// The drop-ins' defaults beside the mode (each drop-in names its mode: kDefaultMode), measured
+// inside ORB-SLAM3 (docs/slam.md): no candidate pool in any mode, since it left half of
+// ORB-SLAM3's grid cells empty and made its stereo trajectories 2-5x worse ("Results").
 
 // Where keypoints sit. For a stereo rig or a depth camera, where ORB-SLAM puts them: level pixel
 // x (an integer) at x * scale_n in level 0. Frame::ComputeStereoMatches (ORB-SLAM2 and ORB-SLAM3)
@@ -51,10 +47,10 @@ bool describes_stereo_or_depth(const cv::FileStorage& settings) {
 }
 
 ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, int iniThFAST,
-                                 int minThFAST) {
+                                 int minThFAST, Mode mode) {
   // No settings to tell the sensor: ORB-SLAM's convention, which stereo needs.
   ExtractorOptions options =
-      with_keypoint_convention(options_for_mode(kDropInMode), /*stereo_or_depth=*/true);
+      with_keypoint_convention(options_for_mode(mode), /*stereo_or_depth=*/true);
   options.n_features = nfeatures;
   options.scale_factor = scaleFactor;
   options.n_levels = nlevels;
@@ -79,8 +75,9 @@ std::string text_of_node(const cv::FileNode& node, const std::string& key) {
 }  // namespace
 
 OrbSlamExtractorBase::OrbSlamExtractorBase(int nfeatures, float scaleFactor, int nlevels,
-                                           int iniThFAST, int minThFAST)
-    : OrbSlamExtractorBase(orbslam_options(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)) {
+                                           int iniThFAST, int minThFAST, Mode mode)
+    : OrbSlamExtractorBase(
+          orbslam_options(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, mode)) {
 }
 
 OrbSlamExtractorBase::OrbSlamExtractorBase(const ExtractorOptions& options)
@@ -109,7 +106,8 @@ void OrbSlamExtractorBase::compute_scales() {
   }
 }
 
-ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStorage& settings) {
+ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStorage& settings,
+                                                             Mode default_mode) {
   if (!settings.isOpened()) throw Error("settings file is not open");
   std::vector<option_table::GivenOption> given;
   for (const option_table::OptionRow& row : option_table::rows()) {
@@ -128,7 +126,7 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
   if (!mode_given) {
     const option_table::OptionRow& row = option_table::row("mode");
     given.push_back(
-        {&row, std::string(option_names::name_of(kDropInMode)), std::string(row.yaml_key)});
+        {&row, std::string(option_names::name_of(default_mode)), std::string(row.yaml_key)});
   }
   const ExtractorOptions convention =
       with_keypoint_convention({}, describes_stereo_or_depth(settings));
@@ -147,7 +145,7 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
     if (mode_given || std::string(e.what()).find(mode_key) == std::string::npos) throw;
     throw Error(
         std::string(e.what()) + " (ORBextractor.mode is \"" +
-        std::string(option_names::name_of(kDropInMode)) +
+        std::string(option_names::name_of(default_mode)) +
         "\" when the settings name none; the AIEF options need ORBextractor.mode: \"aief\")");
   }
   // Both versions' Tracking read scaleFactor into a float: so do we, so that settings and the

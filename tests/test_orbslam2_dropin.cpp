@@ -22,9 +22,9 @@ TEST(OrbSlam2DropIn, CallOperatorGivesTheEnginesFeatures) {
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   orb(gray, cv::Mat(), keypoints, descriptors);
-  // The same options: the drop-ins' mode (orbslam2: no pool, ORB-SLAM's keypoint convention),
+  // The same options: the drop-in's mode (orbslam2: no pool, ORB-SLAM's keypoint convention),
   // and ORB-SLAM2 passes a float.
-  ExtractorOptions options = options_for_mode(Mode::orbslam2);
+  ExtractorOptions options = options_for_mode(ORBextractor::kDefaultMode);
   options.n_features = 800;
   options.scale_factor = 1.2f;
   const Features features = extract(view_of(gray), options);

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
+#include "aief/orbslam2_extractor.hpp"
 #include "aief/orbslam3_extractor.hpp"
 #include "tests/test_support.hpp"
 
@@ -40,10 +41,10 @@ void expect_lapping_split(const Features& features, int x0, int x1,
   EXPECT_EQ(returned, static_cast<int>(front)) << "lapping area [" << x0 << ", " << x1 << "]";
 }
 
-// The drop-ins' options: their mode (orbslam2, docs/slam.md "Which choice costs what"), which
-// also has ORB-SLAM's keypoint convention ("Stereo") and no pool ("Results").
+// The drop-in's options: its mode (faithful, docs/slam.md "Three seeds"), which also has
+// ORB-SLAM's keypoint convention ("Stereo") and no pool ("Results").
 ExtractorOptions options_of(int nfeatures, float scale_factor) {
-  ExtractorOptions options = options_for_mode(Mode::orbslam2);
+  ExtractorOptions options = options_for_mode(ORBextractor::kDefaultMode);
   options.n_features = nfeatures;
   options.scale_factor = scale_factor;  // ORB-SLAM3 passes a float
   return options;
@@ -235,6 +236,17 @@ TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
   EXPECT_EQ(ours_options.threads, 1);
   EXPECT_EQ(ORBextractor::options_from_settings(settings).threads,
             ExtractorOptions{}.threads);  // missing: the default
+  // No mode named: the faithful mode (ORB-SLAM3's own pyramid, cells, ties and angles); the
+  // ORB-SLAM2 drop-in keeps orbslam2 mode.
+  const ExtractorOptions unnamed = ORBextractor::options_from_settings(settings);
+  const ExtractorOptions faithful = options_for_mode(Mode::faithful);
+  EXPECT_EQ(unnamed.pyramid_resampling, faithful.pyramid_resampling);
+  EXPECT_EQ(unnamed.detection_cells, faithful.detection_cells);
+  EXPECT_EQ(unnamed.quadtree_ties, faithful.quadtree_ties);
+  EXPECT_EQ(unnamed.orientation, faithful.orientation);
+  EXPECT_EQ(aief::ORBextractor::options_from_settings(settings).pyramid_resampling,
+            options_for_mode(Mode::orbslam2).pyramid_resampling);
+  EXPECT_NE(faithful.pyramid_resampling, options_for_mode(Mode::orbslam2).pyramid_resampling);
   const cv::FileStorage negative("%YAML:1.0\nORBextractor.threads: -1\n",
                                  cv::FileStorage::READ | cv::FileStorage::MEMORY);
   EXPECT_THROW(ORBextractor::from_settings(negative), Error);

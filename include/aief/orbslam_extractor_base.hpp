@@ -15,16 +15,17 @@ namespace aief {
 
 class OrbSlamExtractorBase {
  public:
-  // ORB-SLAM's signature; the rest of the options are orbslam2 mode's (ORB-SLAM's choices on
-  // aief's kernels: no entropy mask, quadtree; docs/slam.md, "Which choice costs what").
-  OrbSlamExtractorBase(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST);
+  // ORB-SLAM's signature; the rest of the options are `mode`'s (each drop-in passes its own
+  // default: ORB-SLAM's choices on aief's kernels, docs/slam.md).
+  OrbSlamExtractorBase(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST,
+                       Mode mode = Mode::orbslam2);
   explicit OrbSlamExtractorBase(const ExtractorOptions& options);
 
   // The options from a settings file as ORB-SLAM2 and ORB-SLAM3 read it: ORBextractor.nFeatures,
   // .scaleFactor, .nLevels, .iniThFAST, .minThFAST, and ours: every extractor option has a key
   // (ORBextractor.mode, .entropyThreshold (a number or "auto"), .blockSize, .threads, ...; the
   // list is the option table's, core/option_table.cpp, and `aief extract --help` explains each).
-  // The mode is orbslam2 unless ORBextractor.mode names another (the AIEF keys, such as
+  // The mode is `default_mode` (each drop-in's own) unless ORBextractor.mode names another (the AIEF keys, such as
   // .entropyThreshold, need ORBextractor.mode: "aief"). Keypoints sit at ORB-SLAM's integer level
   // pixels when the settings describe a stereo rig or a depth camera (Camera.bf, Stereo.b,
   // Camera2.fx, RGBD.DepthMapFactor, ...: Frame::ComputeStereoMatches needs them), else at the
@@ -32,7 +33,8 @@ class OrbSlamExtractorBase {
   // wrong value throws aief::Error naming the key and what it accepts; a mode's conflicts are refused as in the CLI. scaleFactor is rounded to float, as
   // both versions' Tracking reads it, so settings and the five-number constructor give the same
   // extractor. Also the way to change nFeatures for the monocular initialiser.
-  static ExtractorOptions options_from_settings(const cv::FileStorage& settings);
+  static ExtractorOptions options_from_settings(const cv::FileStorage& settings,
+                                                Mode default_mode = Mode::orbslam2);
 
   // The tables of ORB-SLAM's constructor (both versions): scale_n = scale_(n-1) * scaleFactor
   // in float, sigma2_n = scale_n^2, and their float inverses.
