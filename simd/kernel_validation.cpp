@@ -56,6 +56,19 @@ GrayImage random_gray(int width, int height, std::uint32_t seed, bool smooth) {
   return image;
 }
 
+// "WxH at (x, y): scalar A, SET B" for the first pixel where two resized images differ, or "".
+std::string first_difference_of_resized(const GrayImage& a, const GrayImage& b,
+                                        const std::string& set_name) {
+  const int w = a.width(), h = a.height();
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (a.data()[y * w + x] != b.data()[y * w + x])
+        return std::to_string(w) + "x" + std::to_string(h) + " at (" + std::to_string(x) + ", " +
+               std::to_string(y) + "): scalar " + std::to_string(a.data()[y * w + x]) + ", " +
+               set_name + " " + std::to_string(b.data()[y * w + x]);
+  return "";
+}
+
 std::string check_resize_bilinear_rows(const KernelTable& scalar, const KernelTable& other,
                                        const GrayImage& src) {
   if (src.width() < 2 || src.height() < 2) return "";
@@ -67,14 +80,9 @@ std::string check_resize_bilinear_rows(const KernelTable& scalar, const KernelTa
     GrayImage a(w, h), b(w, h);
     scalar.resize_bilinear_rows(src.view(), plan, a.mutable_view(), 0, h);
     other.resize_bilinear_rows(src.view(), plan, b.mutable_view(), 0, h);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        if (a.data()[y * w + x] != b.data()[y * w + x])
-          return where(src, "ratio " + std::to_string(ratio) + " -> " + std::to_string(w) + "x" +
-                                std::to_string(h) + " at (" + std::to_string(x) + ", " +
-                                std::to_string(y) + "): scalar " +
-                                std::to_string(a.data()[y * w + x]) + ", " + other.name + " " +
-                                std::to_string(b.data()[y * w + x]));
+    const std::string difference = first_difference_of_resized(a, b, other.name);
+    if (!difference.empty())
+      return where(src, "ratio " + std::to_string(ratio) + " -> " + difference);
   }
   return "";
 }
@@ -92,14 +100,9 @@ std::string check_resize_opencv_linear_rows(const KernelTable& scalar, const Ker
     // The other kernel in two bands, the second starting on its own row buffers.
     other.resize_opencv_linear_rows(src.view(), plan, b.mutable_view(), 0, h / 2);
     other.resize_opencv_linear_rows(src.view(), plan, b.mutable_view(), h / 2, h);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        if (a.data()[y * w + x] != b.data()[y * w + x])
-          return where(src, "ratio " + std::to_string(ratio) + " -> " + std::to_string(w) + "x" +
-                                std::to_string(h) + " at (" + std::to_string(x) + ", " +
-                                std::to_string(y) + "): scalar " +
-                                std::to_string(a.data()[y * w + x]) + ", " + other.name + " " +
-                                std::to_string(b.data()[y * w + x]));
+    const std::string difference = first_difference_of_resized(a, b, other.name);
+    if (!difference.empty())
+      return where(src, "ratio " + std::to_string(ratio) + " -> " + difference);
   }
   return "";
 }
