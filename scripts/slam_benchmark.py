@@ -21,7 +21,8 @@ run (set LD_LIBRARY_PATH), so nothing runs that cannot be scored.
 --sequences once per seed (each a folder of family folders, e.g. make_sequences.py OUT/s23 --seed
 23): cells are then named SEED/family (SEED the folder's name) and the report adds a "pooled/family"
 row per sensor and variant, the median and range over the runs of every seed together.
-Writes OUT/results.json, OUT/table.md, OUT/plots/*.png.
+Writes OUT/results.json, OUT/table.md, OUT/targets.md (each variant against the first stock one,
+by the targets of docs/slam.md), OUT/plots/*.png.
 """
 import argparse
 import dataclasses
@@ -31,7 +32,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from slambench import evaluate, orbslam3, report, sequences as sequence_files  # noqa: E402
+from slambench import evaluate, orbslam3, report, targets, sequences as sequence_files  # noqa: E402
 
 
 def parse_variant(text):
@@ -106,7 +107,8 @@ def main():
                     ate = "fail" if result["ate"] is None else f"{result['ate'] * 1000:.1f} mm"
                     print(f"{family} {sensor} {name} run {run}: ATE {ate}, tracked {result['tracked_share']:.0%}, "
                           f"keyframes {result['keyframes']}, {seconds:.0f} s", flush=True)
-    write_report(args.out, families, sensors, [v[0] for v in variants], by_name)
+    reference = next((name for name, build, _ in variants if build == "stock"), None)
+    write_report(args.out, families, sensors, [v[0] for v in variants], by_name, reference)
 
 
 def find_seeds(roots, names, sensors):
@@ -129,8 +131,9 @@ def pooled_family(name):
     return "pooled/" + name.split("/", 1)[1] if "/" in name else None
 
 
-def write_report(out, families, sensors, variant_names, sequences):
-    """sequences: family name -> slambench.sequences.Sequence."""
+def write_report(out, families, sensors, variant_names, sequences, reference):
+    """sequences: family name -> slambench.sequences.Sequence; reference: the variant the others are
+    judged against in targets.md (the first on the stock build), or None."""
     runs, summaries = {}, {}
     for family in families:
         for sensor in sensors:
@@ -147,6 +150,8 @@ def write_report(out, families, sensors, variant_names, sequences):
         summaries[key] = evaluate.summarise(pooled[key])
     json.dump({"|".join(key): value for key, value in summaries.items()}, open(os.path.join(out, "results.json"), "w"), indent=1)
     open(os.path.join(out, "table.md"), "w").write(report.table(summaries, variant_names))
+    if reference is not None:
+        open(os.path.join(out, "targets.md"), "w").write(targets.markdown(summaries, variant_names, reference))
     plots = os.path.join(out, "plots")
     os.makedirs(plots, exist_ok=True)
     results_only = {key: [result for _, result in cell] for key, cell in runs.items()}

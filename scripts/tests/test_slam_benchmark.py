@@ -81,6 +81,11 @@ def test_benchmark_runs_every_cell_and_reports_the_known_figures(tmp_path):
     assert "ORBextractor.threads: 1" in settings and "Camera2.fx" in settings
     table = (out / "table.md").read_text()
     assert "| baseline | mono | stock | 2 |" in table
+    # targets.md judges aief against stock: extractor 10.5 / 2.5 ms, tracking 10.5 / 20.5 ms.
+    verdicts = (out / "targets.md").read_text()
+    assert "| baseline | stereo | 2/2 | 80/80 | 0.0/0.0 | 1.00 | 4.2x | 0.51 |" in verdicts
+    assert "- extractor >= 4x faster in every cell: **met** (4.2-4.2x)" in verdicts
+    assert "hard families" in verdicts and "**not measured** (not measured)" in verdicts
     for name in ("ate_mono.png", "ate_stereo.png", "trajectory_baseline_mono.png", "trajectory_baseline_stereo.png"):
         assert (out / "plots" / name).stat().st_size > 1000
     # Finished runs are kept: a second call runs nothing and reports the same.
@@ -204,3 +209,35 @@ def test_two_sequence_folders_of_one_name_are_refused(tmp_path):
                            "--sequences", str(tmp_path / "b" / "seed"))
     assert result.returncode != 0 and "different names" in result.stderr and "Traceback" not in result.stderr
     assert not (tmp_path / "out" / "runs").exists()
+
+
+def test_targets_judge_each_cell_against_the_reference():
+    sys.path.insert(0, SCRIPTS)
+    from slambench import targets
+
+    def cell(ate_mm, tracked=1.0, extract=2.0, track=10.0):
+        figure = lambda v: dict(median=v, min=v, max=v)
+        return dict(runs=5, failed=0, ate=figure(ate_mm / 1000), tracked_share=figure(tracked),
+                    extract_ms_median=figure(extract), track_ms_median=figure(track))
+
+    summaries = {}
+    for family in targets.HARD_FAMILIES + targets.PLAIN_FAMILIES:
+        for sensor in ("mono", "stereo"):
+            summaries[(f"pooled/{family}", sensor, "stock")] = cell(10.0, extract=10.0, track=20.0)
+            summaries[(f"pooled/{family}", sensor, "mine")] = cell(7.0 if family in targets.HARD_FAMILIES else 10.4)
+    met = {name: ok for name, ok, _ in targets.verdicts(targets.rows(summaries, "mine", "stock"))}
+    assert all(met.values()), met
+    # One hard cell above 1.1x fails the hard-family target although 9 of 10 are at 0.7x; a lost
+    # frame fails the tracking target; a plain cell 6% off fails the plain one.
+    summaries[("pooled/low_light", "mono", "mine")] = cell(11.5)
+    summaries[("pooled/weak_texture", "stereo", "mine")] = cell(7.0, tracked=0.99)
+    summaries[("pooled/baseline", "stereo", "mine")] = cell(10.6)
+    figures = targets.rows(summaries, "mine", "stock")
+    verdicts = {name.split(":")[0]: (ok, why) for name, ok, why in targets.verdicts(figures)}
+    assert verdicts["frames tracked >= reference in every cell"] == (False, "behind in weak_texture stereo")
+    assert verdicts["hard families"][0] is False and "worst 1.15x" in verdicts["hard families"][1]
+    assert verdicts["baseline and motion_blur"] == (False, "outside in baseline stereo 1.06x")
+    assert figures[("low_light", "mono")]["extractor_speedup"] == 5.0
+    # A failed median run is infinitely worse than a finished one, and equal to a failed one.
+    assert targets.ate_ratio(dict(ate=dict(median=float("inf"))), dict(ate=dict(median=0.01))) == float("inf")
+    assert targets.ate_ratio(dict(ate=dict(median=float("inf"))), dict(ate=dict(median=float("inf")))) == 1.0
