@@ -52,7 +52,11 @@ def rows(summaries, variant, reference):
             continue
         extract = (_median(mine, "extract_ms_median"), _median(theirs, "extract_ms_median"))
         track = (_median(mine, "track_ms_median"), _median(theirs, "track_ms_median"))
+        seeds = sorted(f for (f, s, v) in summaries if v == variant and s == sensor and not f.startswith("pooled/")
+                       and "/" in f and family_of(f) == family_of(family))
         out[(family_of(family), sensor)] = dict(
+            seed_ratios=[(f.split("/", 1)[0], ate_ratio(summaries[(f, sensor, variant)], summaries.get((f, sensor, reference))))
+                         for f in seeds] if family.startswith("pooled/") else [],
             runs=(mine["runs"], theirs["runs"]),
             tracked=(_median(mine, "tracked_share"), _median(theirs, "tracked_share")),
             ate=(_median(mine, "ate"), _median(theirs, "ate")),
@@ -108,13 +112,14 @@ def markdown(summaries, variants, reference):
             continue
         text.append(f"## `{variant}`\n")
         text.append(f"| family | sensor | runs | tracked % ({variant} / {reference}) | ATE mm ({variant} / {reference}) | "
-                    "ATE ratio | extractor speed-up | tracking time ratio |")
-        text.append("|---|---|---|---|---|---|---|---|")
+                    "ATE ratio | per seed | extractor speed-up | tracking time ratio |")
+        text.append("|---|---|---|---|---|---|---|---|---|")
         for (family, sensor), f in figures.items():
             tracked = "/".join(_number(None if t is None else 100 * t, 0) for t in f["tracked"])
             ate = "/".join(_number(None if a is None else 1000 * a, 1) for a in f["ate"])
             text.append(f"| {family} | {sensor} | {f['runs'][0]}/{f['runs'][1]} | {tracked} | {ate} | "
-                        f"{_number(f['ate_ratio'])} | {_number(f['extractor_speedup'], 1, 'x')} | {_number(f['tracking_ratio'])} |")
+                        f"{_number(f['ate_ratio'])} | {', '.join(f'{seed} {_number(r)}' for seed, r in f['seed_ratios']) or '-'} | "
+                        f"{_number(f['extractor_speedup'], 1, 'x')} | {_number(f['tracking_ratio'])} |")
         text.append("")
         for name, met, why in verdicts(figures):
             mark = "not measured" if met is None else ("met" if met else "NOT met")

@@ -83,7 +83,7 @@ def test_benchmark_runs_every_cell_and_reports_the_known_figures(tmp_path):
     assert "| baseline | mono | stock | 2 |" in table
     # targets.md judges aief against stock: extractor 10.5 / 2.5 ms, tracking 10.5 / 20.5 ms.
     verdicts = (out / "targets.md").read_text()
-    assert "| baseline | stereo | 2/2 | 80/80 | 0.0/0.0 | 1.00 | 4.2x | 0.51 |" in verdicts
+    assert "| baseline | stereo | 2/2 | 80/80 | 0.0/0.0 | 1.00 | - | 4.2x | 0.51 |" in verdicts
     assert "- extractor >= 4x faster in every cell: **met** (4.2-4.2x)" in verdicts
     assert "hard families" in verdicts and "**not measured** (not measured)" in verdicts
     for name in ("ate_mono.png", "ate_stereo.png", "trajectory_baseline_mono.png", "trajectory_baseline_stereo.png"):
