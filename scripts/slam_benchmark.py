@@ -22,7 +22,8 @@ run (set LD_LIBRARY_PATH), so nothing runs that cannot be scored.
 23): cells are then named SEED/family (SEED the folder's name) and the report adds a "pooled/family"
 row per sensor and variant, the median and range over the runs of every seed together.
 Writes OUT/results.json, OUT/table.md, OUT/targets.md (each variant against the first stock one,
-by the targets of docs/slam.md), OUT/plots/*.png.
+by the targets of docs/slam.md), OUT/plots/*.png (ATE per run: per cell, and per family over the
+seeds as ate_SENSOR_pooled.png; trajectories).
 """
 import argparse
 import dataclasses
@@ -155,9 +156,12 @@ def write_report(out, families, sensors, variant_names, sequences, reference):
     plots = os.path.join(out, "plots")
     os.makedirs(plots, exist_ok=True)
     results_only = {key: [result for _, result in cell] for key, cell in runs.items()}
+    pooled_families = list(dict.fromkeys(pooled_family(family) for family in families if pooled_family(family)))
     for sensor in sensors:
         if any(key[1] == sensor for key in runs):
             report.plot_ate(results_only, families, variant_names, sensor, os.path.join(plots, f"ate_{sensor}.png"))
+        if any(key[1] == sensor for key in pooled):
+            report.plot_ate(pooled, pooled_families, variant_names, sensor, os.path.join(plots, f"ate_{sensor}_pooled.png"))
         for family in families:
             file_name = family.replace("/", "_")
             aligned = {}

@@ -35,7 +35,8 @@ def plot_ate(summaries_runs, families, variants, sensor, out_path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(10, 4.2))
+    crowded = len(families) > 8
+    fig, ax = plt.subplots(figsize=(max(10, 0.75 * len(families)), 4.8 if crowded else 4.2))
     width = 0.8 / max(1, len(variants))
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     finite = [r["ate"] * 1000 for runs in summaries_runs.values() for r in runs if r.get("ate") is not None]
@@ -49,12 +50,17 @@ def plot_ate(summaries_runs, families, variants, sensor, out_path):
             if values:
                 ax.hlines(np.median(values), x - width / 2.5, x + width / 2.5, color=colours[v % len(colours)])
     ax.set_xticks(range(len(families)))
-    ax.set_xticklabels(families)
+    pooled = all(family.startswith("pooled/") for family in families)
+    ax.set_xticklabels([family.removeprefix("pooled/") for family in families], rotation=35 if crowded else 0,
+                       ha="right" if crowded else "center", fontsize=9)
     ax.set_yscale("log")
     ax.set_ylabel("ATE, mm (all frames; failures at the top)")
-    ax.set_title(f"ORB-SLAM3 {sensor}: ATE per run, median as a bar ({'Sim(3)' if sensor == 'mono' else 'SE(3)'} alignment)")
-    ax.legend()
+    ax.set_title(f"ORB-SLAM3 {sensor}: ATE per run{' (every seed)' if pooled else ''}, median as a bar "
+                 f"({'Sim(3)' if sensor == 'mono' else 'SE(3)'} alignment)")
+    ax.legend(fontsize=8, ncol=max(1, (len(variants) + 3) // 4))
     ax.grid(True, which="both", axis="y", alpha=0.3)
+    for boundary in range(1, len(families)):
+        ax.axvline(boundary - 0.5, color="grey", lw=0.5, alpha=0.4)
     fig.tight_layout()
     fig.savefig(out_path, dpi=90)
     plt.close(fig)
