@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "aief/options.hpp"
+#include "core/rbrief.hpp"
 
 namespace aief {
 
@@ -13,9 +14,11 @@ namespace {
 
 // Two patches' column spans closer than this are blurred as one span: a span's row setup, its
 // 7 extra vertical columns and its overlapping last vector cost about as much as blurring the gap
-// (callgrind on graf, AVX2, strips of 8 rows, blur + blur_patch_rows: 4.21 M instructions with
-// gap 0, 3.96 M with 16, 3.88 M with 32, 3.92 M with 64, 4.08 M with 128).
-constexpr int kSpanMergeGap = 32;
+// (callgrind on graf, AVX2, strips of 8 rows, blur + blur_patch_rows, sample discs: 4.18 M
+// instructions with gap 16, 3.98 M with 32, 3.92 M with 48, 3.95 M with 64; with whole squares
+// 4.21 M with gap 0, 3.96 M with 16, 3.88 M with 32, 3.92 M with 64, 4.08 M with 128, in an
+// earlier build).
+constexpr int kSpanMergeGap = 48;
 
 // Sets bits [begin, end) of a bit row.
 void mark_columns(std::uint64_t* bits, int begin, int end) {
@@ -44,7 +47,7 @@ int next_bit(const std::uint64_t* bits, int from, int words, std::uint64_t flip)
 void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageView dst, int y_begin,
                      int y_end, const PixelPoint* points, int count,
                      std::vector<std::uint64_t>& columns_scratch) {
-  constexpr int r = kEdgeBorder;
+  constexpr int r = kSampleReach;
   const int width = level.width;
   // One bit per column: a point marks its patch's columns and the kSpanMergeGap after them, so
   // the runs of set bits are the merged spans, each kSpanMergeGap longer than its columns. No
@@ -60,9 +63,14 @@ void blur_patch_rows(const KernelTable& kernels, ImageView level, MutableImageVi
     near_end = std::max(near_end, near_begin);
     while (near_end < count && points[near_end].y <= s1 - 1 + r) ++near_end;
     if (near_begin == near_end) continue;
-    for (int i = near_begin; i < near_end; ++i)
-      mark_columns(bits.data(), std::max(0, points[i].x - r),
-                   std::min(width, points[i].x + r + 1) + kSpanMergeGap);
+    for (int i = near_begin; i < near_end; ++i) {
+      // The strip's row nearest the point is the widest row of its sample disc there.
+      const int y = points[i].y;
+      const int rows_away = y < s0 ? s0 - y : (y >= s1 ? y - (s1 - 1) : 0);
+      const int half_width = kSampleHalfWidth[rows_away];
+      mark_columns(bits.data(), std::max(0, points[i].x - half_width),
+                   std::min(width, points[i].x + half_width + 1) + kSpanMergeGap);
+    }
     const MutableImageView strip{dst.row(s0 - y_begin), dst.width, s1 - s0, dst.stride};
     for (int x = next_bit(bits.data(), 0, words, 0); x >= 0;) {
       const int end = next_bit(bits.data(), x, words, ~std::uint64_t{0});
