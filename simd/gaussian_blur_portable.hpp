@@ -186,6 +186,18 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
             Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
           };
           int x = x0;
+          if constexpr (Ops::kPairedStores) {
+            // Two steps a pass where the span allows, one store of 2L bytes (callgrind, graf, AVX2:
+            // 0.1 M fewer instructions); each step's pairs made before the next step's loads, or
+            // the compiler runs out of registers.
+            for (; x <= x1 - 2 * L; x += 2 * L) {
+              const V first =
+                  Ops::output_pairs(horizontal(column + x - 3), horizontal(column + x - 2));
+              const V second =
+                  Ops::output_pairs(horizontal(column + x + L - 3), horizontal(column + x + L - 2));
+              Ops::store_output_pairs(out + x, first, second);
+            }
+          }
           for (; x <= x1 - L; x += L) step(x);
           if (x < x1) step(x1 - L);
         } else {
