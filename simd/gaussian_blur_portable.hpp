@@ -63,6 +63,43 @@ inline void vertical_band(const std::uint8_t* const* rows, std::int16_t* const* 
   }
 }
 
+// The scalar fallbacks and the mirror columns, out of line: rarely run (rows narrower than a
+// vector, spans at a row's ends), but inlined, their set-up (GCC vectorises them) cost the
+// kernel ~500 instructions a call (callgrind, graf, AVX2).
+[[gnu::noinline]] inline void vertical_band_scalar(const std::uint8_t* const* rows,
+                                                   std::int16_t* const* column, int band_rows,
+                                                   int c0, int c1) {
+  const auto& w = kGaussian7Q8;
+  for (int j = 0; j < band_rows; ++j)
+    for (int c = c0; c < c1; ++c) {
+      std::uint32_t v = 0;
+      for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[j + k][c];
+      column[j][c] = static_cast<std::int16_t>(static_cast<int>(v) - kBias);
+    }
+}
+
+// Columns outside the row: mirror images (BORDER_REFLECT_101); width + 3 is read only under a
+// zero weight, and its mirror image may lie left of the row, so it is set to 0.
+[[gnu::noinline]] inline void mirror_columns(std::int16_t* const* column, int band_rows, int x0,
+                                             int x1, int c0, int c1, int width) {
+  for (int j = 0; j < band_rows; ++j) {
+    std::int16_t* const col = column[j];
+    for (int q = x0 - 3; q < c0; ++q) col[q] = col[-q];
+    for (int q = c1; q < x1 + 4; ++q)
+      col[q] = q < width + 3 ? col[2 * width - 2 - q] : std::int16_t{0};
+  }
+}
+
+[[gnu::noinline]] inline void horizontal_scalar(const std::int16_t* column, int x0, int x1,
+                                                std::uint8_t* out) {
+  const auto& w = kGaussian7Q8;
+  for (int x = x0; x < x1; ++x) {
+    std::int32_t p = 0;
+    for (int t = 0; t < 7; ++t) p += w[static_cast<std::size_t>(t)] * column[x - 3 + t];
+    out[x] = static_cast<std::uint8_t>((p + (1 << 23)) >> 16);
+  }
+}
+
 }  // namespace blur_detail
 
 template <class Arch>
@@ -145,23 +182,10 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
           default: vertical(std::integral_constant<int, 1>{}); break;
         }
       } else {
-        for (int j = 0; j < band_rows; ++j)
-          for (int c = c0; c < c1; ++c) {
-            std::uint32_t v = 0;
-            for (int k = 0; k < 7; ++k) v += w[static_cast<std::size_t>(k)] * rows[j + k][c];
-            columns[j][c] = static_cast<std::int16_t>(static_cast<int>(v) - blur_detail::kBias);
-          }
+        blur_detail::vertical_band_scalar(rows, columns, band_rows, c0, c1);
       }
-      // Columns outside the row: mirror images (BORDER_REFLECT_101); width + 3 is read only
-      // under a zero weight, and its mirror image may lie left of the row, so it is set to 0.
-      if (x0 - 3 < c0 || c1 < x1 + 4) {
-        for (int j = 0; j < band_rows; ++j) {
-          std::int16_t* const column = columns[j];
-          for (int q = x0 - 3; q < c0; ++q) column[q] = column[-q];
-          for (int q = c1; q < x1 + 4; ++q)
-            column[q] = q < width + 3 ? column[2 * width - 2 - q] : std::int16_t{0};
-        }
-      }
+      if (x0 - 3 < c0 || c1 < x1 + 4)
+        blur_detail::mirror_columns(columns, band_rows, x0, x1, c0, c1, width);
 
       for (int y = y0; y < y1; ++y) {
         const std::int16_t* const column = column_row(y - y0);
@@ -201,11 +225,7 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
           for (; x <= x1 - L; x += L) step(x);
           if (x < x1) step(x1 - L);
         } else {
-          for (int x = x0; x < x1; ++x) {
-            std::int32_t p = 0;
-            for (int t = 0; t < 7; ++t) p += w[static_cast<std::size_t>(t)] * column[x - 3 + t];
-            out[x] = static_cast<std::uint8_t>((p + (1 << 23)) >> 16);
-          }
+          blur_detail::horizontal_scalar(column, x0, x1, out);
         }
       }
     }
