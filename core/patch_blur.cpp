@@ -12,12 +12,10 @@ namespace aief {
 
 namespace {
 
-// Two patches' column spans closer than this are blurred as one span: a span's row setup, its
-// 7 extra vertical columns and its overlapping last vector cost about as much as blurring the gap
-// (callgrind on graf, AVX2, strips of 8 rows, blur + blur_patch_rows, sample discs: 4.18 M
-// instructions with gap 16, 3.98 M with 32, 3.92 M with 48, 3.95 M with 64; with whole squares
-// 4.21 M with gap 0, 3.96 M with 16, 3.88 M with 32, 3.92 M with 64, 4.08 M with 128, in an
-// earlier build).
+// Two patches' column spans closer than this are blurred as one span: a span's set-up, its 7
+// extra vertical columns and its overlapping last vector cost about as much as blurring the gap
+// (callgrind on graf, AVX2, strips of 8 rows, the patch blur stage: 2.89 M instructions with gap
+// 24, 2.82 M with 32, 2.77 M with 48, 2.78 M with 64, 2.83 M with 96).
 constexpr int kSpanMergeGap = 48;
 
 // Sets bits [begin, end) of a bit row, 0 < end - begin <= 64: two words at most, no loop.
