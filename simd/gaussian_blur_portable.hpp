@@ -119,7 +119,7 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   // the slack on both sides takes the vector loop's batches that start left of x0 - 3 or end
   // right of x1 + 3 (still inside the row).
   constexpr int kSlack = L;
-  constexpr int kBandRows = 8;  // rows whose vertical sums are kept at once (kPatchBlurStripRows)
+  constexpr int kBandRows = 8;  // rows whose vertical sums are kept at once (core/patch_blur.hpp)
   alignas(64) std::int16_t column_buffer[kBandRows][kSlack + kChunk + 7 + kSlack];
 
   // opaque: multiplied by constants, the compiler would rewrite each pmullw as 3-4 shifts and adds.
