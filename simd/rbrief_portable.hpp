@@ -2,8 +2,8 @@
 // rBRIEF-256 in two passes per keypoint (contract: core/rbrief.hpp):
 //   1. the 512 rotated sample offsets, in float lanes with exactly the scalar contract's
 //      operations (multiply, multiply, subtract or add, round half to even), so they are the
-//      same integers; stored as signed byte offsets from the keypoint (dy * stride + dx), the
-//      256 p samples first, then the 256 q samples;
+//      same integers; stored as signed byte offsets from the keypoint (dy * stride + dx), laid
+//      out as p_sample / q_sample say;
 //   2. the 256 tests with plain loads: two 32-bit loads give a test's offsets, a byte load and a
 //      compare against the other byte in memory its result, and the compare's carry is shifted
 //      into the descriptor word (adc), last test first, so test i lands on bit i % 64 of word
@@ -33,7 +33,13 @@ namespace rbrief_detail {
 constexpr int kTests = 256;
 constexpr int kSamples = 2 * kTests;
 
-// The learned pattern's points as two float arrays in sample order p0 p1 ... p255 q0 ... q255.
+// Test t's samples sit side by side, p0 q0 p1 q1 ...: two plain loads on x86-64, one ldpsw on
+// AArch64 (qemu, bench/kernel_instructions.py, 875 points: 3.52 M neon64 instructions with the
+// p samples first and the q samples after them, 3.28 M side by side; the same on x86-64).
+constexpr int p_sample(int t) { return 2 * t; }
+constexpr int q_sample(int t) { return 2 * t + 1; }
+
+// The learned pattern's points as two float arrays, test t's at p_sample(t) and q_sample(t).
 struct SamplePattern {
   alignas(64) float x[kSamples], y[kSamples];
 };
@@ -43,10 +49,10 @@ inline const SamplePattern& sample_pattern() {
     SamplePattern s{};
     const std::int8_t(*pattern)[4] = orb_pattern_31();
     for (int i = 0; i < kTests; ++i) {
-      s.x[i] = pattern[i][0];
-      s.y[i] = pattern[i][1];
-      s.x[kTests + i] = pattern[i][2];
-      s.y[kTests + i] = pattern[i][3];
+      s.x[p_sample(i)] = pattern[i][0];
+      s.y[p_sample(i)] = pattern[i][1];
+      s.x[q_sample(i)] = pattern[i][2];
+      s.y[q_sample(i)] = pattern[i][3];
     }
     return s;
   }();
@@ -89,14 +95,13 @@ void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* a
     }
     // Every sample lies inside the view: core/rbrief.hpp (kSampleReach < kEdgeBorder).
     const std::uint8_t* center = blurred.row(points[k].y) + points[k].x;
-    const std::int32_t* p_offset = offset;
-    const std::int32_t* q_offset = offset + rbrief_detail::kTests;
     std::uint64_t words[4];
     for (int w = 0; w < 4; ++w) {
       std::uint64_t bits = 0;
 #pragma GCC unroll 16
       for (int t = 64 * w + 63; t >= 64 * w; --t)
-        bits = rbrief_detail::shift_in_less(bits, center[p_offset[t]], center[q_offset[t]]);
+        bits = rbrief_detail::shift_in_less(bits, center[offset[rbrief_detail::p_sample(t)]],
+                                            center[offset[rbrief_detail::q_sample(t)]]);
       words[w] = bits;
     }
     std::memcpy(descriptors + static_cast<std::ptrdiff_t>(k) * 32, words, sizeof words);
