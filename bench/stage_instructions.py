@@ -30,7 +30,7 @@ STAGES = [
      ["pool_candidates", "distribute_", "Quadtree", "OctreeNode", "select_candidates", "sort_in_raster_order",
       "sort_by_raster_rank", "raster_rank"]),
     ("orientation", ["ic_moments", "ic_angle", "atan2"]),
-    ("patch blur", ["gaussian7_rows", "blur_patch_rows", "describe_through_band"]),
+    ("patch blur", ["gaussian7_rows", "blur_detail", "blur_patch_rows", "describe_through_band"]),
     ("rBRIEF", ["rbrief_describe", "sincos", "__cos", "__sin"]),
     ("frame: F, fallback, output", ["assemble", "keypoint_position", "parabola_peak", "auto_entropy",
                                    "auto_threshold", "FrameAnalysis", "FramePipeline", "ThresholdFallback",

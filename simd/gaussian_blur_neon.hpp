@@ -17,7 +17,8 @@ template <class Arch>
 struct Vec {
   using V = int16x8_t;  // 8 int16 or 4 int32 lanes, as the operation says
   static constexpr int kColumns = 8;
-  static constexpr bool kMaskedTail = false;  // the last step of a span overlaps the one before
+  static constexpr bool kMaskedTail = false;    // the last step of a span overlaps the one before
+  static constexpr bool kPairedStores = false;  // each step stores its 8 bytes
   static V columns(const std::uint8_t* p) { return vreinterpretq_s16_u16(vmovl_u8(vld1_u8(p))); }
   static V load(const std::int16_t* p) { return vld1q_s16(p); }
   static void store(std::int16_t* p, V v) { vst1q_s16(p, v); }

@@ -23,8 +23,9 @@ struct Vec;
 template <class Arch>
 struct Vec<Arch, 128> {
   using V = __m128i;
-  static constexpr int kColumns = 8;          // u16 lanes; also the outputs of one horizontal step
-  static constexpr bool kMaskedTail = false;  // the last step of a span overlaps the one before
+  static constexpr int kColumns = 8;           // u16 lanes; also the outputs of one horizontal step
+  static constexpr bool kMaskedTail = false;   // the last step of a span overlaps the one before
+  static constexpr bool kPairedStores = true;  // output_pairs and store_output_pairs
   static V columns(const std::uint8_t* p) {
     return _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
   }
@@ -53,6 +54,16 @@ struct Vec<Arch, 128> {
         reinterpret_cast<__m128i*>(out),
         _mm_xor_si128(_mm_packs_epi16(pairs, pairs), _mm_set1_epi8(static_cast<char>(0x80))));
   }
+  // (e - 128, o - 128) per int32 lane, as store_outputs packs them.
+  static V output_pairs(V even, V odd) {
+    return _mm_blend_epi16(_mm_srai_epi32(even, 16), odd, 0xAA);
+  }
+  // Two steps' output_pairs packed into one store of 2 * kColumns bytes.
+  static void store_output_pairs(std::uint8_t* out, V pairs0, V pairs1) {
+    _mm_storeu_si128(
+        reinterpret_cast<__m128i*>(out),
+        _mm_xor_si128(_mm_packs_epi16(pairs0, pairs1), _mm_set1_epi8(static_cast<char>(0x80))));
+  }
 };
 
 // Each wider form only where its unit's flags allow it: clang checks the asm operand sizes of
@@ -63,6 +74,7 @@ struct Vec<Arch, 256> {
   using V = __m256i;
   static constexpr int kColumns = 16;
   static constexpr bool kMaskedTail = false;
+  static constexpr bool kPairedStores = true;
   static V columns(const std::uint8_t* p) {
     return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
   }
@@ -88,6 +100,15 @@ struct Vec<Arch, 256> {
     _mm_storeu_si128(
         reinterpret_cast<__m128i*>(out),
         _mm_xor_si128(_mm256_castsi256_si128(packed), _mm_set1_epi8(static_cast<char>(0x80))));
+  }
+  static V output_pairs(V even, V odd) {
+    return _mm256_blend_epi16(_mm256_srai_epi32(even, 16), odd, 0xAA);
+  }
+  static void store_output_pairs(std::uint8_t* out, V pairs0, V pairs1) {
+    const V packed =  // lanes: pairs0 low, pairs1 low, pairs0 high, pairs1 high; reordered
+        _mm256_permute4x64_epi64(_mm256_packs_epi16(pairs0, pairs1), 0xD8);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out),
+                        _mm256_xor_si256(packed, _mm256_set1_epi8(static_cast<char>(0x80))));
   }
 };
 

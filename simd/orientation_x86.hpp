@@ -35,18 +35,36 @@ void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* 
     }
     const std::uint8_t* top = level.row(p.y - kPatchRadius) + p.x - 16;
     if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+      // Rows v and -v together: they share their weights, and m01 takes v * (sum(v) - sum(-v)),
+      // one vpmaddwd for both. The m10 pair sums add up in int16 over four rows at most
+      // (4 * 255 * (15 + 14) < 32768) before one vpmaddwd widens them. Callgrind, graf, 1000
+      // points: 0.54 M instructions a row at a time, 0.31 M this way.
+      const auto row_at = [&](int r) {
+        return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(top + r * level.stride));
+      };
+      const auto weights = [](const std::int8_t* w) {
+        return _mm256_load_si256(reinterpret_cast<const __m256i*>(w));
+      };
       const __m256i ones = _mm256_set1_epi16(1);
-      __m256i sum_x = _mm256_setzero_si256(), sum_y = _mm256_setzero_si256();
-      for (int r = 0; r < kRows; ++r) {
-        const __m256i pixels =
-            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(top + r * level.stride));
-        const __m256i wx = _mm256_maddubs_epi16(
-            pixels, _mm256_load_si256(reinterpret_cast<const __m256i*>(u_weight[r])));
-        const __m256i row = _mm256_maddubs_epi16(
-            pixels, _mm256_load_si256(reinterpret_cast<const __m256i*>(in_disc[r])));
-        sum_x = _mm256_add_epi32(sum_x, _mm256_madd_epi16(wx, ones));
+      __m256i sum_x = _mm256_madd_epi16(
+          _mm256_maddubs_epi16(row_at(kPatchRadius), weights(u_weight[kPatchRadius])), ones);
+      __m256i sum_y = _mm256_setzero_si256();
+      __m256i x16 = _mm256_setzero_si256();
+#pragma GCC unroll 15
+      for (int v = 1; v <= kPatchRadius; ++v) {
+        const __m256i up = row_at(kPatchRadius - v), down = row_at(kPatchRadius + v);
+        const __m256i wu = weights(u_weight[kPatchRadius + v]),
+                      wd = weights(in_disc[kPatchRadius + v]);
+        x16 = _mm256_add_epi16(
+            x16, _mm256_add_epi16(_mm256_maddubs_epi16(up, wu), _mm256_maddubs_epi16(down, wu)));
+        const __m256i difference =
+            _mm256_sub_epi16(_mm256_maddubs_epi16(down, wd), _mm256_maddubs_epi16(up, wd));
         sum_y = _mm256_add_epi32(
-            sum_y, _mm256_madd_epi16(row, _mm256_set1_epi16(static_cast<short>(r - kPatchRadius))));
+            sum_y, _mm256_madd_epi16(difference, _mm256_set1_epi16(static_cast<short>(v))));
+        if (v % 2 == 0 || v == kPatchRadius) {
+          sum_x = _mm256_add_epi32(sum_x, _mm256_madd_epi16(x16, ones));
+          x16 = _mm256_setzero_si256();
+        }
       }
       const __m128i x4 =
           _mm_add_epi32(_mm256_castsi256_si128(sum_x), _mm256_extracti128_si256(sum_x, 1));

@@ -168,6 +168,37 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
   EXPECT_LT(radius, kEdgeBorder - 0.5);
 }
 
+// The disc core/patch_blur.cpp blurs: every rotated sample whose |dy| rounds to d has |dx| <=
+// kSampleHalfWidth[d], at 36000 angles (a hundredth of a degree apart, in the kernel's own float
+// formula), and the table equals its derivation from the pattern's largest radius.
+TEST(Rbrief, RotatedSamplesStayInsideTheirDisc) {
+  const auto pattern = orb_pattern_31();
+  int widest[kSampleReach + 1] = {};
+  const float kRadiansPerDegree = static_cast<float>(CV_PI / 180.0);
+  for (int step = 0; step < 36000; ++step) {
+    const float angle = static_cast<float>(step) * 0.01f * kRadiansPerDegree;
+    const float a = std::cos(angle), b = std::sin(angle);
+    for (int i = 0; i < 256; ++i)
+      for (int p = 0; p < 4; p += 2) {
+        const float fx = pattern[i][p], fy = pattern[i][p + 1];
+        const int dx = std::abs(cvRound(fx * a - fy * b)), dy = std::abs(cvRound(fx * b + fy * a));
+        ASSERT_LE(dy, kSampleReach);
+        widest[dy] = std::max(widest[dy], dx);
+      }
+  }
+  double radius = 0;
+  for (int i = 0; i < 256; ++i)
+    for (int p = 0; p < 4; p += 2)
+      radius = std::max(radius, std::hypot(static_cast<double>(pattern[i][p]),
+                                           static_cast<double>(pattern[i][p + 1])));
+  for (int d = 0; d <= kSampleReach; ++d) {
+    EXPECT_LE(widest[d], kSampleHalfWidth[d]) << "|dy| = " << d;
+    const double below = std::max(0.0, d - 0.5);
+    const double bound = std::sqrt(radius * radius + 1e-3 - below * below) + 0.5;
+    EXPECT_EQ(kSampleHalfWidth[d], static_cast<int>(std::floor(bound))) << "|dy| = " << d;
+  }
+}
+
 TEST(Rbrief, EqualsTheFormulaOnAnyBlurredImage) {
   const cv::Mat raw = test::load_sample_gray("graf", "img1.png");
   const std::vector<PixelPoint> points = corners(raw, kEdgeBorder, 1000);
