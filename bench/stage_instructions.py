@@ -27,7 +27,7 @@ STAGES = [
     ("entropy: sums and logs", ["entropy_bits", "compute_block_entropies", "__log2", "log2"]),
     ("FAST scores", ["fast9_scores_row", "compute_score_rows"]),
     ("local maxima", ["fast9_local_maxima_bits"]),
-    ("candidate bookkeeping", ["detect_kept_blocks", "allowed_bits", "blocks_allowed"]),
+    ("candidate bookkeeping", ["detect_kept_blocks", "write_block_candidates", "allowed_bits", "blocks_allowed"]),
     ("ORB-SLAM cells (walk)", ["detect_orbslam_cells"]),
     ("pool + distribution + raster sort",
      ["pool_candidates", "distribute_", "Quadtree", "OctreeNode", "select_candidates", "sort_in_raster_order",
