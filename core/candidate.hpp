@@ -19,6 +19,11 @@ struct Candidate {
 };
 static_assert(std::is_trivial_v<Candidate>);
 
+// A candidate with only a position and a score (its neighbours' scores and rank_extra 0).
+inline Candidate candidate_at(std::int32_t x, std::int32_t y, std::int32_t score) {
+  return Candidate{x, y, score, 0, 0, 0, 0, 0};
+}
+
 // What candidates are ranked by: the score, or the cross sum (ExtractorOptions::candidate_ranking).
 inline std::int32_t rank_strength(const Candidate& c) { return c.score + c.rank_extra; }
 
