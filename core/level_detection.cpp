@@ -79,30 +79,27 @@ struct BitRange {
     std::uint64_t nonempty = 0;  // bit i: row dy0 + i holds a maximum
     if (k_first == k_last) {     // the usual block, inside one word: one masked word per row
       const std::uint64_t mask = range.first_mask & range.last_mask;
+      const std::uint64_t* first = taken_rows + static_cast<std::ptrdiff_t>(dy0) * words + k_first;
       // From the chunk's last row up, doubling: no variable shift (9 instructions a row).
-      const std::uint64_t* taken =
-          taken_rows + static_cast<std::ptrdiff_t>(dy0 + chunk - 1) * words + k_first;
-      for (const std::uint64_t* stop = taken - static_cast<std::ptrdiff_t>(chunk) * words;
-           taken != stop; taken -= words)
-        nonempty = 2 * nonempty + std::uint64_t{(*taken & mask) != 0};
+      for (std::ptrdiff_t at = static_cast<std::ptrdiff_t>(chunk - 1) * words; at >= 0; at -= words)
+        nonempty = 2 * nonempty + std::uint64_t{(first[at] & mask) != 0};
       for (; nonempty != 0; nonempty &= nonempty - 1) {
         const int dy = dy0 + std::countr_zero(nonempty);
         out = write_word_candidates(word_at(dy, k_first), 64 * k_first, dy, scores, lowest_score,
                                     cross_mask, out);
       }
-      continue;
     } else {
       for (int i = 0; i < chunk; ++i) {
         std::uint64_t any = 0;
         for (int k = k_first; k <= k_last; ++k) any |= word_at(dy0 + i, k);
         nonempty |= std::uint64_t{any != 0} << i;
       }
-    }
-    for (; nonempty != 0; nonempty &= nonempty - 1) {
-      const int dy = dy0 + std::countr_zero(nonempty);
-      for (int k = k_first; k <= k_last; ++k)
-        out = write_word_candidates(word_at(dy, k), 64 * k, dy, scores, lowest_score, cross_mask,
-                                    out);
+      for (; nonempty != 0; nonempty &= nonempty - 1) {
+        const int dy = dy0 + std::countr_zero(nonempty);
+        for (int k = k_first; k <= k_last; ++k)
+          out = write_word_candidates(word_at(dy, k), 64 * k, dy, scores, lowest_score, cross_mask,
+                                      out);
+      }
     }
   }
   return out;
