@@ -1,20 +1,28 @@
 #pragma once
 #include <cstdint>
+#include <type_traits>
 
 namespace aief {
 
-// A FAST corner that survived suppression, in level pixels.
+// A FAST corner that survived suppression, in level pixels. A trivial type (no default member
+// values: write Candidate{...}, whose missing fields are 0), so vectors of them copy with memcpy.
 struct Candidate {
-  std::int32_t x = 0;
-  std::int32_t y = 0;
-  std::int32_t score = 0;  // FAST score (OpenCV's definition), >= the block's threshold
+  std::int32_t x;
+  std::int32_t y;
+  std::int32_t score;  // FAST score (OpenCV's definition), >= the block's threshold
   // Scores of the four neighbours in the score map (0 where not a corner at fast_min_threshold),
   // for the sub-pixel peak (core/keypoint_position.hpp).
-  std::uint8_t score_left = 0, score_right = 0, score_up = 0, score_down = 0;
+  std::uint8_t score_left, score_right, score_up, score_down;
   // Added to the score when candidates are ranked: the four neighbours' scores with
   // CandidateRanking::cross_score (the score map summed over the cross), 0 with peak_score.
-  std::int32_t rank_extra = 0;
+  std::int32_t rank_extra;
 };
+static_assert(std::is_trivial_v<Candidate>);
+
+// A candidate with only a position and a score (its neighbours' scores and rank_extra 0).
+inline Candidate candidate_at(std::int32_t x, std::int32_t y, std::int32_t score) {
+  return Candidate{x, y, score, 0, 0, 0, 0, 0};
+}
 
 // What candidates are ranked by: the score, or the cross sum (ExtractorOptions::candidate_ranking).
 inline std::int32_t rank_strength(const Candidate& c) { return c.score + c.rank_extra; }

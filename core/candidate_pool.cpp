@@ -40,21 +40,35 @@ void pool_candidates(const std::vector<Candidate>& candidates,
   pooled_blocks.clear();
   if (pool_size == 0) return;
 
+  // The kept blocks' ranges merged where they touch (detection writes blocks in order, so a
+  // frame's kept blocks are usually one range): the passes below run over a few long ranges,
+  // not a short loop per block whose exit mispredicts.
+  std::vector<BlockRange>& spans = scratch.spans;
+  spans.clear();
+  for (const BlockRange& block : blocks) {
+    if (block.size() == 0) continue;
+    if (!spans.empty() && spans.back().end == block.begin)
+      spans.back().end = block.end;
+    else
+      spans.push_back(block);
+  }
+
   // The cut-off: the strength s of the pool_size-th strongest candidate, found by counting
   // strengths (exact, whatever the order); of the candidates at s, the first ones in tie_key()
   // order fill the pool, as stronger() ranks them.
-  std::array<std::int64_t, kStrengthLevels> count_at{};
+  std::array<std::int32_t, kStrengthLevels> count_at{};  // candidates < 2^31
   std::int64_t total = 0;
-  for (const BlockRange& block : blocks)
-    for (std::int32_t i = block.begin; i < block.end; ++i) {
+  for (const BlockRange& span : spans) {
+    for (std::int32_t i = span.begin; i < span.end; ++i) {
       const Candidate& c = candidates[static_cast<std::size_t>(i)];
       assert(c.score >= 0 && c.score < kScoreLevels && c.x >= 0 && c.x < (1 << 25) && c.y >= 0 &&
              c.y < (1 << 25));
       const int strength = rank_strength(c);
       assert(strength >= 0 && strength < kStrengthLevels);
       ++count_at[static_cast<std::size_t>(strength)];
-      ++total;
     }
+    total += span.size();
+  }
   int cut_strength = -1;  // keep every strength above it
   std::int64_t key_limit =
       std::numeric_limits<std::int64_t>::max();  // at cut_strength: keys <= limit
@@ -66,8 +80,8 @@ void pool_candidates(const std::vector<Candidate>& candidates,
     const std::int64_t tied_wanted = pool_size - above;  // 0 < tied_wanted <= count at cut_strength
     std::vector<std::int32_t>& tied = scratch.tied;
     tied.clear();
-    for (const BlockRange& block : blocks)
-      for (std::int32_t i = block.begin; i < block.end; ++i)
+    for (const BlockRange& span : spans)
+      for (std::int32_t i = span.begin; i < span.end; ++i)
         if (rank_strength(candidates[static_cast<std::size_t>(i)]) == cut_strength)
           tied.push_back(i);
     const auto by_tie_key = [&](std::int32_t a, std::int32_t b) {
@@ -79,19 +93,49 @@ void pool_candidates(const std::vector<Candidate>& candidates,
         candidates[static_cast<std::size_t>(tied[static_cast<std::size_t>(tied_wanted - 1)])]);
   }
 
-  for (const BlockRange& block : blocks) {
-    const std::int32_t first = static_cast<std::int32_t>(pooled.size());
-    for (std::int32_t i = block.begin; i < block.end; ++i) {
+  // The copy, without a branch per candidate: each is written, then kept by advancing the write
+  // place or not (whether a candidate makes the pool is close to a coin toss near the cut-off).
+  // How many were kept before and after each candidate give each block's range in the pool
+  // without a loop per block (blocks are ranges of the candidates, not always in their order).
+  const std::int64_t kept = std::min(total, pool_size);
+  pooled.resize(static_cast<std::size_t>(kept) + 1);  // + 1: the last write may not be kept
+  pooled_index.resize(static_cast<std::size_t>(kept) + 1);
+  std::int32_t lowest = std::numeric_limits<std::int32_t>::max(), highest = 0;
+  for (const BlockRange& span : spans) {
+    lowest = std::min(lowest, span.begin);
+    highest = std::max(highest, span.end);
+  }
+  std::vector<std::int32_t>& kept_before = scratch.kept_before;
+  std::vector<std::int32_t>& kept_after = scratch.kept_after;
+  kept_before.resize(static_cast<std::size_t>(std::max(0, highest - lowest)));
+  kept_after.resize(kept_before.size());
+  Candidate* out = pooled.data();
+  std::int32_t* out_index = pooled_index.data();
+  std::int32_t n = 0;
+  for (const BlockRange& span : spans)
+    for (std::int32_t i = span.begin; i < span.end; ++i) {
       const Candidate& c = candidates[static_cast<std::size_t>(i)];
       const int strength = rank_strength(c);
-      if (strength < cut_strength || (strength == cut_strength && tie_key(c) > key_limit)) continue;
-      pooled.push_back(c);
-      pooled_index.push_back(i);
+      kept_before[static_cast<std::size_t>(i - lowest)] = n;
+      out[n] = c;
+      out_index[n] = i;
+      n += static_cast<std::int32_t>(strength > cut_strength) |
+           static_cast<std::int32_t>(strength == cut_strength && tie_key(c) <= key_limit);
+      kept_after[static_cast<std::size_t>(i - lowest)] = n;
     }
-    const std::int32_t end = static_cast<std::int32_t>(pooled.size());
-    if (end > first) pooled_blocks.push_back({first, end});
+  assert(n == kept);
+  pooled.resize(static_cast<std::size_t>(n));
+  pooled_index.resize(static_cast<std::size_t>(n));
+  pooled_blocks.resize(blocks.size() + 1);
+  std::size_t nonempty = 0;
+  for (const BlockRange& block : blocks) {
+    if (block.size() == 0) continue;
+    const BlockRange range{kept_before[static_cast<std::size_t>(block.begin - lowest)],
+                           kept_after[static_cast<std::size_t>(block.end - 1 - lowest)]};
+    pooled_blocks[nonempty] = range;
+    nonempty += range.size() > 0;
   }
-  assert(total <= pool_size || static_cast<std::int64_t>(pooled.size()) == pool_size);
+  pooled_blocks.resize(nonempty);
 }
 
 }  // namespace aief

@@ -18,7 +18,10 @@ std::int64_t candidate_pool_size(double pool_factor, int n_wanted);
 
 // Buffers the pool reuses between calls.
 struct CandidatePoolScratch {
-  std::vector<std::int32_t> tied;  // indices of the candidates at the cut-off strength
+  std::vector<std::int32_t> tied;         // indices of the candidates at the cut-off strength
+  std::vector<BlockRange> spans;          // the blocks' ranges, merged where they touch
+  std::vector<std::int32_t> kept_before;  // per candidate: how many the pool took before it
+  std::vector<std::int32_t> kept_after;   // ... and with it
 };
 
 // The `pool_size` strongest candidates of `blocks` (stronger(): strength, score, y, x), copied

@@ -150,7 +150,8 @@ void FrameAnalysis::choose(int n, double threshold, int budget, std::vector<std:
     sort_by_raster_rank(level.blocks.candidates, level.pyramid.geometry.width,
                         level.pyramid.geometry.height, level.raster_ranks, selected);
   else
-    sort_in_raster_order(level.blocks.candidates, selected);
+    sort_in_raster_order(level.blocks.candidates, level.pyramid.geometry.width, selected,
+                         level.raster_ranks);
   chosen.assign(selected.begin(), selected.end());
 }
 

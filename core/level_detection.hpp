@@ -22,6 +22,7 @@ struct DetectionScratch {
   GrayImage score_band;                     // core/score_band.hpp
   std::vector<std::uint64_t> maxima_bits;   // local maxima of a run of blocks, bit rows
   std::vector<std::uint64_t> allowed_bits;  // the detection mask over one row of such a run
+  std::vector<Candidate> run_candidates;    // the candidates of such a run, block by block
   OrbSlamCellScratch cells;                 // DetectionCells::orbslam (core/orbslam_cells.hpp)
   std::vector<Candidate> cell_candidates;   // the same, in ORB-SLAM's order
   std::vector<std::int32_t> cell_blocks;    // the block of each

@@ -1,6 +1,7 @@
 #include "core/raster_order.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 
 namespace aief {
@@ -41,12 +42,34 @@ void build_raster_ranks(const std::vector<Candidate>& candidates, int width, int
 
 }  // namespace
 
-void sort_in_raster_order(const std::vector<Candidate>& candidates,
-                          std::vector<std::int32_t>& indices) {
-  std::sort(indices.begin(), indices.end(), [&](std::int32_t a, std::int32_t b) {
-    return raster_before(candidates[static_cast<std::size_t>(a)],
-                         candidates[static_cast<std::size_t>(b)]);
-  });
+void sort_in_raster_order(const std::vector<Candidate>& candidates, int width,
+                          std::vector<std::int32_t>& indices, RasterRanks& ranks) {
+  const std::size_t count = indices.size();
+  std::vector<std::uint64_t>& keys = ranks.radix_keys;
+  keys.resize(2 * count);
+  std::uint64_t* from = keys.data();
+  std::uint64_t* to = from + count;
+  std::uint64_t places = 0;  // every place OR-ed: how many bytes the passes need
+  for (std::size_t k = 0; k < count; ++k) {
+    const Candidate& c = candidates[static_cast<std::size_t>(indices[k])];
+    const std::uint64_t place =
+        static_cast<std::uint64_t>(c.y) * static_cast<std::uint64_t>(width) +
+        static_cast<std::uint64_t>(c.x);
+    places |= place;
+    from[k] = place << 32 | static_cast<std::uint32_t>(indices[k]);
+  }
+  // Least significant byte first, each pass a stable counting sort: places are distinct, so the
+  // order is raster_before's.
+  for (int shift = 32; shift < 64 && (places >> (shift - 32)) != 0; shift += 8) {
+    std::array<std::uint32_t, 257> starts{};
+    for (std::size_t k = 0; k < count; ++k) ++starts[((from[k] >> shift) & 255) + 1];
+    for (int b = 0; b < 256; ++b)
+      starts[static_cast<std::size_t>(b) + 1] += starts[static_cast<std::size_t>(b)];
+    for (std::size_t k = 0; k < count; ++k) to[starts[(from[k] >> shift) & 255]++] = from[k];
+    std::swap(from, to);
+  }
+  for (std::size_t k = 0; k < count; ++k)
+    indices[k] = static_cast<std::int32_t>(from[k] & 0xffffffffu);
 }
 
 void sort_by_raster_rank(const std::vector<Candidate>& candidates, int width, int height,

@@ -9,19 +9,23 @@
 
 namespace aief {
 
-// Sorts candidate indices by raster_before.
-void sort_in_raster_order(const std::vector<Candidate>& candidates,
-                          std::vector<std::int32_t>& indices);
-
 // The candidates in raster order and each one's place in it, built by the first sort after
-// detection (clear() when the candidates change), with the buffers of that sort.
+// detection (clear() when the candidates change), with the buffers of that sort and of
+// sort_in_raster_order.
 struct RasterRanks {
   std::vector<std::int32_t> order, rank;
   std::vector<std::int32_t> counting_starts;  // counting sort's bucket starts
   std::vector<std::uint64_t> place_bits;      // a bit per place of the indices being sorted
+  std::vector<std::uint64_t> radix_keys;      // sort_in_raster_order: (y * width + x, index) twice
 
   void clear() { rank.clear(); }
 };
+
+// Sorts candidate indices by raster_before, on a level `width` pixels wide (x < width, and
+// width * height <= 2^32): a radix sort of the place y * width + x, a byte a pass (three on a
+// 800 x 640 level), no compare to mispredict. `ranks` lends its radix_keys.
+void sort_in_raster_order(const std::vector<Candidate>& candidates, int width,
+                          std::vector<std::int32_t>& indices, RasterRanks& ranks);
 
 // The same order as sort_in_raster_order, through the ranks: linear in the candidates. `width`,
 // `height`: the level's size (the counting sort's key ranges).

@@ -109,7 +109,6 @@ void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row,
     return;
   }
   const int words = fast9_maxima_words(x_end - x_begin);
-  for (int w = 0; w < words; ++w) maxima[w] = strong[w] = 0;
   const U8<Arch> zero(std::uint8_t(0));
   // Strong where s >= threshold, i.e. s - (threshold - 1) (saturating) is not 0.
   const int strong_floor = strong_threshold < 1     ? 0
@@ -130,13 +129,26 @@ void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row,
     kept_strong = kept & lane_bits<Arch>(xsimd::ssub(s, below_strong) != zero);
     return kept;
   };
-  int x = x_begin;
-  for (; x + N <= x_end; x += N) {  // inside one word: x - x_begin is a multiple of N
-    std::uint64_t kept_strong;
-    const std::uint64_t kept = kept_at(x, kept_strong);
-    const int i = x - x_begin;
-    maxima[i >> 6] |= kept << (i & 63);
-    strong[i >> 6] |= kept_strong << (i & 63);
+  // Each word's bits are gathered in registers from its 64 / N batches and stored once: no
+  // clearing pass and no read-modify-write of the words (graf, AVX2: 1.68 -> 1.44 M instructions,
+  // 2,301 -> 1,034 mispredicted branches).
+  const auto word_at = [&](int x, int batches, std::uint64_t& word_strong) {
+    std::uint64_t word = 0;
+    word_strong = 0;
+    for (int j = 0; j < batches; ++j) {
+      std::uint64_t kept_strong;
+      const std::uint64_t kept = kept_at(x + j * N, kept_strong);
+      word |= kept << (j * N);  // N divides 64, j * N < 64
+      word_strong |= kept_strong << (j * N);
+    }
+    return word;
+  };
+  int x = x_begin, w = 0;
+  for (; x + 64 <= x_end; x += 64, ++w) maxima[w] = word_at(x, 64 / N, strong[w]);
+  if (w < words) {  // the last, partial word: its full batches, then one overlapping last batch
+    const int batches = (x_end - x) / N;
+    maxima[w] = word_at(x, batches, strong[w]);
+    x += batches * N;
   }
   if (x < x_end) {
     // The overlapping last batch: OR, not store, rewrites bits already set with the same values,

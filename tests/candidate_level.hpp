@@ -32,8 +32,8 @@ inline CandidateLevel make_candidate_level(const std::vector<int>& counts, std::
       used.insert({y, x});
     }
     for (const auto& [y, x] : used)
-      level.candidates.push_back(
-          {x, y, 7 + static_cast<int>(rng() % static_cast<std::uint32_t>(score_values))});
+      level.candidates.push_back(candidate_at(
+          x, y, 7 + static_cast<int>(rng() % static_cast<std::uint32_t>(score_values))));
     level.blocks.push_back({begin, static_cast<std::int32_t>(level.candidates.size())});
   }
   return level;

@@ -21,7 +21,7 @@ namespace aief {
 namespace {
 
 TEST(CandidateRanking, StrengthFirstThenScoreThenPosition) {
-  Candidate lone_peak{10, 10, 60};                     // strength 60
+  Candidate lone_peak = candidate_at(10, 10, 60);      // strength 60
   Candidate broad{20, 10, 30, 20, 10, 5, 0, 35};       // strength 65: ranks above the higher peak
   Candidate same_strength{5, 30, 40, 0, 0, 0, 0, 25};  // strength 65, higher score: above `broad`
   EXPECT_TRUE(stronger(broad, lone_peak));
@@ -51,7 +51,7 @@ TEST(CandidateRanking, PoolKeepsTheStrongestByCrossStrength) {
       while (static_cast<int>(used.size()) < count)
         used.insert({static_cast<int>(rng() % 32), b * 32 + static_cast<int>(rng() % 32)});
       for (const auto& [y, x] : used) {
-        Candidate c{x, y, 7 + static_cast<int>(rng() % 6)};
+        Candidate c = candidate_at(x, y, 7 + static_cast<int>(rng() % 6));
         c.rank_extra = static_cast<std::int32_t>(rng() % 6);
         candidates.push_back(c);
       }

@@ -126,7 +126,8 @@ TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
     while (static_cast<int>(used.size()) < count) {
       const int x = 19 + static_cast<int>(rng() % static_cast<unsigned>(width - 38));
       const int y = 19 + static_cast<int>(rng() % static_cast<unsigned>(height - 38));
-      if (used.insert({x, y}).second) candidates.push_back({x, y, 7 + static_cast<int>(rng() % 5)});
+      if (used.insert({x, y}).second)
+        candidates.push_back(candidate_at(x, y, 7 + static_cast<int>(rng() % 5)));
     }
     for (int wanted : {1, 5, 50, 217, 1000}) {
       std::vector<std::int32_t> first, second;
@@ -154,7 +155,8 @@ TEST(QuadtreeDistribution, CountsAsOrbSlam2AndDeterministic) {
 }
 
 TEST(QuadtreeDistribution, OneWantedKeepsTheStrongest) {
-  std::vector<Candidate> candidates = {{30, 30, 10}, {200, 40, 50}, {100, 100, 20}};
+  std::vector<Candidate> candidates = {candidate_at(30, 30, 10), candidate_at(200, 40, 50),
+                                       candidate_at(100, 100, 20)};
   std::vector<std::int32_t> selected;
   DistributionScratch scratch;
   distribute_quadtree(candidates, 16, 300, 16, 200, 1, selected, scratch);

@@ -83,7 +83,7 @@ TEST(CoordinateMap, PixelCentreMapIsWhereThePyramidSampledEveryLevel) {
       const double tolerance = 0.002 + n * 0.01 * level.scale;
       for (int x = kEdgeBorder; x < level.width - kEdgeBorder; x += 7) {
         const int y = kEdgeBorder + (x % (level.height - 2 * kEdgeBorder));
-        const Candidate c{x, y, 50};
+        const Candidate c = candidate_at(x, y, 50);
         const ImagePoint p = keypoint_position(c, centre);
         SCOPED_TRACE(testing::Message() << width << "x" << height << " level " << n << " at (" << x
                                         << ", " << y << ")");
@@ -101,7 +101,7 @@ TEST(CoordinateMap, PixelCentreMapIsWhereThePyramidSampledEveryLevel) {
 TEST(CoordinateMap, SubpixelOffsetMovesThePointInLevelPixels) {
   const LevelToImage mapping =
       level_to_image(CoordinateMap::pixel_centre, true, 1.2f * 1.2f, 1000, 700, 694, 486);
-  Candidate c{100, 50, 99, 75, 91, 91, 75};  // +0.25 in x, -0.25 in y
+  Candidate c{100, 50, 99, 75, 91, 91, 75, 0};  // +0.25 in x, -0.25 in y
   const ImagePoint p = keypoint_position(c, mapping);
   EXPECT_NEAR(p.x, (100.25 + 0.5) * 1000.0 / 694.0 - 0.5, 1e-4);
   EXPECT_NEAR(p.y, (49.75 + 0.5) * 700.0 / 486.0 - 0.5, 1e-4);
