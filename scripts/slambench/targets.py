@@ -1,4 +1,4 @@
-"""Each variant against the reference extractor (stock ORB-SLAM3), judged by issue 24's targets.
+"""Each variant against the reference extractor (stock ORB-SLAM3), judged by the targets docs/slam.md sets.
 
 One table per variant, one row per family and sensor, from the cells' summaries (pooled over the
 seeds where there are several): the share of frames tracked beside the reference's, the median
