@@ -81,10 +81,10 @@ def plot_trajectories(aligned_by_variant, family, sensor, out_path):
             ax.plot(data[:, 3], data[:, 4], color="black", lw=2.5, alpha=0.35, label="ground truth")
             drew_truth = True
         ax.plot(data[:, 0], data[:, 1], lw=1, label=variant)
-    ax.set_aspect("equal")
+    ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x, m")
     ax.set_ylabel("y, m")
-    ax.set_title(f"{family}, {sensor}: median-ATE run of each extractor")
+    ax.set_title(f"{family}, {sensor}: median-ATE run of each extractor", fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out_path, dpi=80)
