@@ -12,23 +12,13 @@
 
 namespace aief {
 
-class ORBextractor : public OrbSlamExtractorBase {
+// Its mode unless the settings name one (kDefaultMode): orbslam2, ORB-SLAM's choices on aief's kernels
+// (docs/slam.md, "Which choice costs what"). Not faithful: that mode reproduces ORB-SLAM3's
+// extractor, whose cells (35 pixels) are not ORB-SLAM2's (30).
+class ORBextractor : public OrbSlamExtractorWithDefault<Mode::orbslam2> {
  public:
-  // The mode unless the settings name one: orbslam2, ORB-SLAM's choices on aief's kernels
-  // (docs/slam.md, "Which choice costs what"). Not faithful: that mode reproduces ORB-SLAM3's
-  // extractor, whose cells (35 pixels) are not ORB-SLAM2's (30).
-  static constexpr Mode kDefaultMode = Mode::orbslam2;
-
-  // As ORB-SLAM2, the other options kDefaultMode's.
-  ORBextractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
-      : OrbSlamExtractorBase(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, kDefaultMode) {}
-  explicit ORBextractor(const ExtractorOptions& options) : OrbSlamExtractorBase(options) {}
-
-  // The options from a settings file as ORB-SLAM2 reads it, plus our keys
-  // (OrbSlamExtractorBase::options_from_settings, with kDefaultMode).
-  static ExtractorOptions options_from_settings(const cv::FileStorage& settings) {
-    return OrbSlamExtractorBase::options_from_settings(settings, kDefaultMode);
-  }
+  // ORB-SLAM's constructor and the settings reader with this mode (OrbSlamExtractorWithDefault).
+  using OrbSlamExtractorWithDefault::OrbSlamExtractorWithDefault;
   static ORBextractor from_settings(const cv::FileStorage& settings);
 
   // As ORB-SLAM2: image CV_8UC1 (CV_8UC3/4 converted to gray); the mask is ignored, as in

@@ -13,24 +13,15 @@
 
 namespace aief::orbslam3 {
 
-class ORBextractor : public OrbSlamExtractorBase {
+// Its mode unless the settings name one (kDefaultMode): faithful, ORB-SLAM3's own keypoints and
+// descriptors to the bit on aief's kernels (docs/slam.md, "The faithful mode"), measured inside
+// ORB-SLAM3 on three seeds and seven families ("What you get by swapping the extractor"); no
+// entropy-guided variant met the targets set for a new default there. Monocular settings keep
+// the engine's keypoint convention.
+class ORBextractor : public OrbSlamExtractorWithDefault<Mode::faithful> {
  public:
-  // The mode unless the settings name one: faithful, ORB-SLAM3's own keypoints and descriptors
-  // to the bit on aief's kernels (docs/slam.md, "The faithful mode"): measured inside ORB-SLAM3
-  // on three seeds, stereo within 5% of stock's ATE on each where orbslam2 mode was 25% behind
-  // on one ("Three seeds"); monocular settings keep the engine's keypoint convention.
-  static constexpr Mode kDefaultMode = Mode::faithful;
-
-  // As ORB-SLAM3, the other options kDefaultMode's.
-  ORBextractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
-      : OrbSlamExtractorBase(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, kDefaultMode) {}
-  explicit ORBextractor(const ExtractorOptions& options) : OrbSlamExtractorBase(options) {}
-
-  // The options from a settings file as ORB-SLAM3 reads it, plus our keys
-  // (OrbSlamExtractorBase::options_from_settings, with kDefaultMode).
-  static ExtractorOptions options_from_settings(const cv::FileStorage& settings) {
-    return OrbSlamExtractorBase::options_from_settings(settings, kDefaultMode);
-  }
+  // ORB-SLAM's constructor and the settings reader with this mode (OrbSlamExtractorWithDefault).
+  using OrbSlamExtractorWithDefault::OrbSlamExtractorWithDefault;
   static ORBextractor from_settings(const cv::FileStorage& settings);
 
   // As ORB-SLAM3's: a keypoint whose x (level-0 pixels) lies in [vLappingArea[0],

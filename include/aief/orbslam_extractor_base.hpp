@@ -72,4 +72,23 @@ class OrbSlamExtractorBase {
   std::vector<float> mvScaleFactor, mvInvScaleFactor, mvLevelSigma2, mvInvLevelSigma2;
 };
 
+// What the two drop-ins share word for word: ORB-SLAM's five-number constructor and the settings
+// reader, each with the drop-in's own default mode (its kDefaultMode).
+template <Mode DefaultMode>
+class OrbSlamExtractorWithDefault : public OrbSlamExtractorBase {
+ public:
+  static constexpr Mode kDefaultMode = DefaultMode;
+
+  // As ORB-SLAM, the other options kDefaultMode's.
+  OrbSlamExtractorWithDefault(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
+      : OrbSlamExtractorBase(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, kDefaultMode) {}
+  explicit OrbSlamExtractorWithDefault(const ExtractorOptions& options) : OrbSlamExtractorBase(options) {}
+
+  // The options from a settings file as ORB-SLAM reads it, plus our keys
+  // (OrbSlamExtractorBase::options_from_settings, with kDefaultMode).
+  static ExtractorOptions options_from_settings(const cv::FileStorage& settings) {
+    return OrbSlamExtractorBase::options_from_settings(settings, kDefaultMode);
+  }
+};
+
 }  // namespace aief
