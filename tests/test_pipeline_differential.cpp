@@ -159,6 +159,22 @@ std::string first_difference(const Features& reference, const Features& other) {
 
 class PipelineDifferential : public testing::TestWithParam<int> {};
 
+// `base` under every kernel set at 1, 2 and 5 threads, except the scalar reference at 1 (TBB's
+// cap on workers lifted, so 5 threads are 5 even on a 2-core machine).
+template <typename Check>
+void for_each_kernel_set_and_thread_count(const ExtractorOptions& base, Check check) {
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 5);
+  for (KernelSet set : available_kernel_sets()) {
+    for (int threads : {1, 2, 5}) {
+      if (set == KernelSet::scalar && threads == 1) continue;
+      ExtractorOptions options = base;
+      options.kernels = set;
+      options.threads = threads;
+      check(options);
+    }
+  }
+}
+
 TEST_P(PipelineDifferential, EveryKernelSetAndThreadCountGivesTheScalarBytes) {
   const Case c = make_case(GetParam());
   SCOPED_TRACE(c.description);
@@ -167,19 +183,11 @@ TEST_P(PipelineDifferential, EveryKernelSetAndThreadCountGivesTheScalarBytes) {
   reference_options.kernels = KernelSet::scalar;
   reference_options.threads = 1;
   const Features reference = Extractor(reference_options).extract(view);
-  // TBB caps workers at the core count: lift the cap so 5 threads are 5 even on a 2-core machine.
-  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 5);
-  for (KernelSet set : available_kernel_sets()) {
-    for (int threads : {1, 2, 5}) {
-      if (set == KernelSet::scalar && threads == 1) continue;
-      ExtractorOptions options = c.options;
-      options.kernels = set;
-      options.threads = threads;
-      Extractor extractor(options);
-      const std::string diff = first_difference(reference, extractor.extract(view));
-      EXPECT_EQ(diff, "") << to_string(set) << " at " << threads << " thread(s)";
-    }
-  }
+  for_each_kernel_set_and_thread_count(c.options, [&](const ExtractorOptions& options) {
+    Extractor extractor(options);
+    EXPECT_EQ(first_difference(reference, extractor.extract(view)), "")
+        << to_string(options.kernels) << " at " << options.threads << " thread(s)";
+  });
 }
 
 // Given keypoints (Extractor::describe): the case's own keypoints, which must come back with their
@@ -290,19 +298,12 @@ TEST_P(CarriedVideoDifferential, EveryKernelSetAndThreadCountGivesTheScalarBytes
   reference_options.kernels = KernelSet::scalar;
   reference_options.threads = 1;
   const std::vector<Features> reference = run_frames(c, reference_options);
-  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 5);
-  for (KernelSet set : available_kernel_sets()) {
-    for (int threads : {1, 2, 5}) {
-      if (set == KernelSet::scalar && threads == 1) continue;
-      ExtractorOptions options = c.options;
-      options.kernels = set;
-      options.threads = threads;
-      const std::vector<Features> other = run_frames(c, options);
-      for (std::size_t t = 0; t < reference.size(); ++t)
-        ASSERT_EQ(first_difference(reference[t], other[t]), "")
-            << to_string(set) << " at " << threads << " thread(s), frame " << t;
-    }
-  }
+  for_each_kernel_set_and_thread_count(c.options, [&](const ExtractorOptions& options) {
+    const std::vector<Features> other = run_frames(c, options);
+    for (std::size_t t = 0; t < reference.size(); ++t)
+      ASSERT_EQ(first_difference(reference[t], other[t]), "")
+          << to_string(options.kernels) << " at " << options.threads << " thread(s), frame " << t;
+  });
 }
 
 INSTANTIATE_TEST_SUITE_P(SeededCases, CarriedVideoDifferential, testing::Range(0, kCarriedCases));
