@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "aief/extractor.hpp"
-#include "core/fast9.hpp"
-#include "core/level_geometry.hpp"
-#include "core/pyramid_resize.hpp"
-#include "core/pyramid_resize_opencv.hpp"
+#include "core/kernels/fast9.hpp"
+#include "core/level/level_geometry.hpp"
+#include "core/kernels/pyramid_resize.hpp"
+#include "core/kernels/pyramid_resize_opencv.hpp"
 #include "simd/kernels.hpp"
 #include "tests/pgm_image.hpp"
 
@@ -82,7 +82,7 @@ std::shared_ptr<const Inputs> make_inputs(const GrayImage& image) {
   return in;
 }
 
-// One benchmark body per kernel of the list (core/kernel_table.hpp), each named bench_<kernel>:
+// One benchmark body per kernel of the list (core/kernels/kernel_table.hpp), each named bench_<kernel>:
 // a kernel added to the list without one here does not compile.
 void bench_resize_bilinear_rows(benchmark::State& state, const Inputs& in, const KernelTable& k) {
   std::vector<GrayImage> out;

@@ -1,6 +1,6 @@
 // Per-kernel benchmarks: every kernel set the CPU runs, on the standard images, beside OpenCV's
 // kernel for the same job. Names read kernel/variant/image, the kernel named as in the kernel
-// list (core/kernel_table.hpp); fast9_detect is both FAST kernels and the corner walk, the job
+// list (core/kernels/kernel_table.hpp); fast9_detect is both FAST kernels and the corner walk, the job
 // cv::FAST with suppression does. Items are pixels so rates compare across sizes.
 #include <benchmark/benchmark.h>
 
@@ -8,9 +8,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bench/bench_support.hpp"
-#include "core/fast9_detect.hpp"
-#include "core/level_geometry.hpp"
-#include "core/pyramid_resize.hpp"
+#include "core/kernels/fast9_detect.hpp"
+#include "core/level/level_geometry.hpp"
+#include "core/kernels/pyramid_resize.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief::bench {
@@ -53,7 +53,7 @@ constexpr const char* kResize = listed_kernel("resize_bilinear_rows");
 constexpr const char* kGaussian = listed_kernel("gaussian7_rows");
 constexpr const char* kHistogram = listed_kernel("accumulate_histogram");
 constexpr const char* kFast =
-    "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (core/fast9_detect.hpp)
+    "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (core/kernels/fast9_detect.hpp)
 
 std::string benchmark_name(const char* kernel, const std::string& variant,
                            const std::string& image) {

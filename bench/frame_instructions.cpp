@@ -18,7 +18,7 @@
 #include <valgrind/callgrind.h>
 
 #include "aief/extractor.hpp"
-#include "core/option_table.hpp"
+#include "core/options/option_table.hpp"
 #include "io/image_io.hpp"
 
 int main(int argc, char** argv) try {

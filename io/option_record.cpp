@@ -3,7 +3,7 @@
 #include <sstream>
 #include <variant>
 
-#include "core/option_table.hpp"
+#include "core/options/option_table.hpp"
 
 namespace aief::io {
 

@@ -7,7 +7,7 @@
 #include <variant>
 
 #include "aief/error.hpp"
-#include "core/option_table.hpp"
+#include "core/options/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
 namespace aief::opencv {
@@ -68,7 +68,7 @@ void Feature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
 void Feature2D::write(cv::FileStorage& storage) const {
   if (!storage.isOpened()) return;
   storage << "name" << getDefaultName();
-  // Every option as the output files record it (core/option_table.hpp): numbers as numbers,
+  // Every option as the output files record it (core/options/option_table.hpp): numbers as numbers,
   // names and toggles as the text the table reads back.
   for (const auto& [key, value] : option_table::record_of(options())) {
     const std::string name(key);

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "aief/error.hpp"
-#include "core/option_names.hpp"
-#include "core/option_table.hpp"
+#include "core/options/option_names.hpp"
+#include "core/options/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
 namespace aief {

@@ -1,5 +1,5 @@
 // aief.Extractor: ExtractorOptions as keyword arguments (the option table's Python keywords,
-// core/option_table.hpp), extract() with the GIL released, and the options back as a dict.
+// core/options/option_table.hpp), extract() with the GIL released, and the options back as a dict.
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -9,7 +9,7 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "core/option_table.hpp"
+#include "core/options/option_table.hpp"
 #include "io/image_io.hpp"
 #include "io/option_record.hpp"
 #include "python/bindings.hpp"
@@ -200,7 +200,7 @@ void bind_testing(py::module_& m) {
         }
         return rows;
       },
-      "Test hook: the option table's rows that have front ends (core/option_table.hpp)");
+      "Test hook: the option table's rows that have front ends (core/options/option_table.hpp)");
   m.def(
       "_signatures",
       [] {

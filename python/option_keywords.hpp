@@ -1,5 +1,5 @@
 #pragma once
-// A Python call's arguments read by the option tables (core/option_table.hpp): the function's
+// A Python call's arguments read by the option tables (core/options/option_table.hpp): the function's
 // leading parameters (images, an extractor), then the options of one or more structs, by
 // position in the rows' python_position order (struct after struct) or by keyword. None means
 // not given. Extractor(), match(), find_homography() and adapt() take their options this way, so
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/option_table.hpp"
+#include "core/options/option_table.hpp"
 #include "python/bindings.hpp"
 
 namespace aief::python {

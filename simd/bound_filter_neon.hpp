@@ -1,5 +1,5 @@
 #pragma once
-// NEON has no version of the bound filter (core/bound_filter.hpp) yet: the neon64 table keeps
+// NEON has no version of the bound filter (core/kernels/bound_filter.hpp) yet: the neon64 table keeps
 // positions_within_bounds_scalar, and `aief --print-kernels` names it "scalar". The null
 // constant is how a family says so to simd/make_kernel_table.hpp, whose entries are made from
 // the kernel list; a NEON version replaces it with `template <class Arch> ... function`.

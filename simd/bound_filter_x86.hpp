@@ -1,5 +1,5 @@
 #pragma once
-// positions_within_bounds (core/bound_filter.hpp) 32 distances per step: a signed 16-bit max of
+// positions_within_bounds (core/kernels/bound_filter.hpp) 32 distances per step: a signed 16-bit max of
 // the bounds, one compare, a lane mask, then only the (few) set bits are walked. The tail runs
 // the scalar loop. x86 only: the NEON table keeps the scalar filter.
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// FAST-9 score and suppression, vectorised: the contracts of core/fast9.hpp, the same bytes.
+// FAST-9 score and suppression, vectorised: the contracts of core/kernels/fast9.hpp, the same bytes.
 //
 // Scores of a whole batch of pixels at once, no branch per pixel. With saturating differences,
 // the OpenCV score is max over the 16 arcs of 9 of min over the arc of (r_k - p) or of
@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "core/fast9.hpp"
+#include "core/kernels/fast9.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

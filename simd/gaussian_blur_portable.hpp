@@ -1,5 +1,5 @@
 #pragma once
-// 7x7 Gaussian, vectorised: the contract of core/gaussian_blur.hpp, the same bytes.
+// 7x7 Gaussian, vectorised: the contract of core/kernels/gaussian_blur.hpp, the same bytes.
 //
 // The filter is separable and exact in integers, so the passes may run in either order.
 // Vertical first, per column: v = sum_k w_k src[y + k - 3][x] <= 65280, in u16 lanes, stored
@@ -22,7 +22,7 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "core/gaussian_blur.hpp"
+#include "core/kernels/gaussian_blur.hpp"
 #include "simd/simd_support.hpp"
 #if defined(__aarch64__)
 #include "simd/gaussian_blur_neon.hpp"
@@ -119,7 +119,7 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   // the slack on both sides takes the vector loop's batches that start left of x0 - 3 or end
   // right of x1 + 3 (still inside the row).
   constexpr int kSlack = L;
-  constexpr int kBandRows = 8;  // rows whose vertical sums are kept at once (core/patch_blur.hpp)
+  constexpr int kBandRows = 8;  // rows whose vertical sums are kept at once (core/description/patch_blur.hpp)
   alignas(64) std::int16_t column_buffer[kBandRows][kSlack + kChunk + 7 + kSlack];
 
   // opaque: multiplied by constants, the compiler would rewrite each pmullw as 3-4 shifts and adds.

@@ -1,5 +1,5 @@
 #pragma once
-// hamming_256_blocked (core/hamming_blocked.hpp) on AArch64 NEON: a block of 16 trains is four
+// hamming_256_blocked (core/kernels/hamming_blocked.hpp) on AArch64 NEON: a block of 16 trains is four
 // registers of four 32-bit lanes per word. XOR with the broadcast query word, byte popcount
 // (cnt), byte counts summed over the eight words (<= 64), then the four bytes of each lane by
 // two pairwise widening adds.
@@ -8,7 +8,7 @@
 
 #include <arm_neon.h>
 
-#include "core/hamming_blocked.hpp"
+#include "core/kernels/hamming_blocked.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

@@ -1,5 +1,5 @@
 #pragma once
-// Hamming distances of one descriptor to 16 transposed ones per step (core/hamming_blocked.hpp):
+// Hamming distances of one descriptor to 16 transposed ones per step (core/kernels/hamming_blocked.hpp):
 // each 32-bit lane holds the same word of a different train, so the query word is broadcast,
 // XORed and popcounted lane-wise and the eight words' counts are added lane-wise, with no
 // horizontal sum per train. AVX2 counts bits by a nibble table (vpshufb) and sums the four byte
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <type_traits>
 
-#include "core/hamming_blocked.hpp"
+#include "core/kernels/hamming_blocked.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

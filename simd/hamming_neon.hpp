@@ -1,6 +1,6 @@
 #pragma once
 // Hamming distances of one 256-bit descriptor to many on AArch64 NEON: the contract of
-// core/hamming.hpp. A descriptor is two 128-bit registers: XOR, byte popcount (cnt), the two
+// core/kernels/hamming.hpp. A descriptor is two 128-bit registers: XOR, byte popcount (cnt), the two
 // halves' counts added per byte (<= 16) and summed across with one widening add (uaddlv).
 #include <cstdint>
 

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "aief/extractor.hpp"
-#include "core/fast9_detect.hpp"
-#include "core/kernel_table.hpp"
+#include "core/kernels/fast9_detect.hpp"
+#include "core/kernels/kernel_table.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {
@@ -390,7 +390,7 @@ std::string check_extract(KernelSet set, const GrayImage& src) {
   return "";
 }
 
-// One check per kernel of the list (core/kernel_table.hpp), each named check_<kernel>: a kernel
+// One check per kernel of the list (core/kernels/kernel_table.hpp), each named check_<kernel>: a kernel
 // added to the list without a check here does not compile.
 using KernelCheck = std::string (*)(const KernelTable& scalar, const KernelTable& other,
                                     const GrayImage& src);

@@ -2,7 +2,7 @@
 // Not every AVX-512BW CPU has the extension (Skylake-X lacks it), so it is compiled apart, with
 // the avx512 set's flags plus -mavx512vpopcntdq (simd/CMakeLists.txt), and kernels.cpp puts it
 // into the avx512 table only when the CPU reports it; without it that table keeps the AVX2 form.
-#include "core/kernel_table.hpp"
+#include "core/kernels/kernel_table.hpp"
 #include "simd/hamming_blocked_x86.hpp"
 
 namespace aief::simd_avx512vpopcntdq {

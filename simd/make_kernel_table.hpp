@@ -5,7 +5,7 @@
 // *_x86.hpp holds SSE4.2 / AVX2 / AVX-512 intrinsics, *_neon.hpp AArch64 NEON intrinsics.
 #include <cstddef>
 
-#include "core/kernel_table.hpp"
+#include "core/kernels/kernel_table.hpp"
 #include "simd/block_entropy_portable.hpp"
 #include "simd/fast9_portable.hpp"
 #include "simd/gaussian_blur_portable.hpp"

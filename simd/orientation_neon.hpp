@@ -1,5 +1,5 @@
 #pragma once
-// Intensity-centroid moments on AArch64 NEON: the contract of core/orientation.hpp, the same
+// Intensity-centroid moments on AArch64 NEON: the contract of core/kernels/orientation.hpp, the same
 // integers. Each disc row is two 16-byte loads (pixels x-16 .. x+15), masked to the disc. With
 // byte i of a load being the pixel at u = i - 16:
 //   m10 = sum u I = sum i I - 16 sum I,   m01 = sum v (row sum),
@@ -10,7 +10,7 @@
 
 #include <arm_neon.h>
 
-#include "core/orientation.hpp"
+#include "core/kernels/orientation.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

@@ -1,12 +1,12 @@
 #pragma once
-// Intensity-centroid moments, vectorised: the contract of core/orientation.hpp, the same
+// Intensity-centroid moments, vectorised: the contract of core/kernels/orientation.hpp, the same
 // integers. Each disc row is one 32-byte load (pixels x-16 .. x+15) and two vpmaddubsw against
 // per-row weights: u inside the disc and 0 outside for m10, 1 inside for the row sum that m01
 // weighs by v. Pair sums stay in int16 (|u| <= 15, 2 * 255 * 15 < 32768).
 #include <cstdint>
 #include <type_traits>
 
-#include "core/orientation.hpp"
+#include "core/kernels/orientation.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

@@ -1,5 +1,5 @@
 #pragma once
-// Q8 bilinear downsampling on AArch64 NEON: the contract of core/pyramid_resize.hpp, the same
+// Q8 bilinear downsampling on AArch64 NEON: the contract of core/kernels/pyramid_resize.hpp, the same
 // bytes. The arithmetic of simd/pyramid_resize_x86.hpp (read its header for the bounds) with
 // NEON's equivalents: the plan's pshufb masks drive tbl (vqtbl1q_u8; its 0x80 lanes read 0 in
 // both), pmaddwd is multiply_add_pairs, and the packs are exact narrowings (values 0..255).
@@ -7,7 +7,7 @@
 
 #include <arm_neon.h>
 
-#include "core/pyramid_resize.hpp"
+#include "core/kernels/pyramid_resize.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

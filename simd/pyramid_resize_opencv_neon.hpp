@@ -1,6 +1,6 @@
 #pragma once
 // cv::resize INTER_LINEAR's 8-bit arithmetic on AArch64 NEON: the contract of
-// core/pyramid_resize_opencv.hpp, the same bytes. The passes of simd/pyramid_resize_opencv_x86.hpp
+// core/kernels/pyramid_resize_opencv.hpp, the same bytes. The passes of simd/pyramid_resize_opencv_x86.hpp
 // (read its header) with NEON's equivalents: the plan's pshufb masks drive tbl (vqtbl1q_u8; its
 // 0x80 lanes read 0 in both), pmaddwd is multiply_add_pairs, and pmulhw is a widening multiply
 // (smull, exact) narrowed by an arithmetic shift of 16 (shrn), (h >> 4) b >> 16 exactly.
@@ -8,7 +8,7 @@
 
 #include <arm_neon.h>
 
-#include "core/pyramid_resize_opencv.hpp"
+#include "core/kernels/pyramid_resize_opencv.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

@@ -1,6 +1,6 @@
 #pragma once
 // cv::resize INTER_LINEAR's 8-bit arithmetic, vectorised: the contract of
-// core/pyramid_resize_opencv.hpp, the same bytes, on SSE4.2, AVX2 and AVX-512 (which runs the
+// core/kernels/pyramid_resize_opencv.hpp, the same bytes, on SSE4.2, AVX2 and AVX-512 (which runs the
 // 256-bit form).
 //
 // Horizontal pass, 8 outputs per 128-bit lane: the plan's x groups say which 16 source bytes
@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "core/pyramid_resize_opencv.hpp"
+#include "core/kernels/pyramid_resize_opencv.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

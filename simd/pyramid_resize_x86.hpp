@@ -1,5 +1,5 @@
 #pragma once
-// Q8 bilinear downsampling, vectorised: the contract of core/pyramid_resize.hpp, the same bytes.
+// Q8 bilinear downsampling, vectorised: the contract of core/kernels/pyramid_resize.hpp, the same bytes.
 //
 // Horizontal first, on the u8 rows, 8 outputs per 128-bit lane. The plan's x groups
 // (ResizePlan::x_group_*) say which 16 source bytes the 8 outputs read; one pshufb per half
@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "core/pyramid_resize.hpp"
+#include "core/kernels/pyramid_resize.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

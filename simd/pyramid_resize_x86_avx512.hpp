@@ -1,5 +1,5 @@
 #pragma once
-// Q8 bilinear downsampling with AVX-512BW: the contract of core/pyramid_resize.hpp, the same bytes.
+// Q8 bilinear downsampling with AVX-512BW: the contract of core/kernels/pyramid_resize.hpp, the same bytes.
 //
 // Vertical first, then horizontal: the sum is one integer whichever pass runs first,
 //   S = sum over the four taps = v(sx) (256 - wx) + v(sx + 1) wx,  v(x) = top[x] (256 - wy) +
@@ -17,7 +17,7 @@
 
 #include <immintrin.h>
 
-#include "core/pyramid_resize.hpp"
+#include "core/kernels/pyramid_resize.hpp"
 #include "simd/pyramid_resize_x86.hpp"
 
 namespace aief::simd {

@@ -1,5 +1,5 @@
 #pragma once
-// rBRIEF-256 in two passes per keypoint (contract: core/rbrief.hpp):
+// rBRIEF-256 in two passes per keypoint (contract: core/kernels/rbrief.hpp):
 //   1. the 512 rotated sample offsets, in float lanes with exactly the scalar contract's
 //      operations (multiply, multiply, subtract or add, round half to even), so they are the
 //      same integers; stored as signed byte offsets from the keypoint (dy * stride + dx), laid
@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/rbrief.hpp"
+#include "core/kernels/rbrief.hpp"
 #include "simd/simd_support.hpp"
 
 #if !defined(__aarch64__)
@@ -93,7 +93,7 @@ void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* a
       const I32 dy = xsimd::nearbyint_as_int(x * b + y * a);
       (dy * step + dx).store_aligned(offset + i);
     }
-    // Every sample lies inside the view: core/rbrief.hpp (kSampleReach < kEdgeBorder).
+    // Every sample lies inside the view: core/kernels/rbrief.hpp (kSampleReach < kEdgeBorder).
     const std::uint8_t* center = blurred.row(points[k].y) + points[k].x;
     std::uint64_t words[4];
     for (int w = 0; w < 4; ++w) {

@@ -1,5 +1,5 @@
 #pragma once
-// The unsharp mask row, for every set: the contract of core/unsharp_mask.hpp, the same bytes.
+// The unsharp mask row, for every set: the contract of core/kernels/unsharp_mask.hpp, the same bytes.
 //
 // Written for the compiler's vectoriser, not with xsimd batches: both passes are straight loops
 // over restrict-qualified rows (the u8 -> u16 vertical sums, then the 32-bit blur, detail,
@@ -10,7 +10,7 @@
 // stage in docs/design.md §5.
 #include <cstdint>
 
-#include "core/unsharp_mask.hpp"
+#include "core/kernels/unsharp_mask.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/candidate.hpp"
-#include "core/distribution.hpp"
+#include "core/distribution/candidate.hpp"
+#include "core/distribution/distribution.hpp"
 
 namespace aief::test {
 

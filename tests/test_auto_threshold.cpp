@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "aief/extractor.hpp"
-#include "core/auto_threshold.hpp"
+#include "core/frame/auto_threshold.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "aief/image.hpp"
-#include "core/block_entropy.hpp"
-#include "core/frame_analysis.hpp"
+#include "core/kernels/block_entropy.hpp"
+#include "core/frame/frame_analysis.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {

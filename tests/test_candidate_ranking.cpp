@@ -11,9 +11,9 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "core/candidate_pool.hpp"
-#include "core/frame_analysis.hpp"
-#include "core/level_geometry.hpp"
+#include "core/distribution/candidate_pool.hpp"
+#include "core/frame/frame_analysis.hpp"
+#include "core/level/level_geometry.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/distribution.hpp"
+#include "core/distribution/distribution.hpp"
 #include "tests/candidate_level.hpp"
 
 namespace aief {

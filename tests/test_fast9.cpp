@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 #include <opencv2/features2d.hpp>
 
-#include "core/fast9.hpp"
-#include "core/fast9_detect.hpp"
-#include "core/frame_analysis.hpp"
+#include "core/kernels/fast9.hpp"
+#include "core/kernels/fast9_detect.hpp"
+#include "core/frame/frame_analysis.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,4 +1,4 @@
-// The frame pipeline (core/frame_pipeline.hpp) with a stage clock gives the bytes it gives
+// The frame pipeline (core/frame/frame_pipeline.hpp) with a stage clock gives the bytes it gives
 // without one, and the clock hears from every stage: what aief bench times is what extract runs.
 #include <cstdint>
 #include <cstring>
@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "aief/extractor.hpp"
-#include "core/frame_pipeline.hpp"
-#include "core/stage_times.hpp"
+#include "core/frame/frame_pipeline.hpp"
+#include "core/level/stage_times.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {

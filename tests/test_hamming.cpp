@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/bound_filter.hpp"
-#include "core/hamming.hpp"
-#include "core/hamming_blocked.hpp"
+#include "core/kernels/bound_filter.hpp"
+#include "core/kernels/hamming.hpp"
+#include "core/kernels/hamming_blocked.hpp"
 
 namespace aief {
 namespace {

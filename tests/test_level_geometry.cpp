@@ -1,4 +1,4 @@
-// Block grids (core/level_geometry.hpp): block_of's arithmetic equals the definition, the number
+// Block grids (core/level/level_geometry.hpp): block_of's arithmetic equals the definition, the number
 // of inner edges at or before the pixel, for every pixel of many level sizes and block sizes, the
 // pixels around the grid's area included (they take the nearest block).
 #include <algorithm>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/level_geometry.hpp"
+#include "core/level/level_geometry.hpp"
 
 namespace aief {
 namespace {

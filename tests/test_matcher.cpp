@@ -5,7 +5,7 @@
 
 #include "aief/error.hpp"
 #include "aief/match.hpp"
-#include "core/hamming.hpp"
+#include "core/kernels/hamming.hpp"
 
 namespace aief {
 namespace {

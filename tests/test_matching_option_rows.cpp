@@ -1,4 +1,4 @@
-// The option tables of matching, the sweep and RANSAC (core/matching_option_rows.cpp): every field
+// The option tables of matching, the sweep and RANSAC (core/options/matching_option_rows.cpp): every field
 // is a row, every row with a flag reaches aief match / aief adapt and their --help, validate() is
 // made from the rows, the matcher's names are read from their one name table, and the ratio rule
 // (--ratio with --matcher ratio only) holds. Before, these options were a second, hand-made
@@ -14,8 +14,8 @@
 #include "aief/error.hpp"
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
-#include "core/option_names.hpp"
-#include "core/option_table.hpp"
+#include "core/options/option_names.hpp"
+#include "core/options/option_table.hpp"
 #include "tests/field_count.hpp"
 #include "tests/test_support.hpp"
 

@@ -10,11 +10,11 @@
 #include <opencv2/core.hpp>
 
 #include "aief/extractor.hpp"
-#include "core/candidate_pool.hpp"
-#include "core/frame_analysis.hpp"
-#include "core/keypoint_position.hpp"
-#include "core/level_geometry.hpp"
-#include "core/pyramid_resize.hpp"
+#include "core/distribution/candidate_pool.hpp"
+#include "core/frame/frame_analysis.hpp"
+#include "core/level/keypoint_position.hpp"
+#include "core/level/level_geometry.hpp"
+#include "core/kernels/pyramid_resize.hpp"
 #include "simd/kernels.hpp"
 #include "tests/candidate_level.hpp"
 #include "tests/test_support.hpp"

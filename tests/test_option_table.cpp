@@ -1,4 +1,4 @@
-// The option table (core/option_table.hpp): every field of ExtractorOptions is a row, and every
+// The option table (core/options/option_table.hpp): every field of ExtractorOptions is a row, and every
 // row reaches every front end (a CLI flag, an ORB-SLAM settings key, the output record; the
 // Python keyword in python/tests/test_options.py), each given value taking effect. The number
 // syntax, the enum names, and the one resolution rule (the mode first, the options given over it,
@@ -17,8 +17,8 @@
 #include "aief/error.hpp"
 #include "aief/orbslam2_extractor.hpp"
 #include "aief/version.hpp"
-#include "core/option_names.hpp"
-#include "core/option_table.hpp"
+#include "core/options/option_names.hpp"
+#include "core/options/option_table.hpp"
 #include "tests/field_count.hpp"
 #include "tests/test_support.hpp"
 

@@ -297,7 +297,7 @@ TEST(OrbSlam3DropIn, CarriedThresholdFromTheSettingsChangesFAfterTheFirstSweep) 
   EXPECT_TRUE(orb.extractor().options().carried_threshold);
   EXPECT_EQ(orb.extractor().options().carry_every, 15);
   // A panning, dimming video: F starts at the default and the first sweep's F replaces it (the
-  // sweep is spread over the frames, core/spread_sweep.hpp: at 320x240 and 500 features it
+  // sweep is spread over the frames, core/sweep/spread_sweep.hpp: at 320x240 and 500 features it
   // completes within 90 frames).
   const cv::Mat scene = test::load_sample_gray("leuven", "img1.png");
   std::vector<double> used;

@@ -237,7 +237,7 @@ TEST_P(PipelineDifferential, DescribingGivenKeypointsGivesTheScalarBytesAndTheEx
 INSTANTIATE_TEST_SUITE_P(SeededCases, PipelineDifferential, testing::Range(0, kCases));
 
 // The carried F through a video (docs/design.md §10): the sweep spread over frames by its
-// estimates of work (core/spread_sweep.hpp) must switch F at the same frame and give the same
+// estimates of work (core/sweep/spread_sweep.hpp) must switch F at the same frame and give the same
 // bytes on every frame under every kernel set and thread count. A case takes a seeded case's
 // options in a mode with an entropy mask, carried F, a sweep due every 1-4 frames, and a video
 // panning over a crop of it, long enough for sweeps to complete.

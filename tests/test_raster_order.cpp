@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/raster_order.hpp"
+#include "core/distribution/raster_order.hpp"
 
 namespace aief {
 namespace {

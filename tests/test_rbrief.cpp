@@ -11,10 +11,10 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/gaussian_blur.hpp"
-#include "core/hamming.hpp"
-#include "core/orientation.hpp"
-#include "core/rbrief.hpp"
+#include "core/kernels/gaussian_blur.hpp"
+#include "core/kernels/hamming.hpp"
+#include "core/kernels/orientation.hpp"
+#include "core/kernels/rbrief.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -168,7 +168,7 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
   EXPECT_LT(radius, kEdgeBorder - 0.5);
 }
 
-// The disc core/patch_blur.cpp blurs: every rotated sample whose |dy| rounds to d has |dx| <=
+// The disc core/description/patch_blur.cpp blurs: every rotated sample whose |dy| rounds to d has |dx| <=
 // kSampleHalfWidth[d], at 36000 angles (a hundredth of a degree apart, in the kernel's own float
 // formula), and the table equals its derivation from the pattern's largest radius.
 TEST(Rbrief, RotatedSamplesStayInsideTheirDisc) {

@@ -13,7 +13,7 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "core/kernel_table.hpp"
+#include "core/kernels/kernel_table.hpp"
 #include "simd/kernel_validation.hpp"
 #include "simd/kernels.hpp"
 #include "tests/pgm_image.hpp"

@@ -1,4 +1,4 @@
-// The threshold fallback policy (core/threshold_fallback.hpp) on a table of block entropies, no
+// The threshold fallback policy (core/entropy/threshold_fallback.hpp) on a table of block entropies, no
 // image: which F each level ends at, which budgets the shortfall raises, what it detects.
 #include <cstdint>
 #include <utility>
@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "aief/options.hpp"
-#include "core/threshold_fallback.hpp"
+#include "core/entropy/threshold_fallback.hpp"
 
 namespace aief {
 namespace {

@@ -1,4 +1,4 @@
-// The threshold fallback policy (core/threshold_fallback.hpp) on an image, through the extractor:
+// The threshold fallback policy (core/entropy/threshold_fallback.hpp) on an image, through the extractor:
 // in the aief mode, the budget a level short of candidates leaves undelivered goes to the levels
 // with candidates to spare, so the frame delivers min(N, candidates in the kept blocks) at every
 // kernel set and thread count. The policy on a table, no image: tests/test_threshold_fallback.cpp.
@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "aief/extractor.hpp"
-#include "core/level_geometry.hpp"
+#include "core/level/level_geometry.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 

@@ -8,7 +8,7 @@
 #include <tbb/info.h>
 
 #include "aief/error.hpp"
-#include "core/option_table.hpp"
+#include "core/options/option_table.hpp"
 
 namespace aief::cli {
 

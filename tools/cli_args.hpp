@@ -40,7 +40,7 @@ class Args {
   std::vector<std::string> positionals_;
 };
 
-// The flags of an options struct's rows (core/option_table.hpp: MatchOptions, SweepOptions), the
+// The flags of an options struct's rows (core/options/option_table.hpp: MatchOptions, SweepOptions), the
 // options they set over `base` (throws UsageError), and their --help lines with the defaults.
 template <class Options>
 std::vector<FlagSpec> flags_of();

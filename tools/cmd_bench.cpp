@@ -15,8 +15,8 @@
 #include "aief/adapt.hpp"
 #include "aief/extractor.hpp"
 #include "aief/match.hpp"
-#include "core/frame_pipeline.hpp"
-#include "core/stage_times.hpp"
+#include "core/frame/frame_pipeline.hpp"
+#include "core/level/stage_times.hpp"
 #include "io/json_writer.hpp"
 #include "simd/kernels.hpp"
 #include "tools/cli_args.hpp"
@@ -72,7 +72,7 @@ std::vector<double> time_extract(Extractor& extractor, const GrayImage& image, i
   return total;
 }
 
-// Stages: the same pipeline extract() runs (core/frame_pipeline.hpp), with a stage clock, in
+// Stages: the same pipeline extract() runs (core/frame/frame_pipeline.hpp), with a stage clock, in
 // runs of their own so the totals of time_extract read no clock. A stage's milliseconds are
 // summed over the levels, and so over the threads that ran them side by side. The median of each
 // stage, by Stage.

@@ -31,7 +31,7 @@ enum class KernelSet {
   neon64,  // AArch64 Advanced SIMD
 };
 
-// Where a level point lands in level-0 pixels (core/keypoint_position.hpp).
+// Where a level point lands in level-0 pixels (core/level/keypoint_position.hpp).
 enum class CoordinateMap {
   scaled,        // x * scale_factor^n: the paper and ORB-SLAM2 (biased at coarse levels)
   pixel_centre,  // (x + 0.5) * (W_0 / W_n) - 0.5 per axis: where the pyramid sampled the point
@@ -51,39 +51,39 @@ enum class CandidateRanking {
 
 // How a pyramid level is resampled from the level above (docs/design.md §2).
 enum class PyramidResampling {
-  q8,      // the engine's Q8 bilinear, vector kernels (core/pyramid_resize.hpp)
-  opencv,  // cv::resize INTER_LINEAR to the byte: ORB-SLAM's pixels (core/pyramid_resize_opencv)
+  q8,      // the engine's Q8 bilinear, vector kernels (core/kernels/pyramid_resize.hpp)
+  opencv,  // cv::resize INTER_LINEAR to the byte: ORB-SLAM's pixels (core/kernels/pyramid_resize_opencv)
 };
 
 // Where detection's threshold retry and non-maximum suppression act (docs/design.md §5).
 enum class DetectionCells {
-  blocks,   // the engine's blocks, suppression over the whole level (core/level_detection.hpp)
-  orbslam,  // ORB-SLAM3's 35-pixel cells, each suppressed as its own image (core/orbslam_cells.hpp)
+  blocks,   // the engine's blocks, suppression over the whole level (core/detection/level_detection.hpp)
+  orbslam,  // ORB-SLAM3's 35-pixel cells, each suppressed as its own image (core/detection/orbslam_cells.hpp)
 };
 
 // How the quadtree breaks ties (docs/design.md §6).
 enum class QuadtreeTies {
-  full,     // a written tie-break for every ordering, exactly N per level (core/distribution.hpp)
-  orbslam,  // ORB-SLAM's list order and overshoot of up to 3 (core/octree_orbslam.hpp)
+  full,     // a written tie-break for every ordering, exactly N per level (core/distribution/distribution.hpp)
+  orbslam,  // ORB-SLAM's list order and overshoot of up to 3 (core/distribution/octree_orbslam.hpp)
 };
 
 // Where a block's first FAST threshold comes from (docs/design.md §5).
 enum class FastThresholdFrom {
   none,     // fast_threshold in every block (ORB-SLAM's iniThFAST)
   entropy,  // fast_min_threshold up to fast_threshold by block entropy
-            // (core/entropy_fast_threshold)
+            // (core/entropy/entropy_fast_threshold)
 };
 
 // What weights the quadtree's splits (docs/design.md §6).
 enum class QuadtreeWeight {
   none,     // every node splits each round (distribute_quadtree / ORB-SLAM's octree)
-  entropy,  // the node of the largest block-entropy weight splits next (core/quadtree_weighted)
+  entropy,  // the node of the largest block-entropy weight splits next (core/distribution/quadtree_weighted)
 };
 
 // The angle of the intensity centroid (docs/design.md §7).
 enum class Orientation {
   atan2,        // atan2 in double, rounded to float
-  opencv_fast,  // cv::fastAtan2 in float, ORB-SLAM's IC_Angle (core/fast_atan2.hpp)
+  opencv_fast,  // cv::fastAtan2 in float, ORB-SLAM's IC_Angle (core/kernels/fast_atan2.hpp)
 };
 
 // Named presets over ExtractorOptions, the rows of the paper's tables.
@@ -107,17 +107,17 @@ struct ExtractorOptions {
   // F of Eq. 9: a block is kept when its entropy is > F. 4.0 bits keeps textured blocks and
   // drops sky, walls and saturated areas on the Oxford images; `adapt` chooses F per scene.
   double entropy_threshold = 4.0;
-  // Pair-free automatic F (core/auto_threshold.hpp) instead of entropy_threshold: Otsu's split
+  // Pair-free automatic F (core/frame/auto_threshold.hpp) instead of entropy_threshold: Otsu's split
   // of the frame's own block entropies. `aief extract --threshold auto`.
   bool auto_threshold = false;
-  // F carried through a video (core/carried_threshold.hpp, docs/design.md §10): the extractor
+  // F carried through a video (core/sweep/carried_threshold.hpp, docs/design.md §10): the extractor
   // runs the adaptive sweep on the pair (previous frame, current frame) every carry_every frames,
   // spread over the following frames, and applies the F it chooses from the frame after it ends;
   // entropy_threshold until then. `aief extract --threshold carried`.
   bool carried_threshold = false;
   // Frames from the start of one carried sweep to the start of the next (at least the frames a
   // sweep takes: a sweep never starts while one runs). 30: a sweep takes 12 frames at most
-  // (core/carried_threshold.hpp), so the frames pay for one every 30 (docs/design.md §10).
+  // (core/sweep/carried_threshold.hpp), so the frames pay for one every 30 (docs/design.md §10).
   int carry_every = 30;
   // Level-0 position of a keypoint. The pyramid is pixel-centre aligned, so x * scale is off by
   // 3-8 px at levels 6-7 (docs/design.md §8); the paper and ORB-SLAM2 modes keep it for fidelity.
@@ -144,7 +144,7 @@ struct ExtractorOptions {
   bool auto_skips_uniform_blocks = true;
   // Automatic F: Otsu's split only when the block entropies fall into two classes, i.e. when its
   // effectiveness (between-class over total variance) reaches kAutoMinEffectiveness
-  // (core/auto_threshold.hpp); otherwise the frame has no low-information class and F = 0 keeps
+  // (core/frame/auto_threshold.hpp); otherwise the frame has no low-information class and F = 0 keeps
   // every block. false: always Otsu's split (capped to keep three quarters of the blocks).
   bool auto_requires_two_classes = true;
   // The choices of the faithful mode, each on its own for measurement: ORB-SLAM3's ORBextractor
@@ -164,7 +164,7 @@ struct ExtractorOptions {
   FastThresholdFrom fast_threshold_from = FastThresholdFrom::none;
   // Entropy-guided variant: FAST detects on a copy of each level whose low-entropy blocks are
   // sharpened (an unsharp mask whose amount falls with the block's entropy, blended between
-  // blocks; core/low_entropy_sharpen.hpp); orientation and descriptors read the level itself.
+  // blocks; core/entropy/low_entropy_sharpen.hpp); orientation and descriptors read the level itself.
   bool low_entropy_sharpen = false;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
@@ -209,7 +209,7 @@ constexpr int kPatchRadius = 15;  // half patch: orientation disc radius
 constexpr int kEdgeBorder = 19;   // keypoints lie at least this far from a level's edge
 constexpr int kDescriptorBytes = 32;
 // Upper bound of max_image_pixels (2^26, the default): the entropy sums in Q32 fixed point
-// (core/block_entropy.cpp, c log2 c * 2^32 per bin) stay exact below it for both measures.
+// (core/kernels/block_entropy.cpp, c log2 c * 2^32 per bin) stay exact below it for both measures.
 constexpr long long kLargestMaxImagePixels = 1LL << 26;
 
 }  // namespace aief

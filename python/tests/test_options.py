@@ -1,4 +1,4 @@
-"""aief.Extractor's keywords: every row of the option table (core/option_table.hpp) reaches the engine, and
+"""aief.Extractor's keywords: every row of the option table (core/options/option_table.hpp) reaches the engine, and
 the CLI's rule holds: the mode first, the keywords given over it, a conflict refused; numbers as numbers."""
 import numpy
 import pytest

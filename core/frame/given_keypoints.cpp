@@ -1,0 +1,132 @@
+#include "core/frame/given_keypoints.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "aief/error.hpp"
+#include "core/kernels/fast_atan2.hpp"
+#include "core/level/keypoint_position.hpp"
+
+namespace aief {
+
+void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels,
+                           GivenAngles angles) {
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    const Keypoint& kp = keypoints[i];
+    if (kp.octave < 0 || kp.octave >= n_levels)
+      throw Error("keypoint " + std::to_string(i) + " has octave " + std::to_string(kp.octave) +
+                  ", outside the extractor's levels 0.." + std::to_string(n_levels - 1));
+    if (angles == GivenAngles::keep && !std::isfinite(kp.angle_deg))
+      throw Error("keypoint " + std::to_string(i) + " has angle " + std::to_string(kp.angle_deg) +
+                  " (degrees): the given angles are kept, so each must be a number");
+  }
+}
+
+void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernels,
+                              const std::vector<Keypoint>& keypoints, GivenAngles given_angles,
+                              GivenKeypointScratch& scratch, Features& out,
+                              std::vector<std::int32_t>* kept_indices) {
+  const ExtractorOptions& options = analysis.options();
+  const int levels = analysis.level_count();
+  check_given_keypoints(keypoints, levels, given_angles);
+  const int width0 = analysis.level(0).geometry.width, height0 = analysis.level(0).geometry.height;
+  const std::size_t count = keypoints.size();
+
+  // Each keypoint to its level pixel; the border rule (core/frame/given_keypoints.hpp) removes some.
+  scratch.level_members.resize(static_cast<std::size_t>(levels));
+  for (std::vector<std::int32_t>& members : scratch.level_members) members.clear();
+  scratch.level_pixel.resize(count);
+  int deepest = -1;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Keypoint& kp = keypoints[i];
+    const PyramidLevel& level = analysis.level(kp.octave);
+    if (!level.usable()) continue;
+    const int w = level.geometry.width, h = level.geometry.height;
+    const LevelToImage mapping = level_to_image(options.coordinates, options.subpixel,
+                                                level.geometry.scale, width0, height0, w, h);
+    const PixelPoint p = level_pixel({kp.x, kp.y}, mapping);
+    if (p.x < kEdgeBorder || p.x >= w - kEdgeBorder || p.y < kEdgeBorder || p.y >= h - kEdgeBorder)
+      continue;
+    scratch.level_pixel[i] = p;
+    scratch.level_members[static_cast<std::size_t>(kp.octave)].push_back(
+        static_cast<std::int32_t>(i));
+    deepest = std::max(deepest, kp.octave);
+  }
+  for (int n = 1; n <= deepest; ++n) analysis.build_level(n);  // a chain: level n from level n - 1
+
+  scratch.angle_deg.resize(count);
+  scratch.descriptor_row.assign(count, -1);
+  scratch.descriptors.clear();
+  for (int n = 0; n <= deepest; ++n) {
+    const std::vector<std::int32_t>& members = scratch.level_members[static_cast<std::size_t>(n)];
+    if (members.empty()) continue;
+    const PyramidLevel& level = analysis.level(n);
+    const int w = level.geometry.width, h = level.geometry.height;
+    const int m = static_cast<int>(members.size());
+    scratch.points.clear();
+    int x_min = w, x_max = -1, y_min = h, y_max = -1;
+    for (std::int32_t i : members) {
+      const PixelPoint p = scratch.level_pixel[static_cast<std::size_t>(i)];
+      scratch.points.push_back(p);
+      x_min = std::min(x_min, p.x);
+      x_max = std::max(x_max, p.x);
+      y_min = std::min(y_min, p.y);
+      y_max = std::max(y_max, p.y);
+    }
+    // Orientation on the raw level, descriptors on the blurred one, as select() does.
+    std::vector<float>& angles = scratch.level_angle_deg;
+    angles.resize(members.size());
+    if (given_angles == GivenAngles::recompute) {
+      scratch.m10.resize(members.size());
+      scratch.m01.resize(members.size());
+      kernels.ic_moments(level.pixels, scratch.points.data(), m, scratch.m10.data(),
+                         scratch.m01.data());
+      const auto angle =
+          options.orientation == Orientation::opencv_fast ? orbslam_ic_angle_deg : ic_angle_deg;
+      for (std::size_t k = 0; k < members.size(); ++k)
+        angles[k] = angle(scratch.m10[k], scratch.m01[k]);
+    } else {
+      for (std::size_t k = 0; k < members.size(); ++k)
+        angles[k] = keypoints[static_cast<std::size_t>(members[k])].angle_deg;
+    }
+    for (std::size_t k = 0; k < members.size(); ++k)
+      scratch.angle_deg[static_cast<std::size_t>(members[k])] = angles[k];
+    // The blur is the same pixel for pixel whatever region is blurred, so only the rectangle the
+    // patterns read is: every sample lies within kEdgeBorder of its point.
+    scratch.blurred.resize(w, h);
+    const int y_begin = y_min - kEdgeBorder, y_end = y_max + kEdgeBorder + 1;
+    const MutableImageView whole = scratch.blurred.mutable_view();
+    kernels.gaussian7_rows(level.pixels, {whole.row(y_begin), w, y_end - y_begin, whole.stride},
+                           y_begin, y_end, x_min - kEdgeBorder, x_max + kEdgeBorder + 1);
+    const std::size_t first_row = scratch.descriptors.size() / kDescriptorBytes;
+    scratch.descriptors.resize((first_row + members.size()) * kDescriptorBytes);
+    kernels.rbrief_describe(scratch.blurred.view(), scratch.points.data(), angles.data(), m,
+                            scratch.descriptors.data() + first_row * kDescriptorBytes);
+    for (std::size_t k = 0; k < members.size(); ++k)
+      scratch.descriptor_row[static_cast<std::size_t>(members[k])] =
+          static_cast<std::int32_t>(first_row + k);
+  }
+
+  out.image_width = width0;
+  out.image_height = height0;
+  out.info = ExtractionInfo{};
+  out.keypoints.clear();
+  out.descriptors.clear();
+  if (kept_indices) kept_indices->clear();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::int32_t row = scratch.descriptor_row[i];
+    if (row < 0) continue;
+    Keypoint kp = keypoints[i];
+    kp.angle_deg = scratch.angle_deg[i];
+    out.keypoints.push_back(kp);
+    Descriptor& descriptor = out.descriptors.emplace_back();
+    std::memcpy(descriptor.data(),
+                scratch.descriptors.data() + static_cast<std::size_t>(row) * kDescriptorBytes,
+                kDescriptorBytes);
+    if (kept_indices) kept_indices->push_back(static_cast<std::int32_t>(i));
+  }
+}
+
+}  // namespace aief

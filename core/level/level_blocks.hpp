@@ -1,0 +1,50 @@
+#pragma once
+// What stages 2 and 3 learn about one level's blocks: each block's entropy, whether it is
+// uniform, whether it was detected and which candidates it holds; and Eq. 9, the mask a
+// threshold F makes of them.
+#include <cstdint>
+#include <vector>
+
+#include "core/distribution/candidate.hpp"
+#include "core/distribution/distribution.hpp"
+
+namespace aief {
+
+struct LevelBlocks {
+  std::vector<double> entropy_bits;         // per block, row-major (empty: entropy off)
+  std::vector<std::uint8_t> uniform;        // per block: 1 when all its pixels are one gray level
+  std::vector<std::uint8_t> detected;       // per block: 1 once its candidates are found
+  std::vector<BlockRange> candidate_range;  // per block: its candidates in `candidates`
+  std::vector<Candidate>
+      candidates;  // the level's detected candidates, block by block, raster order within
+  // With a detection mask, per block: 1 when any of its pixels is allowed (made by detection on
+  // first need; core/level/detection_mask.hpp). Empty otherwise.
+  std::vector<std::uint8_t> allowed;
+  // DetectionCells::orbslam: the candidates in ORB-SLAM's order (core/detection/orbslam_cells.hpp), which
+  // its octree's tie-breaks read; `candidates` holds them grouped by block. Empty otherwise.
+  std::vector<std::int32_t> orbslam_order;
+
+  // A new frame: `blocks` blocks, none detected.
+  void reset(int blocks) {
+    entropy_bits.clear();
+    uniform.clear();
+    detected.assign(static_cast<std::size_t>(blocks), 0);
+    candidate_range.assign(static_cast<std::size_t>(blocks), BlockRange{});
+    candidates.clear();
+    allowed.clear();
+    orbslam_order.clear();
+  }
+};
+
+// Eq. 9 on one level: block b is kept at F when its entropy is above F; with entropy off
+// (entropy_bits == nullptr) every block is kept.
+struct BlockMask {
+  const std::vector<double>* entropy_bits = nullptr;
+  double threshold = 0;
+
+  bool kept(int b) const {
+    return entropy_bits == nullptr || (*entropy_bits)[static_cast<std::size_t>(b)] > threshold;
+  }
+};
+
+}  // namespace aief

@@ -1,0 +1,115 @@
+#include "core/match/matcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "aief/error.hpp"
+#include "core/kernels/kernel_table.hpp"
+#include "parallel/scheduler.hpp"
+
+namespace aief {
+
+namespace {
+
+// Nearest and second nearest train of one query, and the nearest query of each train over a
+// band of rows: (distance, index) pairs, lower distance then lower index wins.
+struct Nearest {
+  int best = -1, best_distance = std::numeric_limits<int>::max();
+  int second_distance = std::numeric_limits<int>::max();
+};
+
+constexpr int kRowsPerBand = 64;  // queries per parallel piece; fixed, so merging is deterministic
+
+}  // namespace
+
+std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
+                                     const std::vector<Descriptor>& b, const MatchOptions& options,
+                                     const KernelTable& kernels) {
+  options.validate();
+  std::vector<Match> matches;
+  if (a.empty() || b.empty()) return matches;
+  const int n_a = static_cast<int>(a.size()), n_b = static_cast<int>(b.size());
+  const int bands = (n_a + kRowsPerBand - 1) / kRowsPerBand;
+
+  std::vector<Nearest> row_nearest(static_cast<std::size_t>(n_a));
+  // Column minima per band (only the mutual check needs them), merged in band order after.
+  const bool mutual = options.kind == MatcherKind::mutual;
+  std::vector<int> band_col_distance(mutual ? static_cast<std::size_t>(bands) * n_b : 0);
+  std::vector<int> band_col_best(band_col_distance.size());
+  const std::uint8_t* train = b.front().data();  // Descriptor is a plain byte array: contiguous
+
+  // Each band writes its own rows and its own column minima: any schedule, the same matches.
+  parallel::Scheduler().for_each(bands, [&](int band) {
+    std::vector<std::uint16_t> distances(static_cast<std::size_t>(n_b));
+    int* col_distance =
+        mutual ? band_col_distance.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
+    int* col_best =
+        mutual ? band_col_best.data() + static_cast<std::ptrdiff_t>(band) * n_b : nullptr;
+    if (mutual) std::fill(col_distance, col_distance + n_b, std::numeric_limits<int>::max());
+    const int end = std::min(n_a, (band + 1) * kRowsPerBand);
+    for (int i = band * kRowsPerBand; i < end; ++i) {
+      kernels.hamming_256_many(a[static_cast<std::size_t>(i)].data(), train, n_b, distances.data());
+      Nearest nearest;
+      for (int j = 0; j < n_b; ++j) {
+        const int d = distances[static_cast<std::size_t>(j)];
+        if (d < nearest.best_distance) {
+          nearest.second_distance = nearest.best_distance;
+          nearest.best_distance = d;
+          nearest.best = j;
+        } else if (d < nearest.second_distance) {
+          nearest.second_distance = d;
+        }
+        if (mutual && d < col_distance[j]) {  // rows ascend: ties keep the lower query
+          col_distance[j] = d;
+          col_best[j] = i;
+        }
+      }
+      row_nearest[static_cast<std::size_t>(i)] = nearest;
+    }
+  });
+
+  std::vector<int> col_best;
+  if (mutual) {
+    col_best.assign(static_cast<std::size_t>(n_b), -1);
+    std::vector<int> col_distance(static_cast<std::size_t>(n_b), std::numeric_limits<int>::max());
+    for (int band = 0; band < bands; ++band)
+      for (int j = 0; j < n_b; ++j) {
+        const std::size_t k = static_cast<std::size_t>(band) * n_b + j;
+        if (band_col_distance[k] < col_distance[static_cast<std::size_t>(j)]) {
+          col_distance[static_cast<std::size_t>(j)] = band_col_distance[k];
+          col_best[static_cast<std::size_t>(j)] = band_col_best[k];
+        }
+      }
+  }
+
+  int min_distance = std::numeric_limits<int>::max();
+  for (const Nearest& nearest : row_nearest)
+    min_distance = std::min(min_distance, nearest.best_distance);
+  // The paper's filter (the ORB tutorial's "good matches"): max(2 * min_distance, 30).
+  const int paper_limit = std::max(2 * min_distance, 30);
+
+  for (int i = 0; i < n_a; ++i) {
+    const Nearest& nearest = row_nearest[static_cast<std::size_t>(i)];
+    if (nearest.best < 0 || nearest.best_distance > options.max_distance) continue;
+    bool keep = false;
+    switch (options.kind) {
+      case MatcherKind::mutual: keep = col_best[static_cast<std::size_t>(nearest.best)] == i; break;
+      case MatcherKind::ratio:
+        keep = static_cast<double>(nearest.best_distance) < options.ratio * nearest.second_distance;
+        break;
+      case MatcherKind::paper: keep = nearest.best_distance <= paper_limit; break;
+    }
+    if (keep) matches.push_back({i, nearest.best, nearest.best_distance});
+  }
+  return matches;
+}
+
+std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
+                                     const std::vector<Descriptor>& b,
+                                     const MatchOptions& options) {
+  return match_descriptors(a, b, options, kernel_table(KernelSet::auto_select));
+}
+
+}  // namespace aief

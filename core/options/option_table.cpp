@@ -1,0 +1,650 @@
+#include "core/options/option_table.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <type_traits>
+
+#include "aief/error.hpp"
+#include "core/options/option_access.hpp"
+#include "core/options/option_names.hpp"
+
+namespace aief::option_table {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The mode: a preset over the fields, no field of its own.
+constexpr FieldAccess<ExtractorOptions> kPreset{ValueKind::choice, nullptr, nullptr,
+                                                choices_of<Mode>};
+
+// F, "auto" (the automatic threshold) or "carried" (F carried through a video).
+void set_threshold(ExtractorOptions& options, const OptionValue& value) {
+  const std::string_view* word = std::get_if<std::string_view>(&value);
+  options.auto_threshold = word != nullptr && *word == "auto";
+  options.carried_threshold = word != nullptr && *word == "carried";
+  if (word == nullptr) options.entropy_threshold = std::get<double>(value);
+}
+
+// P, or "inf" / "off": no pool.
+void set_pool(ExtractorOptions& options, const OptionValue& value) {
+  options.candidate_pool =
+      std::holds_alternative<std::string_view>(value) ? kInfinity : std::get<double>(value);
+}
+
+using M = ExtractorOptions;
+// The seven conventions every mode but aief keeps from the code it reproduces (x * scale, no
+// sub-pixel, no pool, frame-wide guard, peak ranking, every block in the automatic F).
+constexpr std::string_view kDefault = "default";
+
+// The table. Record order is this order.
+std::vector<OptionRow> make_rows() {
+  return {
+      {.key = "mode",
+       .field = kPreset,
+       .cli_flag = "--mode",
+       .cli_value = "M",
+       .python_keyword = "mode",
+       .python_position = 2,
+       .yaml_key = "ORBextractor.mode",
+       .help = "named preset; aief-paper is the published algorithm to the byte (x * scale, no "
+               "sub-pixel, no pool, "
+               "frame-wide guard); orbslam2 keeps x * scale too"},
+      {.key = "n_features",
+       .field = access<&M::n_features>,
+       .cli_flag = "--features",
+       .cli_value = "N",
+       .python_keyword = "n_features",
+       .python_position = 1,
+       .yaml_key = "ORBextractor.nFeatures",
+       .help = "keypoints wanted over all levels",
+       .low = 1,
+       .high = 1'000'000},
+      {.key = "scale_factor",
+       .field = access<&M::scale_factor>,
+       .cli_flag = "--scale",
+       .cli_value = "S",
+       .python_keyword = "scale",
+       .python_position = 5,
+       .yaml_key = "ORBextractor.scaleFactor",
+       .help = "scale factor between levels",
+       .low = 1,
+       .high = 4,
+       .low_is_open = true},
+      {.key = "n_levels",
+       .field = access<&M::n_levels>,
+       .cli_flag = "--levels",
+       .cli_value = "L",
+       .python_keyword = "levels",
+       .python_position = 4,
+       .yaml_key = "ORBextractor.nLevels",
+       .help = "pyramid levels",
+       .low = 1,
+       .high = 32},
+      {.key = "fast_threshold",
+       .field = access<&M::fast_threshold>,
+       .cli_flag = "--fast-threshold",
+       .cli_value = "T",
+       .python_keyword = "fast_threshold",
+       .yaml_key = "ORBextractor.iniThFAST",
+       .help = "FAST threshold tried first in a block",
+       .low = 1,
+       .high = 254},
+      {.key = "fast_min_threshold",
+       .field = access<&M::fast_min_threshold>,
+       .cli_flag = "--fast-min-threshold",
+       .cli_value = "T",
+       .python_keyword = "fast_min_threshold",
+       .yaml_key = "ORBextractor.minThFAST",
+       .help = "retry threshold for a block without corners (at most the FAST threshold)",
+       .low = 1,
+       .high = 254},
+      {.key = "block_size",
+       .field = access<&M::block_size>,
+       .cli_flag = "--block",
+       .cli_value = "B",
+       .python_keyword = "block_size",
+       .yaml_key = "ORBextractor.blockSize",
+       .help = "entropy / distribution block side, pixels",
+       .low = 8,
+       .high = 1024},
+      {.key = "distribution",
+       .field = access<&M::distribution>,
+       .help = "set by the mode",
+       .per_mode = {kDefault, "proportional", "quadtree", "quadtree", "quadtree"}},
+      {.key = "entropy",
+       .field = access<&M::entropy>,
+       .cli_flag = "--entropy",
+       .cli_value = "E",
+       .python_keyword = "entropy",
+       .yaml_key = "ORBextractor.entropy",
+       .help = "what a block's entropy measures; off: no mask",
+       .per_mode = {"", "", "=off", "", "=off"}},
+      {.key = "entropy_threshold",
+       .field = access<&M::entropy_threshold>.with_set(set_threshold),
+       .cli_flag = "--threshold",
+       .cli_value = "F|auto|carried",
+       .python_keyword = "threshold",
+       .python_position = 3,
+       .yaml_key = "ORBextractor.entropyThreshold",
+       .help = "entropy threshold F in bits (a block is kept when its entropy is > F); auto: "
+               "Otsu's split of the frame's own block entropies; carried: the adaptive sweep on "
+               "the previous and current frames every --carry-every frames, spread over the "
+               "frames that follow (F = 4 until the first sweep ends)",
+       .low = 0,
+       .high = 64,
+       .words = "auto|carried",
+       .needs_mask = "sets F of the entropy mask"},
+      {.key = "auto_threshold",
+       .field = access<&M::auto_threshold>,
+       .help = "set by --threshold auto",
+       .words = "on|off"},
+      {.key = "carried_threshold",
+       .field = access<&M::carried_threshold>,
+       .help = "set by --threshold carried",
+       .words = "on|off"},
+      {.key = "carry_every",
+       .field = access<&M::carry_every>,
+       .cli_flag = "--carry-every",
+       .cli_value = "N",
+       .python_keyword = "carry_every",
+       .yaml_key = "ORBextractor.carryEvery",
+       .help = "with --threshold carried: frames from the start of one sweep to the start of the "
+               "next (a sweep never starts while one runs)",
+       .low = 1,
+       .high = 1'000'000,
+       .needs_mask = "sets how often the carried F is swept"},
+      {.key = "coordinates",
+       .field = access<&M::coordinates>,
+       .cli_flag = "--coordinates",
+       .cli_value = "C",
+       .python_keyword = "coordinates",
+       .yaml_key = "ORBextractor.coordinates",
+       .help = "a keypoint's level-0 position: pixel-centre (x + 0.5) * W0 / Wn - 0.5, or scaled x "
+               "* scale^n",
+       .per_mode = {kDefault, "scaled", "scaled", "scaled", "scaled"}},
+      {.key = "subpixel",
+       .field = access<&M::subpixel>,
+       .cli_flag = "--subpixel",
+       .cli_value = "on|off",
+       .python_keyword = "subpixel",
+       .yaml_key = "ORBextractor.subpixel",
+       .help = "parabola peak of the FAST scores per axis",
+       .words = "on|off",
+       .per_mode = {kDefault, "off", "off", "off", "off"}},
+      {.key = "candidate_pool",
+       .field = access<&M::candidate_pool>.with_set(set_pool),
+       .cli_flag = "--pool",
+       .cli_value = "P|inf",
+       .python_keyword = "pool",
+       .yaml_key = "ORBextractor.candidatePool",
+       .help = "candidate pool: each level keeps its best ceil(P x N_level) candidates before the "
+               "water-level "
+               "distribution; inf (or off): none",
+       .low = 1,
+       .high = kInfinity,
+       .words = "inf|off",
+       .per_mode = {kDefault, "inf", "inf", "inf", "inf"}},
+      {.key = "candidate_ranking",
+       .field = access<&M::candidate_ranking>,
+       .cli_flag = "--ranking",
+       .cli_value = "R",
+       .python_keyword = "ranking",
+       .yaml_key = "ORBextractor.ranking",
+       .help = "what the pool and the distribution rank candidates by: cross = FAST scores summed "
+               "over the corner "
+               "and its 4 neighbours, peak = the corner's score",
+       .per_mode = {kDefault, "peak", "peak", "peak", "peak"}},
+      {.key = "starvation_guard",
+       .field = access<&M::starvation_guard>,
+       .cli_flag = "--starvation-guard",
+       .cli_value = "G",
+       .python_keyword = "starvation_guard",
+       .yaml_key = "ORBextractor.starvationGuard",
+       .help = "level: F lowered per level until it has its budget, what a level still lacks going "
+               "to the levels "
+               "with candidates to spare, finest first; frame: F lowered for the whole frame until "
+               "it has n_features",
+       .per_mode = {kDefault, "frame", "frame", "frame", "frame"}},
+      {.key = "auto_skips_uniform_blocks",
+       .field = access<&M::auto_skips_uniform_blocks>,
+       .cli_flag = "--auto-uniform-blocks",
+       .cli_value = "skip|count",
+       .python_keyword = "auto_skips_uniform_blocks",
+       .yaml_key = "ORBextractor.autoUniformBlocks",
+       .help = "whether one-gray-level blocks take part in the automatic F",
+       .words = "skip|count",
+       .per_mode = {kDefault, "count", "count", "count", "count"}},
+      {.key = "auto_requires_two_classes",
+       .field = access<&M::auto_requires_two_classes>,
+       .cli_flag = "--auto-two-classes",
+       .cli_value = "on|off",
+       .python_keyword = "auto_requires_two_classes",
+       .yaml_key = "ORBextractor.autoTwoClasses",
+       .help = "automatic F: split only when the block entropies form two classes (Otsu's "
+               "effectiveness >= 0.75), "
+               "else F = 0 keeps every block",
+       .words = "on|off",
+       .per_mode = {kDefault, "off", "off", "off", "off"}},
+      {.key = "pyramid_resampling",
+       .field = access<&M::pyramid_resampling>,
+       .cli_flag = "--pyramid",
+       .cli_value = "R",
+       .python_keyword = "pyramid",
+       .yaml_key = "ORBextractor.pyramid",
+       .help = "how a level is resampled from the one above: q8 (the engine's vector kernels) or "
+               "opencv (cv::resize INTER_LINEAR to the byte, ORB-SLAM's pixels; scalar)",
+       .per_mode = {"", "", "", "", "opencv"}},
+      {.key = "detection_cells",
+       .field = access<&M::detection_cells>,
+       .cli_flag = "--detection-cells",
+       .cli_value = "C",
+       .python_keyword = "detection_cells",
+       .yaml_key = "ORBextractor.detectionCells",
+       .help = "where the FAST retry and suppression act: blocks (the engine's, suppression over "
+               "the level) or orbslam (ORB-SLAM3's 35-pixel cells, each its own image)",
+       .per_mode = {"", "", "", "", "orbslam"}},
+      {.key = "quadtree_ties",
+       .field = access<&M::quadtree_ties>,
+       .cli_flag = "--quadtree-ties",
+       .cli_value = "T",
+       .python_keyword = "quadtree_ties",
+       .yaml_key = "ORBextractor.quadtreeTies",
+       .help = "how the quadtree breaks ties: full (written tie-break, exactly N per level) or "
+               "orbslam (ORB-SLAM's list order, up to N + 3 per level); the quadtree only",
+       .per_mode = {"", "", "", "", "orbslam"}},
+      {.key = "orientation",
+       .field = access<&M::orientation>,
+       .cli_flag = "--orientation",
+       .cli_value = "O",
+       .python_keyword = "orientation",
+       .yaml_key = "ORBextractor.orientation",
+       .help = "the angle of the intensity centroid: atan2 (in double) or fast-atan2 "
+               "(cv::fastAtan2, ORB-SLAM's, about 0.01 degrees off)",
+       .per_mode = {"", "", "", "", "fast-atan2"}},
+      {.key = "quadtree_weight",
+       .field = access<&M::quadtree_weight>,
+       .cli_flag = "--quadtree-weight",
+       .cli_value = "W",
+       .python_keyword = "quadtree_weight",
+       .yaml_key = "ORBextractor.quadtreeWeight",
+       .help = "what orders the quadtree's splits: none (every node each round) or entropy (the "
+               "node whose candidates' block entropies sum highest splits next; every leaf keeps "
+               "its strongest); the quadtree only"},
+      {.key = "fast_threshold_from",
+       .field = access<&M::fast_threshold_from>,
+       .cli_flag = "--fast-threshold-from",
+       .cli_value = "S",
+       .python_keyword = "fast_threshold_from",
+       .yaml_key = "ORBextractor.fastThresholdFrom",
+       .help = "a block's first FAST threshold: none (the FAST threshold) or entropy (from the "
+               "retry threshold at 0 bits up to the FAST threshold at 6 bits, linearly); the "
+               "engine's blocks only"},
+      {.key = "low_entropy_sharpen",
+       .field = access<&M::low_entropy_sharpen>,
+       .cli_flag = "--low-entropy-sharpen",
+       .cli_value = "on|off",
+       .python_keyword = "low_entropy_sharpen",
+       .yaml_key = "ORBextractor.lowEntropySharpen",
+       .help = "FAST detects on the level with its low-entropy blocks sharpened (unsharp mask, "
+               "amount 2 at 0 bits falling linearly to none at 6 bits, blended between blocks); "
+               "orientation and descriptors read the level as it is",
+       .words = "on|off"},
+      {.key = "kernels",
+       .field = access<&M::kernels>,
+       .cli_flag = "--kernels",
+       .cli_value = "K",
+       .python_keyword = "kernels",
+       .python_position = 7,
+       .yaml_key = "ORBextractor.kernels",
+       .help = "the pixel kernels' instruction set; every set gives the same output",
+       .changes_output = false},
+      {.key = "threads",
+       .field = access<&M::threads>,
+       .cli_flag = "--threads",
+       .cli_value = "T",
+       .python_keyword = "threads",
+       .python_position = 6,
+       .yaml_key = "ORBextractor.threads",
+       .help = "worker threads, 0 = all cores; any count gives the same output",
+       .low = 0,
+       .high = 256,
+       .changes_output = false},
+      {.key = "max_image_pixels",
+       .field = access<&M::max_image_pixels>,
+       .cli_flag = "--max-image-pixels",
+       .cli_value = "N",
+       .python_keyword = "max_image_pixels",
+       .yaml_key = "ORBextractor.maxImagePixels",
+       .help = "largest image accepted, in pixels, refused before any allocation (at most 2^26: "
+               "the exact entropy "
+               "sums)",
+       .low = 1,
+       .high = static_cast<double>(kLargestMaxImagePixels),
+       .changes_output = false},
+  };
+}
+
+std::vector<std::string_view> split_words(std::string_view words) {
+  std::vector<std::string_view> out;
+  while (!words.empty()) {
+    const std::size_t bar = words.find('|');
+    out.push_back(words.substr(0, bar));
+    words = bar == std::string_view::npos ? std::string_view() : words.substr(bar + 1);
+  }
+  return out;
+}
+
+std::string number_text(double value) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;  // shortest round trip
+  return std::string(buffer, end);
+}
+
+std::string range_text(const ValueSpec& spec) {
+  const auto bound = [&](double v) {
+    return spec.kind == ValueKind::integer ? std::to_string(static_cast<long long>(v))
+                                           : number_text(v);
+  };
+  if (std::isinf(spec.high)) return (spec.low_is_open ? "> " : ">= ") + bound(spec.low);
+  return std::string(spec.low_is_open ? "(" : "[") + bound(spec.low) + ", " + bound(spec.high) +
+         (spec.high_is_open ? ")" : "]");
+}
+
+std::string joined(const std::vector<std::string_view>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) out += i + 1 == items.size() ? " or " : ", ";
+    out += items[i];
+  }
+  return out;
+}
+
+bool in_range(const ValueSpec& spec, double value) {
+  const bool above_low = spec.low_is_open ? value > spec.low : value >= spec.low;
+  const bool below_high = spec.high_is_open ? value < spec.high : value <= spec.high;
+  return above_low && below_high;
+}
+
+const OptionValue* mode_value(const OptionRow& row, Mode mode, OptionValue& storage, bool& fixed) {
+  std::string_view text = row.per_mode[static_cast<std::size_t>(mode)];
+  fixed = !text.empty() && text[0] == '=';
+  if (fixed) text.remove_prefix(1);
+  if (text.empty()) return nullptr;
+  storage = text == kDefault ? row.field.get(ExtractorOptions{}) : parse_value(row, text, row.key);
+  return &storage;
+}
+
+}  // namespace
+
+template <>
+const std::vector<Row<ExtractorOptions>>& rows_of<ExtractorOptions>() {
+  static const std::vector<OptionRow> table = make_rows();
+  return table;
+}
+
+bool parse_integer(std::string_view text, long long& value) {
+  std::string_view digits = text;
+  if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
+  if (digits.empty() || (digits[0] == '-' && digits.size() == 1)) return false;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  return end == digits.data() + digits.size() &&
+         error == std::errc();  // overflow: not a value here
+}
+
+bool parse_decimal(std::string_view text, double& value) {
+  std::size_t i = 0;
+  const auto digits = [&] {
+    const std::size_t from = i;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
+    return i - from;
+  };
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  std::size_t mantissa = digits();
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return false;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  if (i != text.size()) return false;
+  const std::string copy(text);
+  errno = 0;
+  value = std::strtod(copy.c_str(), nullptr);
+  if (errno == ERANGE && std::isinf(value)) return false;
+  if (value == 0) value = 0;  // -0 is 0
+  return true;
+}
+
+std::string expected_values(const ValueSpec& spec) {
+  const std::vector<std::string_view> words = split_words(spec.words);
+  switch (spec.kind) {
+    case ValueKind::integer: return "an integer in " + range_text(spec);
+    case ValueKind::number: {
+      std::vector<std::string_view> items;
+      const std::string number =
+          "a number " + std::string(std::isinf(spec.high) ? "" : "in ") + range_text(spec);
+      items.push_back(number);
+      items.insert(items.end(), words.begin(), words.end());
+      return joined(items);
+    }
+    case ValueKind::choice: return joined(spec.choices()->names);
+    case ValueKind::toggle: return joined(words);
+  }
+  return "";
+}
+
+OptionValue parse_value(const ValueSpec& spec, std::string_view text, std::string_view named) {
+  const auto refuse = [&]() -> OptionValue {
+    throw Error(std::string(named) + " expects " + expected_values(spec) + ", got '" +
+                std::string(text) + "'");
+  };
+  switch (spec.kind) {
+    case ValueKind::integer: {
+      long long value = 0;
+      if (!parse_integer(text, value) || !in_range(spec, static_cast<double>(value)))
+        return refuse();
+      return value;
+    }
+    case ValueKind::number: {
+      for (std::string_view word : split_words(spec.words))
+        if (text == word) return word;
+      double value = 0;
+      if (!parse_decimal(text, value) || !in_range(spec, value)) return refuse();
+      return value;
+    }
+    case ValueKind::choice: {
+      const ChoiceNames& choices = *spec.choices();
+      for (std::size_t i = 0; i < choices.names.size(); ++i)
+        if (text == choices.names[i] || text == choices.enumerators[i]) return choices.names[i];
+      throw Error("unknown " + std::string(choices.what) + " '" + std::string(text) + "' for " +
+                  std::string(named) + " (expected " + joined(choices.names) + ")");
+    }
+    case ValueKind::toggle: {
+      const std::vector<std::string_view> words = split_words(spec.words);
+      if (text == words[0] || text == "1") return true;  // 1 / 0: settings files' custom
+      if (text == words[1] || text == "0") return false;
+      return refuse();
+    }
+  }
+  return refuse();
+}
+
+std::string text_of(const ValueSpec& spec, const OptionValue& value) {
+  if (const bool* flag = std::get_if<bool>(&value))
+    return std::string(split_words(spec.words)[*flag ? 0 : 1]);
+  if (const long long* integer = std::get_if<long long>(&value)) return std::to_string(*integer);
+  if (const double* number = std::get_if<double>(&value)) return number_text(*number);
+  return std::string(std::get<std::string_view>(value));
+}
+
+std::string defaults_text(const OptionRow& row) {
+  const ExtractorOptions defaults;
+  std::string text = row.is_field() ? text_of(row, row.field.get(defaults))
+                                    : std::string(option_names::name_of(Mode::aief));
+  // The modes that set another value, grouped by value: "; scaled in aief-paper, orbslam2,
+  // quadtree-entropy".
+  std::vector<std::pair<std::string, std::string>> others;  // value, modes
+  for (const auto& mode : option_names::Table<Mode>::names) {
+    OptionValue storage;
+    bool fixed = false;
+    const OptionValue* value =
+        row.is_field() ? mode_value(row, mode.value, storage, fixed) : nullptr;
+    if (!value) continue;
+    const std::string value_text = text_of(row, *value);
+    if (value_text == text) continue;
+    auto it = others.begin();
+    while (it != others.end() && it->first != value_text) ++it;
+    if (it == others.end())
+      others.emplace_back(value_text, std::string(mode.name));
+    else
+      it->second += ", " + std::string(mode.name);
+  }
+  for (const auto& [value, modes] : others) text += "; " + value + " in " + modes;
+  return text;
+}
+
+void check_value(std::string_view key, const ValueSpec& spec, const OptionValue& value) {
+  bool ok = true;
+  std::string shown;
+  if (const long long* integer = std::get_if<long long>(&value)) {
+    ok = in_range(spec, static_cast<double>(*integer));
+    shown = std::to_string(*integer);
+  } else if (const double* number = std::get_if<double>(&value)) {
+    // A row whose words name infinity (the pool's "inf") takes it; NaN is never in range.
+    const bool infinity_named = std::isinf(*number) && *number > 0 &&
+                                std::string_view(spec.words).find("inf") != std::string_view::npos;
+    ok = infinity_named || (std::isfinite(*number) && in_range(spec, *number));
+    shown = number_text(*number);
+  } else if (const std::string_view* name = std::get_if<std::string_view>(&value)) {
+    if (*name == "?") throw Error(std::string(key) + " has an unknown value");
+  }
+  if (!ok) throw Error(std::string(key) + " must be " + expected_values(spec) + ", got " + shown);
+}
+
+OptionValue recorded(const OptionValue& value) {
+  if (const double* number = std::get_if<double>(&value); number && std::isinf(*number))
+    return std::string_view("inf");
+  return value;
+}
+
+namespace {
+
+// The value of `key` in `record`, or "not recorded".
+std::string_view recorded_value(const RecordedOptions& record, std::string_view key) {
+  for (const auto& [field, value] : record)
+    if (field == key) return value;
+  return "not recorded";
+}
+
+bool same_recorded_value(std::string_view a, std::string_view b) {
+  if (a == b) return true;
+  long long integer_a = 0, integer_b = 0;
+  if (parse_integer(a, integer_a) && parse_integer(b, integer_b)) return integer_a == integer_b;
+  double number_a = 0, number_b = 0;
+  return parse_decimal(a, number_a) && parse_decimal(b, number_b) && number_a == number_b;
+}
+
+}  // namespace
+
+void add_difference(std::string_view key, const RecordedOptions& before,
+                    const RecordedOptions& after, std::vector<OptionDifference>& differences) {
+  const std::string_view was = recorded_value(before, key), is = recorded_value(after, key);
+  if (!same_recorded_value(was, is))
+    differences.push_back({std::string(key), std::string(was), std::string(is)});
+}
+
+std::string text_of(const OptionDifference& difference) {
+  return difference.key + " " + difference.before + " -> " + difference.after;
+}
+
+ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
+  Mode mode = Mode::aief;
+  std::string mode_named = "mode";
+  const GivenOption* entropy_given = nullptr;
+  for (const GivenOption& g : given) {
+    if (g.row->key == "mode") {
+      mode = option_names::parse<Mode>(
+          std::get<std::string_view>(parse_value(*g.row, g.text, g.named)));
+      mode_named = g.named;
+    }
+    if (g.row->key == "entropy") entropy_given = &g;
+  }
+  ExtractorOptions options = options_for_mode(mode);
+  const std::string mode_name(option_names::name_of(mode));
+  // Options that need the mask and change a value (given the value the options hold, one changes
+  // nothing and is no request: Extractor(**extractor.options) of an orbslam2 extractor).
+  std::vector<const GivenOption*> needing_mask;
+  for (const OptionRow& row : rows()) {
+    for (const GivenOption& g : given) {
+      if (g.row != &row || !row.is_field()) continue;
+      const OptionValue value = parse_value(row, g.text, g.named);
+      OptionValue storage;
+      bool fixed = false;
+      const OptionValue* by_mode = mode_value(row, mode, storage, fixed);
+      if (fixed && *by_mode != value)
+        throw Error(mode_named + " " + mode_name + " means " + g.named + " " +
+                    text_of(row, *by_mode) + ", so " + g.named + " " + g.text + " cannot apply");
+      if (row.needs_mask.empty()) {
+        row.field.set(options, value);
+        continue;
+      }
+      const auto before = record_of(options);
+      row.field.set(options, value);
+      if (record_of(options) != before) needing_mask.push_back(&g);
+    }
+  }
+  if (options.entropy == EntropyMeasure::off)
+    for (const GivenOption* g : needing_mask)
+      throw Error(g->named + " " + std::string(g->row->needs_mask) + ", which " +
+                  (entropy_given ? entropy_given->named + " off" : mode_named + " " + mode_name) +
+                  " turns off: drop one of the two");
+  options.validate();
+  return options;
+}
+
+}  // namespace aief::option_table
+
+namespace aief {
+
+// Generated from the table: each row's range and names; the rules that span fields follow.
+void ExtractorOptions::validate() const {
+  option_table::check_fields(*this);
+  // The pyramid computes in float (ORB-SLAM2's arithmetic, core/level/level_geometry.cpp): check the
+  // value it will use, so 1.00000001 (1.0 as a float, which makes every level budget 0/0) is
+  // refused rather than accepted and silently rounded.
+  if (const float used = static_cast<float>(scale_factor); used <= 1.0f || used > 4.0f)
+    throw Error(
+        "scale_factor must be > 1 and <= 4 in single precision (the pyramid computes in float), "
+        "got " +
+        option_table::number_text(scale_factor) + (used == 1.0f ? ", which is 1 as a float" : ""));
+  if (auto_threshold && carried_threshold)
+    throw Error("auto_threshold and carried_threshold cannot both be on (one source of F)");
+  if (fast_min_threshold > fast_threshold)
+    throw Error("fast_min_threshold must be in [1, " + std::to_string(fast_threshold) +
+                "] (at most fast_threshold), got " + std::to_string(fast_min_threshold));
+}
+
+// Each row's value for the mode, in table order, over `base`.
+ExtractorOptions options_for_mode(Mode mode, ExtractorOptions base) {
+  for (const option_table::OptionRow& row : option_table::rows()) {
+    if (!row.is_field()) continue;
+    option_table::OptionValue storage;
+    bool fixed = false;
+    if (const option_table::OptionValue* value =
+            option_table::mode_value(row, mode, storage, fixed))
+      row.field.set(base, *value);
+  }
+  return base;
+}
+
+}  // namespace aief
