@@ -37,6 +37,8 @@ struct Inputs {
   std::vector<PixelPoint> points;                 // a grid over level 0, inside the edge border
   std::vector<float> angles_deg;
   std::vector<std::uint8_t> descriptors;  // of points, 32 bytes each
+  IntegralImage integral;                 // of level 0, for the box descriptor
+  std::vector<BoxPoint> box_points;       // points, as the box descriptor takes them
 };
 
 std::shared_ptr<const Inputs> make_inputs(const GrayImage& image) {
@@ -76,6 +78,9 @@ std::shared_ptr<const Inputs> make_inputs(const GrayImage& image) {
       in->points.push_back({x, y});
       in->angles_deg.push_back(static_cast<float>((x * 7 + y * 13) % 360));
     }
+  in->integral.compute(level0.view());
+  for (const PixelPoint& p : in->points)
+    in->box_points.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
   in->descriptors.resize(in->points.size() * 32);
   scalar.rbrief_describe(in->blurred[0].view(), in->points.data(), in->angles_deg.data(),
                          static_cast<int>(in->points.size()), in->descriptors.data());
@@ -188,6 +193,18 @@ void bench_rbrief_describe(benchmark::State& state, const Inputs& in, const Kern
   for (auto _ : state) {
     k.rbrief_describe(in.blurred[0].view(), in.points.data(), in.angles_deg.data(),
                       static_cast<int>(in.points.size()), descriptors.data());
+    benchmark::DoNotOptimize(descriptors.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long long>(in.points.size()));
+}
+
+// The same keypoints as rbrief_describe, on level 0's integral image at the level's scale.
+void bench_box_describe(benchmark::State& state, const Inputs& in, const KernelTable& k) {
+  std::vector<std::uint8_t> descriptors(in.descriptors.size());
+  for (auto _ : state) {
+    k.box_describe(in.integral.view(), in.box_points.data(), in.angles_deg.data(),
+                   static_cast<int>(in.box_points.size()),
+                   static_cast<float>(kPatchSize) / kBoxPatchSide, descriptors.data());
     benchmark::DoNotOptimize(descriptors.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<long long>(in.points.size()));

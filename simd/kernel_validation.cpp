@@ -5,6 +5,7 @@
 #include <cstring>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include "aief/extractor.hpp"
 #include "core/kernels/fast9_detect.hpp"
@@ -256,6 +257,32 @@ std::string check_rbrief_describe(const KernelTable& scalar, const KernelTable& 
   return diff.empty() ? "" : where(src, diff);
 }
 
+// Points everywhere: inside (the vector path), near and past the edges (clipped boxes: the
+// reference), at fractional positions, at the level's scale and at a coarse level's on level 0.
+std::string check_box_describe(const KernelTable& scalar, const KernelTable& other,
+                               const GrayImage& src) {
+  std::vector<BoxPoint> points;
+  for (int y = -3; y < src.height() + 3; y += 4)
+    for (int x = -2; x < src.width() + 2; x += 3)
+      points.push_back({static_cast<float>(x) + 0.25f * static_cast<float>((x + y) % 3),
+                        static_cast<float>(y) + 0.5f * static_cast<float>(x % 2)});
+  if (points.empty()) return "";
+  std::vector<float> angles(points.size());
+  for (std::size_t i = 0; i < angles.size(); ++i)
+    angles[i] = static_cast<float>((i * 37) % 360) + 0.25f * static_cast<float>(i % 4);
+  IntegralImage integral;
+  integral.compute(src.view());
+  const int n = static_cast<int>(points.size());
+  for (float scale : {static_cast<float>(kPatchSize) / kBoxPatchSide, 2.8f}) {
+    std::vector<std::uint8_t> a(points.size() * 32), b(a.size());
+    scalar.box_describe(integral.view(), points.data(), angles.data(), n, scale, a.data());
+    other.box_describe(integral.view(), points.data(), angles.data(), n, scale, b.data());
+    const std::string diff = first_difference(a, b, other.name, "descriptor byte");
+    if (!diff.empty()) return where(src, "scale " + std::to_string(scale) + " " + diff);
+  }
+  return "";
+}
+
 std::string check_hamming_256_many(const KernelTable& scalar, const KernelTable& other,
                                    const GrayImage& src) {
   const int n = std::min(src.width() * src.height() / 32, 300);
@@ -354,10 +381,16 @@ std::string check_unsharp_row(const KernelTable& scalar, const KernelTable& othe
 
 std::string check_extract(KernelSet set, const GrayImage& src) {
   if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
-  // The default mode (sub-pixel, pool, per-level guard, automatic F) and the paper's conventions.
-  for (Mode mode : {Mode::aief, Mode::aief_paper, Mode::orbslam2}) {
+  // The default mode (sub-pixel, pool, per-level guard, automatic F) with each descriptor, and
+  // the paper's conventions.
+  const std::pair<Mode, DescriptorKind> runs[] = {{Mode::aief, DescriptorKind::rbrief},
+                                                  {Mode::aief, DescriptorKind::box},
+                                                  {Mode::aief_paper, DescriptorKind::rbrief},
+                                                  {Mode::orbslam2, DescriptorKind::rbrief}};
+  for (const auto& [mode, descriptor] : runs) {
     ExtractorOptions reference_options = options_for_mode(mode);
     reference_options.auto_threshold = mode == Mode::aief;
+    reference_options.descriptor = descriptor;
     reference_options.kernels = KernelSet::scalar;
     reference_options.threads = 1;
     const Features reference = Extractor(reference_options).extract(src.view());
@@ -366,8 +399,9 @@ std::string check_extract(KernelSet set, const GrayImage& src) {
       options.kernels = set;
       options.threads = threads;
       const Features other = Extractor(options).extract(src.view());
-      const std::string label =
-          std::string(to_string(mode)) + ", " + std::to_string(threads) + " thread(s): ";
+      const std::string label = std::string(to_string(mode)) + ", " +
+                                std::string(to_string(descriptor)) + ", " +
+                                std::to_string(threads) + " thread(s): ";
       if (other.keypoints.size() != reference.keypoints.size())
         return where(src, label + std::to_string(reference.keypoints.size()) +
                               " keypoints with scalar, " + std::to_string(other.keypoints.size()));

@@ -7,6 +7,7 @@
 
 #include "core/kernels/kernel_table.hpp"
 #include "simd/block_entropy_portable.hpp"
+#include "simd/box_descriptor_portable.hpp"
 #include "simd/fast9_portable.hpp"
 #include "simd/gaussian_blur_portable.hpp"
 #include "simd/rbrief_portable.hpp"

@@ -94,6 +94,9 @@ Case make_case(int index) {
   // options stay as they were).
   std::mt19937 sharpen_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 32452843u));
   if (uniform_int(sharpen_rng, 0, 3) == 0) c.options.low_entropy_sharpen = true;
+  // The box descriptor, a third of the cases, its own draws likewise.
+  std::mt19937 descriptor_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 49979687u));
+  if (uniform_int(descriptor_rng, 0, 2) == 0) c.options.descriptor = DescriptorKind::box;
 
   const int width = uniform_int(rng, 39, 539), height = uniform_int(rng, 39, 539);
   const int source = uniform_int(rng, 0, 3);
@@ -120,7 +123,8 @@ Case make_case(int index) {
       << ", orientation " << to_string(c.options.orientation) << ", quadtree weight "
       << to_string(c.options.quadtree_weight) << ", FAST threshold from "
       << to_string(c.options.fast_threshold_from) << ", low-entropy sharpen "
-      << (c.options.low_entropy_sharpen ? "on" : "off");
+      << (c.options.low_entropy_sharpen ? "on" : "off") << ", descriptor "
+      << to_string(c.options.descriptor);
   c.description = out.str();
   return c;
 }

@@ -63,6 +63,7 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options,
     else if (level.pyramid.usable())
       level.pyramid.detection_mask.resize(level.pyramid.geometry.width,
                                           level.pyramid.geometry.height);
+    level.descriptions.set_descriptor(options_.descriptor);  // before start: what it sizes
     level.descriptions.start(level.pyramid.geometry, selections_);
     level.descriptions.set_orientation(options_.orientation);
     level.blocks.reset(level.pyramid.geometry.grid.count());

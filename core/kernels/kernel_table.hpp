@@ -8,6 +8,7 @@
 #include "aief/options.hpp"
 #include "core/kernels/block_entropy.hpp"
 #include "core/kernels/bound_filter.hpp"
+#include "core/kernels/box_descriptor.hpp"
 #include "core/kernels/fast9.hpp"
 #include "core/kernels/gaussian_blur.hpp"
 #include "core/kernels/hamming.hpp"
@@ -32,6 +33,7 @@
   X(fast9_local_maxima_bits)    \
   X(ic_moments)                 \
   X(rbrief_describe)            \
+  X(box_describe)               \
   X(hamming_256_many)           \
   X(hamming_256_blocked)        \
   X(positions_within_bounds)    \
