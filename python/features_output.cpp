@@ -43,6 +43,7 @@ PyFeatures to_python(const Features& features) {
   out.info["auto_threshold_effectiveness"] = info.auto_threshold_effectiveness;
   out.image_width = features.image_width;
   out.image_height = features.image_height;
+  out.descriptor = features.descriptor;
   return out;
 }
 

@@ -200,6 +200,7 @@ void FrameAnalysis::assemble(const std::vector<std::vector<std::int32_t>>& chose
                              Features& out) const {
   out.image_width = width_;
   out.image_height = height_;
+  out.descriptor = options_.descriptor;
   out.keypoints.clear();
   out.descriptors.clear();
   for (int n = 0; n < level_count(); ++n) {

@@ -122,6 +122,7 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
   out.image_width = width0;
   out.image_height = height0;
   out.info = ExtractionInfo{};
+  out.descriptor = options.descriptor;
   out.keypoints.clear();
   out.descriptors.clear();
   if (kept_indices) kept_indices->clear();
