@@ -1,8 +1,10 @@
 // Per-kernel benchmarks: every kernel set the CPU runs, on the standard images, beside OpenCV's
 // kernel for the same job. Names read kernel/variant/image, the kernel named as in the kernel
-// list (core/kernels/kernel_table.hpp); fast9_detect is both FAST kernels and the corner walk, the job
-// cv::FAST with suppression does. Items are pixels so rates compare across sizes.
+// list (core/kernels/kernel_table.hpp); fast9_detect is both FAST kernels and the corner walk, the
+// job cv::FAST with suppression does. Items are pixels so rates compare across sizes.
 #include <benchmark/benchmark.h>
+
+#include <cmath>
 
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -10,10 +12,10 @@
 #include "aief/extractor.hpp"
 #include "bench/bench_support.hpp"
 #include "core/kernels/integral_image.hpp"
-#include "core/kernels/fast9_detect.hpp"
+#include "core/kernels/resize_bilinear_rows.hpp"
 #include "core/level/level_geometry.hpp"
-#include "core/kernels/pyramid_resize.hpp"
 #include "simd/kernels.hpp"
+#include "tests/fast9_whole_image.hpp"
 
 namespace aief::bench {
 namespace {
@@ -72,9 +74,9 @@ std::shared_ptr<const Level0Keypoints> level0_keypoints(const Pyramid& pyramid,
                                                         const cv::Mat& gray) {
   auto in = std::make_shared<Level0Keypoints>();
   const GrayImage& level0 = pyramid.levels[0];
-  const Features features = Extractor(ExtractorOptions{})
-                                .extract({gray.data, gray.cols, gray.rows,
-                                          static_cast<std::ptrdiff_t>(gray.step)});
+  const Features features =
+      Extractor(ExtractorOptions{})
+          .extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)});
   for (const Keypoint& kp : features.keypoints) {
     if (kp.octave != 0) continue;
     const PixelPoint p{static_cast<int>(std::lround(kp.x)), static_cast<int>(std::lround(kp.y))};
@@ -92,7 +94,7 @@ std::shared_ptr<const Level0Keypoints> level0_keypoints(const Pyramid& pyramid,
   return in;
 }
 constexpr const char* kFast =
-    "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (core/kernels/fast9_detect.hpp)
+    "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (tests/fast9_whole_image.hpp)
 
 std::string benchmark_name(const char* kernel, const std::string& variant,
                            const std::string& image) {
@@ -105,17 +107,17 @@ void register_kernel_benchmarks() {
     const auto keypoints = level0_keypoints(*pyramid, image.gray);
     // The box descriptor's integral image of level 0 beside the blur rBRIEF needs (gaussian7_rows
     // above is the whole pyramid's): scalar, one add per pixel and row.
-    benchmark::RegisterBenchmark(
-        benchmark_name("integral_image", "scalar", image.name).c_str(),
-        [pyramid](benchmark::State& state) {
-          IntegralImage integral;
-          for (auto _ : state) {
-            integral.compute(pyramid->levels[0].view());
-            benchmark::DoNotOptimize(integral.view().data);
-          }
-          state.SetItemsProcessed(state.iterations() * pyramid->levels[0].width() *
-                                  pyramid->levels[0].height());
-        });
+    benchmark::RegisterBenchmark(benchmark_name("integral_image", "scalar", image.name).c_str(),
+                                 [pyramid](benchmark::State& state) {
+                                   IntegralImage integral;
+                                   for (auto _ : state) {
+                                     integral.compute(pyramid->levels[0].view());
+                                     benchmark::DoNotOptimize(integral.view().data);
+                                   }
+                                   state.SetItemsProcessed(state.iterations() *
+                                                           pyramid->levels[0].width() *
+                                                           pyramid->levels[0].height());
+                                 });
     for (KernelSet set : available_kernel_sets()) {
       const KernelTable* kernels = &kernel_table(set);
       const std::string variant = std::string(to_string(set));
@@ -154,8 +156,8 @@ void register_kernel_benchmarks() {
                                      std::size_t found = 0;
                                      for (auto _ : state)
                                        for (const GrayImage& level : pyramid->levels) {
-                                         fast9_detect(level.view(), 20, *kernels, scores,
-                                                      maxima_bits, corners);
+                                         fast9_whole_image(level.view(), 20, *kernels, scores,
+                                                           maxima_bits, corners);
                                          found += corners.size();
                                        }
                                      benchmark::DoNotOptimize(found);
@@ -182,8 +184,8 @@ void register_kernel_benchmarks() {
             for (auto _ : state) {
               kernels->box_describe(keypoints->integral.view(), keypoints->box_points.data(),
                                     keypoints->angles_deg.data(),
-                                    static_cast<int>(keypoints->box_points.size()),
-                                    kBoxLevelScale, out.data());
+                                    static_cast<int>(keypoints->box_points.size()), kBoxLevelScale,
+                                    out.data());
               benchmark::DoNotOptimize(out.data());
             }
             state.SetItemsProcessed(state.iterations() *

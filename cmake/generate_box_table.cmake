@@ -1,6 +1,6 @@
 # Turns a box descriptor table, data/box_descriptor/<name>.txt (256 lines "x1 y1 x2 y2 radius
 # threshold", the format its header and data/box_descriptor/README.md describe), into a C++
-# initializer list of core/kernels/box_descriptor.hpp's BoxTest, so the engine needs no file at run
+# initializer list of core/kernels/box_describe.hpp's BoxTest, so the engine needs no file at run
 # time. The threshold, a decimal with at most two decimals, becomes an integer in hundredths, so the
 # kernel compares in integers (exact in every build). Called at configure time by core/CMakeLists.txt.
 function(aief_generate_box_table input output)

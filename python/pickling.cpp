@@ -104,6 +104,7 @@ void put_features(StateWriter& out, const Features& features) {
   out.put_vector(features.keypoints);
   out.put_vector(features.descriptors);
   out.put(features.info);
+  out.put(features.descriptor);
 }
 
 Features get_features(StateReader& in) {
@@ -113,6 +114,7 @@ Features get_features(StateReader& in) {
   features.keypoints = in.get_vector<Keypoint>();
   features.descriptors = in.get_vector<Descriptor>();
   features.info = in.get<ExtractionInfo>();
+  features.descriptor = in.get<DescriptorKind>();
   if (features.descriptors.size() != features.keypoints.size())
     throw Error("cannot unpickle aief.AdaptResult: keypoints and descriptors differ in number");
   return features;

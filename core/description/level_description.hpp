@@ -3,7 +3,7 @@
 // descriptor of chosen candidates, memoised per candidate, so a candidate chosen again (the
 // fallback, the sweep's thresholds) is described once. rBRIEF reads the blurred level, its rows
 // held as the number of selections asks; the box descriptor the level's integral image, made
-// whole on the first describe of a frame (core/kernels/box_descriptor.hpp).
+// whole on the first describe of a frame (core/kernels/box_describe.hpp).
 #include <cstdint>
 #include <vector>
 

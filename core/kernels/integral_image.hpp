@@ -1,5 +1,5 @@
 #pragma once
-// The integral image the box descriptor reads (core/kernels/box_descriptor.hpp): (W + 1) x (H + 1)
+// The integral image the box descriptor reads (core/kernels/box_describe.hpp): (W + 1) x (H + 1)
 // entries, entry (y, x) = the sum of the pixels in rows [0, y) and columns [0, x), row 0 and
 // column 0 zero. Held modulo 2^32 (uint32 wraps): a box's sum, four entries added and subtracted,
 // is exact in uint32 arithmetic whenever the box holds fewer than 2^32 / 255 pixels, which every
