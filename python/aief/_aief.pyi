@@ -70,7 +70,7 @@ class Features:
 
 class Extractor:
     """ORB features with the AIEF entropy mask; invalid options raise aief.Error."""
-    # Parameters, their order and defaults: the option table's rows (core/options/option_table.cpp);
+    # Parameters, their order and defaults: the option table's rows (core/options/extractor_option_rows.cpp);
     # python/tests/test_stub.py holds them to it. The keys of Extractor.options are keywords too.
     def __init__(
         self,
