@@ -65,7 +65,4 @@ std::vector<FlagSpec> extractor_flags_except(
     const std::vector<std::string_view>& set_by_the_command);
 std::string extractor_flags_help_except(const std::vector<std::string_view>& set_by_the_command);
 
-// aief match --pairs: matching of an HDF5 features file (tools/cmd_sfm.cpp).
-int run_match_pairs(const Args& args, const MatchOptions& match_options);
-
 }  // namespace aief::cli

@@ -1,5 +1,5 @@
 // aief match A B [--adaptive] [--matcher K] [-o matches.json] [--draw matches.png], and
-// aief match --pairs (tools/cmd_sfm.cpp)
+// aief match --pairs (its matching: tools/match_pairs.cpp)
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -16,6 +16,7 @@
 #include "io/temporary_files.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/match_pairs.hpp"
 #include "tools/outputs_not_inputs.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"

@@ -1,34 +1,25 @@
-// Feature files for SfM tools (io/hdf5_file.hpp, io/colmap_database.hpp):
-//   aief match --pairs pairs.txt --features features.h5 -o matches.h5 [--matcher K] [--ratio R]
-//   aief merge -o features.h5 shard0.h5 shard1.h5 ...
-//   aief colmap --features features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
+// aief match --pairs: the pairs of an hloc pairs file matched from an HDF5 features file into
+// matches.h5 (io/hdf5_file.hpp), resumable (io/match_record.hpp).
+#include "tools/match_pairs.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "aief/error.hpp"
-#include "aief/match.hpp"
-#include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_descriptor_cache.hpp"
 #include "io/hdf5_file.hpp"
-#include "io/hdf5_merge.hpp"
 #include "io/match_record.hpp"
 #include "io/pairs_file.hpp"
-#endif
-#ifdef AIEF_HAVE_COLMAP_EXPORT
-#include "io/colmap_database.hpp"
-#include "io/utf8.hpp"
 #endif
 
 namespace aief::cli {
 
 namespace {
 
-[[maybe_unused]] const char* const kNoHdf5 =
-    "this aief was built without HDF5 (install libhdf5-dev and rebuild)";
 // Descriptors kept in memory by match --pairs: about 16k images of 2000 features.
 [[maybe_unused]] constexpr std::size_t kDescriptorCacheBytes = std::size_t{1} << 30;
 
@@ -100,76 +91,7 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
 #else
   (void)args;
   (void)match_options;
-  throw Error(kNoHdf5);
-#endif
-}
-
-int run_merge(const Arguments& arguments) {
-  const Args args(arguments, {{"--output", "-o", true}, {"--help", "-h", false}});
-  if (args.has("--help")) {
-    std::cout
-        << "usage: aief merge -o FEATURES.h5 SHARD.h5...\n\n"
-        << "Copies the image groups of the shards' feature files (aief extract --batch --format h5 "
-           "--shard i/n)\n"
-        << "into one file; images already in it are kept, an image in two shards is an error.\n";
-    return 0;
-  }
-  const auto output = args.get("--output");
-  if (!output || args.positionals().empty())
-    throw UsageError("merge expects -o FEATURES.h5 and one or more shard files");
-#ifdef AIEF_HAVE_HDF5
-  int replaced = 0;
-  const int copied = io::merge_feature_files(*output, args.positionals(), &replaced);
-  std::printf("%d images merged into %s", copied, output->c_str());
-  if (replaced > 0)
-    std::printf(" (%d replacing what it held of them: their image or options changed)", replaced);
-  std::printf("\n");
-  return 0;
-#else
-  throw Error(kNoHdf5);
-#endif
-}
-
-int run_colmap(const Arguments& arguments) {
-  const Args args(arguments, {{"--features", "", true},
-                              {"--matches", "", true},
-                              {"--pairs", "", true},
-                              {"--output", "-o", true},
-                              {"--help", "-h", false}});
-  if (args.has("--help")) {
-    std::cout
-        << "usage: aief colmap --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o "
-           "DATABASE.db\n\n"
-        << "A COLMAP database (cameras, images, keypoints, descriptors, matches) from aief's hloc "
-           "files, for\n"
-        << "  colmap matches_importer --database_path DATABASE.db --match_list_path PAIRS.txt "
-           "--match_type pairs\n"
-        << "  colmap mapper --database_path DATABASE.db --image_path IMAGES --output_path SPARSE\n"
-        << "Keypoints are shifted by +0.5 px to COLMAP's origin (the top-left pixel's corner).\n";
-    return 0;
-  }
-  const auto features = args.get("--features"), matches = args.get("--matches"),
-             pairs = args.get("--pairs"), output = args.get("--output");
-  if (!features || !matches || !pairs || !output)
-    throw UsageError(
-        "colmap expects --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o "
-        "DATABASE.db");
-#ifdef AIEF_HAVE_COLMAP_EXPORT
-  const io::ColmapExport done = io::export_colmap_database(*output, *features, *matches, *pairs);
-  for (const std::string& note : done.notes) std::cerr << "aief: note: " << note << "\n";
-  std::printf("COLMAP database %s: %d images, %d pairs, %lld matches\n", output->c_str(),
-              done.images, done.pairs, done.matches);
-  if (!done.names_not_utf8.empty())
-    std::cerr << "aief: note: " << done.names_not_utf8.size()
-              << " image name(s) are not UTF-8 (the first: '"
-              << io::escape_non_utf8(done.names_not_utf8.front())
-              << "'): stored as their bytes, as COLMAP stores them; Python's sqlite3 "
-              << "reads them with connection.text_factory = bytes\n";
-  return 0;
-#else
-  throw Error(
-      "this aief was built without SQLite or HDF5 (install libsqlite3-dev libhdf5-dev and "
-      "rebuild)");
+  throw Error(kBuiltWithoutHdf5);
 #endif
 }
 
