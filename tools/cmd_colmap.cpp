@@ -1,4 +1,4 @@
-// aief colmap --features features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
+// aief colmap --features-file features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
 // (io/colmap_database.hpp)
 #include <cstdio>
 #include <iostream>
@@ -14,28 +14,30 @@
 namespace aief::cli {
 
 int run_colmap(const Arguments& arguments) {
-  const Args args(arguments, {{"--features", "", true},
+  const Args args(arguments, {{"--features-file", "--features", true},
                               {"--matches", "", true},
                               {"--pairs", "", true},
                               {"--output", "-o", true},
                               {"--help", "-h", false}});
   if (args.has("--help")) {
     std::cout
-        << "usage: aief colmap --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o "
+        << "usage: aief colmap --features-file FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt "
+           "-o "
            "DATABASE.db\n\n"
         << "A COLMAP database (cameras, images, keypoints, descriptors, matches) from aief's hloc "
            "files, for\n"
         << "  colmap matches_importer --database_path DATABASE.db --match_list_path PAIRS.txt "
            "--match_type pairs\n"
         << "  colmap mapper --database_path DATABASE.db --image_path IMAGES --output_path SPARSE\n"
-        << "Keypoints are shifted by +0.5 px to COLMAP's origin (the top-left pixel's corner).\n";
+        << "Keypoints are shifted by +0.5 px to COLMAP's origin (the top-left pixel's corner).\n"
+        << "(--features, the earlier spelling of --features-file, is still accepted.)\n";
     return 0;
   }
-  const auto features = args.get("--features"), matches = args.get("--matches"),
+  const auto features = args.get("--features-file"), matches = args.get("--matches"),
              pairs = args.get("--pairs"), output = args.get("--output");
   if (!features || !matches || !pairs || !output)
     throw UsageError(
-        "colmap expects --features FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o "
+        "colmap expects --features-file FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o "
         "DATABASE.db");
 #ifdef AIEF_HAVE_COLMAP_EXPORT
   const io::ColmapExport done = io::export_colmap_database(*output, *features, *matches, *pairs);

@@ -36,18 +36,17 @@ namespace {
 
 }  // namespace
 
-int run_match_pairs(const Args& args, const MatchOptions& match_options) {
+int run_match_pairs(const Args& args, const std::string& features_file,
+                    const MatchOptions& match_options) {
 #ifdef AIEF_HAVE_HDF5
-  const auto features_path = args.get("--features");
+  const std::string* features_path = &features_file;
   const auto output = args.get("--output");
-  if (!features_path || !output)
-    throw UsageError("--pairs needs --features FEATURES.h5 and -o MATCHES.h5");
   if (!args.positionals().empty())
     throw UsageError("--pairs takes its images from the pairs file, not from positional arguments");
   const io::PairsList pairs = io::read_pairs(*args.get("--pairs"));
   for (const std::string& note : pairs.notes) std::cerr << "aief: note: " << note << "\n";
   if (std::error_code ec; std::filesystem::equivalent(*features_path, *output, ec))
-    throw Error("-o '" + *output + "' is the features file (--features '" + *features_path +
+    throw Error("-o '" + *output + "' is the features file (--features-file '" + *features_path +
                 "'): matches go to a file of their own (hloc's matches.h5); nothing was written");
   const io::Hdf5File features(*features_path, io::Hdf5File::Mode::read);
   io::Hdf5File matches_file(*output, io::Hdf5File::Mode::read_write);
@@ -90,6 +89,7 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
   return 0;
 #else
   (void)args;
+  (void)features_file;
   (void)match_options;
   throw Error(kBuiltWithoutHdf5);
 #endif

@@ -6,7 +6,8 @@
 
 namespace aief::cli {
 
-// The pairs of --pairs matched from the features file into -o, with `match_options`.
-int run_match_pairs(const Args& args, const MatchOptions& match_options);
+// The pairs of --pairs matched from `features_file` (HDF5) into -o, with `match_options`.
+int run_match_pairs(const Args& args, const std::string& features_file,
+                    const MatchOptions& match_options);
 
 }  // namespace aief::cli
