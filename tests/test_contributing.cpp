@@ -38,7 +38,7 @@ std::map<std::string, std::string> recipes(const std::string& text) {
 
 int number_of(const std::string& word) {
   static const std::map<std::string, int> words = {
-      {"one", 1}, {"two", 2}, {"three", 3}, {"four", 4}, {"five", 5},
+      {"one", 1}, {"two", 2},   {"three", 3}, {"four", 4}, {"five", 5},
       {"six", 6}, {"seven", 7}, {"eight", 8}, {"nine", 9}, {"ten", 10}};
   const auto found = words.find(word);
   return found != words.end() ? found->second : std::stoi(word);
@@ -75,8 +75,8 @@ TEST(Contributing, EveryFileItNamesExists) {
   // placeholder (foo, *, {a,b}, <set>) and no build output.
   static const std::regex path(R"(`([a-z_.][A-Za-z0-9_./-]*/[A-Za-z0-9_.-]+\.[a-z]+)`)");
   int checked = 0;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), path);
-       it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), path); it != std::sregex_iterator();
+       ++it) {
     const std::string name = (*it)[1].str();
     if (name.find("foo") != std::string::npos || name.rfind("build/", 0) == 0) continue;
     EXPECT_TRUE(std::filesystem::exists(kRoot / name)) << name << " is named but does not exist";
