@@ -184,6 +184,7 @@ void bind_testing(py::module_& m) {
           py::dict r;
           r["key"] = std::string(row.key);
           r["keyword"] = std::string(row.python_keyword);
+          r["old_keyword"] = std::string(row.old_python_keyword);
           r["kind"] = std::string(row.kind() == table::ValueKind::integer  ? "integer"
                                   : row.kind() == table::ValueKind::number ? "number"
                                   : row.kind() == table::ValueKind::choice ? "choice"

@@ -93,6 +93,9 @@ struct Row {
   std::string_view python_keyword = {};  // aief.Extractor(n_features=...); empty: none
   int python_position = 0;  // 1, 2, ...: positional order in the Python call; 0: keyword only
   std::string_view yaml_key = {};  // the ORB-SLAM settings key
+  // Earlier spellings, still accepted (CHANGELOG.md): the CLI flag, the Python keyword, the
+  // settings key the option had before it took its record key's name; empty: none.
+  std::string_view old_cli_flag = {}, old_python_keyword = {}, old_yaml_key = {};
   std::string_view help = {};      // one line; --help adds the default
   double low = 0, high = 0;        // integer and number rows: the range [low, high]
   bool low_is_open = false;        // (low, high]

@@ -76,9 +76,9 @@ class Extractor:
         self,
         n_features: int = 1000,
         mode: str = "aief",
-        threshold: Union[float, Literal["auto", "carried"]] = 4.0,
-        levels: int = 8,
-        scale: float = 1.2,
+        entropy_threshold: Union[float, Literal["auto", "carried"]] = 4.0,
+        n_levels: int = 8,
+        scale_factor: float = 1.2,
         threads: int = 0,
         kernels: str = "auto",
         *,
@@ -89,12 +89,12 @@ class Extractor:
         carry_every: int = 30,
         coordinates: Optional[str] = None,
         subpixel: Optional[bool] = None,
-        pool: Optional[Union[float, Literal["inf", "off"]]] = None,
-        ranking: Optional[str] = None,
+        candidate_pool: Optional[Union[float, Literal["inf", "off"]]] = None,
+        candidate_ranking: Optional[str] = None,
         starvation_guard: Optional[str] = None,
         auto_skips_uniform_blocks: Optional[bool] = None,
         auto_requires_two_classes: Optional[bool] = None,
-        pyramid: Optional[Literal["q8", "opencv"]] = None,
+        pyramid_resampling: Optional[Literal["q8", "opencv"]] = None,
         detection_cells: Optional[Literal["blocks", "orbslam"]] = None,
         quadtree_ties: Optional[Literal["full", "orbslam"]] = None,
         orientation: Optional[Literal["atan2", "fast-atan2"]] = None,
@@ -102,7 +102,7 @@ class Extractor:
         fast_threshold_from: Literal["none", "entropy"] = "none",
         low_entropy_sharpen: bool = False,
         max_image_pixels: int = 67108864,
-        **record_keys: Any,
+        **record_keys: Any,  # and the earlier keywords, still accepted: threshold, levels, scale, ...
     ) -> None: ...
     def extract(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> Features:
         """Features of a gray, BGR or BGRA uint8 image; mask (2-D uint8 or bool, non-zero where

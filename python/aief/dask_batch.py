@@ -95,7 +95,9 @@ def main():
     where = parser.add_mutually_exclusive_group(required=True)
     where.add_argument("--scheduler", help="address of a running dask scheduler, e.g. tcp://host:8786")
     where.add_argument("--local-workers", type=int, help="start a LocalCluster of this many worker processes")
-    parser.add_argument("--features", type=int, default=aief.default_options()["n_features"], help="n_features")
+    parser.add_argument("--n-features", "--features", dest="n_features", type=int,  # --features: the earlier
+                        default=aief.default_options()["n_features"], help="n_features")  # spelling
+
     args = parser.parse_args()
     from dask.distributed import Client, LocalCluster
 
@@ -105,7 +107,7 @@ def main():
         client = Client(LocalCluster(n_workers=args.local_workers, threads_per_worker=1, processes=True))
     with client:
         outputs, (extracted, skipped, keypoints), failures = run(client, args.images, args.output_dir, args.shards,
-                                                                 n_features=args.features)
+                                                                 n_features=args.n_features)
     print(f"dask batch: {extracted} extracted, {skipped} already done, {len(failures)} failed; {keypoints} keypoints "
           f"in {len(outputs)} shard files")
     for failure in failures:
