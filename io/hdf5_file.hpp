@@ -44,6 +44,7 @@
 #include "aief/match.hpp"
 #include "aief/options.hpp"
 #include "io/match_record.hpp"
+#include "io/output_lock.hpp"
 #include "io/pairs_file.hpp"
 #include "io/source_record.hpp"
 
@@ -79,8 +80,10 @@ class Hdf5File {
  public:
   // read_in_name_order: for a reader that goes through the file once, image after image in name
   // order (merge's passes), which needs only a small metadata cache (io/hdf5_file.cpp,
-  // read_access); read: for any order of reads.
-  enum class Mode { read, read_in_name_order, read_write };
+  // read_access); read: for any order of reads. read_write holds the file's OutputLock
+  // (io/output_lock.hpp) while open: a second writer waits; write_temporary is read_write on a
+  // temporary its caller holds the output's lock for (merge).
+  enum class Mode { read, read_in_name_order, read_write, write_temporary };
   Hdf5File(const std::string& path, Mode mode);
   ~Hdf5File();
   Hdf5File(const Hdf5File&) = delete;
@@ -177,6 +180,7 @@ class Hdf5File {
   void write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
                      Flush flush = Flush::batched);
 
+  std::unique_ptr<OutputLock> lock_;  // read_write: held from before opening until destroyed
   std::string path_;
   std::string creating_as_;  // the temporary a new file is created as, until its first flush
   long long file_ = -1;      // hid_t

@@ -21,6 +21,7 @@
 #include "io/hdf5_objects.hpp"
 #include "io/json_writer.hpp"
 #include "io/merge_option_check.hpp"
+#include "io/output_lock.hpp"
 #include "io/temporary_files.hpp"
 
 namespace aief::io {
@@ -113,6 +114,9 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
   // every image of the result, those the output keeps included, was extracted with the same
   // options.
   SameOptionsCheck same_options;
+  // The output's lock for the whole merge, from reading what the output holds to the rename: a
+  // second merge into it waits, then adds its shards to this one's output (io/output_lock.hpp).
+  const OutputLock lock(output);
   // Images already in the output, from an earlier merge, each with the hash of what it records of
   // its making (source and options): a shard's image whose record differs (its image changed, or
   // the shards were extracted again with other options) replaces it; an equal one is kept.
@@ -165,7 +169,7 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
   int copied = 0;
   try {
     if (extending) copy_file(output, temporary);
-    Hdf5File out(temporary, Hdf5File::Mode::read_write);
+    Hdf5File out(temporary, Hdf5File::Mode::write_temporary);
     for (std::size_t s = 0; s < shards.size(); ++s)
       for (const std::string& name : names[s]) {
         if (kept.count(name)) continue;
