@@ -43,8 +43,9 @@ void print_help() {
       << "                        kept, any other is redone; outputs appear atomically. A bad "
          "image is\n"
       << "                        reported and skipped. Exit 1 if any failed.\n"
-      << "  --format F            json (default), yml or npz: a file per image in OUTDIR; h5: one "
-         "HDF5 file\n"
+      << "  --format F            json (default; h5 when -o ends in .h5), yml or npz: a file per "
+         "image in OUTDIR;\n"
+      << "                        h5: one HDF5 file\n"
       << "                        in hloc's layout, a group per image named by its relative path "
          "(resumes\n"
       << "                        at the first image not complete in it; one file per shard, then "
@@ -66,7 +67,11 @@ int run_extract_batch(const Args& args) {
   const auto output = args.get("--output");
   if (!output) throw UsageError("--batch needs -o OUTDIR");
   settings.output_dir = *output;
-  settings.format = args.get("--format").value_or("json");
+  // Without --format, an output named as one file per batch (d.h5) is that format: before, d.h5
+  // became a folder of JSON files.
+  const io::FeatureFormat* named_as = io::feature_format_of_path(settings.output_dir);
+  const bool one_file = named_as && named_as->layout == io::FeatureFormat::Layout::one_file_per_batch;
+  settings.format = args.get("--format").value_or(one_file ? named_as->name : "json");
   if (!io::feature_format_named(settings.format))
     throw UsageError("--format expects " + io::feature_format_names() + ", got '" +
                      settings.format + "'");
@@ -80,6 +85,11 @@ int run_extract_batch(const Args& args) {
     }
   }
   settings.options = extractor_options(args);
+  if (settings.options.carried_threshold && settings.shard_count > 1)
+    throw UsageError(
+        "--shard splits a collection between runs, but --threshold carried carries F from frame "
+        "to frame of one video (each frame's F depends on the frames before it): extract each "
+        "video in one run, and split by video instead");
   const BatchSummary summary = run_batch(settings);
   std::printf("batch: %d images in this shard: %d extracted", summary.images, summary.extracted);
   if (summary.replaced > 0)
