@@ -50,6 +50,7 @@ class Hdf5Collection : public FeatureCollectionFile {
              const ExtractorOptions& options) override {
     file_.write_features(name, features, &source, &options);
   }
+  void check_name(const std::string& name) const override { file_.check_image_name(name); }
   void remove(const std::string& name) override { file_.remove_features(name); }
   void close() override { file_.close(); }
 

@@ -26,6 +26,9 @@ class FeatureCollectionFile {
   virtual bool holds_from(const std::string& name, const SourceRecord& source) const = 0;
   // The option record of `name`'s entry (JSON text); nullopt when it has none.
   virtual std::optional<std::string> option_record(const std::string& name) const = 0;
+  // Throws aief::Error when `name` cannot have an entry (io::Hdf5File::check_image_name): a fault
+  // of that input alone, not of the file.
+  virtual void check_name(const std::string& name) const = 0;
   // Writes `name`'s entry, replacing any. Throws aief::Error; after a failure of the file itself
   // (a full disk) it refuses every later write.
   virtual void write(const std::string& name, const Features& features, const SourceRecord& source,

@@ -64,10 +64,35 @@ void Hdf5File::remove_features(const std::string& image) {
       0, "the removal of '" + name + "'", [&] { remove_group(file_, name); }, Flush::now);
 }
 
+void Hdf5File::check_image_name(const std::string& image) const {
+  const std::string group = image_group(image);
+  if (image.empty())
+    throw Error("cannot write an image named '' to '" + path_ + "': an image needs a name");
+  // The groups on its path: none may be an image's.
+  for (std::size_t at = group.find('/', 1); at != std::string::npos; at = group.find('/', at + 1)) {
+    const std::string folder = group.substr(0, at);
+    if (may_hold(folder) && exists(file_, folder + "/image_size"))
+      throw Error("cannot write image '" + image + "' to '" + path_ + "': its group would go inside the group of image '" +
+                  image_of_group(folder) +
+                  "' (one image's name is the folder of another's); nothing was written for it");
+  }
+  // Its own group, when there, must be an image's, not a folder of other images' groups.
+  if (may_hold(group) && exists(file_, group) && !exists(file_, group + "/image_size")) {
+    const Handle folder(H5Gopen2(file_, group.c_str(), H5P_DEFAULT), H5Gclose);
+    H5G_info_t info{};
+    if (folder.ok() && H5Gget_info(folder.get(), &info) >= 0 && info.nlinks > 0 &&
+        !exists(file_, group + "/keypoints"))
+      throw Error("cannot write image '" + image + "' to '" + path_ +
+                  "': its group is the folder of other images' groups (such as '" + image +
+                  "/...'), which it would replace; nothing was written for it");
+  }
+}
+
 void Hdf5File::write_features(const std::string& image, const Features& features,
                               const SourceRecord* source, const ExtractorOptions* options) {
   silence_hdf5();
   const std::string name = image_group(image);
+  check_image_name(image);
   // A group being replaced goes first, flushed, so that no new data lands in its space while the
   // file on disk still holds it.
   if (may_hold(name) && exists(file_, name)) remove_features(image);

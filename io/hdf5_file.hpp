@@ -109,6 +109,10 @@ class Hdf5File {
   void write_features(const std::string& name, const Features& features,
                       const SourceRecord* source = nullptr,
                       const ExtractorOptions* options = nullptr);
+  // Throws, before anything is written (a bad name is no failure of the file: later writes go
+  // on), when `image` cannot have a group here: an empty name, or one nesting with another
+  // image's group ("a" and "a/x.png": the group of one would hold or replace the other's).
+  void check_image_name(const std::string& image) const;
   // Removes an image's group, if there is one.
   void remove_features(const std::string& name);
   // Reads back what write_features wrote (keypoints, size, angle, octave, response, descriptors,

@@ -25,7 +25,8 @@ namespace {
 #ifdef AIEF_HAVE_HDF5
 
 // Python features back to the engine's (what write_features stores; info is not stored).
-Features engine_features(const PyFeatures& f) {
+Features engine_features(const py::object& features) {
+  const PyFeatures& f = features_of(features);
   const py::ssize_t n = f.keypoints.ndim() == 2 ? f.keypoints.shape(0) : -1;
   for (const py::array* field :
        {static_cast<const py::array*>(&f.size), static_cast<const py::array*>(&f.angle),
@@ -82,7 +83,8 @@ class FeaturesFile {
     return file.features_belong_to(name, source_record(name, source)) &&
            io::option_changes(file.option_record(name), extractor.options()).empty();
   }
-  void write(const py::object& name_given, const PyFeatures& features,
+  // features: an aief.Features (checked by features_of, which refuses one holding nothing).
+  void write(const py::object& name_given, const py::object& features,
              const std::array<long long, 2>& source, const PyExtractor& extractor) {
     const std::string name = filesystem_path(name_given);
     const io::SourceRecord record = source_record(name, source);
@@ -114,7 +116,7 @@ class FeaturesFile {
   bool is_current(const py::object&, const std::array<long long, 2>&, const PyExtractor&) const {
     return false;
   }
-  void write(const py::object&, const PyFeatures&, const std::array<long long, 2>&,
+  void write(const py::object&, const py::object&, const std::array<long long, 2>&,
              const PyExtractor&) {}
   void remove(const py::object&) {}
   void close() {}

@@ -46,6 +46,9 @@ struct PyFeatures {
   int image_width = 0, image_height = 0;
 };
 PyFeatures to_python(const Features& features);
+// The aief.Features `object` holds; aief.Error when it holds none: made by Features.__new__
+// alone, which constructs nothing (reading its arrays crashed).
+const PyFeatures& features_of(const py::handle& object);
 // N x 32 uint8 rows of a numpy array (or of a PyFeatures) as engine descriptors.
 std::vector<Descriptor> descriptors_from(const py::object& value, const char* name);
 

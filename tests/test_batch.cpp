@@ -509,4 +509,45 @@ TEST(Batch, AnH5OutputWithoutFormatIsOneHdf5File) {
 #endif
 }
 
+#ifdef AIEF_HAVE_HDF5
+TEST(Batch, NamesWhoseGroupsWouldNestInOneH5AreRefused) {
+  // Before: `a` and `a/x.png` were both accepted, one group nested in the other (and writing `a`
+  // after `a/x.png` replaced the group holding it).
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path d = temp.path() / "d", h5 = temp.path() / "f.h5", list = temp.path() / "l.txt";
+  fs::create_directories(d);
+  fs::copy_file(aief::test::sample_path("graf", "img1.png"), d / "a");
+  std::ofstream(list) << "d/a\nd/a/x.png\n";
+  const std::string cwd = "cd " + temp.path().string() + " && ";
+  const aief::test::CommandRun both = aief::test::run_shell(
+      cwd + AIEF_CLI_PATH + " extract --batch l.txt -o f.h5 --format h5 --features 200 2>&1");
+  EXPECT_EQ(both.status, 1) << both.output;
+  EXPECT_NE(both.output.find("would have its group inside the group of input 'd/a'"),
+            std::string::npos)
+      << both.output;
+  EXPECT_FALSE(fs::exists(h5));
+  // Across runs: the second name fails alone, the batch goes on and the file keeps the first.
+  std::ofstream(list) << "d/a\n";
+  ASSERT_EQ(aief::test::run_shell(cwd + AIEF_CLI_PATH +
+                                  " extract --batch l.txt -o f.h5 --format h5 --features 200")
+                .status,
+            0);
+  fs::remove(d / "a");
+  fs::create_directories(d / "a");
+  fs::copy_file(aief::test::sample_path("graf", "img2.png"), d / "a" / "x.png");
+  fs::copy_file(aief::test::sample_path("boat", "img1.png"), d / "b.png");
+  std::ofstream(list) << "d/a/x.png\nd/b.png\n";
+  const aief::test::CommandRun second = aief::test::run_shell(
+      cwd + AIEF_CLI_PATH + " extract --batch l.txt -o f.h5 --format h5 --features 200 2>&1");
+  EXPECT_EQ(second.status, 1) << second.output;
+  EXPECT_NE(second.output.find("1 extracted, 0 already done, 1 failed"), std::string::npos)
+      << second.output;
+  EXPECT_NE(second.output.find("inside the group of image 'd/a'"), std::string::npos)
+      << second.output;
+  const std::vector<std::string> names =
+      aief::io::Hdf5File(h5.string(), aief::io::Hdf5File::Mode::read).feature_names();
+  EXPECT_EQ(names, (std::vector<std::string>{"d/a", "d/b.png"}));
+}
+#endif
+
 }  // namespace

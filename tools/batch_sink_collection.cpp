@@ -30,6 +30,7 @@ class CollectionSink : public BatchSink {
   void write(const BatchInput& input, const Features& features,
              const io::SourceRecord& source) override {
     const std::lock_guard<std::mutex> lock(mutex_);
+    file_->check_name(input.name);  // a name it cannot hold fails this input alone
     try {
       file_->write(input.name, features, source, options_);
     } catch (const Error& e) {
