@@ -53,6 +53,7 @@ class Hdf5Collection : public FeatureCollectionFile {
   void check_name(const std::string& name) const override { file_.check_image_name(name); }
   void remove(const std::string& name) override { file_.remove_features(name); }
   void close() override { file_.close(); }
+  int writes_on_disk() const override { return file_.groups_on_disk(); }
 
  private:
   Hdf5File file_;

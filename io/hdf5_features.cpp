@@ -61,7 +61,8 @@ void Hdf5File::remove_features(const std::string& image) {
   const std::string name = image_group(image);
   // Flushed at once: a file created by an older aief hands freed space out again.
   write_guarded(
-      0, "the removal of '" + name + "'", [&] { remove_group(file_, name); }, Flush::now);
+      0, "the removal of '" + name + "'", [&] { remove_group(file_, name); }, Flush::now,
+      false);
 }
 
 void Hdf5File::check_image_name(const std::string& image) const {

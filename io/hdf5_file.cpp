@@ -315,6 +315,7 @@ void Hdf5File::flush_now() {
   reserve(0);  // everything the flush writes lies below the end of allocation
   if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error(hdf5_reason());
   unflushed_writes_ = 0;
+  flushed_groups_ = written_groups_;
   flushed_a_write_ = true;
 }
 

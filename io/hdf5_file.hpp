@@ -153,6 +153,11 @@ class Hdf5File {
   // close() to know that its writes are on disk.
   void close();
 
+  // Groups written (write_features, write_matches, copy_group_from) and flushed: what the file on
+  // disk holds of this object's writes. After a failed write, fewer than were written when the
+  // failure came at a flush (a file system without fallocate).
+  int groups_on_disk() const { return flushed_groups_; }
+
   // Groups written between flushes: a flush costs about as much as writing a small pair group.
   static constexpr int kWritesPerFlush = 64;
 
@@ -182,7 +187,7 @@ class Hdf5File {
   // as told.
   template <class Write>
   void write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
-                     Flush flush = Flush::batched);
+                     Flush flush = Flush::batched, bool adds_a_group = true);
 
   std::unique_ptr<OutputLock> lock_;  // read_write: held from before opening until destroyed
   std::string path_;
@@ -191,6 +196,7 @@ class Hdf5File {
   int descriptor_ = -1;      // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
   std::uint64_t reserved_until_ = 0;
   int unflushed_writes_ = 0;
+  int written_groups_ = 0, flushed_groups_ = 0;  // groups_on_disk()
   bool flushed_a_write_ = false;
   std::string first_image_;    // read_write: an image group's name, as the file was opened
   bool holds_pairs_ = false;   // read_write: the file held a pair group when opened

@@ -91,10 +91,17 @@ class FeaturesFile {
     open().write_features(name, engine_features(features), &record, &extractor.options());
   }
   void remove(const py::object& name) { open().remove_features(filesystem_path(name)); }
+  int writes_on_disk() const { return file_ ? file_->groups_on_disk() : writes_on_disk_; }
   void close() {
     if (!file_) return;
     const std::unique_ptr<io::Hdf5File> file = std::move(file_);
-    file->close();
+    try {
+      file->close();
+    } catch (...) {
+      writes_on_disk_ = file->groups_on_disk();
+      throw;
+    }
+    writes_on_disk_ = file->groups_on_disk();
   }
 
  private:
@@ -103,6 +110,7 @@ class FeaturesFile {
     return *file_;
   }
   std::unique_ptr<io::Hdf5File> file_;
+  int writes_on_disk_ = 0;  // once closed
 };
 
 #else
@@ -119,6 +127,7 @@ class FeaturesFile {
   void write(const py::object&, const py::object&, const std::array<long long, 2>&,
              const PyExtractor&) {}
   void remove(const py::object&) {}
+  int writes_on_disk() const { return 0; }
   void close() {}
 };
 
@@ -145,6 +154,11 @@ void bind_features_file(py::module_& m) {
            "record and `extractor`'s option record")
       .def("remove", &FeaturesFile::remove, py::arg("name"),
            "Removes the group `name`, if there is one")
+      .def_property_readonly(
+          "writes_on_disk", &FeaturesFile::writes_on_disk,
+          "How many of this object's writes the file on disk holds: after a failed write, those "
+          "before it that reached the disk (the writes since the last flush are lost when the "
+          "disk fills at a flush, as on a file system without fallocate)")
       .def("close", &FeaturesFile::close,
            "Closes the file, raising aief.Error when its last writes could not be stored")
       .def("__enter__", [](py::object self) { return self; })

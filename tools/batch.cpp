@@ -235,6 +235,7 @@ BatchSummary run_batch(const BatchSettings& settings) {
       summary.stopped = e.what();
     }
   }
+  summary.on_disk = sink->written_on_disk(summary.extracted);
   progress.finish();
   return summary;
 }

@@ -48,6 +48,7 @@ struct BatchSummary {
   int redone = 0;    // of those extracted: the output was of this input but of other options
   std::vector<std::string> redone_for;  // why, each option change once ("n_features 500 -> 3000")
   int skipped = 0;                      // output already complete and of this very input
+  int on_disk = 0;  // of those extracted, the outputs the disk holds (fewer after a stop, maybe)
   int failed = 0;
   long long keypoints = 0;
   std::vector<std::string> failures;  // "path: reason"

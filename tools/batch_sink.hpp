@@ -48,6 +48,9 @@ class BatchSink {
   // After the last write: makes every write durable (a file that batches its writes flushes and
   // closes). Throws SinkFailure.
   virtual void finish() {}
+  // Of `written` outputs written, how many the disk holds (a file that batches its writes loses
+  // those after its last flush when the disk fills at a flush).
+  virtual int written_on_disk(int written) const { return written; }
 };
 
 // The sink of settings.format, its output created or opened. Throws aief::Error (a format this

@@ -47,6 +47,11 @@ class CollectionSink : public BatchSink {
     }
   }
 
+  int written_on_disk(int) const override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return file_->writes_on_disk();
+  }
+
   std::string remove(const BatchInput& input) override {
     const std::lock_guard<std::mutex> lock(mutex_);
     try {
@@ -58,7 +63,7 @@ class CollectionSink : public BatchSink {
   }
 
  private:
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   ExtractorOptions options_;
   std::unique_ptr<io::FeatureCollectionFile> file_;
 };

@@ -102,7 +102,7 @@ int run_extract_batch(const Args& args) {
     std::printf("  failed: %s\n", failure.c_str());
   if (!summary.stopped.empty())
     throw Error(summary.stopped +
-                "\nbatch stopped: " + std::to_string(summary.extracted + summary.skipped) + " of " +
+                "\nbatch stopped: " + std::to_string(summary.on_disk + summary.skipped) + " of " +
                 std::to_string(summary.images) +
                 " images are done; run the same command again to resume");
   return summary.failed > 0 ? 1 : 0;
