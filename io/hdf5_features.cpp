@@ -1,7 +1,9 @@
 // Hdf5File's image groups (the features.h5 layout, io/hdf5_file.hpp).
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aief/error.hpp"
@@ -222,22 +224,37 @@ Features Hdf5File::read_features(const std::string& image) const {
   }
   return features;
 }
-std::vector<std::string> Hdf5File::feature_names() const {
+std::vector<std::string> Hdf5File::feature_names() const { return listing().names; }
+
+Hdf5File::Listing Hdf5File::listing() const {
   silence_hdf5();
-  std::vector<std::string> names;
+  struct Visit {
+    Listing listing;
+    std::vector<std::string> with_keypoints;
+  } visited;
   const auto visit = [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
-    const std::string path(name);
-    const std::string suffix = "/image_size";
-    if (info->type == H5O_TYPE_DATASET && path.size() > suffix.size() && path.ends_with(suffix))
-      static_cast<std::vector<std::string>*>(data)->push_back(
-          image_of_group(path.substr(0, path.size() - suffix.size())));
+    if (info->type != H5O_TYPE_DATASET) return 0;
+    Visit& v = *static_cast<Visit*>(data);
+    const std::string_view path(name);
+    const auto group_of = [&](std::string_view suffix) -> std::optional<std::string> {
+      if (path.size() <= suffix.size() || !path.ends_with(suffix)) return std::nullopt;
+      return image_of_group(std::string(path.substr(0, path.size() - suffix.size())));
+    };
+    if (auto image = group_of("/image_size")) v.listing.names.push_back(std::move(*image));
+    else if (auto started = group_of("/keypoints")) v.with_keypoints.push_back(std::move(*started));
+    else if (path.ends_with("/matches0")) v.listing.holds_pairs = true;
     return 0;
   };
   // Only each object's type (H5O_INFO_BASIC): the full information reads every header's
   // attributes and sizes too, 340k instructions an image.
-  if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names, H5O_INFO_BASIC) < 0)
+  if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &visited, H5O_INFO_BASIC) < 0)
     throw Error(damaged_file(path_, hdf5_reason()));
-  std::sort(names.begin(), names.end());
-  return names;
+  Listing& out = visited.listing;
+  std::sort(out.names.begin(), out.names.end());
+  for (std::string& name : visited.with_keypoints)
+    if (!std::binary_search(out.names.begin(), out.names.end(), name))
+      out.incomplete.push_back(std::move(name));
+  std::sort(out.incomplete.begin(), out.incomplete.end());
+  return out;
 }
 }  // namespace aief::io

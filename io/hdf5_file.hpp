@@ -136,6 +136,14 @@ class Hdf5File {
                                                  std::size_t* queries = nullptr) const;
   // The image names of a features file: every group holding an image_size dataset, sorted.
   std::vector<std::string> feature_names() const;
+  // What a file holds, in one pass: its complete image groups (feature_names), the images whose
+  // group a killed write left incomplete (keypoints but no image_size), whether it holds pair
+  // groups (matches0: a matches file).
+  struct Listing {
+    std::vector<std::string> names, incomplete;
+    bool holds_pairs = false;
+  };
+  Listing listing() const;
   // Copies the group `name` of `source` here (replacing an incomplete one), not flushed: for a
   // file written whole and then renamed (merge_feature_files).
   void copy_group_from(const Hdf5File& source, const std::string& name);
