@@ -54,6 +54,7 @@ class Hdf5Collection : public FeatureCollectionFile {
   void remove(const std::string& name) override { file_.remove_features(name); }
   void close() override { file_.close(); }
   int writes_on_disk() const override { return file_.groups_on_disk(); }
+  std::vector<std::string> names() const override { return file_.feature_names(); }
 
  private:
   Hdf5File file_;

@@ -36,6 +36,8 @@ class FeatureCollectionFile {
   virtual void remove(const std::string& name) = 0;
   // Makes every write durable; throws aief::Error when it cannot.
   virtual void close() = 0;
+  // The names of every complete entry, sorted.
+  virtual std::vector<std::string> names() const = 0;
   // How many of this object's writes the file on disk holds (after a failure, those before it
   // that reached the disk).
   virtual int writes_on_disk() const = 0;

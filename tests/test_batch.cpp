@@ -551,3 +551,27 @@ TEST(Batch, NamesWhoseGroupsWouldNestInOneH5AreRefused) {
 #endif
 
 }  // namespace
+
+namespace {
+
+#ifdef AIEF_HAVE_HDF5
+TEST(Batch, AnH5HoldingImagesOfNoInputSaysSo) {
+  // Before: a deleted image's group stayed in the shard (and in the merged file) without a word.
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path video = numbered_frames(temp.path(), 3), h5 = temp.path() / "f.h5";
+  const std::vector<std::string> args = {"extract", "--batch", video.string(), "-o", h5.string(),
+                                         "--features", "200"};
+  ASSERT_EQ(aief::test::run_command(AIEF_CLI_PATH, args).status, 0);
+  fs::remove(video / "frame_1.png");
+  const aief::test::CommandRun again = aief::test::run_command(AIEF_CLI_PATH, args);
+  EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("holds 1 image(s) that are none of this run's inputs (deleted or "
+                              "moved since an earlier run wrote them? the first: 'frame_1.png')"),
+            std::string::npos)
+      << again.output;
+  EXPECT_EQ(aief::io::Hdf5File(h5.string(), aief::io::Hdf5File::Mode::read).feature_names().size(),
+            3u);
+}
+#endif
+
+}  // namespace

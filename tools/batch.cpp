@@ -230,6 +230,10 @@ BatchSummary run_batch(const BatchSettings& settings) {
   parallel::handoff_acquire(&kWriteStage);
   if (summary.stopped.empty()) {
     try {
+      summary.of_no_input = sink->entries_of_no_input(inputs);
+    } catch (const std::exception&) {  // a note only: the batch itself is done
+    }
+    try {
       sink->finish();
     } catch (const SinkFailure& e) {
       summary.stopped = e.what();

@@ -48,6 +48,8 @@ struct BatchSummary {
   int redone = 0;    // of those extracted: the output was of this input but of other options
   std::vector<std::string> redone_for;  // why, each option change once ("n_features 500 -> 3000")
   int skipped = 0;                      // output already complete and of this very input
+  // Entries the output holds of none of this run's inputs (deleted or moved images): kept.
+  std::vector<std::string> of_no_input;
   int on_disk = 0;  // of those extracted, the outputs the disk holds (fewer after a stop, maybe)
   int failed = 0;
   long long keypoints = 0;

@@ -1,5 +1,7 @@
 // The sink of a one-file-per-batch format (io::FeatureCollectionFile: HDF5).
 #include <mutex>
+#include <string_view>
+#include <unordered_set>
 
 #include "io/feature_formats.hpp"
 #include "io/option_record.hpp"
@@ -45,6 +47,16 @@ class CollectionSink : public BatchSink {
     } catch (const Error& e) {
       throw SinkFailure(e.what());
     }
+  }
+
+  std::vector<std::string> entries_of_no_input(const std::vector<BatchInput>& inputs) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::unordered_set<std::string_view> taken;
+    for (const BatchInput& input : inputs) taken.insert(input.name);
+    std::vector<std::string> others;
+    for (std::string& name : file_->names())
+      if (!taken.count(name)) others.push_back(std::move(name));
+    return others;
   }
 
   int written_on_disk(int) const override {

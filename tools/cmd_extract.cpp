@@ -100,6 +100,13 @@ int run_extract_batch(const Args& args) {
               summary.keypoints);
   for (const std::string& failure : summary.failures)
     std::printf("  failed: %s\n", failure.c_str());
+  if (!summary.of_no_input.empty())
+    std::fprintf(stderr,
+                 "aief: note: '%s' holds %zu image(s) that are none of this run's inputs (deleted or "
+                 "moved since an earlier run wrote them? the first: '%s'): kept, and merge carries "
+                 "them on\n",
+                 settings.output_dir.c_str(), summary.of_no_input.size(),
+                 summary.of_no_input.front().c_str());
   if (!summary.stopped.empty())
     throw Error(summary.stopped +
                 "\nbatch stopped: " + std::to_string(summary.on_disk + summary.skipped) + " of " +
