@@ -109,10 +109,14 @@ OutputLock::OutputLock(const std::string& output)
         if (code == ENOENT && !folder.empty() && !fs::is_directory(folder, ec))
           throw Error("cannot create '" + output_ + "': the folder '" + folder.string() +
                       "' does not exist");
-        throw Error("cannot write '" + output_ + "': cannot create its lock file '" +
-                    lock_path_ + "': " + std::strerror(code) +
-                    " (a writer locks its output so that no other run writes it at the same "
-                    "time; " + kSetting + "=FALSE writes without the lock when no other run can)");
+        // A folder that takes no new file takes no output either: the setting would not help.
+        const bool no_new_file = code == EROFS || code == EACCES || code == EPERM;
+        throw Error("cannot write '" + output_ + "': cannot create its lock file '" + lock_path_ +
+                    "' beside it: " + std::strerror(code) +
+                    (no_new_file ? std::string()
+                                 : " (a writer locks its output so that no other run writes it at "
+                                   "the same time; " + std::string(kSetting) +
+                                       "=FALSE writes without the lock when no other run can)"));
       }
       int code = lock(descriptor_, false);
       if (code == EAGAIN || code == EACCES) {
