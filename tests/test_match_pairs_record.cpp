@@ -119,5 +119,41 @@ TEST_F(MatchPairsRecord, APairGroupWithoutARecordIsMatchedAgain) {
   expect_fresh(matches, "");
 }
 
+#ifdef AIEF_HAVE_COLMAP_EXPORT
+// colmap takes a pair's matches only when they were matched from the features the features file
+// holds now (the pair group's record): before, features re-extracted with --mode orbslam2 (as many
+// keypoints, so no index check caught it) gave a database of stale matches and exit 0.
+TEST_F(MatchPairsRecord, ColmapRefusesMatchesOfFeaturesExtractedAgainNamingThePairs) {
+  extract("--features 300");
+  const std::string matches = folder_.file("m.h5");
+  ASSERT_EQ(match(matches).status, 0);
+  const test::CommandRun fresh =
+      run("colmap --features " + features() + " --matches " + matches + " --pairs " + pairs() +
+          " -o " + folder_.file("fresh.db"));
+  EXPECT_EQ(fresh.status, 0) << fresh.output;
+
+  extract("--features 300 --mode orbslam2");
+  const std::string db = folder_.file("stale.db");
+  const test::CommandRun stale = run("colmap --features " + features() + " --matches " + matches +
+                                     " --pairs " + pairs() + " -o " + db);
+  EXPECT_EQ(stale.status, 1) << stale.output;
+  EXPECT_NE(stale.output.find("2 pair(s) of '" + matches + "' were matched from other features"),
+            std::string::npos)
+      << stale.output;
+  EXPECT_NE(stale.output.find("(pair 'a.png b.png': the features of 'a.png': "),
+            std::string::npos)
+      << stale.output;
+  EXPECT_NE(stale.output.find("'b.png c.png'"), std::string::npos) << stale.output;
+  EXPECT_NE(stale.output.find("run aief match --pairs again"), std::string::npos) << stale.output;
+  EXPECT_FALSE(std::filesystem::exists(db));
+
+  // Matched again: taken.
+  ASSERT_EQ(match(matches).status, 0);
+  const test::CommandRun again = run("colmap --features " + features() + " --matches " + matches +
+                                     " --pairs " + pairs() + " -o " + db);
+  EXPECT_EQ(again.status, 0) << again.output;
+}
+#endif
+
 }  // namespace
 }  // namespace aief

@@ -1,6 +1,8 @@
 // aief merge -o features.h5 shard0.h5 shard1.h5 ... (io/hdf5_merge.hpp)
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "aief/error.hpp"
 #include "tools/cli_args.hpp"
@@ -26,7 +28,9 @@ int run_merge(const Arguments& arguments) {
     throw UsageError("merge expects -o FEATURES.h5 and one or more shard files");
 #ifdef AIEF_HAVE_HDF5
   int replaced = 0;
-  const int copied = io::merge_feature_files(*output, args.positionals(), &replaced);
+  std::vector<std::string> notes;
+  const int copied = io::merge_feature_files(*output, args.positionals(), &replaced, &notes);
+  for (const std::string& note : notes) std::cerr << "aief: note: " << note << "\n";
   std::printf("%d images merged into %s", copied, output->c_str());
   if (replaced > 0)
     std::printf(" (%d replacing what it held of them: their image or options changed)", replaced);

@@ -203,6 +203,9 @@ class FeaturesFile:
         """Writes the group `name` with the features, the source record and the option record."""
     def remove(self, name: str) -> None:
         """Removes the group `name`, if there is one."""
+    @property
+    def writes_on_disk(self) -> int:
+        """How many of this object's writes the file on disk holds (after a failed write: those before it that reached the disk)."""
     def close(self) -> None:
         """Closes the file, raising aief.Error when its last writes could not be stored."""
     def __enter__(self) -> FeaturesFile: ...
