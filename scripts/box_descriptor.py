@@ -162,6 +162,9 @@ def placements(pyramid, kps, integral_mode):
         h, w = pyramid.level(int(n)).shape
         centres[sel, 0] = (kps.xy[sel, 0] + 0.5) * (w / w0) - 0.5
         centres[sel, 1] = (kps.xy[sel, 1] + 0.5) * (h / h0) - 0.5
+    # The engine describes the detected level pixel: the sub-pixel offset (within +-0.5) is only
+    # in the output position.
+    centres = np.rint(centres)
     return kps.octave.copy(), centres, np.full(len(kps), PATCH_SIZE_AT_LEVEL / PATCH_SIDE)
 
 
@@ -397,7 +400,8 @@ def bins(values, grid):
     return np.searchsorted(grid, values, side="left").astype(np.uint8)
 
 
-def boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=0.1, chunk=128, progress=None):
+def boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=0.1, refresh=1, shortlist=256,
+          chunk=128, progress=None):
     """BEBLID's boosting with equal-weight bits: each round picks the (test, threshold) whose bits
     agree on the most weight of positive pairs and differ on the most weight of negative pairs,
     then reweights the pairs (AdaBoost, exponential loss), so the next bit is chosen for the
@@ -406,39 +410,56 @@ def boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=0.1, chunk=128, prog
     pairs no single test separates (hard negatives, mislabelled positives) and the later bits
     are chosen on noise; damped, every bit still separates the whole set well.
 
+    With refresh > 1, every candidate is scored only every `refresh` rounds; the rounds between
+    score the `shortlist` best of the last full scoring (damped weights move slowly, so the best
+    candidate is almost always among them). refresh = 1 is exact.
+
     bins1, bins2: candidates x pairs (uint8, `bins` of the two keypoints' responses); labels 1/0.
     Returns [(candidate, threshold index, weighted agreement)] in bit order."""
     n_candidates, n_pairs = bins1.shape
     n_thresholds = len(grid)
+    width = n_thresholds + 1
     lo = np.minimum(bins1, bins2)
     hi = np.maximum(bins1, bins2)
     sign = np.where(labels > 0, 1.0, -1.0)
     weights = np.where(labels > 0, 0.5 / max(1, (labels > 0).sum()),
                        0.5 / max(1, (labels <= 0).sum()))
     used = np.zeros(n_candidates, dtype=bool)
+    last = np.full(n_candidates, -np.inf)
+
+    def score(candidates, v):
+        """Best weighted agreement and its threshold index for each of the candidates."""
+        best_score = np.empty(len(candidates))
+        best_k = np.empty(len(candidates), dtype=np.int64)
+        total = v.sum()
+        for start in range(0, len(candidates), chunk):
+            rows = candidates[start:start + chunk]
+            offsets = (np.arange(len(rows)) * width)[:, None]
+            vv = np.broadcast_to(v, (len(rows), n_pairs)).ravel()
+            hist = np.bincount((lo[rows] + offsets).ravel(), vv, len(rows) * width)
+            hist -= np.bincount((hi[rows] + offsets).ravel(), vv, len(rows) * width)
+            # differ[k] = sum of v over the pairs whose bits differ at threshold k: lo <= k < hi
+            differ = np.cumsum(hist.reshape(len(rows), width), axis=1)[:, :n_thresholds]
+            agreement = total - 2.0 * differ
+            best_k[start:start + len(rows)] = agreement.argmax(axis=1)
+            best_score[start:start + len(rows)] = agreement.max(axis=1)
+        return best_score, best_k
+
     chosen = []
-    width = n_thresholds + 1
     for round_ in range(n_bits):
         v = weights * sign
-        total = v.sum()
-        best = (-np.inf, -1, -1)
-        for start in range(0, n_candidates, chunk):
-            stop = min(n_candidates, start + chunk)
-            offsets = (np.arange(stop - start) * width)[:, None]
-            vv = np.broadcast_to(v, (stop - start, n_pairs)).ravel()
-            hist = np.bincount((lo[start:stop] + offsets).ravel(), vv, (stop - start) * width)
-            hist -= np.bincount((hi[start:stop] + offsets).ravel(), vv, (stop - start) * width)
-            # differ[k] = sum of v over pairs with lo <= k < hi
-            differ = np.cumsum(hist.reshape(stop - start, width), axis=1)[:, :n_thresholds]
-            score = total - 2.0 * differ
-            score[used[start:stop]] = -np.inf
-            k = np.unravel_index(np.argmax(score), score.shape)
-            if score[k] > best[0]:
-                best = (float(score[k]), start + int(k[0]), int(k[1]))
-        score, c, k = best
+        if round_ % refresh == 0:
+            candidates = np.flatnonzero(~used)
+        else:
+            order = np.argsort(-np.where(used, -np.inf, last), kind="stable")
+            candidates = np.sort(order[:min(shortlist, int((~used).sum()))])
+        scores, ks = score(candidates, v)
+        last[candidates] = scores
+        pick = int(np.argmax(scores))
+        c, k, r = int(candidates[pick]), int(ks[pick]), float(scores[pick])
         used[c] = True
         agree = np.where((bins1[c] <= k) == (bins2[c] <= k), 1.0, -1.0)
-        r = min(max(score / weights.sum(), -0.999999), 0.999999)
+        r = min(max(r / weights.sum(), -0.999999), 0.999999)
         alpha = shrinkage * 0.5 * math.log((1 + r) / (1 - r))
         weights = weights * np.exp(-alpha * sign * agree)
         weights /= weights.sum()

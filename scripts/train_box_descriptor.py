@@ -9,8 +9,8 @@ numpy and OpenCV (python3-numpy, python3-opencv). Everything is seeded: the same
 the same table.
 
 train: pairs of images with known homographies are made from the repository's own samples
-(data/samples/graf and boat, img1 and img2) and one photograph Debian ships (python3-scipy's
-scipy/misc/face.dat), each warped at random (any rotation, scale 0.55-1.8, perspective, shift) and
+(data/samples/graf and boat, img1 and img2) and three photographs Debian ships (python3-scipy's
+scipy/misc/face.dat, python3-pywt's pywt/data/aero.npz and ascent.npz), each warped at random (any rotation, scale 0.55-1.8, perspective, shift) and
 changed at random (blur, noise, JPEG, lighting). aief's default extractor gives the keypoints of
 both images; a keypoint pair is positive when the warp brings one onto the other (1.5 px, mutual,
 sizes agreeing with the warp's scale), and each positive gets two negatives: the keypoint whose
@@ -46,12 +46,16 @@ import box_descriptor as bd  # noqa: E402
 
 FACE = "/usr/lib/python3/dist-packages/scipy/misc/face.dat"          # python3-scipy
 GRACE = "/usr/share/matplotlib/mpl-data/sample_data/grace_hopper.jpg"  # python-matplotlib-data
+AERO = "/usr/lib/python3/dist-packages/pywt/data/aero.npz"             # python3-pywt
+ASCENT = "/usr/lib/python3/dist-packages/pywt/data/ascent.npz"         # python3-pywt
+PACKAGES = {FACE: "python3-scipy", GRACE: "python-matplotlib-data", AERO: "python3-pywt",
+            ASCENT: "python3-pywt"}
 
 TRAINING_IMAGES = ["data/samples/graf/img1.png", "data/samples/graf/img2.png",
-                   "data/samples/boat/img1.png", "data/samples/boat/img2.png", FACE]
+                   "data/samples/boat/img1.png", "data/samples/boat/img2.png", FACE, AERO, ASCENT]
 HELD_OUT_IMAGES = ["data/samples/leuven/img1.png", GRACE]
 
-DEFAULTS = dict(seed=31, warps=14, candidates=2500, positives=200, integral="level",
+DEFAULTS = dict(seed=31, warps=12, candidates=2500, positives=200, integral="level",
                 n_features=1000, shrinkage=0.1, max_threshold=12.0,
                 lighting=0.7)
 
@@ -68,12 +72,15 @@ def import_aief():
 def read_gray(path):
     full = path if os.path.isabs(path) else os.path.join(ROOT, path)
     if not os.path.exists(full):
-        package = {FACE: "python3-scipy", GRACE: "python-matplotlib-data"}.get(path, "")
+        package = PACKAGES.get(path, "")
         sys.exit(f"missing image {full}" + (f" (apt-get install {package})" if package else ""))
     if full.endswith("face.dat"):
         with open(full, "rb") as f:
             rgb = np.frombuffer(bz2.decompress(f.read()), dtype=np.uint8).reshape(768, 1024, 3)
         return cv2.cvtColor(rgb, cv2.COLOR_RGB2GRAY)
+    if full.endswith(".npz"):
+        with np.load(full, allow_pickle=False) as z:
+            return np.ascontiguousarray(z["data"], dtype=np.uint8)
     gray = cv2.imread(full, cv2.IMREAD_GRAYSCALE)
     if gray is None:
         sys.exit(f"cannot read {full}")
@@ -81,10 +88,8 @@ def read_gray(path):
 
 
 def short_name(path):
-    if path == FACE:
-        return "face.dat (python3-scipy)"
-    if path == GRACE:
-        return "grace_hopper.jpg (python-matplotlib-data)"
+    if path in PACKAGES:
+        return f"{os.path.basename(path)} ({PACKAGES[path]})"
     return path
 
 
@@ -132,7 +137,7 @@ def train(args):
                 f"weighted agreement {r:.3f}  ({time.time() - started:.0f} s)")
 
     chosen = bd.boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=args.shrinkage,
-                      progress=progress)
+                      refresh=args.refresh, progress=progress)
     table = bd.Table([pool[c] for c, _, _ in chosen], [grid[k] for _, k, _ in chosen])
     bd.check_table(table)
     minutes = (time.time() - started) / 60.0
@@ -146,7 +151,8 @@ def train(args):
         "  images: " + ", ".join(short_name(p) for p in images) + ";",
         f"  {len(labels)} keypoint pairs ({n_pos} positive; negatives: nearest rBRIEF >= 10 px away, "
         "and random);",
-        f"  BEBLID-style boosting over {len(grid)} thresholds, shrinkage {args.shrinkage:g} ({minutes:.1f} min).",
+        f"  BEBLID-style boosting over {len(grid)} thresholds (|t| <= {args.max_threshold:g}), shrinkage "
+        f"{args.shrinkage:g}, lighting changes in {args.lighting:g} of the pairs.",
         "",
         "One line per bit i (line order = bit order): \"x1 y1 x2 y2 radius threshold\".",
         "  (x1, y1), (x2, y2)  the centres of box 1 and box 2, integer patch pixels, origin at the centre",
@@ -292,6 +298,8 @@ def main(argv=None):
                            help="at most this many positive pairs per image pair")
             p.add_argument("--shrinkage", type=float, default=DEFAULTS["shrinkage"],
                            help="damping of the boosting's reweighting (1: plain AdaBoost)")
+            p.add_argument("--refresh", type=int, default=8,
+                           help="score every candidate every N rounds, the best 256 between (1: exact)")
             p.add_argument("--max-threshold", type=float, default=DEFAULTS["max_threshold"],
                            help="largest |threshold| a test may take (mean gray levels)")
             p.add_argument("--lighting", type=float, default=DEFAULTS["lighting"],
