@@ -401,7 +401,7 @@ def bins(values, grid):
 
 
 def boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=0.1, refresh=1, shortlist=256,
-          chunk=128, progress=None):
+          max_correlation=1.0, triplets=None, rate=0.05, chunk=128, progress=None):
     """BEBLID's boosting with equal-weight bits: each round picks the (test, threshold) whose bits
     agree on the most weight of positive pairs and differ on the most weight of negative pairs,
     then reweights the pairs (AdaBoost, exponential loss), so the next bit is chosen for the
@@ -413,6 +413,17 @@ def boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=0.1, refresh=1, shor
     With refresh > 1, every candidate is scored only every `refresh` rounds; the rounds between
     score the `shortlist` best of the last full scoring (damped weights move slowly, so the best
     candidate is almost always among them). refresh = 1 is exact.
+
+    max_correlation < 1: a test whose bit correlates more than that (absolute Pearson, over the
+    keypoints of the pairs) with a bit already chosen is passed over for the best one that does
+    not, among the 64 best of the round (the least correlated of them if none qualifies):
+    correlated bits count the same evidence twice in a Hamming distance.
+
+    triplets (T x 2: the index of a positive pair and of a negative pair with the same anchor):
+    the pairs are weighted by triplet instead, as TEBLID learns, each triplet by
+    exp(-rate x its margin so far: the bits its negative pair differs in less those its positive
+    pair differs in), so each bit is chosen for the triplets whose positive is not yet nearer
+    than their negative, which is what nearest-neighbour matching needs.
 
     bins1, bins2: candidates x pairs (uint8, `bins` of the two keypoints' responses); labels 1/0.
     Returns [(candidate, threshold index, weighted agreement)] in bit order."""
@@ -446,8 +457,30 @@ def boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=0.1, refresh=1, shor
         return best_score, best_k
 
     chosen = []
+    # Keypoints for the correlations: the first keypoint of each pair (anchors repeat; at most 8000).
+    sample = np.arange(n_pairs)
+    if n_pairs > 8000:
+        sample = np.random.default_rng(0).choice(n_pairs, 8000, replace=False)
+    chosen_bits = np.zeros((0, len(sample)), dtype=np.float32)
+
+    def standardised(rows, ks):
+        b = (bins1[np.asarray(rows)[:, None], sample[None, :]] <= np.asarray(ks)[:, None])
+        b = b.astype(np.float32)
+        b -= b.mean(axis=1, keepdims=True)
+        norm = np.linalg.norm(b, axis=1, keepdims=True)
+        return b / np.maximum(norm, 1e-6)
+
+    if triplets is not None:
+        triplets = np.asarray(triplets, dtype=np.int64)
+        margins = np.zeros(len(triplets))
+
     for round_ in range(n_bits):
-        v = weights * sign
+        if triplets is None:
+            v = weights * sign
+        else:
+            w = np.exp(-rate * (margins - margins.min()))
+            w /= w.sum()
+            v = (np.bincount(triplets[:, 0], w, n_pairs) - np.bincount(triplets[:, 1], w, n_pairs))
         if round_ % refresh == 0:
             candidates = np.flatnonzero(~used)
         else:
@@ -456,13 +489,26 @@ def boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=0.1, refresh=1, shor
         scores, ks = score(candidates, v)
         last[candidates] = scores
         pick = int(np.argmax(scores))
+        if max_correlation < 1.0 and len(chosen_bits):
+            top = np.argsort(-scores, kind="stable")[:64]
+            bits = standardised(candidates[top], ks[top])
+            worst = np.abs(bits @ chosen_bits.T).max(axis=1)
+            ok = np.flatnonzero(worst <= max_correlation)
+            pick = int(top[ok[0]] if len(ok) else top[np.argmin(worst)])
         c, k, r = int(candidates[pick]), int(ks[pick]), float(scores[pick])
+        if max_correlation < 1.0:
+            chosen_bits = np.vstack([chosen_bits, standardised([c], [k])])
         used[c] = True
-        agree = np.where((bins1[c] <= k) == (bins2[c] <= k), 1.0, -1.0)
-        r = min(max(r / weights.sum(), -0.999999), 0.999999)
-        alpha = shrinkage * 0.5 * math.log((1 + r) / (1 - r))
-        weights = weights * np.exp(-alpha * sign * agree)
-        weights /= weights.sum()
+        differ = (bins1[c] <= k) != (bins2[c] <= k)
+        if triplets is None:
+            agree = np.where(differ, -1.0, 1.0)
+            r = min(max(r / weights.sum(), -0.999999), 0.999999)
+            alpha = shrinkage * 0.5 * math.log((1 + r) / (1 - r))
+            weights = weights * np.exp(-alpha * sign * agree)
+            weights /= weights.sum()
+        else:
+            r = r / np.abs(v).sum()
+            margins += differ[triplets[:, 1]].astype(np.float64) - differ[triplets[:, 0]]
         chosen.append((c, k, r))
         if progress is not None:
             progress(round_, c, k, r)

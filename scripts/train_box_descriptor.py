@@ -57,7 +57,7 @@ HELD_OUT_IMAGES = ["data/samples/leuven/img1.png", GRACE]
 
 DEFAULTS = dict(seed=31, warps=12, candidates=2500, positives=200, integral="level",
                 n_features=1000, shrinkage=0.1, max_threshold=12.0,
-                lighting=0.7)
+                lighting=0.7, max_correlation=1.0, loss="pair", rate=0.05)
 
 
 def import_aief():
@@ -100,7 +100,7 @@ def collect(images, args, extractor, log):
     rng = np.random.default_rng(args.seed)
     pool = bd.candidate_pool(args.candidates, rng)
     grid = bd.threshold_grid(args.max_threshold)
-    side1, side2, labels = [], [], []
+    side1, side2, labels, triplets = [], [], [], []
     for path in images:
         gray = read_gray(path)
         for w in range(args.warps):
@@ -113,10 +113,15 @@ def collect(images, args, extractor, log):
                 used, inverse = np.unique(pairs[:, column], return_inverse=True)
                 r = bd.responses(bd.Pyramid(img), kps.subset(used), pool, args.integral)
                 out.append(bd.bins(r, grid)[inverse].T.copy())  # candidates x pairs
+            n = int((lab > 0).sum())  # training_pairs: n positives, n hard then n random negatives
+            offset = sum(len(x) for x in labels)
+            k = offset + np.arange(n)
+            triplets.append(np.concatenate([np.stack([k, k + n], 1), np.stack([k, k + 2 * n], 1)]))
             labels.append(lab)
         log(f"  {short_name(path)}: {args.warps} warps, {sum(len(x) for x in labels)} pairs so far")
     labels = np.concatenate(labels)
-    return pool, grid, np.concatenate(side1, axis=1), np.concatenate(side2, axis=1), labels
+    return (pool, grid, np.concatenate(side1, axis=1), np.concatenate(side2, axis=1), labels,
+            np.concatenate(triplets))
 
 
 def train(args):
@@ -127,7 +132,7 @@ def train(args):
     images = args.images or TRAINING_IMAGES
     log(f"collecting pairs from {len(images)} images x {args.warps} warps, "
         f"{args.candidates} candidate tests")
-    pool, grid, bins1, bins2, labels = collect(images, args, extractor, log)
+    pool, grid, bins1, bins2, labels, triplets = collect(images, args, extractor, log)
     n_pos = int((labels > 0).sum())
     log(f"{len(labels)} pairs ({n_pos} positive), responses in {time.time() - started:.0f} s")
 
@@ -137,7 +142,9 @@ def train(args):
                 f"weighted agreement {r:.3f}  ({time.time() - started:.0f} s)")
 
     chosen = bd.boost(bins1, bins2, labels, grid, n_bits=256, shrinkage=args.shrinkage,
-                      refresh=args.refresh, progress=progress)
+                      refresh=args.refresh, max_correlation=args.max_correlation,
+                      triplets=triplets if args.loss == "triplet" else None, rate=args.rate,
+                      progress=progress)
     table = bd.Table([pool[c] for c, _, _ in chosen], [grid[k] for _, k, _ in chosen])
     bd.check_table(table)
     minutes = (time.time() - started) / 60.0
@@ -151,8 +158,10 @@ def train(args):
         "  images: " + ", ".join(short_name(p) for p in images) + ";",
         f"  {len(labels)} keypoint pairs ({n_pos} positive; negatives: nearest rBRIEF >= 10 px away, "
         "and random);",
-        f"  BEBLID-style boosting over {len(grid)} thresholds (|t| <= {args.max_threshold:g}), shrinkage "
-        f"{args.shrinkage:g}, lighting changes in {args.lighting:g} of the pairs.",
+        f"  boosting ({'TEBLID-style, on triplets, rate %g' % args.rate if args.loss == 'triplet' else 'BEBLID-style, on pairs'})"
+        f" over {len(grid)} thresholds (|t| <= {args.max_threshold:g}), shrinkage "
+        f"{args.shrinkage:g}, bits correlated at most {args.max_correlation:g}, lighting changes in "
+        f"{args.lighting:g} of the pairs.",
         "",
         "One line per bit i (line order = bit order): \"x1 y1 x2 y2 radius threshold\".",
         "  (x1, y1), (x2, y2)  the centres of box 1 and box 2, integer patch pixels, origin at the centre",
@@ -300,6 +309,13 @@ def main(argv=None):
                            help="damping of the boosting's reweighting (1: plain AdaBoost)")
             p.add_argument("--refresh", type=int, default=8,
                            help="score every candidate every N rounds, the best 256 between (1: exact)")
+            p.add_argument("--max-correlation", type=float, default=DEFAULTS["max_correlation"],
+                           help="largest |correlation| of a new bit with a chosen one (1: no limit)")
+            p.add_argument("--loss", choices=["pair", "triplet"], default=DEFAULTS["loss"],
+                           help="pair: AdaBoost on labelled pairs (BEBLID); triplet: weights by "
+                                "the margin of anchor-positive-negative triplets (TEBLID)")
+            p.add_argument("--rate", type=float, default=DEFAULTS["rate"],
+                           help="triplet loss: weight exp(-rate x margin in bits)")
             p.add_argument("--max-threshold", type=float, default=DEFAULTS["max_threshold"],
                            help="largest |threshold| a test may take (mean gray levels)")
             p.add_argument("--lighting", type=float, default=DEFAULTS["lighting"],

@@ -86,6 +86,12 @@ def test_a_trained_bit_separates_a_constructed_case():
     assert -5 <= grid[k] < 5
     assert agreement == pytest.approx(1.0, abs=1e-5)
     assert chosen[1][0] != 2  # a test is not chosen twice
+    # The same on triplets (positive pair t, negative pair t + n/2).
+    half = np.arange(n // 2)
+    chosen = bd.boost(bd.bins(noise1, grid), bd.bins(noise2, grid), labels, grid, n_bits=2,
+                      triplets=np.stack([half, half + n // 2], 1))
+    assert chosen[0][0] == 2 and -5 <= grid[chosen[0][1]] < 5
+    assert chosen[0][2] == pytest.approx(1.0, abs=1e-6)
 
 
 def test_training_pairs_from_a_known_warp():
@@ -114,3 +120,25 @@ def test_mutual_nearest_and_accuracy():
     k1 = bd.Keypoints([[0, 0], [10, 10], [5, 5]], [31] * 3, [0] * 3, [0] * 3)
     k2 = bd.Keypoints([[14, 10], [1, 1]], [31] * 2, [0] * 2, [0] * 2)
     assert bd.match_accuracy(matches, k1, k2, np.eye(3)) == (1, 2)
+
+
+def test_a_correlated_bit_is_passed_over():
+    # Candidates 0 and 1 are the same test (the best); candidate 2 is a little worse and
+    # independent. Without a limit the duplicate comes second; with one, candidate 2 does.
+    grid = bd.threshold_grid(12.0)
+    rng = np.random.default_rng(4)
+    n = 2000
+    labels = np.repeat([1, 0], n // 2).astype(np.int8)
+    r1 = rng.uniform(-60, 60, size=(4, n))
+    r2 = rng.uniform(-60, 60, size=(4, n))
+    a, b = rng.choice([-5.0, 5.0], n), rng.choice([-5.0, 5.0], n)
+    flip_a = (labels == 0) | (rng.random(n) < 0.1)
+    flip_b = (labels == 0) & (rng.random(n) < 0.8)
+    r1[0] = r1[1] = a
+    r2[0] = r2[1] = np.where(flip_a, -a, a)
+    r1[2], r2[2] = b, np.where(flip_b, -b, b)
+    b1, b2 = bd.bins(r1, grid), bd.bins(r2, grid)
+    free = bd.boost(b1, b2, labels, grid, n_bits=2, shrinkage=0.01)
+    assert [c for c, _, _ in free] in ([0, 1], [1, 0])
+    limited = bd.boost(b1, b2, labels, grid, n_bits=2, shrinkage=0.01, max_correlation=0.5)
+    assert limited[0][0] in (0, 1) and limited[1][0] == 2
