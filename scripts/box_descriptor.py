@@ -1,7 +1,7 @@
 """The box descriptor in numpy: tables, tests on keypoints, synthetic pairs, boosting, MMA.
 
 A table is 256 box-average tests, one a line "x1 y1 x2 y2 radius threshold" (the format of
-data/box_descriptor/README.md and core/kernels/box_descriptor.hpp): box centres in patch pixels of
+data/box_descriptor/README.md and core/kernels/box_describe.hpp): box centres in patch pixels of
 a 32 x 32 patch, origin at its centre, both boxes squares of side 2 radius + 1, and
 bit = 1 iff mean(box 1) - mean(box 2) <= threshold. A keypoint of size S (31 at its own level) and
 angle A maps a patch point p to centre + (S / 32) R(A) p, rounded half to even, and a radius r to

@@ -178,7 +178,7 @@ def train(args):
         "  bit i = 1  iff  mean(box 1) - mean(box 2) <= threshold, else 0.",
         "A keypoint of size S (kPatchSize = 31 at its level) and angle A maps patch point (x, y) to",
         "  centre + (S / 32) * R(A) * (x, y), and a radius r to round(r * S / 32)",
-        "(core/kernels/box_descriptor.hpp has the exact arithmetic).",
+        "(core/kernels/box_describe.hpp has the exact arithmetic; docs/design.md \"The box descriptor\").",
     ]
     out = args.out if os.path.isabs(args.out) else os.path.join(ROOT, args.out)
     os.makedirs(os.path.dirname(out), exist_ok=True)
