@@ -375,6 +375,8 @@ def training_pairs(kps1, kps2, h, rng, max_positives=200, positive_px=1.5, negat
         pick = rng.choice(len(i), max_positives, replace=False)
         i, j = i[pick], j[pick]
     far = d[i] > negative_px
+    some = far.any(axis=1)  # a positive needs a keypoint far enough to be its negative
+    i, j, far = i[some], j[some], far[some]
     hard = hamming_rbrief(kps1.rbrief[i], kps2.rbrief)
     hard = np.where(far, hard, 1 << 20).argmin(axis=1)
     rand = np.array([rng.choice(np.flatnonzero(row)) for row in far], dtype=np.int64)
