@@ -109,7 +109,7 @@ TEST(DescriptorKinds, EveryFileFormatRecordsTheDescriptor) {
     }
     const test::CommandRun r =
         run("extract " + (h5 ? "--batch " + folder.file("images") + " --format h5" : image) +
-            " --features 100 --descriptor box -o " + out);
+            " --n-features 100 --descriptor box -o " + out);
     ASSERT_EQ(r.status, 0) << r.output;
     std::optional<std::string> record;
     if (h5) {
@@ -151,7 +151,7 @@ class MixedFeaturesFile : public ::testing::Test {
 };
 
 TEST_F(MixedFeaturesFile, MatchPairsRefusesNamingBothImages) {
-  const test::CommandRun r = run("match --pairs " + pairs() + " --features " + features() + " -o " +
+  const test::CommandRun r = run("match --pairs " + pairs() + " --features-file " + features() + " -o " +
                                  folder_.file("matches.h5"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("aief: error: 'a.png' holds rbrief descriptors, 'b.png' (both in '" +
@@ -163,7 +163,7 @@ TEST_F(MixedFeaturesFile, MatchPairsRefusesNamingBothImages) {
 TEST_F(MixedFeaturesFile, ColmapExportRefusesNamingBothImages) {
   io::Hdf5File(folder_.file("matches.h5"), io::Hdf5File::Mode::read_write).close();  // no pairs
   const test::CommandRun r =
-      run("colmap --features " + features() + " --matches " + folder_.file("matches.h5") +
+      run("colmap --features-file " + features() + " --matches " + folder_.file("matches.h5") +
           " --pairs " + pairs() + " -o " + folder_.file("database.db"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("holds rbrief descriptors"), std::string::npos) << r.output;
@@ -178,12 +178,12 @@ TEST(DescriptorKinds, MergeRefusesShardsOfDifferentDescriptors) {
   std::filesystem::create_directories(folder.file("two"));
   std::filesystem::copy_file(image, folder.file("one/a.png"));
   std::filesystem::copy_file(test::sample_path("graf", "img2.png"), folder.file("two/b.png"));
-  ASSERT_EQ(run("extract --batch " + folder.file("one") + " --features 100 --format h5 -o " +
+  ASSERT_EQ(run("extract --batch " + folder.file("one") + " --n-features 100 --format h5 -o " +
                 folder.file("one.h5"))
                 .status,
             0);
   ASSERT_EQ(run("extract --batch " + folder.file("two") +
-                " --features 100 --descriptor box --format h5 -o " + folder.file("two.h5"))
+                " --n-features 100 --descriptor box --format h5 -o " + folder.file("two.h5"))
                 .status,
             0);
   const test::CommandRun r = run("merge -o " + folder.file("all.h5") + " " + folder.file("one.h5") +
