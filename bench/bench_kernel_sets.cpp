@@ -132,6 +132,17 @@ void bench_unsharp_row(benchmark::State& state, const Inputs& in, const KernelTa
   state.SetItemsProcessed(state.iterations() * in.pixels);
 }
 
+void bench_binomial5_row(benchmark::State& state, const Inputs& in, const KernelTable& k) {
+  // Every row of every level once (one pass of the detection smoothing).
+  std::vector<std::uint16_t> sums(static_cast<std::size_t>(in.levels[0].width()) + 4);
+  std::vector<std::uint8_t> out(static_cast<std::size_t>(in.levels[0].width()));
+  for (auto _ : state)
+    for (const GrayImage& level : in.levels)
+      for (int y = 0; y < level.height(); ++y) k.binomial5_row(level.view(), y, sums.data(), out.data());
+  benchmark::DoNotOptimize(out.data());
+  state.SetItemsProcessed(state.iterations() * in.pixels);
+}
+
 void bench_accumulate_histogram(benchmark::State& state, const Inputs& in, const KernelTable& k) {
   std::uint32_t hist[256];
   for (auto _ : state)

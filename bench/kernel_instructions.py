@@ -25,7 +25,7 @@ from collections import Counter
 
 KERNELS = ["resize_bilinear_rows", "resize_opencv_linear_rows", "gaussian7_rows", "accumulate_histogram", "fast9_scores_row",
            "fast9_local_maxima_bits", "ic_moments", "rbrief_describe", "hamming_256_many",
-           "hamming_256_blocked", "unsharp_row", "extract"]
+           "hamming_256_blocked", "unsharp_row", "binomial5_row", "extract"]
 SETS = ["scalar", "neon64"]
 
 

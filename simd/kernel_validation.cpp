@@ -352,6 +352,20 @@ std::string check_unsharp_row(const KernelTable& scalar, const KernelTable& othe
   return "";
 }
 
+std::string check_binomial5_row(const KernelTable& scalar, const KernelTable& other,
+                               const GrayImage& src) {
+  const std::size_t width = static_cast<std::size_t>(src.width());
+  std::vector<std::uint16_t> sums_a(width + 4), sums_b(width + 4);
+  std::vector<std::uint8_t> a(width), b(width);
+  for (int y = 0; y < src.height(); ++y) {
+    scalar.binomial5_row(src.view(), y, sums_a.data(), a.data());
+    other.binomial5_row(src.view(), y, sums_b.data(), b.data());
+    const std::string diff = first_difference(a, b, other.name, "pixel");
+    if (!diff.empty()) return where(src, "row " + std::to_string(y) + " " + diff);
+  }
+  return "";
+}
+
 std::string check_extract(KernelSet set, const GrayImage& src) {
   if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
   // The default mode (sub-pixel, pool, per-level guard, automatic F) and the paper's conventions.

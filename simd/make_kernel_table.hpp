@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "core/kernels/kernel_table.hpp"
+#include "simd/binomial_blur_portable.hpp"
 #include "simd/block_entropy_portable.hpp"
 #include "simd/fast9_portable.hpp"
 #include "simd/gaussian_blur_portable.hpp"

@@ -94,6 +94,10 @@ Case make_case(int index) {
   // options stay as they were).
   std::mt19937 sharpen_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 32452843u));
   if (uniform_int(sharpen_rng, 0, 3) == 0) c.options.low_entropy_sharpen = true;
+  // Detection on a smoothed level, a third of the cases at 1 to 4 passes, its own draws likewise.
+  std::mt19937 smoothing_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 49979687u));
+  if (uniform_int(smoothing_rng, 0, 2) == 0)
+    c.options.detection_smoothing = std::sqrt(static_cast<double>(uniform_int(smoothing_rng, 1, 4)));
 
   const int width = uniform_int(rng, 39, 539), height = uniform_int(rng, 39, 539);
   const int source = uniform_int(rng, 0, 3);
@@ -120,7 +124,8 @@ Case make_case(int index) {
       << ", orientation " << to_string(c.options.orientation) << ", quadtree weight "
       << to_string(c.options.quadtree_weight) << ", FAST threshold from "
       << to_string(c.options.fast_threshold_from) << ", low-entropy sharpen "
-      << (c.options.low_entropy_sharpen ? "on" : "off");
+      << (c.options.low_entropy_sharpen ? "on" : "off") << ", detection smoothing "
+      << c.options.detection_smoothing;
   c.description = out.str();
   return c;
 }

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "aief/options.hpp"
+#include "core/kernels/binomial_blur.hpp"
 #include "core/kernels/block_entropy.hpp"
 #include "core/kernels/bound_filter.hpp"
 #include "core/kernels/fast9.hpp"
@@ -35,7 +36,8 @@
   X(hamming_256_many)           \
   X(hamming_256_blocked)        \
   X(positions_within_bounds)    \
-  X(unsharp_row)
+  X(unsharp_row)                \
+  X(binomial5_row)
 
 namespace aief {
 

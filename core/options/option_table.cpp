@@ -294,6 +294,17 @@ std::vector<OptionRow> make_rows() {
                "amount 2 at 0 bits falling linearly to none at 6 bits, blended between blocks); "
                "orientation and descriptors read the level as it is",
        .words = "on|off"},
+      {.key = "detection_smoothing",
+       .field = access<&M::detection_smoothing>,
+       .cli_flag = "--detection-smoothing",
+       .cli_value = "SIGMA",
+       .python_keyword = "detection_smoothing",
+       .yaml_key = "ORBextractor.detectionSmoothing",
+       .help = "FAST detects on each level blurred to about SIGMA px (max(1, round(SIGMA^2)) "
+               "passes of the 5x5 binomial, sigma 1 each); orientation and descriptors read the "
+               "level as it is; 0: off",
+       .low = 0,
+       .high = 3},
       {.key = "kernels",
        .field = access<&M::kernels>,
        .cli_flag = "--kernels",

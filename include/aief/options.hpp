@@ -166,6 +166,12 @@ struct ExtractorOptions {
   // sharpened (an unsharp mask whose amount falls with the block's entropy, blended between
   // blocks; core/entropy/low_entropy_sharpen.hpp); orientation and descriptors read the level itself.
   bool low_entropy_sharpen = false;
+  // Detection on a smoothed level (core/level/detection_smoothing.hpp): FAST reads each level (its
+  // sharpened copy with low_entropy_sharpen) blurred to about this sigma, px, by passes of the 5x5
+  // binomial; orientation and descriptors read the level itself. 0: none (every mode but quality).
+  // Blur in one image of a pair moves FAST's corners and scores; smoothing both measures them on
+  // alike pixels (docs/evaluation.md, "Hard families").
+  double detection_smoothing = 0;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
