@@ -100,9 +100,19 @@ std::map<std::string, std::string> synopsis_by_command(const std::string& doc) {
     }
     if (in_entry) synopsis[current] += line + "\n";
   }
-  for (auto& [command, text] : synopsis)
-    if (command != "[extractor options]" && text.find("[extractor options]") != std::string::npos)
+  // "[extractor options but --mode, --threads]": the block without those flags' [items].
+  static const std::regex but(R"(\[extractor options but ([^\]]*)\])");
+  for (auto& [command, text] : synopsis) {
+    if (command == "[extractor options]") continue;
+    if (text.find("[extractor options]") != std::string::npos)
       text += synopsis["[extractor options]"];
+    std::smatch excepted;
+    if (!std::regex_search(text, excepted, but)) continue;
+    std::string block = synopsis["[extractor options]"];
+    for (const std::string& flag : long_flags_in(excepted[1].str()))
+      block = std::regex_replace(block, std::regex("\\[" + flag + "( [^\\]]*)?\\]"), "");
+    text = excepted.prefix().str() + excepted.suffix().str() + block;
+  }
   return synopsis;
 }
 
