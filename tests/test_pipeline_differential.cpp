@@ -52,7 +52,7 @@ const cv::Mat& sample_image(int index) {
 }
 
 // Case `index` of the seeded sequence: every case depends only on the seed and its index.
-constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy,
+constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy, Mode::quality,
                                Mode::faithful};
 
 Case make_case(int index) {

@@ -93,6 +93,8 @@ enum class Mode {
   orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
   faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells and octree tie-breaks
+  quality,           // aief with FAST on smoothed levels and a finer pyramid (1.15, 10 levels):
+                     // for offline mapping, docs/evaluation.md "Hard families"
 };
 
 struct ExtractorOptions {

@@ -34,6 +34,7 @@ std::string method_name(const Method& method) {
     case Mode::quadtree_entropy: name = "Quadtree + entropy (F = 4)"; break;
     case Mode::aief_paper: name = "AIEF paper"; break;
     case Mode::aief: name = "AIEF"; break;
+    case Mode::quality: name = "AIEF quality mode"; break;
   }
   switch (method.threshold) {
     case ThresholdChoice::mode: return name;
