@@ -17,6 +17,7 @@
 
 #include "aief/adapt.hpp"
 #include "aief/features.hpp"
+#include "aief/match.hpp"
 
 namespace aief::io {
 
@@ -47,6 +48,13 @@ std::vector<std::string_view> field_keys() {
   std::vector<std::string_view> keys;
   std::apply([&](const auto&... f) { (keys.push_back(f.key), ...); }, RecordFields<Record>::list);
   return keys;
+}
+
+// Whether two records hold the same value in every field of the list.
+template <class Record>
+bool same_fields(const Record& a, const Record& b) {
+  return std::apply([&](const auto&... f) { return ((a.*(f.member) == b.*(f.member)) && ...); },
+                    RecordFields<Record>::list);
 }
 
 // The number of fields in a record's list (tests compare it with the struct's).
@@ -82,6 +90,14 @@ struct RecordFields<SweepPoint> {
                                           field("inliers", &R::inliers),
                                           field("cmr", &R::cmr),
                                           field("eligible", &R::eligible)};
+};
+
+// One putative match: aief match's JSON rows, the columns of Python's match arrays (M x 3).
+template <>
+struct RecordFields<Match> {
+  using R = Match;
+  static constexpr auto list = std::tuple{
+      field("query", &R::query), field("train", &R::train), field("distance", &R::distance)};
 };
 
 }  // namespace aief::io

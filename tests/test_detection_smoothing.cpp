@@ -1,5 +1,5 @@
 // Detection on a smoothed level (core/level/detection_smoothing.hpp,
-// core/kernels/binomial_blur.hpp): the row kernel against a direct 5x5 oracle on random odd sizes,
+// core/kernels/binomial5_row.hpp): the row kernel against a direct 5x5 oracle on random odd sizes,
 // the passes a sigma runs, that the option is off in every mode but quality and refused out of
 // range, that descriptors and angles stay the level's own, that it finds more correct matches
 // against a heavily blurred copy, and every kernel set and thread count. The option across the
@@ -19,7 +19,7 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "aief/match.hpp"
-#include "core/kernels/binomial_blur.hpp"
+#include "core/kernels/binomial5_row.hpp"
 #include "core/kernels/kernel_table.hpp"
 #include "core/level/detection_smoothing.hpp"
 #include "simd/kernels.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // Detection on a smoothed level (ExtractorOptions::detection_smoothing, docs/design.md §5,
 // "detection on a smoothed level"): FAST reads a copy of each level blurred by passes of the 5x5
-// binomial (core/kernels/binomial_blur.hpp, sigma 1 a pass), so a corner blurred in one image and
+// binomial (core/kernels/binomial5_row.hpp, sigma 1 a pass), so a corner blurred in one image and
 // sharp in the other is measured on alike pixels; orientation and descriptors read the level
 // itself. A sigma s > 0 runs max(1, round(s^2)) passes (variances add: sigma sqrt(passes)), so
 // 1 -> 1 pass, 1.5 -> 2 (sigma 1.41), 2 -> 4. Integers throughout: the same bytes under every

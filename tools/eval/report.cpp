@@ -9,6 +9,7 @@
 
 #include "io/json_writer.hpp"
 #include "io/plot.hpp"
+#include "io/temporary_files.hpp"
 
 namespace aief::eval {
 
