@@ -4,10 +4,14 @@
 // job cv::FAST with suppression does. Items are pixels so rates compare across sizes.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "aief/extractor.hpp"
 #include "bench/bench_support.hpp"
+#include "core/kernels/integral_image.hpp"
 #include "core/kernels/resize_bilinear_rows.hpp"
 #include "core/level/level_geometry.hpp"
 #include "simd/kernels.hpp"
@@ -52,6 +56,43 @@ cv::Mat as_mat(const GrayImage& image) {
 constexpr const char* kResize = listed_kernel("resize_bilinear_rows");
 constexpr const char* kGaussian = listed_kernel("gaussian7_rows");
 constexpr const char* kHistogram = listed_kernel("accumulate_histogram");
+constexpr const char* kRbrief = listed_kernel("rbrief_describe");
+constexpr const char* kBox = listed_kernel("box_describe");
+
+// The two descriptors on the same keypoints: those the default extraction keeps on level 0, with
+// their angles; rBRIEF reads the blurred level, the box descriptor the level's integral image
+// (each made once, outside the timing: their costs are gaussian7_rows and integral_image).
+struct Level0Keypoints {
+  GrayImage blurred;
+  IntegralImage integral;
+  std::vector<PixelPoint> points;
+  std::vector<BoxPoint> box_points;
+  std::vector<float> angles_deg;
+};
+
+std::shared_ptr<const Level0Keypoints> level0_keypoints(const Pyramid& pyramid,
+                                                        const cv::Mat& gray) {
+  auto in = std::make_shared<Level0Keypoints>();
+  const GrayImage& level0 = pyramid.levels[0];
+  const Features features =
+      Extractor(ExtractorOptions{})
+          .extract({gray.data, gray.cols, gray.rows, static_cast<std::ptrdiff_t>(gray.step)});
+  for (const Keypoint& kp : features.keypoints) {
+    if (kp.octave != 0) continue;
+    const PixelPoint p{static_cast<int>(std::lround(kp.x)), static_cast<int>(std::lround(kp.y))};
+    if (p.x < kEdgeBorder || p.y < kEdgeBorder || p.x >= level0.width() - kEdgeBorder ||
+        p.y >= level0.height() - kEdgeBorder)
+      continue;
+    in->points.push_back(p);
+    in->box_points.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
+    in->angles_deg.push_back(kp.angle_deg);
+  }
+  in->blurred = GrayImage(level0.width(), level0.height());
+  gaussian7_rows_scalar(level0.view(), in->blurred.mutable_view(), 0, level0.height(), 0,
+                        level0.width());
+  in->integral.compute(level0.view());
+  return in;
+}
 constexpr const char* kFast =
     "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (tests/fast9_whole_image.hpp)
 
@@ -63,6 +104,20 @@ std::string benchmark_name(const char* kernel, const std::string& variant,
 void register_kernel_benchmarks() {
   for (const NamedImage& image : benchmark_images()) {
     const auto pyramid = std::make_shared<Pyramid>(make_pyramid(image.gray));
+    const auto keypoints = level0_keypoints(*pyramid, image.gray);
+    // The box descriptor's integral image of level 0 beside the blur rBRIEF needs (gaussian7_rows
+    // above is the whole pyramid's): scalar, one add per pixel and row.
+    benchmark::RegisterBenchmark(benchmark_name("integral_image", "scalar", image.name).c_str(),
+                                 [pyramid](benchmark::State& state) {
+                                   IntegralImage integral;
+                                   for (auto _ : state) {
+                                     integral.compute(pyramid->levels[0].view());
+                                     benchmark::DoNotOptimize(integral.view().data);
+                                   }
+                                   state.SetItemsProcessed(state.iterations() *
+                                                           pyramid->levels[0].width() *
+                                                           pyramid->levels[0].height());
+                                 });
     for (KernelSet set : available_kernel_sets()) {
       const KernelTable* kernels = &kernel_table(set);
       const std::string variant = std::string(to_string(set));
@@ -108,6 +163,34 @@ void register_kernel_benchmarks() {
                                      benchmark::DoNotOptimize(found);
                                      state.SetItemsProcessed(state.iterations() * pyramid->pixels);
                                    });
+      // Items are keypoints: rbrief and box per keypoint, same keypoints, same run.
+      benchmark::RegisterBenchmark(
+          benchmark_name(kRbrief, variant, image.name).c_str(),
+          [keypoints, kernels](benchmark::State& state) {
+            std::vector<std::uint8_t> out(keypoints->points.size() * 32);
+            for (auto _ : state) {
+              kernels->rbrief_describe(keypoints->blurred.view(), keypoints->points.data(),
+                                       keypoints->angles_deg.data(),
+                                       static_cast<int>(keypoints->points.size()), out.data());
+              benchmark::DoNotOptimize(out.data());
+            }
+            state.SetItemsProcessed(state.iterations() *
+                                    static_cast<long long>(keypoints->points.size()));
+          });
+      benchmark::RegisterBenchmark(
+          benchmark_name(kBox, variant, image.name).c_str(),
+          [keypoints, kernels](benchmark::State& state) {
+            std::vector<std::uint8_t> out(keypoints->points.size() * 32);
+            for (auto _ : state) {
+              kernels->box_describe(keypoints->integral.view(), keypoints->box_points.data(),
+                                    keypoints->angles_deg.data(),
+                                    static_cast<int>(keypoints->box_points.size()), kBoxLevelScale,
+                                    out.data());
+              benchmark::DoNotOptimize(out.data());
+            }
+            state.SetItemsProcessed(state.iterations() *
+                                    static_cast<long long>(keypoints->points.size()));
+          });
       benchmark::RegisterBenchmark(benchmark_name(kHistogram, variant, image.name).c_str(),
                                    [pyramid, kernels](benchmark::State& state) {
                                      std::uint32_t hist[256];

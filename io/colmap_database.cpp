@@ -108,8 +108,16 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
       insert_matches(db, "INSERT INTO matches VALUES (?, ?, 2, ?)");
   using Images = std::unordered_map<std::string, std::pair<long long, int>>;
   Images images;  // name -> (image id, keypoints)
+  std::string first_name;  // COLMAP matches every image's descriptors with every other's
+  DescriptorKind first_descriptor = DescriptorKind::rbrief;
   for (const std::string& name : features.feature_names()) {
     const Features f = features.read_features(name);
+    if (images.empty()) {
+      first_name = name;
+      first_descriptor = f.descriptor;
+    }
+    require_same_descriptor(first_descriptor, "'" + first_name + "'", f.descriptor,
+                            "'" + name + "' (both in '" + features.path() + "')");
     const long long id = static_cast<long long>(images.size()) + 1;
     images[name] = {id, static_cast<int>(f.keypoints.size())};
     if (!is_valid_utf8(name)) summary.names_not_utf8.push_back(name);

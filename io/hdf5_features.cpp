@@ -177,6 +177,7 @@ Features Hdf5File::read_features(const std::string& image) const {
   const std::vector<std::int64_t> image_size =
       read_dataset<std::int64_t>(group.get(), "image_size", dims, name);
   Features features;
+  features.descriptor = recorded_descriptor(option_record(image));
   if (image_size.size() == 2) {
     features.image_width = static_cast<int>(image_size[0]);
     features.image_height = static_cast<int>(image_size[1]);

@@ -118,6 +118,15 @@ std::vector<std::string> match_option_changes(const std::string& first, const st
                                        read_option_record_json(other));
 }
 
+DescriptorKind recorded_descriptor(const std::optional<std::string>& recorded) {
+  if (!recorded || recorded->empty()) return DescriptorKind::rbrief;
+  const std::optional<option_table::RecordedOptions> fields = read_option_record_json(*recorded);
+  if (fields)
+    for (const auto& [key, value] : *fields)
+      if (key == "descriptor") return parse_descriptor_kind(value);
+  return DescriptorKind::rbrief;
+}
+
 std::string listed(const std::vector<std::string>& changes) {
   std::string text;
   for (const std::string& change : changes) text += (text.empty() ? "" : ", ") + change;

@@ -41,6 +41,11 @@ std::vector<std::string> option_changes(const std::string& first, const std::str
 std::string match_option_record_json(const MatchOptions& options);
 std::vector<std::string> match_option_changes(const std::string& first, const std::string& other);
 
+// The descriptor an output holds, from its option record (JSON text): the record's "descriptor",
+// or rbrief for a record without one or no record (an aief from before the box descriptor, which
+// wrote rBRIEF only). Throws aief::Error for a name it does not know.
+DescriptorKind recorded_descriptor(const std::optional<std::string>& recorded);
+
 // "n_features 500 -> 3000, entropy histogram -> off": changes as messages list them.
 std::string listed(const std::vector<std::string>& changes);
 

@@ -82,7 +82,12 @@ void bind_extractor(py::module_& m) {
       .def_readonly("angle", &PyFeatures::angle, "N float32, orientation in degrees, [0, 360)")
       .def_readonly("response", &PyFeatures::response, "N float32, FAST score")
       .def_readonly("octave", &PyFeatures::octave, "N int32, pyramid level")
-      .def_readonly("descriptors", &PyFeatures::descriptors, "N x 32 uint8, rBRIEF-256")
+      .def_readonly("descriptors", &PyFeatures::descriptors,
+                    "N x 32 uint8, 256-bit descriptors of the kind `descriptor` names")
+      .def_property_readonly(
+          "descriptor", [](const PyFeatures& f) { return std::string(to_string(f.descriptor)); },
+          "which descriptor `descriptors` holds: 'rbrief' or 'box' (the extractor's descriptor "
+          "option); aief.match refuses two Features of different kinds")
       .def_readonly("info", &PyFeatures::info,
                     "how the entropy mask went (threshold used, blocks kept)")
       .def_readonly("image_width", &PyFeatures::image_width,

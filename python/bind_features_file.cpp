@@ -11,6 +11,7 @@
 #include <string>
 
 #include "aief/error.hpp"
+#include "aief/match.hpp"
 #include "python/bindings.hpp"
 #include "python/py_extractor.hpp"
 #ifdef AIEF_HAVE_HDF5
@@ -35,6 +36,7 @@ Features engine_features(const PyFeatures& f) {
   Features out;
   out.image_width = f.image_width;
   out.image_height = f.image_height;
+  out.descriptor = f.descriptor;
   out.descriptors = descriptors_from(py::cast(f), "features");
   if (out.descriptors.size() != static_cast<std::size_t>(n))
     throw Error("features: " + std::to_string(out.descriptors.size()) + " descriptors for " +
@@ -86,6 +88,9 @@ class FeaturesFile {
              const std::array<long long, 2>& source, const PyExtractor& extractor) {
     const std::string name = filesystem_path(name_given);
     const io::SourceRecord record = source_record(name, source);
+    // The group records the extractor's options: they must be the features' own.
+    require_same_descriptor(features.descriptor, "features", extractor.options().descriptor,
+                            "the extractor");
     open().write_features(name, engine_features(features), &record, &extractor.options());
   }
   void remove(const py::object& name) { open().remove_features(filesystem_path(name)); }

@@ -102,6 +102,10 @@ void bind_matching(py::module_& m) {
         OptionCall call = match_call();
         call.read(args, kwargs);
         const MatchOptions options = call.options<MatchOptions>(0);
+        if (py::isinstance<PyFeatures>(call.leading(0)) &&
+            py::isinstance<PyFeatures>(call.leading(1)))
+          require_same_descriptor(call.leading(0).cast<const PyFeatures&>().descriptor, "a",
+                                  call.leading(1).cast<const PyFeatures&>().descriptor, "b");
         const std::vector<Descriptor> da = descriptors_from(call.leading(0), "a"),
                                       db = descriptors_from(call.leading(1), "b");
         std::vector<Match> matches;

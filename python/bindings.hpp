@@ -47,6 +47,7 @@ struct PyFeatures {
   py::array_t<std::uint8_t> descriptors;  // N x 32
   py::dict info;
   int image_width = 0, image_height = 0;
+  DescriptorKind descriptor = DescriptorKind::rbrief;  // what `descriptors` holds
 };
 PyFeatures to_python(const Features& features);
 

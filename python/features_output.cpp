@@ -36,6 +36,7 @@ PyFeatures to_python(const Features& features) {
   out.info = record_dict(features.info);
   out.image_width = features.image_width;
   out.image_height = features.image_height;
+  out.descriptor = features.descriptor;
   return out;
 }
 

@@ -104,6 +104,7 @@ void put_features(StateWriter& out, const Features& features) {
   out.put_vector(features.keypoints);
   out.put_vector(features.descriptors);
   out.put(features.info);
+  out.put(features.descriptor);
 }
 
 Features get_features(StateReader& in) {
@@ -113,6 +114,7 @@ Features get_features(StateReader& in) {
   features.keypoints = in.get_vector<Keypoint>();
   features.descriptors = in.get_vector<Descriptor>();
   features.info = in.get<ExtractionInfo>();
+  features.descriptor = in.get<DescriptorKind>();
   if (features.descriptors.size() != features.keypoints.size())
     throw Error("cannot unpickle aief.AdaptResult: keypoints and descriptors differ in number");
   return features;
@@ -194,11 +196,13 @@ void bind_pickling(py::module_& m) {
   features.def(py::pickle(
       [](const PyFeatures& f) {
         return py::make_tuple(f.keypoints, f.size, f.angle, f.response, f.octave, f.descriptors,
-                              f.info, f.image_width, f.image_height);
+                              f.info, f.image_width, f.image_height,
+                              std::string(to_string(f.descriptor)));
       },
       [](const py::tuple& t) {
-        if (t.size() != 9)
-          throw Error("cannot unpickle aief.Features: expected 9 fields, got " +
+        // 9 fields: pickled before the box descriptor, so rBRIEF.
+        if (t.size() != 9 && t.size() != 10)
+          throw Error("cannot unpickle aief.Features: expected 10 fields, got " +
                       std::to_string(t.size()));
         PyFeatures f;
         f.keypoints = t[0].cast<py::array_t<float>>();
@@ -210,6 +214,7 @@ void bind_pickling(py::module_& m) {
         f.info = t[6].cast<py::dict>();
         f.image_width = t[7].cast<int>();
         f.image_height = t[8].cast<int>();
+        if (t.size() == 10) f.descriptor = parse_descriptor_kind(t[9].cast<std::string>());
         return f;
       }));
   reduce_for_every_protocol(features);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include "aief/extractor.hpp"
 #include "core/kernels/kernel_evidence.hpp"
@@ -34,10 +35,16 @@ GrayImage random_gray(int width, int height, std::uint32_t seed, bool smooth) {
 
 std::string check_extract(KernelSet set, const GrayImage& src) {
   if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
-  // The default mode (sub-pixel, pool, per-level guard, automatic F) and the paper's conventions.
-  for (Mode mode : {Mode::aief, Mode::aief_paper, Mode::orbslam2}) {
+  // The default mode (sub-pixel, pool, per-level guard, automatic F) with each descriptor, and
+  // the paper's conventions.
+  const std::pair<Mode, DescriptorKind> runs[] = {{Mode::aief, DescriptorKind::rbrief},
+                                                  {Mode::aief, DescriptorKind::box},
+                                                  {Mode::aief_paper, DescriptorKind::rbrief},
+                                                  {Mode::orbslam2, DescriptorKind::rbrief}};
+  for (const auto& [mode, descriptor] : runs) {
     ExtractorOptions reference_options = options_for_mode(mode);
     reference_options.auto_threshold = mode == Mode::aief;
+    reference_options.descriptor = descriptor;
     reference_options.kernels = KernelSet::scalar;
     reference_options.threads = 1;
     const Features reference = Extractor(reference_options).extract(src.view());
@@ -46,8 +53,9 @@ std::string check_extract(KernelSet set, const GrayImage& src) {
       options.kernels = set;
       options.threads = threads;
       const Features other = Extractor(options).extract(src.view());
-      const std::string label =
-          std::string(to_string(mode)) + ", " + std::to_string(threads) + " thread(s): ";
+      const std::string label = std::string(to_string(mode)) + ", " +
+                                std::string(to_string(descriptor)) + ", " +
+                                std::to_string(threads) + " thread(s): ";
       if (other.keypoints.size() != reference.keypoints.size())
         return where(src, label + std::to_string(reference.keypoints.size()) +
                               " keypoints with scalar, " + std::to_string(other.keypoints.size()));

@@ -94,8 +94,11 @@ Case make_case(int index) {
   // options stay as they were).
   std::mt19937 sharpen_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 32452843u));
   if (uniform_int(sharpen_rng, 0, 3) == 0) c.options.low_entropy_sharpen = true;
+  // The box descriptor, a third of the cases, its own draws likewise.
+  std::mt19937 descriptor_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 49979687u));
+  if (uniform_int(descriptor_rng, 0, 2) == 0) c.options.descriptor = DescriptorKind::box;
   // Detection on a smoothed level, a third of the cases at 1 to 4 passes, its own draws likewise.
-  std::mt19937 smoothing_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 49979687u));
+  std::mt19937 smoothing_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 67867967u));
   if (uniform_int(smoothing_rng, 0, 2) == 0)
     c.options.detection_smoothing = std::sqrt(static_cast<double>(uniform_int(smoothing_rng, 1, 4)));
 
@@ -124,7 +127,8 @@ Case make_case(int index) {
       << ", orientation " << to_string(c.options.orientation) << ", quadtree weight "
       << to_string(c.options.quadtree_weight) << ", FAST threshold from "
       << to_string(c.options.fast_threshold_from) << ", low-entropy sharpen "
-      << (c.options.low_entropy_sharpen ? "on" : "off") << ", detection smoothing "
+      << (c.options.low_entropy_sharpen ? "on" : "off") << ", descriptor "
+      << to_string(c.options.descriptor) << ", detection smoothing "
       << c.options.detection_smoothing;
   c.description = out.str();
   return c;

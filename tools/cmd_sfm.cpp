@@ -16,6 +16,7 @@
 #include "io/hdf5_file.hpp"
 #include "io/hdf5_merge.hpp"
 #include "io/match_record.hpp"
+#include "io/option_record.hpp"
 #include "io/pairs_file.hpp"
 #endif
 #ifdef AIEF_HAVE_COLMAP_EXPORT
@@ -71,6 +72,9 @@ int run_match_pairs(const Args& args, const MatchOptions& match_options) {
   for (std::size_t pair = 0; pair < pairs.size(); ++pair) {
     const std::string &name0 = pairs.name0(pair), &name1 = pairs.name1(pair);
     const io::PairRecord record = records.of(name0, name1);
+    require_same_descriptor(io::recorded_descriptor(record.options0), "'" + name0 + "'",
+                            io::recorded_descriptor(record.options1),
+                            "'" + name1 + "' (both in '" + *features_path + "')");
     if (matches_file.has_matches(name0, name1)) {  // a resumed run: kept only if made as now
       const std::vector<std::string> changes =
           io::pair_changes(matches_file.pair_record(name0, name1), record, name0, name1);

@@ -22,7 +22,8 @@ constexpr int kBlurBandKeypointRows = 96;
 void LevelDescriptions::start(const LevelGeometry& geometry, Selections selections) {
   selections_ = selections;
   const int w = geometry.width, h = geometry.height;
-  if (geometry.grid.count() > 0) {  // a level too small to use is never described
+  if (geometry.grid.count() > 0 && descriptor_ == DescriptorKind::rbrief) {
+    // a level too small to use is never described
     if (selections_ == Selections::many)
       blurred_.resize(w, h);
     else
@@ -65,7 +66,16 @@ void LevelDescriptions::describe(const PyramidLevel& level,
   for (int i = 0; i < count; ++i)
     angles_[static_cast<std::size_t>(i)] =
         angle(m10_[static_cast<std::size_t>(i)], m01_[static_cast<std::size_t>(i)]);
-  if (selections_ == Selections::many) {
+  if (descriptor_ == DescriptorKind::box) {
+    if (!level_blurred()) blur_level(level, kernels);
+    box_points_.resize(todo_.size());
+    for (int i = 0; i < count; ++i) {
+      const PixelPoint& p = points_[static_cast<std::size_t>(i)];
+      box_points_[static_cast<std::size_t>(i)] = {static_cast<float>(p.x), static_cast<float>(p.y)};
+    }
+    kernels.box_describe(integral_.view(), box_points_.data(), angles_.data(), count,
+                         kBoxLevelScale, descriptors_.data());
+  } else if (selections_ == Selections::many) {
     if (!level_blurred()) blur_level(level, kernels);
     kernels.rbrief_describe(blurred_.view(), points_.data(), angles_.data(), count,
                             descriptors_.data());
@@ -84,6 +94,11 @@ void LevelDescriptions::describe(const PyramidLevel& level,
 }
 
 void LevelDescriptions::blur_level(const PyramidLevel& level, const KernelTable& kernels) {
+  if (descriptor_ == DescriptorKind::box) {
+    integral_.compute(level.pixels);
+    blurred_end_ = level.geometry.height;
+    return;
+  }
   assert(selections_ == Selections::many);
   kernels.gaussian7_rows(level.pixels, blurred_.mutable_view(), 0, level.geometry.height, 0,
                          level.geometry.width);

@@ -1,8 +1,9 @@
 #pragma once
 // Stage 4, second half, on one level: orientation (intensity centroid on the raw level) and
-// rBRIEF descriptor (on the blurred level) of chosen candidates, memoised per candidate, so a
-// candidate chosen again (the fallback, the sweep's thresholds) is described once. The blurred
-// rows are held as the number of selections asks.
+// descriptor of chosen candidates, memoised per candidate, so a candidate chosen again (the
+// fallback, the sweep's thresholds) is described once. rBRIEF reads the blurred level, its rows
+// held as the number of selections asks; the box descriptor the level's integral image, made
+// whole on the first describe of a frame (core/kernels/box_describe.hpp).
 #include <cstdint>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "aief/image.hpp"
 #include "aief/options.hpp"
 #include "core/distribution/candidate.hpp"
+#include "core/kernels/integral_image.hpp"
 #include "core/kernels/kernel_table.hpp"
 #include "core/kernels/pixel_point.hpp"
 #include "core/level/pyramid_level.hpp"
@@ -30,12 +32,15 @@ class LevelDescriptions {
   void track(std::size_t count) { memo_slot_.resize(count, -1); }
   // The angle formula of ExtractorOptions::orientation (for the frames that follow).
   void set_orientation(Orientation orientation) { orientation_ = orientation; }
+  // The descriptor of ExtractorOptions::descriptor (for the frames that follow).
+  void set_descriptor(DescriptorKind descriptor) { descriptor_ = descriptor; }
 
   // Describes the candidates `indices` (raster order) not described yet.
   void describe(const PyramidLevel& level, const std::vector<Candidate>& candidates,
                 const std::vector<std::int32_t>& indices, const KernelTable& kernels);
-  // Selections::many: whether the whole level is blurred yet, and blurring it (describe does it
-  // on its first call; a caller that spreads the work, core/sweep/spread_sweep.hpp, does it first).
+  // Selections::many: whether the whole level is blurred yet (with the box descriptor: its
+  // integral image made), and doing it (describe does it on its first call; a caller that spreads
+  // the work, core/sweep/spread_sweep.hpp, does it first).
   bool level_blurred() const { return blurred_end_ > 0; }
   void blur_level(const PyramidLevel& level, const KernelTable& kernels);
   // Whether candidate i is described.
@@ -47,6 +52,7 @@ class LevelDescriptions {
 
  private:
   Orientation orientation_ = Orientation::atan2;
+  DescriptorKind descriptor_ = DescriptorKind::rbrief;
   std::size_t slot(std::int32_t i) const;
   void describe_through_band(const PyramidLevel& level, const KernelTable& kernels, int count);
 
@@ -60,6 +66,9 @@ class LevelDescriptions {
   // band of rows [blurred_top_, blurred_end_) that slides down as points are described.
   GrayImage blurred_;
   int blurred_top_ = 0, blurred_end_ = 0;
+  // The box descriptor's integral image of the whole level (blurred_end_ > 0 once made).
+  IntegralImage integral_;
+  std::vector<BoxPoint> box_points_;
   // One describe() call's buffers.
   std::vector<PixelPoint> points_, band_points_;
   std::vector<std::int32_t> todo_;

@@ -63,6 +63,7 @@ void FrameAnalysis::start(ImageView image, const ExtractorOptions& options,
     else if (level.pyramid.usable())
       level.pyramid.detection_mask.resize(level.pyramid.geometry.width,
                                           level.pyramid.geometry.height);
+    level.descriptions.set_descriptor(options_.descriptor);  // before start: what it sizes
     level.descriptions.start(level.pyramid.geometry, selections_);
     level.descriptions.set_orientation(options_.orientation);
     level.blocks.reset(level.pyramid.geometry.grid.count());
@@ -211,6 +212,7 @@ void FrameAnalysis::assemble(const std::vector<std::vector<std::int32_t>>& chose
                              Features& out) const {
   out.image_width = width_;
   out.image_height = height_;
+  out.descriptor = options_.descriptor;
   out.keypoints.clear();
   out.descriptors.clear();
   for (int n = 0; n < level_count(); ++n) {

@@ -93,6 +93,21 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
     }
     for (std::size_t k = 0; k < members.size(); ++k)
       scratch.angle_deg[static_cast<std::size_t>(members[k])] = angles[k];
+    const std::size_t first_row = scratch.descriptors.size() / kDescriptorBytes;
+    scratch.descriptors.resize((first_row + members.size()) * kDescriptorBytes);
+    std::uint8_t* descriptors = scratch.descriptors.data() + first_row * kDescriptorBytes;
+    for (std::size_t k = 0; k < members.size(); ++k)
+      scratch.descriptor_row[static_cast<std::size_t>(members[k])] =
+          static_cast<std::int32_t>(first_row + k);
+    if (options.descriptor == DescriptorKind::box) {  // as select() does: the level's integral
+      scratch.integral.compute(level.pixels);
+      scratch.box_points.clear();
+      for (const PixelPoint& p : scratch.points)
+        scratch.box_points.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
+      kernels.box_describe(scratch.integral.view(), scratch.box_points.data(), angles.data(), m,
+                           kBoxLevelScale, descriptors);
+      continue;
+    }
     // The blur is the same pixel for pixel whatever region is blurred, so only the rectangle the
     // patterns read is: every sample lies within kEdgeBorder of its point.
     scratch.blurred.resize(w, h);
@@ -100,18 +115,14 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
     const MutableImageView whole = scratch.blurred.mutable_view();
     kernels.gaussian7_rows(level.pixels, {whole.row(y_begin), w, y_end - y_begin, whole.stride},
                            y_begin, y_end, x_min - kEdgeBorder, x_max + kEdgeBorder + 1);
-    const std::size_t first_row = scratch.descriptors.size() / kDescriptorBytes;
-    scratch.descriptors.resize((first_row + members.size()) * kDescriptorBytes);
     kernels.rbrief_describe(scratch.blurred.view(), scratch.points.data(), angles.data(), m,
-                            scratch.descriptors.data() + first_row * kDescriptorBytes);
-    for (std::size_t k = 0; k < members.size(); ++k)
-      scratch.descriptor_row[static_cast<std::size_t>(members[k])] =
-          static_cast<std::int32_t>(first_row + k);
+                            descriptors);
   }
 
   out.image_width = width0;
   out.image_height = height0;
   out.info = ExtractionInfo{};
+  out.descriptor = options.descriptor;
   out.keypoints.clear();
   out.descriptors.clear();
   if (kept_indices) kept_indices->clear();

@@ -15,7 +15,8 @@
 //                as for detected keypoints, replaces the given angle. GivenAngles::keep: the given
 //                angle is used as it is, as cv::ORB::compute does: any finite number of degrees
 //                (OpenCV's "no angle", -1, too: the pattern is rotated by cos and sin of it).
-//   descriptor   rBRIEF on the level blurred as for detected keypoints
+//   descriptor   rBRIEF on the level blurred as for detected keypoints, or with
+//                DescriptorKind::box the box descriptor on the level's integral image
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "core/frame/frame_analysis.hpp"
+#include "core/kernels/integral_image.hpp"
 #include "core/kernels/kernel_table.hpp"
 #include "core/kernels/pixel_point.hpp"
 
@@ -39,6 +41,8 @@ struct GivenKeypointScratch {
   std::vector<std::int32_t> descriptor_row;  // per keypoint: its row (-1: removed)
   std::vector<std::uint8_t> descriptors;     // 32 bytes a row, level by level
   GrayImage blurred;                         // one level's blurred rows
+  IntegralImage integral;                    // one level's integral image (the box descriptor)
+  std::vector<BoxPoint> box_points;          // points, as the box descriptor takes them
 };
 
 // Throws aief::Error, naming the keypoint, when its octave is outside [0, n_levels) or, with

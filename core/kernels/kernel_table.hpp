@@ -8,6 +8,7 @@
 #include "aief/options.hpp"
 #include "core/kernels/accumulate_histogram.hpp"
 #include "core/kernels/binomial5_row.hpp"
+#include "core/kernels/box_describe.hpp"
 #include "core/kernels/fast9_local_maxima_bits.hpp"
 #include "core/kernels/fast9_scores_row.hpp"
 #include "core/kernels/gaussian7_rows.hpp"
@@ -38,6 +39,7 @@
   X(fast9_local_maxima_bits)    \
   X(ic_moments)                 \
   X(rbrief_describe)            \
+  X(box_describe)               \
   X(hamming_256_many)           \
   X(hamming_256_blocked)        \
   X(positions_within_bounds)    \

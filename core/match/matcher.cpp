@@ -112,4 +112,12 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
   return match_descriptors(a, b, options, kernel_table(KernelSet::auto_select));
 }
 
+void require_same_descriptor(DescriptorKind a, std::string_view what_a, DescriptorKind b,
+                             std::string_view what_b) {
+  if (a == b) return;
+  throw Error(std::string(what_a) + " holds " + std::string(to_string(a)) + " descriptors, " +
+              std::string(what_b) + " " + std::string(to_string(b)) +
+              " descriptors: they cannot be matched (extract both with the same --descriptor)");
+}
+
 }  // namespace aief

@@ -138,6 +138,13 @@ struct Table<FastThresholdFrom> {
       {FastThresholdFrom::entropy, "entropy", "entropy"}};
 };
 
+template <>
+struct Table<DescriptorKind> {
+  static constexpr std::string_view what = "descriptor";
+  static constexpr Name<DescriptorKind> names[] = {{DescriptorKind::rbrief, "rbrief", "rbrief"},
+                                                   {DescriptorKind::box, "box", "box"}};
+};
+
 // The name of `value`; "?" for a value outside the table (an invalid cast).
 template <class Enum>
 std::string_view name_of(Enum value) {

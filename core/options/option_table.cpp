@@ -296,6 +296,16 @@ std::vector<OptionRow> make_rows() {
                "amount 2 at 0 bits falling linearly to none at 6 bits, blended between blocks); "
                "orientation and descriptors read the level as it is",
        .words = "on|off"},
+      {.key = "descriptor",
+       .field = access<&M::descriptor>,
+       .cli_flag = "--descriptor",
+       .cli_value = "D",
+       .python_keyword = "descriptor",
+       .yaml_key = "ORBextractor.descriptor",
+       .help = "the 256-bit descriptor: rbrief (ORB's learned pattern on the blurred level) or box "
+               "(learned box-average tests on the level's integral image, TEBLID's form; a SLAM "
+               "vocabulary trained on rbrief needs retraining for it); files of different "
+               "descriptors never match"},
       {.key = "detection_smoothing",
        .field = access<&M::detection_smoothing>,
        .cli_flag = "--detection-smoothing",

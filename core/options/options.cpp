@@ -21,6 +21,7 @@ std::string_view to_string(QuadtreeTies value) { return option_names::name_of(va
 std::string_view to_string(Orientation value) { return option_names::name_of(value); }
 std::string_view to_string(QuadtreeWeight value) { return option_names::name_of(value); }
 std::string_view to_string(FastThresholdFrom value) { return option_names::name_of(value); }
+std::string_view to_string(DescriptorKind value) { return option_names::name_of(value); }
 
 Distribution parse_distribution(std::string_view name) {
   return option_names::parse<Distribution>(name);
@@ -35,6 +36,9 @@ CoordinateMap parse_coordinate_map(std::string_view name) {
 }
 StarvationGuard parse_starvation_guard(std::string_view name) {
   return option_names::parse<StarvationGuard>(name);
+}
+DescriptorKind parse_descriptor_kind(std::string_view name) {
+  return option_names::parse<DescriptorKind>(name);
 }
 CandidateRanking parse_candidate_ranking(std::string_view name) {
   return option_names::parse<CandidateRanking>(name);

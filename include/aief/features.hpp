@@ -1,5 +1,6 @@
 #pragma once
-// What an extraction returns: keypoints in level-0 pixels and their 32-byte rBRIEF descriptors.
+// What an extraction returns: keypoints in level-0 pixels and their 32-byte descriptors (rBRIEF,
+// or the box descriptor: Features::descriptor says which).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -40,6 +41,9 @@ struct Features {
   int image_height = 0;
   std::vector<Keypoint> keypoints;  // octave ascending, then level y, then level x (integer pixels)
   std::vector<Descriptor> descriptors;  // descriptors[i] describes keypoints[i]
+  // Which descriptor `descriptors` holds (ExtractorOptions::descriptor): rBRIEF and box
+  // descriptors never match each other (require_same_descriptor, aief/match.hpp).
+  DescriptorKind descriptor = DescriptorKind::rbrief;
   ExtractionInfo info;
 };
 

@@ -32,6 +32,13 @@ struct Match {
   int distance = 0;  // Hamming distance, bits
 };
 
+// Throws aief::Error naming both sets ("'a.png' holds box descriptors, 'b.png' rbrief
+// descriptors: ...") when their kinds differ: a Hamming distance between an rBRIEF and a box
+// descriptor means nothing. Every front end that matches two feature sets (aief match --pairs,
+// aief.match on Features, aief merge, aief colmap) asks it first.
+void require_same_descriptor(DescriptorKind a, std::string_view what_a, DescriptorKind b,
+                             std::string_view what_b);
+
 // Matches of descriptors `a` (queries) into `b`, sorted by query index. For every query the
 // nearest train descriptor wins, ties to the lowest index.
 std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,

@@ -86,6 +86,14 @@ enum class Orientation {
   opencv_fast,  // cv::fastAtan2 in float, ORB-SLAM's IC_Angle (core/kernels/fast_atan2.hpp)
 };
 
+// What describes a keypoint (docs/design.md §7 and "The box descriptor"). Both are 256 bits,
+// Hamming-matched; descriptors of one kind never match the other's.
+enum class DescriptorKind {
+  rbrief,  // rBRIEF with the learned ORB pattern on the blurred level (ORB, ORB-SLAM)
+  box,     // 256 learned box-average tests on the level's integral image (TEBLID's form,
+           // core/kernels/box_describe.hpp)
+};
+
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
   aief,              // AIEF with six measured departures (docs/design.md §11; the defaults below)
@@ -168,6 +176,9 @@ struct ExtractorOptions {
   // sharpened (an unsharp mask whose amount falls with the block's entropy, blended between
   // blocks; core/entropy/low_entropy_sharpen.hpp); orientation and descriptors read the level itself.
   bool low_entropy_sharpen = false;
+  // The descriptor. rbrief in every mode (ORB-SLAM's vocabularies are trained on it); box is the
+  // learned box descriptor (a vocabulary trained on rBRIEF needs retraining for it).
+  DescriptorKind descriptor = DescriptorKind::rbrief;
   // Detection on a smoothed level (core/level/detection_smoothing.hpp): FAST reads each level (its
   // sharpened copy with low_entropy_sharpen) blurred to about this sigma, px, by passes of the 5x5
   // binomial; orientation and descriptors read the level itself. 0: none (every mode but quality).
@@ -201,6 +212,7 @@ std::string_view to_string(QuadtreeTies value);
 std::string_view to_string(Orientation value);
 std::string_view to_string(QuadtreeWeight value);
 std::string_view to_string(FastThresholdFrom value);
+std::string_view to_string(DescriptorKind value);
 Distribution parse_distribution(std::string_view name);
 EntropyMeasure parse_entropy_measure(std::string_view name);
 KernelSet parse_kernel_set(std::string_view name);
@@ -208,6 +220,7 @@ Mode parse_mode(std::string_view name);
 CoordinateMap parse_coordinate_map(std::string_view name);
 StarvationGuard parse_starvation_guard(std::string_view name);
 CandidateRanking parse_candidate_ranking(std::string_view name);
+DescriptorKind parse_descriptor_kind(std::string_view name);
 // A candidate pool factor P: a number >= 1, or "inf" / "off" for no pool.
 double parse_candidate_pool(std::string_view text);
 

@@ -101,6 +101,7 @@ class Extractor:
         quadtree_weight: Literal["none", "entropy"] = "none",
         fast_threshold_from: Literal["none", "entropy"] = "none",
         low_entropy_sharpen: bool = False,
+        descriptor: Literal["rbrief", "box"] = "rbrief",
         detection_smoothing: float = 0,
         max_image_pixels: int = 67108864,
         **record_keys: Any,

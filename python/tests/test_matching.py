@@ -81,3 +81,17 @@ def test_invalid_arguments_raise_aief_error(call, message):
 def test_no_model_gives_none():
     H, mask = aief.find_homography(numpy.zeros((3, 2)), numpy.zeros((3, 2)))
     assert H is None and mask.tolist() == [0, 0, 0]
+
+
+def test_features_say_their_descriptor_and_different_kinds_are_not_matched():
+    image_a = read_unchanged(sample_path("graf", 1))
+    image_b = read_unchanged(sample_path("graf", 2))
+    rbrief = aief.Extractor(n_features=300).extract(image_a)
+    box_a = aief.Extractor(n_features=300, descriptor="box").extract(image_a)
+    box_b = aief.Extractor(n_features=300, descriptor="box").extract(image_b)
+    assert rbrief.descriptor == "rbrief" and box_a.descriptor == "box"
+    assert aief.match(box_a, box_b).shape[0] > 0
+    with pytest.raises(aief.Error, match="a holds rbrief descriptors, b box descriptors: they cannot be matched"):
+        aief.match(rbrief, box_b)
+    # Arrays carry no kind: matched as given.
+    assert aief.match(rbrief.descriptors, box_b.descriptors).shape[1] == 3

@@ -17,7 +17,8 @@ FEATURE_FIELDS = ("keypoints", "size", "angle", "response", "octave", "descripto
 
 
 def assert_same_features(a, b):
-    assert (a.image_width, a.image_height, a.info) == (b.image_width, b.image_height, b.info)
+    assert (a.image_width, a.image_height, a.info, a.descriptor) == (
+        b.image_width, b.image_height, b.info, b.descriptor)
     for field in FEATURE_FIELDS:
         x, y = getattr(a, field), getattr(b, field)
         assert x.dtype == y.dtype and x.shape == y.shape and x.tobytes() == y.tobytes(), field
@@ -47,7 +48,8 @@ def adapt_in_worker(extractor, a, b):
 
 
 EXTRACTORS = [dict(), dict(n_features=300, mode="orbslam2"), dict(threshold="auto", levels=4, scale=1.5),
-              dict(entropy="intensity", threshold=3.5, pool="inf", subpixel=False, block_size=48)]
+              dict(entropy="intensity", threshold=3.5, pool="inf", subpixel=False, block_size=48),
+              dict(n_features=300, descriptor="box")]
 
 
 @pytest.mark.parametrize("kwargs", EXTRACTORS)

@@ -1,0 +1,37 @@
+#pragma once
+// The integral image the box descriptor reads (core/kernels/box_describe.hpp): (W + 1) x (H + 1)
+// entries, entry (y, x) = the sum of the pixels in rows [0, y) and columns [0, x), row 0 and
+// column 0 zero. Held modulo 2^32 (uint32 wraps): a box's sum, four entries added and subtracted,
+// is exact in uint32 arithmetic whenever the box holds fewer than 2^32 / 255 pixels, which every
+// box of a descriptor does (the largest, radius 16 at scale 4, is 131 x 131 pixels).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "aief/image.hpp"
+
+namespace aief {
+
+// Read-only view of an integral image: entry (y, x) at data[y * stride + x], y in [0, height],
+// x in [0, width] (width and height are the image's).
+struct IntegralView {
+  const std::uint32_t* data = nullptr;
+  int width = 0;              // of the image: width + 1 entries a row
+  int height = 0;             // of the image: height + 1 rows
+  std::ptrdiff_t stride = 0;  // entries between the starts of two rows, >= width + 1
+  const std::uint32_t* row(int y) const { return data + y * stride; }
+};
+
+// An integral image that owns its entries and reuses them for images of a size it has held.
+class IntegralImage {
+ public:
+  IntegralView view() const { return {entries_.data(), width_, height_, width_ + 1}; }
+  // Computes the integral of `image` (scalar; one add per pixel and row).
+  void compute(ImageView image);
+
+ private:
+  std::vector<std::uint32_t> entries_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace aief
