@@ -4,12 +4,25 @@
 
 #include <opencv2/features2d.hpp>
 
+#include <string>
+
 #include "aief/extractor.hpp"
 #include "bench/bench_support.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief::bench {
 namespace {
+
+// One extraction of `gray` per iteration under `options`.
+void register_extract(const std::string& name, const cv::Mat* gray, ExtractorOptions options) {
+  benchmark::RegisterBenchmark(name.c_str(), [gray, options](benchmark::State& state) {
+    Extractor extractor(options);
+    Features features;
+    for (auto _ : state) extractor.extract(view_of(*gray), features);
+    state.counters["keypoints"] = static_cast<double>(features.keypoints.size());
+    state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
+  })->Unit(benchmark::kMillisecond);
+}
 
 void register_extract_benchmarks() {
   for (const NamedImage& image : benchmark_images()) {
@@ -25,17 +38,10 @@ void register_extract_benchmarks() {
           const std::string name = "extract/" + std::string(to_string(mode)) + "/" +
                                    std::string(to_string(set)) + "/t" + std::to_string(threads) +
                                    "/" + image.name;
-          benchmark::RegisterBenchmark(name.c_str(), [gray, mode, set,
-                                                      threads](benchmark::State& state) {
-            ExtractorOptions options = options_for_mode(mode);
-            options.kernels = set;
-            options.threads = threads;
-            Extractor extractor(options);
-            Features features;
-            for (auto _ : state) extractor.extract(view_of(*gray), features);
-            state.counters["keypoints"] = static_cast<double>(features.keypoints.size());
-            state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
-          })->Unit(benchmark::kMillisecond);
+          ExtractorOptions options = options_for_mode(mode);
+          options.kernels = set;
+          options.threads = threads;
+          register_extract(name, gray, options);
         }
       }
     }
@@ -54,26 +60,18 @@ void register_extract_benchmarks() {
     };
     for (Mode mode : {Mode::orbslam2, Mode::faithful}) {
       for (const Variant& variant : kVariants) {
-        ExtractorOptions probe = options_for_mode(mode);
-        variant.apply(probe);
+        ExtractorOptions options = options_for_mode(mode);
+        variant.apply(options);
         // The per-block thresholds act on the engine's blocks, not ORB-SLAM's cells: no row.
-        if (probe.fast_threshold_from == FastThresholdFrom::entropy &&
-            probe.detection_cells != DetectionCells::blocks)
+        if (options.fast_threshold_from == FastThresholdFrom::entropy &&
+            options.detection_cells != DetectionCells::blocks)
           continue;
         const std::string name = "extract/" + std::string(to_string(mode)) + "+" + variant.name +
                                  "/" + std::string(to_string(best_kernel_set())) + "/t1/" +
                                  image.name;
-        benchmark::RegisterBenchmark(name.c_str(), [gray, mode, variant](benchmark::State& state) {
-          ExtractorOptions options = options_for_mode(mode);
-          variant.apply(options);
-          options.kernels = best_kernel_set();
-          options.threads = 1;
-          Extractor extractor(options);
-          Features features;
-          for (auto _ : state) extractor.extract(view_of(*gray), features);
-          state.counters["keypoints"] = static_cast<double>(features.keypoints.size());
-          state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
-        })->Unit(benchmark::kMillisecond);
+        options.kernels = best_kernel_set();
+        options.threads = 1;
+        register_extract(name, gray, options);
       }
     }
     // The quality mode's parts, each alone on the aief mode: one thread, AVX2 (docs/speed.md).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <unordered_set>
 
 #include "aief/error.hpp"
 #include "io/image_formats.hpp"
@@ -56,9 +57,59 @@ std::string name_of_listed_path(const std::string& line) {
   return name;
 }
 
-std::vector<BatchInput> list_batch_inputs(const std::string& folder_or_list) {
+bool natural_less(const std::string& a, const std::string& b) {
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  std::size_t i = 0, j = 0;
+  int zeros = 0;  // leading zeros of a's numbers minus b's, the first that differ: the tie-break
+  while (i < a.size() && j < b.size()) {
+    if (digit(a[i]) && digit(b[j])) {
+      std::size_t zi = i, zj = j;
+      while (zi < a.size() && a[zi] == '0') ++zi;
+      while (zj < b.size() && b[zj] == '0') ++zj;
+      std::size_t ei = zi, ej = zj;
+      while (ei < a.size() && digit(a[ei])) ++ei;
+      while (ej < b.size() && digit(b[ej])) ++ej;
+      if (ei - zi != ej - zj) return ei - zi < ej - zj;  // more significant digits: larger
+      const int order = a.compare(zi, ei - zi, b, zj, ej - zj);
+      if (order != 0) return order < 0;
+      if (zeros == 0) zeros = static_cast<int>(zi - i) - static_cast<int>(zj - j);
+      i = ei;
+      j = ej;
+    } else {
+      if (a[i] != b[j])
+        return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]);
+      ++i;
+      ++j;
+    }
+  }
+  if (a.size() - i != b.size() - j) return a.size() - i < b.size() - j;
+  return zeros != 0 ? zeros < 0 : false;
+}
+
+std::string frame_order_of(const std::string& folder_or_list) {
+  std::error_code ec;
+  return fs::is_directory(folder_or_list, ec)
+             ? "in natural order of their names (numbers as numbers: frame_2 before frame_10)"
+             : "in the list's order";
+}
+
+std::vector<BatchInput> list_batch_inputs(const std::string& folder_or_list, InputOrder order) {
   std::vector<BatchInput> all;
   std::error_code ec;
+  if (order == InputOrder::frames) {
+    const bool folder = fs::is_directory(folder_or_list, ec);
+    if (!folder) {  // a list: as listed, a name listed twice taken where it is first
+      std::unordered_set<std::string> seen;
+      for (BatchInput& input : list_file_inputs(folder_or_list))
+        if (seen.insert(input.name).second) all.push_back(std::move(input));
+      return all;
+    }
+    all = list_batch_inputs(folder_or_list, InputOrder::by_name);
+    std::stable_sort(all.begin(), all.end(), [](const BatchInput& a, const BatchInput& b) {
+      return natural_less(a.name, b.name);
+    });
+    return all;
+  }
   if (fs::is_directory(folder_or_list, ec)) {
     std::vector<fs::path> open_folders = {fs::canonical(folder_or_list, ec)};
     try {

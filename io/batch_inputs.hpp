@@ -16,7 +16,11 @@
 //
 // Names: an input's name is its key (hloc's and COLMAP's convention): its path below the folder
 // as listed, or its list line with "." parts and doubled '/' dropped (name_of_listed_path).
-// Inputs are sorted by name; a name listed twice is taken once.
+// Inputs are sorted by name (byte order: the order shards split); a name listed twice is taken
+// once. The frames of one video (--threshold carried, where each frame's F depends on the frames
+// before it) are taken in frame order instead: a list file's lines as listed, a folder's names in
+// natural order, numbers as numbers (frame_2.png before frame_10.png, as ffmpeg's frame_%d.png
+// are numbered).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -31,8 +35,19 @@ struct BatchInput {
 // A list line as a name: "." parts and empty parts (doubled '/') dropped, nothing else changed.
 std::string name_of_listed_path(const std::string& line);
 
-// The inputs of a folder or a list file, sorted by name. Throws aief::Error.
-std::vector<BatchInput> list_batch_inputs(const std::string& folder_or_list);
+enum class InputOrder { by_name, frames };
+
+// The inputs of a folder or a list file, in `order`. Throws aief::Error.
+std::vector<BatchInput> list_batch_inputs(const std::string& folder_or_list,
+                                          InputOrder order = InputOrder::by_name);
+
+// Whether `a` comes before `b` in natural order: runs of digits compared as numbers (then by
+// their number of leading zeros, fewer first), everything else byte by byte.
+bool natural_less(const std::string& a, const std::string& b);
+
+// How list_batch_inputs ordered the frames of `folder_or_list`, for a note: "in the list's
+// order" or "in natural order of their names (numbers as numbers: frame_2 before frame_10)".
+std::string frame_order_of(const std::string& folder_or_list);
 
 // Shard `index` of `count`: inputs index, index + count, index + 2 count, ... (0 <= index < count).
 std::vector<BatchInput> shard_of(const std::vector<BatchInput>& inputs, int index, int count);

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "aief/error.hpp"
+#include "io/feature_formats.hpp"
 
 namespace aief::io {
 
@@ -35,6 +36,20 @@ std::string batch_output_path(const std::string& output_dir, const std::string& 
 
 void check_batch_outputs_do_not_nest(const std::vector<BatchInput>& inputs,
                                      const std::string& output_dir, const std::string& format) {
+  if (const FeatureFormat* one_file = feature_format_named(format);
+      one_file && one_file->layout == FeatureFormat::Layout::one_file_per_batch) {
+    // A group per name: a name may not be the folder of another ("a" and "a/x.png").
+    std::set<std::string> names;
+    for (const BatchInput& input : inputs) names.insert(input.name);
+    for (const BatchInput& input : inputs)
+      for (std::size_t at = input.name.find('/', 1); at != std::string::npos;
+           at = input.name.find('/', at + 1))
+        if (names.count(input.name.substr(0, at)))
+          throw Error("batch input '" + input.path + "' would have its group inside the group of "
+                      "input '" + input.name.substr(0, at) + "' in '" + output_dir +
+                      "' (one name is the folder of the other's); nothing was written");
+    return;
+  }
   std::set<std::string> files;
   for (const BatchInput& input : inputs) files.insert(batch_output_path("", input.name, format));
   for (const BatchInput& input : inputs)

@@ -15,7 +15,8 @@ std::string batch_output_path(const std::string& output_dir, const std::string& 
                               const std::string& format);
 
 // Distinct names give distinct files, but one can still be the folder of another (an image
-// `a.png` beside a folder `a.png.json/`): throws aief::Error naming both before any work.
+// `a.png` beside a folder `a.png.json/`; in one HDF5 file, a name `a` beside `a/x.png`, whose
+// groups would nest): throws aief::Error naming both before any work.
 void check_batch_outputs_do_not_nest(const std::vector<BatchInput>& inputs,
                                      const std::string& output_dir, const std::string& format);
 

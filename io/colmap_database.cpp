@@ -13,6 +13,7 @@
 #include "aief/error.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/json_writer.hpp"
+#include "io/match_record.hpp"
 #include "io/pairs_file.hpp"
 #include "io/temporary_files.hpp"
 #include "io/utf8.hpp"
@@ -161,6 +162,8 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
   image_of_name.reserve(pairs.names.size());
   for (const std::string& name : pairs.names) image_of_name.push_back(images.find(name));
   std::unordered_set<long long> written;
+  PairRecords records(features, MatchOptions{});  // each image's features as the file has them
+  std::vector<std::string> stale;                 // pairs matched from other features
   for (std::size_t pair = 0; pair < pairs.size(); ++pair) {
     const std::string &name0 = pairs.name0(pair), &name1 = pairs.name1(pair);
     const auto a = image_of_name[pairs.pairs[pair].first],
@@ -176,6 +179,23 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
       throw Error("pair '" + name0 + " " + name1 + "' has no matches in '" + matches_file.path() +
                   "'");
     const std::vector<Match>& matches = *found;
+    // Matches of features the features file no longer holds (re-extracted since, with other
+    // options or from a changed image): refused, as match --pairs redoes them on a rerun.
+    if (const std::optional<PairRecord> recorded =
+            swapped ? matches_file.pair_record(name1, name0) : matches_file.pair_record(name0, name1)) {
+      PairRecord now = swapped ? records.of(name1, name0) : records.of(name0, name1);
+      now.matcher = recorded->matcher;  // only the features matter here
+      const std::vector<std::string> changes = swapped
+                                                   ? pair_changes(recorded, now, name1, name0)
+                                                   : pair_changes(recorded, now, name0, name1);
+      if (!changes.empty()) {  // the pair and its first change, shortened to its first option
+        std::string why = changes.front();
+        if (const std::size_t more = why.find(", ", why.find(": ")); more != std::string::npos)
+          why = why.substr(0, more) + ", ...";
+        stale.push_back("'" + name0 + " " + name1 + "': " + why);
+        continue;
+      }
+    }
     const auto& query = swapped ? b : a;  // the image whose keypoints the matches' queries index
     const auto& train = swapped ? a : b;
     // matches0 has a row per keypoint of image 0: another length means other features.
@@ -210,6 +230,17 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     });
     ++summary.pairs;
     summary.matches += static_cast<long long>(matches.size());
+  }
+  if (!stale.empty()) {
+    constexpr std::size_t kNamed = 3;
+    std::string named;
+    for (std::size_t i = 0; i < stale.size() && i < kNamed; ++i)
+      named += (i > 0 ? "; " : "") + stale[i];
+    if (stale.size() > kNamed) named += "; and " + std::to_string(stale.size() - kNamed) + " more";
+    throw Error(std::to_string(stale.size()) + " pair(s) of '" + matches_file.path() +
+                "' were matched from other features than '" + features.path() +
+                "' holds now (pair " + named + "): run aief match --pairs again with these "
+                "features (it matches those pairs again); no database was written");
   }
   db.exec("COMMIT");
 }

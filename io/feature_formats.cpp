@@ -50,8 +50,11 @@ class Hdf5Collection : public FeatureCollectionFile {
              const ExtractorOptions& options) override {
     file_.write_features(name, features, &source, &options);
   }
+  void check_name(const std::string& name) const override { file_.check_image_name(name); }
   void remove(const std::string& name) override { file_.remove_features(name); }
   void close() override { file_.close(); }
+  int writes_on_disk() const override { return file_.groups_on_disk(); }
+  std::vector<std::string> names() const override { return file_.feature_names(); }
 
  private:
   Hdf5File file_;

@@ -26,6 +26,9 @@ class FeatureCollectionFile {
   virtual bool holds_from(const std::string& name, const SourceRecord& source) const = 0;
   // The option record of `name`'s entry (JSON text); nullopt when it has none.
   virtual std::optional<std::string> option_record(const std::string& name) const = 0;
+  // Throws aief::Error when `name` cannot have an entry (io::Hdf5File::check_image_name): a fault
+  // of that input alone, not of the file.
+  virtual void check_name(const std::string& name) const = 0;
   // Writes `name`'s entry, replacing any. Throws aief::Error; after a failure of the file itself
   // (a full disk) it refuses every later write.
   virtual void write(const std::string& name, const Features& features, const SourceRecord& source,
@@ -33,6 +36,11 @@ class FeatureCollectionFile {
   virtual void remove(const std::string& name) = 0;
   // Makes every write durable; throws aief::Error when it cannot.
   virtual void close() = 0;
+  // The names of every complete entry, sorted.
+  virtual std::vector<std::string> names() const = 0;
+  // How many of this object's writes the file on disk holds (after a failure, those before it
+  // that reached the disk).
+  virtual int writes_on_disk() const = 0;
 };
 
 struct FeatureFormat {

@@ -1,7 +1,9 @@
 // Hdf5File's image groups (the features.h5 layout, io/hdf5_file.hpp).
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aief/error.hpp"
@@ -61,13 +63,39 @@ void Hdf5File::remove_features(const std::string& image) {
   const std::string name = image_group(image);
   // Flushed at once: a file created by an older aief hands freed space out again.
   write_guarded(
-      0, "the removal of '" + name + "'", [&] { remove_group(file_, name); }, Flush::now);
+      0, "the removal of '" + name + "'", [&] { remove_group(file_, name); }, Flush::now,
+      false);
+}
+
+void Hdf5File::check_image_name(const std::string& image) const {
+  const std::string group = image_group(image);
+  if (image.empty())
+    throw Error("cannot write an image named '' to '" + path_ + "': an image needs a name");
+  // The groups on its path: none may be an image's.
+  for (std::size_t at = group.find('/', 1); at != std::string::npos; at = group.find('/', at + 1)) {
+    const std::string folder = group.substr(0, at);
+    if (may_hold(folder) && exists(file_, folder + "/image_size"))
+      throw Error("cannot write image '" + image + "' to '" + path_ + "': its group would go inside the group of image '" +
+                  image_of_group(folder) +
+                  "' (one image's name is the folder of another's); nothing was written for it");
+  }
+  // Its own group, when there, must be an image's, not a folder of other images' groups.
+  if (may_hold(group) && exists(file_, group) && !exists(file_, group + "/image_size")) {
+    const Handle folder(H5Gopen2(file_, group.c_str(), H5P_DEFAULT), H5Gclose);
+    H5G_info_t info{};
+    if (folder.ok() && H5Gget_info(folder.get(), &info) >= 0 && info.nlinks > 0 &&
+        !exists(file_, group + "/keypoints"))
+      throw Error("cannot write image '" + image + "' to '" + path_ +
+                  "': its group is the folder of other images' groups (such as '" + image +
+                  "/...'), which it would replace; nothing was written for it");
+  }
 }
 
 void Hdf5File::write_features(const std::string& image, const Features& features,
                               const SourceRecord* source, const ExtractorOptions* options) {
   silence_hdf5();
   const std::string name = image_group(image);
+  check_image_name(image);
   // A group being replaced goes first, flushed, so that no new data lands in its space while the
   // file on disk still holds it.
   if (may_hold(name) && exists(file_, name)) remove_features(image);
@@ -197,22 +225,37 @@ Features Hdf5File::read_features(const std::string& image) const {
   }
   return features;
 }
-std::vector<std::string> Hdf5File::feature_names() const {
+std::vector<std::string> Hdf5File::feature_names() const { return listing().names; }
+
+Hdf5File::Listing Hdf5File::listing() const {
   silence_hdf5();
-  std::vector<std::string> names;
+  struct Visit {
+    Listing listing;
+    std::vector<std::string> with_keypoints;
+  } visited;
   const auto visit = [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
-    const std::string path(name);
-    const std::string suffix = "/image_size";
-    if (info->type == H5O_TYPE_DATASET && path.size() > suffix.size() && path.ends_with(suffix))
-      static_cast<std::vector<std::string>*>(data)->push_back(
-          image_of_group(path.substr(0, path.size() - suffix.size())));
+    if (info->type != H5O_TYPE_DATASET) return 0;
+    Visit& v = *static_cast<Visit*>(data);
+    const std::string_view path(name);
+    const auto group_of = [&](std::string_view suffix) -> std::optional<std::string> {
+      if (path.size() <= suffix.size() || !path.ends_with(suffix)) return std::nullopt;
+      return image_of_group(std::string(path.substr(0, path.size() - suffix.size())));
+    };
+    if (auto image = group_of("/image_size")) v.listing.names.push_back(std::move(*image));
+    else if (auto started = group_of("/keypoints")) v.with_keypoints.push_back(std::move(*started));
+    else if (path.ends_with("/matches0")) v.listing.holds_pairs = true;
     return 0;
   };
   // Only each object's type (H5O_INFO_BASIC): the full information reads every header's
   // attributes and sizes too, 340k instructions an image.
-  if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names, H5O_INFO_BASIC) < 0)
+  if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &visited, H5O_INFO_BASIC) < 0)
     throw Error(damaged_file(path_, hdf5_reason()));
-  std::sort(names.begin(), names.end());
-  return names;
+  Listing& out = visited.listing;
+  std::sort(out.names.begin(), out.names.end());
+  for (std::string& name : visited.with_keypoints)
+    if (!std::binary_search(out.names.begin(), out.names.end(), name))
+      out.incomplete.push_back(std::move(name));
+  std::sort(out.incomplete.begin(), out.incomplete.end());
+  return out;
 }
 }  // namespace aief::io

@@ -129,7 +129,10 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   std::error_code ec;
   bool creating = false;
   std::string reason;  // libhdf5's, read before any other call of its API clears it
-  if (mode != Mode::read_write) {
+  const bool writing = mode == Mode::read_write || mode == Mode::write_temporary;
+  if (mode == Mode::read_write && !std::filesystem::is_directory(path, ec))
+    lock_ = std::make_unique<OutputLock>(path);
+  if (!writing) {
     if (!std::filesystem::exists(path, ec)) throw Error("cannot open '" + path + "': no such file");
     const std::size_t cache_bytes =
         mode == Mode::read_in_name_order ? kInNameOrderCacheBytes : kReadCacheBytes;
@@ -158,7 +161,7 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
     if (creating) std::filesystem::remove(creating_as_, ec);
     throw Error(open_failure(path, creating, reason));
   }
-  if (mode == Mode::read_write) {
+  if (writing) {
     void* handle = nullptr;
     const Handle access(H5Fget_access_plist(file_), H5Pclose);
     if (H5Pget_driver(access.get()) == H5FD_SEC2 &&
@@ -312,6 +315,7 @@ void Hdf5File::flush_now() {
   reserve(0);  // everything the flush writes lies below the end of allocation
   if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) throw Error(hdf5_reason());
   unflushed_writes_ = 0;
+  flushed_groups_ = written_groups_;
   flushed_a_write_ = true;
 }
 

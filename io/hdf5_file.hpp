@@ -44,6 +44,7 @@
 #include "aief/match.hpp"
 #include "aief/options.hpp"
 #include "io/match_record.hpp"
+#include "io/output_lock.hpp"
 #include "io/pairs_file.hpp"
 #include "io/source_record.hpp"
 
@@ -79,8 +80,10 @@ class Hdf5File {
  public:
   // read_in_name_order: for a reader that goes through the file once, image after image in name
   // order (merge's passes), which needs only a small metadata cache (io/hdf5_file.cpp,
-  // read_access); read: for any order of reads.
-  enum class Mode { read, read_in_name_order, read_write };
+  // read_access); read: for any order of reads. read_write holds the file's OutputLock
+  // (io/output_lock.hpp) while open: a second writer waits; write_temporary is read_write on a
+  // temporary its caller holds the output's lock for (merge).
+  enum class Mode { read, read_in_name_order, read_write, write_temporary };
   Hdf5File(const std::string& path, Mode mode);
   ~Hdf5File();
   Hdf5File(const Hdf5File&) = delete;
@@ -106,6 +109,10 @@ class Hdf5File {
   void write_features(const std::string& name, const Features& features,
                       const SourceRecord* source = nullptr,
                       const ExtractorOptions* options = nullptr);
+  // Throws, before anything is written (a bad name is no failure of the file: later writes go
+  // on), when `image` cannot have a group here: an empty name, or one nesting with another
+  // image's group ("a" and "a/x.png": the group of one would hold or replace the other's).
+  void check_image_name(const std::string& image) const;
   // Removes an image's group, if there is one.
   void remove_features(const std::string& name);
   // Reads back what write_features wrote (keypoints, size, angle, octave, response, descriptors,
@@ -129,6 +136,14 @@ class Hdf5File {
                                                  std::size_t* queries = nullptr) const;
   // The image names of a features file: every group holding an image_size dataset, sorted.
   std::vector<std::string> feature_names() const;
+  // What a file holds, in one pass: its complete image groups (feature_names), the images whose
+  // group a killed write left incomplete (keypoints but no image_size), whether it holds pair
+  // groups (matches0: a matches file).
+  struct Listing {
+    std::vector<std::string> names, incomplete;
+    bool holds_pairs = false;
+  };
+  Listing listing() const;
   // Copies the group `name` of `source` here (replacing an incomplete one), not flushed: for a
   // file written whole and then renamed (merge_feature_files).
   void copy_group_from(const Hdf5File& source, const std::string& name);
@@ -145,6 +160,11 @@ class Hdf5File {
   // failed); the destructor closes a file still open and ignores a failure, so a writer calls
   // close() to know that its writes are on disk.
   void close();
+
+  // Groups written (write_features, write_matches, copy_group_from) and flushed: what the file on
+  // disk holds of this object's writes. After a failed write, fewer than were written when the
+  // failure came at a flush (a file system without fallocate).
+  int groups_on_disk() const { return flushed_groups_; }
 
   // Groups written between flushes: a flush costs about as much as writing a small pair group.
   static constexpr int kWritesPerFlush = 64;
@@ -175,14 +195,16 @@ class Hdf5File {
   // as told.
   template <class Write>
   void write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
-                     Flush flush = Flush::batched);
+                     Flush flush = Flush::batched, bool adds_a_group = true);
 
+  std::unique_ptr<OutputLock> lock_;  // read_write: held from before opening until destroyed
   std::string path_;
   std::string creating_as_;  // the temporary a new file is created as, until its first flush
   long long file_ = -1;      // hid_t
   int descriptor_ = -1;      // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
   std::uint64_t reserved_until_ = 0;
   int unflushed_writes_ = 0;
+  int written_groups_ = 0, flushed_groups_ = 0;  // groups_on_disk()
   bool flushed_a_write_ = false;
   std::string first_image_;    // read_write: an image group's name, as the file was opened
   bool holds_pairs_ = false;   // read_write: the file held a pair group when opened

@@ -10,7 +10,7 @@ namespace aief::io {
 
 template <class Write>
 void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
-                             Flush flush) {
+                             Flush flush, bool adds_a_group) {
   hdf5::silence_hdf5();
   const std::lock_guard<std::mutex> lock(failure_mutex_);
   if (!failure_.empty())
@@ -32,6 +32,7 @@ void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write
   }
   try {
     write();
+    written_groups_ += adds_a_group ? 1 : 0;
     // The first write is flushed at once: a run killed before its first batch keeps it.
     if (flush == Flush::now ||
         (flush == Flush::batched && (++unflushed_writes_ >= kWritesPerFlush || !flushed_a_write_)))

@@ -21,6 +21,7 @@
 #include "io/hdf5_objects.hpp"
 #include "io/json_writer.hpp"
 #include "io/merge_option_check.hpp"
+#include "io/output_lock.hpp"
 #include "io/temporary_files.hpp"
 
 namespace aief::io {
@@ -105,28 +106,74 @@ void Hdf5File::copy_group_from(const Hdf5File& source, const std::string& image)
       },
       Flush::at_close);
 }
+namespace {
+
+// The names of the features file `file` (the merge's output when `is_output`), refusing what merge
+// must not take or extend: a matches file, another tool's features (hloc's SuperPoint: 256 x N
+// float32 descriptors, which aief's groups beside them would not match). Incomplete groups (a
+// killed write's) are left out with a note.
+std::vector<std::string> merged_names(const Hdf5File& file, bool is_output,
+                                      std::vector<std::string>* notes) {
+  Hdf5File::Listing listing = file.listing();
+  const std::string role = is_output ? "the output '" + file.path() + "'" : "'" + file.path() + "'";
+  if (listing.holds_pairs)
+    throw Error(role + " holds matches (pair groups with matches0), not features: merge joins "
+                "the feature files of aief extract --batch --format h5; nothing was written");
+  if (!listing.names.empty())
+    if (const std::string other = file.foreign_descriptors(image_group(listing.names.front()));
+        !other.empty())
+      throw Error(role + " holds another tool's features (image '" + listing.names.front() +
+                  "': " + other +
+                  " descriptors; aief writes 32 x N uint8): merge joins aief's feature files; "
+                  "nothing was written");
+  if (!listing.incomplete.empty() && notes)
+    notes->push_back(role + " holds " + std::to_string(listing.incomplete.size()) +
+                     " incomplete image group(s) (a write killed halfway; the first: '" +
+                     listing.incomplete.front() + "'), " +
+                     (is_output ? "left as they are" : "not merged") +
+                     ": run that shard's aief extract --batch again to complete them");
+  return std::move(listing.names);
+}
+
+}  // namespace
+
 int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs,
-                        int* replaced) {
+                        int* replaced, std::vector<std::string>* notes) {
   namespace fs = std::filesystem;
   std::error_code ec;
   // Every input checked first: each opens, no image is in two of them (a hash set: linear), and
   // every image of the result, those the output keeps included, was extracted with the same
   // options.
   SameOptionsCheck same_options;
+  // The output's lock for the whole merge, from reading what the output holds to the rename: a
+  // second merge into it waits, then adds its shards to this one's output (io/output_lock.hpp).
+  const OutputLock lock(output);
   // Images already in the output, from an earlier merge, each with the hash of what it records of
   // its making (source and options): a shard's image whose record differs (its image changed, or
   // the shards were extracted again with other options) replaces it; an equal one is kept.
-  std::vector<std::string> previous_names;                               // sorted
-  std::unordered_map<std::string_view, std::uint64_t> previous_records;  // keyed by those names
+  std::vector<std::string> previous_names;  // sorted
+  // Keyed by those names: the hash of each one's making, and its image file's time (-1: none).
+  struct Making {
+    std::uint64_t hash;
+    long long mtime_ns;
+  };
+  std::unordered_map<std::string_view, Making> previous_records;
   std::unique_ptr<Hdf5File> previous;
   const bool extending = fs::exists(output, ec);
   if (extending) {
     previous = std::make_unique<Hdf5File>(output, Hdf5File::Mode::read_in_name_order);
-    previous_names = previous->feature_names();
-    for (const std::string& name : previous_names)
-      previous_records.emplace(name, making_record_hash(*previous, name));
+    previous_names = merged_names(*previous, true, notes);
+    for (const std::string& name : previous_names) {
+      const std::optional<SourceRecord> source = previous->recorded_source(name);
+      previous_records.emplace(
+          name, Making{making_record_hash(*previous, name), source ? source->mtime_ns : -1});
+    }
   }
   std::unordered_set<std::string_view> kept, stale;  // of previous_names
+  // Of `kept`: those whose shard group is of an older file of the image than the output's (an
+  // older shard given): the newer is kept, never replaced by the older.
+  std::vector<std::string> kept_newer;
+  std::size_t kept_newer_count = 0;
   std::vector<std::unique_ptr<Hdf5File>> shards;
   std::vector<std::vector<std::string>> names;  // each shard's, kept for the copy
   names.reserve(inputs.size());
@@ -134,15 +181,26 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
   std::unordered_map<std::string_view, std::size_t> first_shard;
   for (const std::string& input : inputs) {
     shards.push_back(std::make_unique<Hdf5File>(input, Hdf5File::Mode::read_in_name_order));
-    names.push_back(shards.back()->feature_names());
+    names.push_back(merged_names(*shards.back(), false, notes));
     for (const std::string& name : names.back()) {
       const auto [at, inserted] = first_shard.emplace(name, shards.size() - 1);
       if (!inserted)
         throw Error("image '" + name + "' is in two of the files merged, '" + inputs[at->second] +
                     "' and '" + input + "'; nothing was written");
-      if (const auto found = previous_records.find(name); found != previous_records.end())
-        (found->second == making_record_hash(*shards.back(), name) ? kept : stale)
-            .insert(found->first);
+      const auto found = previous_records.find(name);
+      if (found == previous_records.end()) continue;
+      if (found->second.hash == making_record_hash(*shards.back(), name)) {
+        kept.insert(found->first);
+        continue;
+      }
+      const std::optional<SourceRecord> source = shards.back()->recorded_source(name);
+      if (source && found->second.mtime_ns >= 0 && source->mtime_ns < found->second.mtime_ns) {
+        kept.insert(found->first);
+        if (kept_newer.size() < 3) kept_newer.push_back("'" + name + "' ('" + input + "')");
+        ++kept_newer_count;
+        continue;
+      }
+      stale.insert(found->first);
     }
   }
   // Options: the output's images it keeps first, then the shards' images it takes.
@@ -165,7 +223,7 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
   int copied = 0;
   try {
     if (extending) copy_file(output, temporary);
-    Hdf5File out(temporary, Hdf5File::Mode::read_write);
+    Hdf5File out(temporary, Hdf5File::Mode::write_temporary);
     for (std::size_t s = 0; s < shards.size(); ++s)
       for (const std::string& name : names[s]) {
         if (kept.count(name)) continue;
@@ -186,6 +244,14 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     throw Error("cannot merge into '" + output + "' (left as it was): " + ec.message());
   }
   if (replaced) *replaced = static_cast<int>(stale.size());
+  if (kept_newer_count > 0 && notes) {
+    std::string named;
+    for (const std::string& one : kept_newer) named += (named.empty() ? "" : ", ") + one;
+    notes->push_back(std::to_string(kept_newer_count) + " image(s) kept as '" + output +
+                     "' holds them: their shard groups are of an older file of the image (an older "
+                     "shard?), never merged over a newer one: " + named +
+                     (kept_newer_count > kept_newer.size() ? ", ..." : ""));
+  }
   return copied;
 }
 

@@ -14,7 +14,11 @@ namespace aief::io {
 // Atomic: every input is checked before anything is written, the result is written to a temporary
 // and renamed over `output`, so a failed merge (a bad input, a full disk) leaves `output` as it was
 // (or absent). Linear in the images (hash sets). Returns the images copied, replaced ones included.
+// Refused before anything is written: a matches file or another tool's features (SuperPoint) as
+// an input or as the output. Said in `notes`: incomplete groups (a killed write's) left out, and
+// images kept as the output holds them because their shard group is of an older file of the
+// image (an older shard never replaces a newer group).
 int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs,
-                        int* replaced = nullptr);
+                        int* replaced = nullptr, std::vector<std::string>* notes = nullptr);
 
 }  // namespace aief::io

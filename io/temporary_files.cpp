@@ -66,6 +66,11 @@ std::string temporary_path_of(const std::string& path) {
   return (file.parent_path() / ("." + hash_of_name(file) + ".tmp")).string();
 }
 
+std::string lock_path_of(const std::string& path) {
+  const fs::path file(path);
+  return (file.parent_path() / ("." + hash_of_name(file) + ".lock")).string();
+}
+
 std::string unique_temporary_path_of(const std::string& path) {
   static thread_local std::mt19937_64 random{std::random_device{}() ^
                                              (static_cast<std::uint64_t>(::getpid()) << 32)};

@@ -29,6 +29,10 @@ int remove_stale_temporaries_of(const std::string& path);
 // hash of the file name + ".tmp", the same for the same path; removed as stale, never written.
 std::string temporary_path_of(const std::string& path);
 
+// The lock file of `path` (io/output_lock.hpp): "." + the 16 hex digits of a hash of the file
+// name + ".lock", beside it.
+std::string lock_path_of(const std::string& path);
+
 // A unique temporary beside `path`, created exclusively and locked for as long as this object
 // lives (for writers that reopen the file by name, as SQLite does: its fcntl locks are not
 // flock's, so they do not clash). Removed on destruction unless renamed over its output.

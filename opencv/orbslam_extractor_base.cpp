@@ -112,9 +112,14 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
   std::vector<option_table::GivenOption> given;
   for (const option_table::OptionRow& row : option_table::rows()) {
     if (!row.has_front_ends()) continue;
-    const std::string key(row.yaml_key);
-    if (const cv::FileNode node = settings[key]; !node.empty())
-      given.push_back({&row, text_of_node(node, key), key});
+    for (std::string_view spelling : {row.yaml_key, row.old_yaml_key}) {  // the earlier: still read
+      const std::string key(spelling);
+      if (key.empty()) continue;
+      if (const cv::FileNode node = settings[key]; !node.empty()) {
+        given.push_back({&row, text_of_node(node, key), key});
+        break;
+      }
+    }
   }
   // The drop-ins' own defaults over the mode's (with_keypoint_convention for this sensor), unless
   // set; their mode unless the settings name one.

@@ -58,6 +58,11 @@ py::dict options_dict(const ExtractorOptions& options) {
   return d;
 }
 
+template <auto Member>
+auto field(const py::object& self) {
+  return features_of(self).*Member;
+}
+
 // The constructor's docstring: the call and every keyword with its default, from the table.
 std::string extractor_doc() {
   const OptionCall call = extractor_call();
@@ -75,31 +80,36 @@ std::string extractor_doc() {
 
 void bind_extractor(py::module_& m) {
   py::class_<PyFeatures>(m, "Features", "Keypoints and descriptors of one image, as numpy arrays")
-      .def_readonly("keypoints", &PyFeatures::keypoints,
-                    "N x 2 float32, (x, y) in level-0 pixels, pixel centres at integers")
-      .def_readonly("size", &PyFeatures::size,
-                    "N float32, patch diameter at the keypoint's level, level-0 pixels")
-      .def_readonly("angle", &PyFeatures::angle, "N float32, orientation in degrees, [0, 360)")
-      .def_readonly("response", &PyFeatures::response, "N float32, FAST score")
-      .def_readonly("octave", &PyFeatures::octave, "N int32, pyramid level")
-      .def_readonly("descriptors", &PyFeatures::descriptors,
-                    "N x 32 uint8, 256-bit descriptors of the kind `descriptor` names")
+      .def_property_readonly("keypoints", field<&PyFeatures::keypoints>,
+                             "N x 2 float32, (x, y) in level-0 pixels, pixel centres at integers")
+      .def_property_readonly("size", field<&PyFeatures::size>,
+                             "N float32, patch diameter at the keypoint's level, level-0 pixels")
+      .def_property_readonly("angle", field<&PyFeatures::angle>,
+                             "N float32, orientation in degrees, [0, 360)")
+      .def_property_readonly("response", field<&PyFeatures::response>, "N float32, FAST score")
+      .def_property_readonly("octave", field<&PyFeatures::octave>, "N int32, pyramid level")
+      .def_property_readonly("descriptors", field<&PyFeatures::descriptors>,
+                             "N x 32 uint8, 256-bit descriptors of the kind `descriptor` names")
       .def_property_readonly(
           "descriptor", [](const PyFeatures& f) { return std::string(to_string(f.descriptor)); },
           "which descriptor `descriptors` holds: 'rbrief' or 'box' (the extractor's descriptor "
           "option); aief.match refuses two Features of different kinds")
-      .def_readonly("info", &PyFeatures::info,
-                    "how the entropy mask went (threshold used, blocks kept)")
-      .def_readonly("image_width", &PyFeatures::image_width,
-                    "width of the image the features come from, pixels")
-      .def_readonly("image_height", &PyFeatures::image_height,
-                    "height of the image the features come from, pixels")
+      .def_property_readonly("info", field<&PyFeatures::info>,
+                             "how the entropy mask went (threshold used, blocks kept)")
+      .def_property_readonly("image_width", field<&PyFeatures::image_width>,
+                             "width of the image the features come from, pixels")
+      .def_property_readonly("image_height", field<&PyFeatures::image_height>,
+                             "height of the image the features come from, pixels")
       .def(
-          "__len__", [](const PyFeatures& f) { return f.keypoints.shape(0); },
+          "__len__", [](const py::object& self) { return features_of(self).keypoints.shape(0); },
           "the number of keypoints N")
       .def(
           "__repr__",
-          [](const PyFeatures& f) {
+          [](const py::object& self) {
+            auto* instance = reinterpret_cast<py::detail::instance*>(self.ptr());
+            if (!instance->get_value_and_holder().holder_constructed())
+              return std::string("<aief.Features, holding nothing>");
+            const PyFeatures& f = self.cast<const PyFeatures&>();
             return "<aief.Features " + std::to_string(f.keypoints.shape(0)) + " keypoints, " +
                    std::to_string(f.image_width) + "x" + std::to_string(f.image_height) + ">";
           },
@@ -189,6 +199,7 @@ void bind_testing(py::module_& m) {
           py::dict r;
           r["key"] = std::string(row.key);
           r["keyword"] = std::string(row.python_keyword);
+          r["old_keyword"] = std::string(row.old_python_keyword);
           r["kind"] = std::string(row.kind() == table::ValueKind::integer  ? "integer"
                                   : row.kind() == table::ValueKind::number ? "number"
                                   : row.kind() == table::ValueKind::choice ? "choice"

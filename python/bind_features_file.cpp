@@ -26,7 +26,8 @@ namespace {
 #ifdef AIEF_HAVE_HDF5
 
 // Python features back to the engine's (what write_features stores; info is not stored).
-Features engine_features(const PyFeatures& f) {
+Features engine_features(const py::object& features) {
+  const PyFeatures& f = features_of(features);
   const py::ssize_t n = f.keypoints.ndim() == 2 ? f.keypoints.shape(0) : -1;
   for (const py::array* field :
        {static_cast<const py::array*>(&f.size), static_cast<const py::array*>(&f.angle),
@@ -84,7 +85,8 @@ class FeaturesFile {
     return file.features_belong_to(name, source_record(name, source)) &&
            io::option_changes(file.option_record(name), extractor.options()).empty();
   }
-  void write(const py::object& name_given, const PyFeatures& features,
+  // features: an aief.Features (checked by features_of, which refuses one holding nothing).
+  void write(const py::object& name_given, const py::object& features,
              const std::array<long long, 2>& source, const PyExtractor& extractor) {
     const std::string name = filesystem_path(name_given);
     const io::SourceRecord record = source_record(name, source);
@@ -94,10 +96,17 @@ class FeaturesFile {
     open().write_features(name, engine_features(features), &record, &extractor.options());
   }
   void remove(const py::object& name) { open().remove_features(filesystem_path(name)); }
+  int writes_on_disk() const { return file_ ? file_->groups_on_disk() : writes_on_disk_; }
   void close() {
     if (!file_) return;
     const std::unique_ptr<io::Hdf5File> file = std::move(file_);
-    file->close();
+    try {
+      file->close();
+    } catch (...) {
+      writes_on_disk_ = file->groups_on_disk();
+      throw;
+    }
+    writes_on_disk_ = file->groups_on_disk();
   }
 
  private:
@@ -106,6 +115,7 @@ class FeaturesFile {
     return *file_;
   }
   std::unique_ptr<io::Hdf5File> file_;
+  int writes_on_disk_ = 0;  // once closed
 };
 
 #else
@@ -119,9 +129,10 @@ class FeaturesFile {
   bool is_current(const py::object&, const std::array<long long, 2>&, const PyExtractor&) const {
     return false;
   }
-  void write(const py::object&, const PyFeatures&, const std::array<long long, 2>&,
+  void write(const py::object&, const py::object&, const std::array<long long, 2>&,
              const PyExtractor&) {}
   void remove(const py::object&) {}
+  int writes_on_disk() const { return 0; }
   void close() {}
 };
 
@@ -148,6 +159,11 @@ void bind_features_file(py::module_& m) {
            "record and `extractor`'s option record")
       .def("remove", &FeaturesFile::remove, py::arg("name"),
            "Removes the group `name`, if there is one")
+      .def_property_readonly(
+          "writes_on_disk", &FeaturesFile::writes_on_disk,
+          "How many of this object's writes the file on disk holds: after a failed write, those "
+          "before it that reached the disk (the writes since the last flush are lost when the "
+          "disk fills at a flush, as on a file system without fallocate)")
       .def("close", &FeaturesFile::close,
            "Closes the file, raising aief.Error when its last writes could not be stored")
       .def("__enter__", [](py::object self) { return self; })

@@ -50,6 +50,9 @@ struct PyFeatures {
   DescriptorKind descriptor = DescriptorKind::rbrief;  // what `descriptors` holds
 };
 PyFeatures to_python(const Features& features);
+// The aief.Features `object` holds; aief.Error when it holds none: made by Features.__new__
+// alone, which constructs nothing (reading its arrays crashed).
+const PyFeatures& features_of(const py::handle& object);
 
 // A result record (Features.info, AdaptResult.curve's rows) as a dict: its field list's keys and
 // values, in order (io/record_fields.hpp).

@@ -7,6 +7,15 @@
 
 namespace aief::python {
 
+const PyFeatures& features_of(const py::handle& object) {
+  auto* instance = reinterpret_cast<py::detail::instance*>(object.ptr());
+  if (!py::isinstance<PyFeatures>(object) || !instance->get_value_and_holder().holder_constructed())
+    throw Error(
+        "this aief.Features holds nothing: it was made by Features.__new__, not by extract(), "
+        "describe() or unpickling");
+  return object.cast<const PyFeatures&>();
+}
+
 PyFeatures to_python(const Features& features) {
   const auto n = static_cast<py::ssize_t>(features.keypoints.size());
   PyFeatures out;
@@ -42,7 +51,7 @@ PyFeatures to_python(const Features& features) {
 
 std::vector<Descriptor> descriptors_from(const py::object& value, const char* name) {
   py::object source = py::isinstance<PyFeatures>(value)
-                          ? py::object(value.cast<const PyFeatures&>().descriptors)
+                          ? py::object(features_of(value).descriptors)
                           : value;
   if (!py::isinstance<py::array>(source))
     throw Error(std::string(name) + " must be an N x 32 uint8 array or aief features, got " +

@@ -44,7 +44,7 @@ class OptionCall {
 
   // Adds the keywords of `Options`' rows as the next group. `record_keys`: each field row's
   // record key is a keyword too (what Extractor.options holds), so Extractor(**e.options)
-  // rebuilds e.
+  // rebuilds e. A row's earlier keyword is accepted too, outside the signature.
   template <class Options>
   int add_group(bool record_keys = false) {
     const int group = groups_++;
@@ -56,6 +56,9 @@ class OptionCall {
                              python_default(row)});
       if (record_keys && row.is_field() && row.key != row.python_keyword)
         keywords_.push_back({std::string(row.key), row.spec(), &row, group, -1, py::none()});
+      if (!row.old_python_keyword.empty())  // an earlier spelling, still accepted (CHANGELOG.md)
+        keywords_.push_back(
+            {std::string(row.old_python_keyword), row.spec(), &row, group, -1, py::none()});
     }
     return group;
   }

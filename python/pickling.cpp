@@ -180,6 +180,14 @@ void bind_pickling(py::module_& m) {
   auto extractor = py::reinterpret_borrow<py::class_<PyExtractor>>(m.attr("Extractor"));
   extractor.def(py::pickle(
       [](const PyExtractor& e) {
+        // A carried F and its sweep in progress are no options: a copy would start the video
+        // again (before, it silently did).
+        if (e.options().carried_threshold && e.frames() > 0)
+          throw Error(
+              "cannot pickle or copy an aief.Extractor(threshold='carried') after its first frame: "
+              "the F it carries and its sweep in progress depend on the frames it has seen, which "
+              "a copy would not have; copy it before its first frame, or extract the whole video "
+              "with one extractor");
         StateWriter out;
         out.put(e.options());
         return out.bytes();
@@ -194,7 +202,8 @@ void bind_pickling(py::module_& m) {
 
   auto features = py::reinterpret_borrow<py::class_<PyFeatures>>(m.attr("Features"));
   features.def(py::pickle(
-      [](const PyFeatures& f) {
+      [](const py::object& self) {
+        const PyFeatures& f = features_of(self);
         return py::make_tuple(f.keypoints, f.size, f.angle, f.response, f.octave, f.descriptors,
                               f.info, f.image_width, f.image_height,
                               std::string(to_string(f.descriptor)));

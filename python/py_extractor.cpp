@@ -61,6 +61,7 @@ PyFeatures PyExtractor::extract(const py::object& image, const py::object& mask)
     const ImageView gray = input.gray(buffer);
     extraction_rendezvous();
     extractor_.extract(gray, mask_view, features);
+    ++frames_;
   }
   return to_python(features);
 }
@@ -72,7 +73,7 @@ py::tuple PyExtractor::describe(const py::object& image, const py::object& keypo
   const ImageInput input(image, extractor_.options().max_image_pixels);
   std::vector<Keypoint> given;
   if (py::isinstance<PyFeatures>(keypoints)) {
-    const PyFeatures& f = keypoints.cast<const PyFeatures&>();
+    const PyFeatures& f = features_of(keypoints);
     const auto xy = f.keypoints.unchecked<2>();
     for (py::ssize_t i = 0; i < xy.shape(0); ++i)
       given.push_back(

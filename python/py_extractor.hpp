@@ -22,11 +22,14 @@ class PyExtractor {
                      bool keep_angles);
 
   const ExtractorOptions& options() const { return extractor_.options(); }
+  // Frames extracted so far: a carried extractor's F and sweep depend on them.
+  long long frames() const { return frames_; }
   std::string kernel_name() const { return std::string(extractor_.kernel_name()); }
 
  private:
   Extractor extractor_;
   std::mutex mutex_;
+  long long frames_ = 0;  // under mutex_
 };
 
 }  // namespace aief::python

@@ -13,6 +13,19 @@ inline namespace AIEF_SIMD_TARGET {
 
 namespace blur_detail {
 
+// The operations every width has alike, from its intrinsics' prefix P (_mm, _mm256, _mm512)
+// and its width B: loads and stores of int16 lanes, broadcasts, and the lane-wise arithmetic.
+#define AIEF_BLUR_VEC_OPERATIONS(P, B)                                                            \
+  static V load(const std::int16_t* p) { return P##_loadu_si##B(reinterpret_cast<const V*>(p)); } \
+  static void store(std::int16_t* p, V v) { P##_storeu_si##B(reinterpret_cast<V*>(p), v); }       \
+  static V set16(int v) { return P##_set1_epi16(static_cast<short>(v)); }                         \
+  static V set32(int v) { return P##_set1_epi32(v); }                                             \
+  static V add16(V a, V b) { return P##_add_epi16(a, b); }                                        \
+  static V mul16(V a, V b) { return P##_mullo_epi16(a, b); }                                      \
+  static V bias(V v) { return P##_sub_epi16(v, P##_set1_epi16(kBias)); }                          \
+  static V madd(V a, V b) { return P##_madd_epi16(a, b); }                                        \
+  static V add32(V a, V b) { return P##_add_epi32(a, b); }
+
 // The register the kernel runs on: 128-bit (SSE4.1), 256-bit (AVX2) or 512-bit (AVX-512BW).
 // Templates on Arch, so every instruction set's copy is its own symbol.
 template <class Arch, int kBits = std::is_base_of_v<xsimd::avx512bw, Arch> ? 512
@@ -29,21 +42,11 @@ struct Vec<Arch, 128> {
   static V columns(const std::uint8_t* p) {
     return _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
   }
-  static V load(const std::int16_t* p) {
-    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
-  }
-  static void store(std::int16_t* p, V v) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v); }
-  static V set16(int v) { return _mm_set1_epi16(static_cast<short>(v)); }
-  static V set32(int v) { return _mm_set1_epi32(v); }
-  static V add16(V a, V b) { return _mm_add_epi16(a, b); }
-  static V mul16(V a, V b) { return _mm_mullo_epi16(a, b); }
+  AIEF_BLUR_VEC_OPERATIONS(_mm, 128)
   static V opaque(V v) {
     __asm__("" : "+x"(v));
     return v;
   }
-  static V bias(V v) { return _mm_sub_epi16(v, _mm_set1_epi16(kBias)); }
-  static V madd(V a, V b) { return _mm_madd_epi16(a, b); }
-  static V add32(V a, V b) { return _mm_add_epi32(a, b); }
   // even = outputs x, x + 2, ...; odd = x + 1, x + 3, ..., each as S + 2^15 - 2^23 in int32
   // lanes: bits 16..31 hold the output - 128 as an int16, so one arithmetic shift, a word blend
   // and a signed pack give the bytes output - 128 (output ^ 0x80): 8 bytes.
@@ -78,21 +81,11 @@ struct Vec<Arch, 256> {
   static V columns(const std::uint8_t* p) {
     return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
   }
-  static V load(const std::int16_t* p) {
-    return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
-  }
-  static void store(std::int16_t* p, V v) { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
-  static V set16(int v) { return _mm256_set1_epi16(static_cast<short>(v)); }
-  static V set32(int v) { return _mm256_set1_epi32(v); }
-  static V add16(V a, V b) { return _mm256_add_epi16(a, b); }
-  static V mul16(V a, V b) { return _mm256_mullo_epi16(a, b); }
+  AIEF_BLUR_VEC_OPERATIONS(_mm256, 256)
   static V opaque(V v) {
     __asm__("" : "+x"(v));
     return v;
   }
-  static V bias(V v) { return _mm256_sub_epi16(v, _mm256_set1_epi16(kBias)); }
-  static V madd(V a, V b) { return _mm256_madd_epi16(a, b); }
-  static V add32(V a, V b) { return _mm256_add_epi32(a, b); }
   static void store_outputs(std::uint8_t* out, V even, V odd) {
     const V pairs = _mm256_blend_epi16(_mm256_srai_epi32(even, 16), odd, 0xAA);
     const V packed =
@@ -126,19 +119,11 @@ struct Vec<Arch, 512> {
   static V columns(const std::uint8_t* p) {
     return _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)));
   }
-  static V load(const std::int16_t* p) { return _mm512_loadu_si512(p); }
-  static void store(std::int16_t* p, V v) { _mm512_storeu_si512(p, v); }
-  static V set16(int v) { return _mm512_set1_epi16(static_cast<short>(v)); }
-  static V set32(int v) { return _mm512_set1_epi32(v); }
-  static V add16(V a, V b) { return _mm512_add_epi16(a, b); }
-  static V mul16(V a, V b) { return _mm512_mullo_epi16(a, b); }
+  AIEF_BLUR_VEC_OPERATIONS(_mm512, 512)
   static V opaque(V v) {
     __asm__("" : "+v"(v));
     return v;
   }
-  static V bias(V v) { return _mm512_sub_epi16(v, _mm512_set1_epi16(kBias)); }
-  static V madd(V a, V b) { return _mm512_madd_epi16(a, b); }
-  static V add32(V a, V b) { return _mm512_add_epi32(a, b); }
   // The outputs in the low byte of each word, in order (the 128-bit form's (e - 128, o - 128)
   // pairs, xor 0x80); vpmovwb narrows them without a lane shuffle.
   static V output_words(V even, V odd) {
@@ -155,6 +140,8 @@ struct Vec<Arch, 512> {
   }
 };
 #endif  // __AVX512BW__
+
+#undef AIEF_BLUR_VEC_OPERATIONS
 
 }  // namespace blur_detail
 

@@ -24,8 +24,7 @@ void hamming_256_blocked(const std::uint8_t* query, const std::uint32_t* blocked
     q[w] = vdupq_n_u32(word);
   }
   for (int block = 0; block < n_blocks; ++block) {
-    const std::uint32_t* words =
-        blocked + static_cast<std::ptrdiff_t>(block) * kDescriptorWords * kHammingBlock;
+    const std::uint32_t* words = block_words(blocked, block);
     std::uint16_t* out = distances + block * kHammingBlock;
     for (int quarter = 0; quarter < 4; ++quarter) {
       uint8x16_t bytes = vdupq_n_u8(0);

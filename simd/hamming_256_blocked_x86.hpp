@@ -27,8 +27,7 @@ inline void hamming_256_blocked_vpopcntdq(const std::uint8_t* query, const std::
     q[w] = _mm512_set1_epi32(static_cast<int>(word));
   }
   for (int block = 0; block < n_blocks; ++block) {
-    const std::uint32_t* words =
-        blocked + static_cast<std::ptrdiff_t>(block) * kDescriptorWords * kHammingBlock;
+    const std::uint32_t* words = block_words(blocked, block);
     __m512i sum = _mm512_popcnt_epi32(_mm512_xor_si512(q[0], _mm512_loadu_si512(words)));
     for (int w = 1; w < kDescriptorWords; ++w)
       sum = _mm512_add_epi32(sum, _mm512_popcnt_epi32(_mm512_xor_si512(
@@ -62,8 +61,7 @@ void hamming_256_blocked(const std::uint8_t* query, const std::uint32_t* blocked
       return _mm256_madd_epi16(_mm256_maddubs_epi16(bytes, ones_u8), ones_i16);
     };
     for (int block = 0; block < n_blocks; ++block) {
-      const std::uint32_t* words =
-          blocked + static_cast<std::ptrdiff_t>(block) * kDescriptorWords * kHammingBlock;
+      const std::uint32_t* words = block_words(blocked, block);
       // packus interleaves the halves per 128-bit lane; the permute puts trains 0..15 in order.
       const __m256i packed = _mm256_packus_epi32(half_block(words), half_block(words + 8));
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(distances + block * kHammingBlock),
@@ -73,8 +71,7 @@ void hamming_256_blocked(const std::uint8_t* query, const std::uint32_t* blocked
     std::uint32_t q[kDescriptorWords];
     std::memcpy(q, query, 32);
     for (int block = 0; block < n_blocks; ++block) {
-      const std::uint32_t* words =
-          blocked + static_cast<std::ptrdiff_t>(block) * kDescriptorWords * kHammingBlock;
+      const std::uint32_t* words = block_words(blocked, block);
       for (int lane = 0; lane < kHammingBlock; ++lane) {
         int distance = 0;  // two words per 64-bit popcnt
         for (int w = 0; w < kDescriptorWords; w += 2)

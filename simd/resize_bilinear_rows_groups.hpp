@@ -25,18 +25,20 @@ struct ResizeGroups {
         weight{plan.x_group_weight.data(), plan.x_group_weight.data() + 8 * plan.x_groups} {}
 };
 
-// dst rows [y_begin, y_end): groups_of_row(top, bottom, wy, out) writes a row's outputs
-// [0, 8 * plan.x_groups) from its two source rows and the Q8 weight wy of the bottom one.
+// dst rows [y_begin, y_end): groups_of_row(groups, top, bottom, wy, out) writes a row's outputs
+// [0, 8 * plan.x_groups) from the plan's groups, its two source rows and the Q8 weight wy of the
+// bottom one.
 template <class GroupsOfRow>
 inline void resize_rows_by_groups(ImageView src, const ResizePlan& plan, MutableImageView dst,
                                   int y_begin, int y_end, const GroupsOfRow& groups_of_row) {
+  const ResizeGroups groups(plan);
   for (int y = y_begin; y < y_end; ++y) {
     const int sy = plan.y_index[static_cast<std::size_t>(y)];
     const std::uint32_t wy = plan.y_weight[static_cast<std::size_t>(y)];
     const std::uint8_t* top = src.row(sy);
     const std::uint8_t* bottom = src.row(sy + 1);
     std::uint8_t* out = dst.row(y);
-    groups_of_row(top, bottom, wy, out);
+    groups_of_row(groups, top, bottom, wy, out);
     resize_bilinear_span_scalar(top, bottom, plan, wy, 8 * plan.x_groups, plan.dst_width, out);
   }
 }

@@ -37,11 +37,10 @@ template <class Arch>
 void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin,
                           int y_end) {
   using resize_neon_detail::bilinear4;
-  const ResizeGroups groups(plan);
   resize_rows_by_groups(
       src, plan, dst, y_begin, y_end,
-      [&](const std::uint8_t* top, const std::uint8_t* bottom, std::uint32_t wy,
-          std::uint8_t* out) {
+      [&](const ResizeGroups& groups, const std::uint8_t* top, const std::uint8_t* bottom,
+          std::uint32_t wy, std::uint8_t* out) {
         const int16x8_t wy_pair =
             vreinterpretq_s16_u32(vdupq_n_u32(wy << 16 | (256 - wy)));  // int16 (256 - wy, wy)
         for (int g = 0; g < groups.count; ++g) {

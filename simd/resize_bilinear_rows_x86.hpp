@@ -56,11 +56,10 @@ void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageVie
                           int y_end) {
   using namespace resize_detail;
   constexpr bool kAvx2 = std::is_base_of_v<xsimd::avx2, Arch>;
-  const ResizeGroups groups(plan);
   resize_rows_by_groups(
       src, plan, dst, y_begin, y_end,
-      [&](const std::uint8_t* top, const std::uint8_t* bottom, std::uint32_t wy,
-          std::uint8_t* out) {
+      [&](const ResizeGroups& groups, const std::uint8_t* top, const std::uint8_t* bottom,
+          std::uint32_t wy, std::uint8_t* out) {
         const __m128i wy_pair =
             _mm_set1_epi32(static_cast<int>(wy << 16 | (256 - wy)));  // int16 (256 - wy, wy)
         int g = 0;

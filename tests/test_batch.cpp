@@ -434,3 +434,144 @@ TEST(Batch, ShardsSplitTheCollectionExactly) {
 }
 
 }  // namespace
+
+namespace {
+
+// Frames as ffmpeg's frame_%d.png numbers them, cut from the bundled images.
+fs::path numbered_frames(const fs::path& root, int count) {
+  const fs::path video = root / "video";
+  fs::create_directories(video);
+  const cv::Mat image = aief::test::load_sample_gray("graf", "img1.png");
+  for (int t = 0; t < count; ++t)
+    cv::imwrite((video / ("frame_" + std::to_string(t) + ".png")).string(),
+                image(cv::Rect(4 * t, 3 * t, 200, 160)));
+  return video;
+}
+
+// The frames of a video with the carried F: before, frame_10.png came before frame_2.png (byte
+// order), a list written in frame order was sorted the same way, and nothing said so (the order
+// itself: BatchInputs.FramesKeepTheListsOrderAndAFoldersNaturalOrder).
+TEST(Batch, CarriedTakesAFoldersFramesInNaturalOrderAndAListAsListedAndSaysSo) {
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path video = numbered_frames(temp.path(), 12);
+  const aief::test::CommandRun folder = aief::test::run_command(
+      AIEF_CLI_PATH, {"extract", "--batch", video.string(), "-o", (temp.path() / "a.h5").string(),
+                      "--threshold", "carried", "--threads", "1", "--features", "200"});
+  ASSERT_EQ(folder.status, 0) << folder.output;
+  EXPECT_NE(folder.output.find("takes the frames of '" + video.string() +
+                               "' in natural order of their names"),
+            std::string::npos)
+      << folder.output;
+  const fs::path list = temp.path() / "frames.txt";
+  {
+    std::ofstream out(list);
+    for (const int t : {3, 10, 2, 0, 1, 11, 4, 5, 6, 7, 8, 9})
+      out << (video / ("frame_" + std::to_string(t) + ".png")).string() << "\n";
+  }
+  const aief::test::CommandRun listed = aief::test::run_command(
+      AIEF_CLI_PATH, {"extract", "--batch", list.string(), "-o", (temp.path() / "b.h5").string(),
+                      "--threshold", "carried", "--threads", "1", "--features", "200"});
+  ASSERT_EQ(listed.status, 0) << listed.output;
+  EXPECT_NE(listed.output.find("in the list's order"), std::string::npos) << listed.output;
+  // Without carried, a batch stays sorted by name and says nothing of frames.
+  const aief::test::CommandRun plain = aief::test::run_command(
+      AIEF_CLI_PATH, {"extract", "--batch", list.string(), "-o", (temp.path() / "c.h5").string(),
+                      "--threads", "1", "--features", "200"});
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  EXPECT_EQ(plain.output.find("frames of"), std::string::npos) << plain.output;
+}
+
+TEST(Batch, CarriedRefusesShards) {
+  // Before: shards of one video each carried their own F, and merged they differed from one
+  // process (74 of 640 datasets) while docs/scale_out.md said byte-equal.
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path video = numbered_frames(temp.path(), 2);
+  const aief::test::CommandRun r = aief::test::run_command(
+      AIEF_CLI_PATH, {"extract", "--batch", video.string(), "-o", (temp.path() / "a.h5").string(),
+                      "--threshold", "carried", "--shard", "0/2"});
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--threshold carried carries F from frame to frame"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(temp.path() / "a.h5"));
+}
+
+TEST(Batch, AnH5OutputWithoutFormatIsOneHdf5File) {
+  // Before: `extract --batch DIR -o d.h5` made a folder d.h5 of JSON files.
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path video = numbered_frames(temp.path(), 2), h5 = temp.path() / "d.h5";
+  const aief::test::CommandRun r = aief::test::run_command(
+      AIEF_CLI_PATH, {"extract", "--batch", video.string(), "-o", h5.string()});
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::is_regular_file(h5));
+#ifdef AIEF_HAVE_HDF5
+  EXPECT_EQ(aief::io::Hdf5File(h5.string(), aief::io::Hdf5File::Mode::read).feature_names().size(),
+            2u);
+#endif
+}
+
+#ifdef AIEF_HAVE_HDF5
+TEST(Batch, NamesWhoseGroupsWouldNestInOneH5AreRefused) {
+  // Before: `a` and `a/x.png` were both accepted, one group nested in the other (and writing `a`
+  // after `a/x.png` replaced the group holding it).
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path d = temp.path() / "d", h5 = temp.path() / "f.h5", list = temp.path() / "l.txt";
+  fs::create_directories(d);
+  fs::copy_file(aief::test::sample_path("graf", "img1.png"), d / "a");
+  std::ofstream(list) << "d/a\nd/a/x.png\n";
+  const std::string cwd = "cd " + temp.path().string() + " && ";
+  const aief::test::CommandRun both = aief::test::run_shell(
+      cwd + AIEF_CLI_PATH + " extract --batch l.txt -o f.h5 --format h5 --features 200 2>&1");
+  EXPECT_EQ(both.status, 1) << both.output;
+  EXPECT_NE(both.output.find("would have its group inside the group of input 'd/a'"),
+            std::string::npos)
+      << both.output;
+  EXPECT_FALSE(fs::exists(h5));
+  // Across runs: the second name fails alone, the batch goes on and the file keeps the first.
+  std::ofstream(list) << "d/a\n";
+  ASSERT_EQ(aief::test::run_shell(cwd + AIEF_CLI_PATH +
+                                  " extract --batch l.txt -o f.h5 --format h5 --features 200")
+                .status,
+            0);
+  fs::remove(d / "a");
+  fs::create_directories(d / "a");
+  fs::copy_file(aief::test::sample_path("graf", "img2.png"), d / "a" / "x.png");
+  fs::copy_file(aief::test::sample_path("boat", "img1.png"), d / "b.png");
+  std::ofstream(list) << "d/a/x.png\nd/b.png\n";
+  const aief::test::CommandRun second = aief::test::run_shell(
+      cwd + AIEF_CLI_PATH + " extract --batch l.txt -o f.h5 --format h5 --features 200 2>&1");
+  EXPECT_EQ(second.status, 1) << second.output;
+  EXPECT_NE(second.output.find("1 extracted, 0 already done, 1 failed"), std::string::npos)
+      << second.output;
+  EXPECT_NE(second.output.find("inside the group of image 'd/a'"), std::string::npos)
+      << second.output;
+  const std::vector<std::string> names =
+      aief::io::Hdf5File(h5.string(), aief::io::Hdf5File::Mode::read).feature_names();
+  EXPECT_EQ(names, (std::vector<std::string>{"d/a", "d/b.png"}));
+}
+#endif
+
+}  // namespace
+
+namespace {
+
+#ifdef AIEF_HAVE_HDF5
+TEST(Batch, AnH5HoldingImagesOfNoInputSaysSo) {
+  // Before: a deleted image's group stayed in the shard (and in the merged file) without a word.
+  const aief::test::TempFolder temp("aief_batch");
+  const fs::path video = numbered_frames(temp.path(), 3), h5 = temp.path() / "f.h5";
+  const std::vector<std::string> args = {"extract", "--batch", video.string(), "-o", h5.string(),
+                                         "--features", "200"};
+  ASSERT_EQ(aief::test::run_command(AIEF_CLI_PATH, args).status, 0);
+  fs::remove(video / "frame_1.png");
+  const aief::test::CommandRun again = aief::test::run_command(AIEF_CLI_PATH, args);
+  EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("holds 1 image(s) that are none of this run's inputs (deleted or "
+                              "moved since an earlier run wrote them? the first: 'frame_1.png')"),
+            std::string::npos)
+      << again.output;
+  EXPECT_EQ(aief::io::Hdf5File(h5.string(), aief::io::Hdf5File::Mode::read).feature_names().size(),
+            3u);
+}
+#endif
+
+}  // namespace

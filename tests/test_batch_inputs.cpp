@@ -72,6 +72,40 @@ TEST(BatchInputs, AListGivesItsLinesAsNamesSortedOnceEach) {
             "a/../b.png");  // ".." stays: the output names escape it
 }
 
+// The frames of one video (--threshold carried): before, frame_10.png came before frame_2.png in
+// a folder, and a list written in frame order was sorted the same way.
+TEST(BatchInputs, FramesKeepTheListsOrderAndAFoldersNaturalOrder) {
+  const aief::test::TempFolder temp("aief_batch_inputs");
+  const fs::path folder = temp.path() / "video";
+  fs::create_directories(folder);
+  for (const char* name : {"frame_0.png", "frame_1.png", "frame_2.png", "frame_10.png",
+                           "frame_11.png", "frame_9.png", "frame_100.png"})
+    touch(folder / name);
+  using aief::io::InputOrder;
+  EXPECT_EQ(names_of(aief::io::list_batch_inputs(folder.string(), InputOrder::frames)),
+            (std::vector<std::string>{"frame_0.png", "frame_1.png", "frame_2.png", "frame_9.png",
+                                      "frame_10.png", "frame_11.png", "frame_100.png"}));
+  // Sorting by name (shards) stays byte order.
+  EXPECT_EQ(names_of(aief::io::list_batch_inputs(folder.string())).at(2), "frame_10.png");
+  const fs::path list = temp.path() / "frames.txt";
+  std::ofstream(list) << "video/frame_2.png\nvideo/frame_10.png\nvideo/frame_1.png\n"
+                         "video/frame_2.png\n";
+  EXPECT_EQ(names_of(aief::io::list_batch_inputs(list.string(), InputOrder::frames)),
+            (std::vector<std::string>{"video/frame_2.png", "video/frame_10.png",
+                                      "video/frame_1.png"}));
+  EXPECT_NE(aief::io::frame_order_of(folder.string()).find("natural order"), std::string::npos);
+  EXPECT_NE(aief::io::frame_order_of(list.string()).find("the list's order"), std::string::npos);
+  using aief::io::natural_less;
+  EXPECT_TRUE(natural_less("a2", "a10"));
+  EXPECT_FALSE(natural_less("a10", "a2"));
+  EXPECT_TRUE(natural_less("a2.png", "a02.png"));  // equal numbers: fewer leading zeros first
+  EXPECT_FALSE(natural_less("a02.png", "a2.png"));
+  EXPECT_FALSE(natural_less("a2", "a2"));
+  EXPECT_TRUE(natural_less("a", "a0"));
+  EXPECT_TRUE(natural_less("b9/x", "b10/a"));
+  EXPECT_TRUE(natural_less("x99999999999999999999998", "x99999999999999999999999"));
+}
+
 TEST(BatchInputs, ShardsSplitTheSortedListExactly) {
   std::vector<BatchInput> all;
   for (int i = 0; i < 7; ++i) all.push_back({std::to_string(i), std::to_string(i)});

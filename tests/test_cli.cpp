@@ -210,13 +210,13 @@ TEST(Cli, MatchPairsRefusesPairsSharingAGroupAndSaysWhatItSkips) {
   const std::string features = (folder.path() / "f.h5").string(),
                     matches = (folder.path() / "m.h5").string();
   ASSERT_EQ(
-      run("extract --batch " + images.string() + " -o " + features + " --format h5 --features 300")
+      run("extract --batch " + images.string() + " -o " + features + " --format h5 --n-features 300")
           .status,
       0);
   const std::string pairs = (folder.path() / "pairs.txt").string();
   std::ofstream(pairs) << "a/b.png c.png\na-b.png c.png\n";
   const CliResult collide =
-      run("match --pairs " + pairs + " --features " + features + " -o " + matches);
+      run("match --pairs " + pairs + " --features-file " + features + " -o " + matches);
   EXPECT_EQ(collide.status, 1) << collide.output;
   EXPECT_NE(collide.output.find(
                 "line 2 ('a-b.png c.png') and line 1 ('a/b.png c.png') name one pair group"),
@@ -224,9 +224,13 @@ TEST(Cli, MatchPairsRefusesPairsSharingAGroupAndSaysWhatItSkips) {
       << collide.output;
   EXPECT_FALSE(std::filesystem::exists(matches));
   std::ofstream(pairs) << "#a.png c.png\nc.png c.png\na/b.png c.png\n";
+  // The features file's earlier flag, --features (now --n-features' earlier spelling), still
+  // names it with --pairs, with a note (CHANGELOG.md).
   const CliResult noted =
       run("match --pairs " + pairs + " --features " + features + " -o " + matches);
   EXPECT_EQ(noted.status, 0) << noted.output;
+  EXPECT_NE(noted.output.find("--pairs' features file is --features-file now"), std::string::npos)
+      << noted.output;
   EXPECT_NE(noted.output.find("line 1 skipped: it begins with '#'"), std::string::npos)
       << noted.output;
   EXPECT_NE(noted.output.find("line 2 skipped: 'c.png' paired with itself"), std::string::npos)
@@ -235,7 +239,7 @@ TEST(Cli, MatchPairsRefusesPairsSharingAGroupAndSaysWhatItSkips) {
   // A later run asking the other pair of that group is refused, never given the first's matches.
   std::ofstream(pairs) << "a-b.png c.png\n";
   const CliResult later =
-      run("match --pairs " + pairs + " --features " + features + " -o " + matches);
+      run("match --pairs " + pairs + " --features-file " + features + " -o " + matches);
   EXPECT_EQ(later.status, 1) << later.output;
   EXPECT_NE(later.output.find("pair 'a-b.png c.png' and pair 'a/b.png c.png' share the group"),
             std::string::npos)

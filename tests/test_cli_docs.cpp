@@ -2,6 +2,7 @@
 // lists them (the commands from `aief --help`, their flags from `aief <command> --help`), and no
 // flag the command does not have. A flag added to the tool fails here until the synopsis has it.
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -149,6 +150,20 @@ TEST(CommandLineDoc, SynopsisHasEveryFlagOfEveryCommandAndNoOther) {
     for (const std::string& flag : long_flags_in(documented->second))
       EXPECT_TRUE(flags.count(flag)) << flag << " is in the synopsis but not in --help";
   }
+}
+
+// One subcommand per tools/cmd_<name>.cpp (CONTRIBUTING.md, "Adding a command"): the commands
+// `aief --help` lists are the cmd_ files, name for name.
+TEST(CommandLineDoc, EachCommandIsOneCmdFileAndEachCmdFileACommand) {
+  std::set<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(AIEF_DOCS_DIR "/../tools")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("cmd_", 0) == 0 && entry.path().extension() == ".cpp")
+      files.insert(name.substr(4, name.size() - 8));
+  }
+  const std::vector<std::string> listed = commands_of_help(help_of({"--help"}));
+  EXPECT_EQ(std::set<std::string>(listed.begin(), listed.end()), files);
+  EXPECT_EQ(listed.size(), files.size()) << "a command listed twice";
 }
 
 // Every row of the format registry (io/feature_formats.cpp) is in aief extract --help, which is

@@ -405,6 +405,55 @@ TEST(Hdf5Features, MergeRerunReplacesGroupsWhoseShardImageOrOptionsChanged) {
   EXPECT_THROW(io::merge_feature_files(dir.file("all.h5"), {dir.file("s1.h5")}), Error);
 }
 
+// An older shard (its groups of an older file of the image) never replaces the newer group the
+// output holds, and says so; a matches file is no shard (before: an empty output, exit 0).
+TEST(Hdf5Features, MergeKeepsTheNewerGroupAndRefusesAMatchesFile) {
+  OwnTempDir dir;
+  const Features old_a = sample_features("boat", 1), new_a = sample_features("graf", 1);
+  io::SourceRecord older, newer;
+  older.name = newer.name = "a.png";
+  older.bytes = newer.bytes = 100;
+  older.mtime_ns = 1000;
+  newer.mtime_ns = 2000;
+  const ExtractorOptions options;
+  io::Hdf5File(dir.file("old.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("a.png", old_a, &older, &options);
+  io::Hdf5File(dir.file("new.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("a.png", new_a, &newer, &options);
+  int replaced = -1;
+  std::vector<std::string> notes;
+  ASSERT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("new.h5")}, &replaced, &notes), 1);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("old.h5")}, &replaced, &notes), 0);
+  EXPECT_EQ(replaced, 0);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("1 image(s) kept as '" + dir.file("all.h5") + "' holds them"),
+            std::string::npos)
+      << notes[0];
+  EXPECT_NE(notes[0].find("'a.png' ('" + dir.file("old.h5") + "')"), std::string::npos) << notes[0];
+  expect_same(io::Hdf5File(dir.file("all.h5"), io::Hdf5File::Mode::read).read_features("a.png"),
+              new_a);
+  // The newer shard still replaces an older group.
+  io::Hdf5File(dir.file("all.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("a.png", old_a, &older, &options);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("new.h5")}, &replaced), 1);
+  EXPECT_EQ(replaced, 1);
+
+  {
+    io::Hdf5File matches(dir.file("m.h5"), io::Hdf5File::Mode::read_write);
+    matches.write_matches("a.png", "b.png", 3, {{0, 1, 10}});
+  }
+  try {
+    io::merge_feature_files(dir.file("mm.h5"), {dir.file("m.h5")});
+    ADD_FAILURE() << "a matches file merged";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds matches (pair groups with matches0), not features"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("mm.h5")));
+  EXPECT_THROW(io::merge_feature_files(dir.file("m.h5"), {dir.file("new.h5")}), Error);
+}
+
 TEST(Hdf5Features, MergeCopiesShardsAndRefusesAnImageTwice) {
   OwnTempDir dir;
   const Features a = sample_features("boat", 1), b = sample_features("boat", 2);

@@ -38,7 +38,7 @@ class MatchPairsRecord : public ::testing::Test {
     ASSERT_EQ(r.status, 0) << r.output;
   }
   test::CommandRun match(const std::string& output, const std::string& flags = "") {
-    return run("match --pairs " + pairs() + " --features " + features() + " -o " + output + " " +
+    return run("match --pairs " + pairs() + " --features-file " + features() + " -o " + output + " " +
                flags);
   }
   // Both pairs of `output` hold what a fresh match into a new file gives.
@@ -62,7 +62,7 @@ class MatchPairsRecord : public ::testing::Test {
 };
 
 TEST_F(MatchPairsRecord, ARerunKeepsOnlyPairsMadeAsNow) {
-  extract("--features 300");
+  extract("--n-features 300");
   const std::string matches = folder_.file("m.h5");
   ASSERT_NE(match(matches).output.find("2 pairs matched (mutual)"), std::string::npos);
   const test::CommandRun again = match(matches);
@@ -82,7 +82,7 @@ TEST_F(MatchPairsRecord, ARerunKeepsOnlyPairsMadeAsNow) {
   expect_fresh(matches, "--matcher ratio");
 
   // Features re-extracted with other options (extract's resume redoes every image).
-  extract("--features 500");
+  extract("--n-features 500");
   const test::CommandRun reextracted = match(matches, "--matcher ratio");
   EXPECT_NE(reextracted.output.find("2 pairs matched (ratio)"), std::string::npos)
       << reextracted.output;
@@ -94,7 +94,7 @@ TEST_F(MatchPairsRecord, ARerunKeepsOnlyPairsMadeAsNow) {
   // One image changed and re-extracted: only its pairs again.
   std::filesystem::copy_file(test::sample_path("boat", "img2.png"), images() + "/c.png",
                              std::filesystem::copy_options::overwrite_existing);
-  extract("--features 500");
+  extract("--n-features 500");
   const test::CommandRun changed = match(matches, "--matcher ratio");
   EXPECT_NE(changed.output.find("1 pairs matched (ratio)"), std::string::npos) << changed.output;
   EXPECT_NE(changed.output.find("1 already in"), std::string::npos) << changed.output;
@@ -104,7 +104,7 @@ TEST_F(MatchPairsRecord, ARerunKeepsOnlyPairsMadeAsNow) {
 }
 
 TEST_F(MatchPairsRecord, APairGroupWithoutARecordIsMatchedAgain) {
-  extract("--features 300");
+  extract("--n-features 300");
   const std::string matches = folder_.file("m.h5");
   {  // as an older aief (or another tool) wrote it: no record, and matches that are not these
     io::Hdf5File file(matches, io::Hdf5File::Mode::read_write);
@@ -118,6 +118,42 @@ TEST_F(MatchPairsRecord, APairGroupWithoutARecordIsMatchedAgain) {
       << r.output;
   expect_fresh(matches, "");
 }
+
+#ifdef AIEF_HAVE_COLMAP_EXPORT
+// colmap takes a pair's matches only when they were matched from the features the features file
+// holds now (the pair group's record): before, features re-extracted with --mode orbslam2 (as many
+// keypoints, so no index check caught it) gave a database of stale matches and exit 0.
+TEST_F(MatchPairsRecord, ColmapRefusesMatchesOfFeaturesExtractedAgainNamingThePairs) {
+  extract("--features 300");
+  const std::string matches = folder_.file("m.h5");
+  ASSERT_EQ(match(matches).status, 0);
+  const test::CommandRun fresh =
+      run("colmap --features " + features() + " --matches " + matches + " --pairs " + pairs() +
+          " -o " + folder_.file("fresh.db"));
+  EXPECT_EQ(fresh.status, 0) << fresh.output;
+
+  extract("--features 300 --mode orbslam2");
+  const std::string db = folder_.file("stale.db");
+  const test::CommandRun stale = run("colmap --features " + features() + " --matches " + matches +
+                                     " --pairs " + pairs() + " -o " + db);
+  EXPECT_EQ(stale.status, 1) << stale.output;
+  EXPECT_NE(stale.output.find("2 pair(s) of '" + matches + "' were matched from other features"),
+            std::string::npos)
+      << stale.output;
+  EXPECT_NE(stale.output.find("(pair 'a.png b.png': the features of 'a.png': "),
+            std::string::npos)
+      << stale.output;
+  EXPECT_NE(stale.output.find("'b.png c.png'"), std::string::npos) << stale.output;
+  EXPECT_NE(stale.output.find("run aief match --pairs again"), std::string::npos) << stale.output;
+  EXPECT_FALSE(std::filesystem::exists(db));
+
+  // Matched again: taken.
+  ASSERT_EQ(match(matches).status, 0);
+  const test::CommandRun again = run("colmap --features " + features() + " --matches " + matches +
+                                     " --pairs " + pairs() + " -o " + db);
+  EXPECT_EQ(again.status, 0) << again.output;
+}
+#endif
 
 }  // namespace
 }  // namespace aief

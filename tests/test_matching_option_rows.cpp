@@ -149,11 +149,12 @@ TEST(MatchingOptionRows, TheCommandsReadTheirFlagsByTheRows) {
 // apply. Before, --adaptive, --draw, --mode, --threshold and --levels were silently ignored.
 TEST(MatchingOptionRows, MatchPairsRefusesTheFlagsThatDoNotApply) {
   const test::TempFolder folder("aief_match_pairs_flags");
-  const std::string common = "match --pairs " + folder.file("pairs.txt") + " --features " +
+  const std::string common = "match --pairs " + folder.file("pairs.txt") + " --features-file " +
                              folder.file("f.h5") + " -o " + folder.file("m.h5");
-  for (const std::string& flag :
-       std::vector<std::string>{"--adaptive", "--draw " + folder.file("d.png"), "--mode orbslam2",
-                                "--threshold 3", "--levels 4"}) {
+  // A flag is named as it was given, the earlier spellings (CHANGELOG.md) too.
+  for (const std::string& flag : std::vector<std::string>{
+           "--adaptive", "--draw " + folder.file("d.png"), "--mode orbslam2",
+           "--entropy-threshold 3", "--n-levels 4", "--threshold 3", "--levels 4"}) {
     const test::CommandRun r = run_cli(common + " " + flag);
     EXPECT_EQ(r.status, 2) << flag;
     const std::string name = flag.substr(0, flag.find(' '));

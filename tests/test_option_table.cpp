@@ -1,8 +1,9 @@
-// The option table (core/options/option_table.hpp): every field of ExtractorOptions is a row, and every
-// row reaches every front end (a CLI flag, an ORB-SLAM settings key, the output record; the
+// The option table (core/options/option_table.hpp): every field of ExtractorOptions is a row, and
+// every row reaches every front end (a CLI flag, an ORB-SLAM settings key, the output record; the
 // Python keyword in python/tests/test_options.py), each given value taking effect. The number
 // syntax, the enum names, and the one resolution rule (the mode first, the options given over it,
 // conflicts refused).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -103,6 +104,25 @@ TEST(OptionTable, EveryRowHasEveryFrontEndOnce) {
       EXPECT_TRUE(positions.insert(row.python_position).second);
     }
   }
+  // One name per option (CHANGELOG.md): the flag and the keyword are the record key's; an earlier
+  // spelling is no option's name and none other's earlier spelling.
+  for (const table::OptionRow& row : table::rows()) {
+    if (!row.has_front_ends()) continue;
+    SCOPED_TRACE(std::string(row.key));
+    if (row.key != "mode" && row.key != "auto_skips_uniform_blocks") {  // a preset; skip|count
+      std::string flag = "--" + std::string(row.key);
+      std::replace(flag.begin(), flag.end(), '_', '-');
+      EXPECT_EQ(row.cli_flag, flag);
+      EXPECT_EQ(row.python_keyword, row.key);
+    }
+    if (!row.old_cli_flag.empty())
+      EXPECT_TRUE(row.old_cli_flag.starts_with("--") && flags.insert(row.old_cli_flag).second);
+    if (!row.old_python_keyword.empty())
+      EXPECT_TRUE(keywords.insert(row.old_python_keyword).second);
+    if (!row.old_yaml_key.empty())
+      EXPECT_TRUE(row.old_yaml_key.starts_with("ORBextractor.") &&
+                  yaml_keys.insert(row.old_yaml_key).second);
+  }
   EXPECT_EQ(positions.size(), 7u);
 }
 
@@ -136,14 +156,18 @@ TEST(OptionTable, EveryCliFlagReachesTheOutputRecord) {
   for (const table::OptionRow& row : table::rows()) {
     if (!row.is_field() || !row.has_front_ends()) continue;
     const std::string value = other_value(row), output = folder.file("f.json");
-    const CliResult r = run_cli("extract " + image + " " + std::string(row.cli_flag) + " " + value +
-                                " -o " + output);
-    ASSERT_EQ(r.status, 0) << row.cli_flag << " " << value << "\n" << r.output;
-    std::ifstream in(output);
-    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const std::string expected = "\"" + std::string(row.key) + "\":" + record_json(row, value);
-    EXPECT_NE(json.find(expected), std::string::npos)
-        << row.cli_flag << " " << value << ": no " << expected;
+    for (std::string_view flag : {row.cli_flag, row.old_cli_flag}) {  // the earlier one too
+      if (flag.empty()) continue;
+      const CliResult r =
+          run_cli("extract " + image + " " + std::string(flag) + " " + value + " -o " + output);
+      ASSERT_EQ(r.status, 0) << flag << " " << value << "\n" << r.output;
+      std::ifstream in(output);
+      const std::string json((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+      const std::string expected = "\"" + std::string(row.key) + "\":" + record_json(row, value);
+      EXPECT_NE(json.find(expected), std::string::npos)
+          << flag << " " << value << ": no " << expected;
+    }
   }
   // --help lists every flag.
   const CliResult help = run_cli("extract --help");
@@ -162,18 +186,20 @@ TEST(OptionTable, EverySettingsKeyReachesTheOptions) {
         row.kind() == table::ValueKind::choice || row.kind() == table::ValueKind::toggle;
     // In AIEF mode, where every key applies (the drop-ins' own mode, orbslam2, has no mask).
     const std::string aief_mode = "%YAML:1.0\nORBextractor.mode: \"aief\"\n";
-    const std::string yaml = aief_mode + std::string(row.yaml_key) + ": " +
-                             (is_text ? "\"" + value + "\"" : value) + "\n";
-    const cv::FileStorage settings(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-    const ExtractorOptions options = ORBextractor::options_from_settings(settings);
-    // The drop-ins' defaults (ORB-SLAM's keypoint convention) with the one key changed.
-    ExtractorOptions expected = ORBextractor::options_from_settings(
-        cv::FileStorage(aief_mode, cv::FileStorage::READ | cv::FileStorage::MEMORY));
-    row.field.set(expected, table::parse_value(row, value, row.key));
-    expected.scale_factor =
-        static_cast<float>(expected.scale_factor);  // read into a float, as Tracking.cc
-    EXPECT_EQ(table::record_of(options), table::record_of(expected))
-        << row.yaml_key << ": " << value;
+    for (std::string_view key : {row.yaml_key, row.old_yaml_key}) {  // the earlier key is read too
+      if (key.empty()) continue;
+      const std::string yaml =
+          aief_mode + std::string(key) + ": " + (is_text ? "\"" + value + "\"" : value) + "\n";
+      const cv::FileStorage settings(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+      const ExtractorOptions options = ORBextractor::options_from_settings(settings);
+      // The drop-ins' defaults (ORB-SLAM's keypoint convention) with the one key changed.
+      ExtractorOptions expected = ORBextractor::options_from_settings(
+          cv::FileStorage(aief_mode, cv::FileStorage::READ | cv::FileStorage::MEMORY));
+      row.field.set(expected, table::parse_value(row, value, row.key));
+      expected.scale_factor =
+          static_cast<float>(expected.scale_factor);  // read into a float, as Tracking.cc
+      EXPECT_EQ(table::record_of(options), table::record_of(expected)) << key << ": " << value;
+    }
   }
 }
 

@@ -146,7 +146,13 @@ Shard parse_shard(const std::string& text) {
 }
 
 std::vector<BatchInput> batch_inputs(const BatchSettings& settings) {
-  const std::vector<BatchInput> all = io::list_batch_inputs(settings.input);
+  // The frames of a video in frame order: each frame's carried F depends on the frames before.
+  const bool frames = settings.options.carried_threshold;
+  const std::vector<BatchInput> all = io::list_batch_inputs(
+      settings.input, frames ? io::InputOrder::frames : io::InputOrder::by_name);
+  if (frames)
+    std::cerr << "aief: note: --threshold carried takes the frames of '" << settings.input << "' "
+              << io::frame_order_of(settings.input) << "\n";
   io::check_batch_outputs_do_not_nest(all, settings.output_dir, settings.format);
   return io::shard_of(all, settings.shard_index, settings.shard_count);
 }
@@ -224,11 +230,16 @@ BatchSummary run_batch(const BatchSettings& settings) {
   parallel::handoff_acquire(&kWriteStage);
   if (summary.stopped.empty()) {
     try {
+      summary.of_no_input = sink->entries_of_no_input(inputs);
+    } catch (const std::exception&) {  // a note only: the batch itself is done
+    }
+    try {
       sink->finish();
     } catch (const SinkFailure& e) {
       summary.stopped = e.what();
     }
   }
+  summary.on_disk = sink->written_on_disk(summary.extracted);
   progress.finish();
   return summary;
 }

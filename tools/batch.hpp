@@ -20,7 +20,8 @@
 // removes the stale temporary a killed run left for each of its outputs.
 //
 // Shards. --shard i/n takes images i, i+n, i+2n ... of the list sorted by name, 0 <= i < n:
-// machines split a collection with no coordinator.
+// machines split a collection with no coordinator. Not with --threshold carried: the frames of one
+// video carry F from frame to frame, so a shard's F would differ from one run's (refused).
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,9 @@ struct BatchSummary {
   int redone = 0;    // of those extracted: the output was of this input but of other options
   std::vector<std::string> redone_for;  // why, each option change once ("n_features 500 -> 3000")
   int skipped = 0;                      // output already complete and of this very input
+  // Entries the output holds of none of this run's inputs (deleted or moved images): kept.
+  std::vector<std::string> of_no_input;
+  int on_disk = 0;  // of those extracted, the outputs the disk holds (fewer after a stop, maybe)
   int failed = 0;
   long long keypoints = 0;
   std::vector<std::string> failures;  // "path: reason"
@@ -64,7 +68,8 @@ struct Shard {
 };
 Shard parse_shard(const std::string& text);
 
-// The images of a folder or list file, sorted by name, this shard's only. Throws aief::Error,
+// The images of a folder or list file, sorted by name (with --threshold carried, in frame order,
+// said in a note: io::InputOrder::frames), this shard's only. Throws aief::Error,
 // also when two inputs' outputs would clash (io::check_batch_outputs_do_not_nest).
 std::vector<BatchInput> batch_inputs(const BatchSettings& settings);
 

@@ -48,6 +48,15 @@ class BatchSink {
   // After the last write: makes every write durable (a file that batches its writes flushes and
   // closes). Throws SinkFailure.
   virtual void finish() {}
+  // The names of the entries the output holds that are none of `inputs` (sorted by name): images
+  // deleted or moved since an earlier run wrote them, kept, and said in a note. Before finish().
+  virtual std::vector<std::string> entries_of_no_input(const std::vector<BatchInput>& inputs) {
+    (void)inputs;
+    return {};
+  }
+  // Of `written` outputs written, how many the disk holds (a file that batches its writes loses
+  // those after its last flush when the disk fills at a flush).
+  virtual int written_on_disk(int written) const { return written; }
 };
 
 // The sink of settings.format, its output created or opened. Throws aief::Error (a format this

@@ -1,5 +1,7 @@
 // The sink of a one-file-per-batch format (io::FeatureCollectionFile: HDF5).
 #include <mutex>
+#include <string_view>
+#include <unordered_set>
 
 #include "io/feature_formats.hpp"
 #include "io/option_record.hpp"
@@ -30,6 +32,7 @@ class CollectionSink : public BatchSink {
   void write(const BatchInput& input, const Features& features,
              const io::SourceRecord& source) override {
     const std::lock_guard<std::mutex> lock(mutex_);
+    file_->check_name(input.name);  // a name it cannot hold fails this input alone
     try {
       file_->write(input.name, features, source, options_);
     } catch (const Error& e) {
@@ -46,6 +49,21 @@ class CollectionSink : public BatchSink {
     }
   }
 
+  std::vector<std::string> entries_of_no_input(const std::vector<BatchInput>& inputs) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::unordered_set<std::string_view> taken;
+    for (const BatchInput& input : inputs) taken.insert(input.name);
+    std::vector<std::string> others;
+    for (std::string& name : file_->names())
+      if (!taken.count(name)) others.push_back(std::move(name));
+    return others;
+  }
+
+  int written_on_disk(int) const override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return file_->writes_on_disk();
+  }
+
   std::string remove(const BatchInput& input) override {
     const std::lock_guard<std::mutex> lock(mutex_);
     try {
@@ -57,7 +75,7 @@ class CollectionSink : public BatchSink {
   }
 
  private:
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   ExtractorOptions options_;
   std::unique_ptr<io::FeatureCollectionFile> file_;
 };

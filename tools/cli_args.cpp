@@ -32,15 +32,16 @@ Args::Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& 
     for (const FlagSpec& flag : spec)
       if (flag.name == name || (!flag.alias.empty() && flag.alias == name)) match = &flag;
     if (!match) throw UsageError("unknown option " + name);
+    spellings_.push_back(name);
     if (!match->takes_value) {
-      if (has_inline) throw UsageError(match->name + " takes no value");
+      if (has_inline) throw UsageError(name + " takes no value");
       values_.emplace_back(match->name, "");
       continue;
     }
     if (has_inline) {
       values_.emplace_back(match->name, inline_value);
     } else {
-      if (i + 1 >= tokens.size()) throw UsageError(match->name + " expects a value");
+      if (i + 1 >= tokens.size()) throw UsageError(name + " expects a value");
       values_.emplace_back(match->name, tokens[++i]);
     }
   }
@@ -56,6 +57,13 @@ std::vector<std::string> Args::flags_given() const {
   std::vector<std::string> flags;
   for (const auto& [flag, value] : values_) flags.push_back(flag);
   return flags;
+}
+
+std::string Args::spelled(const std::string& name) const {
+  std::string spelling = name;
+  for (std::size_t i = 0; i < values_.size(); ++i)
+    if (values_[i].first == name) spelling = spellings_[i];
+  return spelling;
 }
 
 std::optional<std::string> Args::get(const std::string& name) const {
@@ -115,6 +123,24 @@ std::string help_of_rows(const std::vector<std::string_view>& except = {}) {
     }
     out << line << "\n";
   }
+  // The earlier spellings, on lines of their own (not option rows: docs/command_line.md lists
+  // them in its changelog note, not in its synopsis).
+  std::vector<std::string> old;
+  for (const option_table::Row<Options>& row : option_table::rows_of<Options>())
+    if (!row.cli_flag.empty() && !row.old_cli_flag.empty() && !is_among(row, except))
+      old.push_back(std::string(row.old_cli_flag) + " (" + std::string(row.cli_flag) + ")");
+  if (!old.empty()) {
+    std::string line = "  earlier spellings, still accepted (CHANGELOG.md):";
+    for (std::size_t i = 0; i < old.size(); ++i) {
+      const std::string item = old[i] + (i + 1 < old.size() ? "," : "");
+      if (line.size() + 1 + item.size() > kWidth) {
+        out << line << "\n";
+        line = "   ";
+      }
+      line += " " + item;
+    }
+    out << line << "\n";
+  }
   return out.str();
 }
 
@@ -124,7 +150,7 @@ std::vector<option_table::Given<Options>> given_flags(const Args& args) {
   for (const option_table::Row<Options>& row : option_table::rows_of<Options>())
     if (!row.cli_flag.empty())
       if (const auto text = args.get(std::string(row.cli_flag)))
-        given.push_back({&row, *text, std::string(row.cli_flag)});
+        given.push_back({&row, *text, args.spelled(std::string(row.cli_flag))});
   return given;
 }
 
@@ -133,7 +159,7 @@ std::vector<FlagSpec> flags_except(const std::vector<std::string_view>& except) 
   std::vector<FlagSpec> flags;
   for (const option_table::Row<Options>& row : option_table::rows_of<Options>())
     if (!row.cli_flag.empty() && !is_among(row, except))
-      flags.push_back({std::string(row.cli_flag), "", true});
+      flags.push_back({std::string(row.cli_flag), std::string(row.old_cli_flag), true});
   return flags;
 }
 

@@ -19,7 +19,7 @@ struct UsageError : std::runtime_error {
 
 struct FlagSpec {
   std::string name;   // "--features"
-  std::string alias;  // "-o", or empty
+  std::string alias;  // "-o", an earlier spelling ("--threshold"), or empty
   bool takes_value = true;
 };
 
@@ -33,11 +33,15 @@ class Args {
   const std::vector<std::string>& positionals() const { return positionals_; }
   // The flags given, by their names (aliases as their flag), in command-line order.
   std::vector<std::string> flags_given() const;
+  // How the command line spelled the flag `name` the last time it gave it (its name or its
+  // alias): what messages call it. `name` itself when not given.
+  std::string spelled(const std::string& name) const;
 
   int get_int(const std::string& name, int fallback, int min, int max) const;
 
  private:
   std::vector<std::pair<std::string, std::string>> values_;  // flag name, value ("" for switches)
+  std::vector<std::string> spellings_;                        // as given, beside values_
   std::vector<std::string> positionals_;
 };
 
@@ -64,8 +68,5 @@ std::string extractor_flags_help();
 std::vector<FlagSpec> extractor_flags_except(
     const std::vector<std::string_view>& set_by_the_command);
 std::string extractor_flags_help_except(const std::vector<std::string_view>& set_by_the_command);
-
-// aief match --pairs: matching of an HDF5 features file (tools/cmd_sfm.cpp).
-int run_match_pairs(const Args& args, const MatchOptions& match_options);
 
 }  // namespace aief::cli

@@ -94,7 +94,9 @@ void print_help() {
       << described(Layout::one_file_per_batch) << ", a group per image named by\n"
       << "                        its path below DIR (resumes at the first image not complete in "
          "it; one\n"
-      << "                        file per shard, then aief merge)\n"
+      << "                        file per shard, then aief merge); without --format, an -o "
+         "ending in its\n"
+      << "                        extension is that format\n"
       << "  --shard i/n           this run takes images i, i+n, i+2n ... of the list sorted by "
          "name,\n"
       << "                        0 <= i < n: machines split a collection, no coordinator. Slurm:\n"
@@ -112,7 +114,11 @@ int run_extract_batch(const Args& args) {
   const auto output = args.get("--output");
   if (!output) throw UsageError("--batch needs -o OUTDIR");
   settings.output_dir = *output;
-  settings.format = args.get("--format").value_or(default_format());
+  // Without --format, an output named as one file per batch (d.h5) is that format: before, d.h5
+  // became a folder of JSON files.
+  const io::FeatureFormat* named_as = io::feature_format_of_path(settings.output_dir);
+  const bool one_file = named_as && named_as->layout == io::FeatureFormat::Layout::one_file_per_batch;
+  settings.format = args.get("--format").value_or(one_file ? named_as->name : default_format());
   if (!io::feature_format_named(settings.format))
     throw UsageError("--format expects " + io::feature_format_names() + ", got '" +
                      settings.format + "'");
@@ -126,6 +132,11 @@ int run_extract_batch(const Args& args) {
     }
   }
   settings.options = extractor_options(args);
+  if (settings.options.carried_threshold && settings.shard_count > 1)
+    throw UsageError(
+        "--shard splits a collection between runs, but --threshold carried carries F from frame "
+        "to frame of one video (each frame's F depends on the frames before it): extract each "
+        "video in one run, and split by video instead");
   const BatchSummary summary = run_batch(settings);
   std::printf("batch: %d images in this shard: %d extracted", summary.images, summary.extracted);
   if (summary.replaced > 0)
@@ -136,9 +147,16 @@ int run_extract_batch(const Args& args) {
               summary.keypoints);
   for (const std::string& failure : summary.failures)
     std::printf("  failed: %s\n", failure.c_str());
+  if (!summary.of_no_input.empty())
+    std::fprintf(stderr,
+                 "aief: note: '%s' holds %zu image(s) that are none of this run's inputs (deleted or "
+                 "moved since an earlier run wrote them? the first: '%s'): kept, and merge carries "
+                 "them on\n",
+                 settings.output_dir.c_str(), summary.of_no_input.size(),
+                 summary.of_no_input.front().c_str());
   if (!summary.stopped.empty())
     throw Error(summary.stopped +
-                "\nbatch stopped: " + std::to_string(summary.extracted + summary.skipped) + " of " +
+                "\nbatch stopped: " + std::to_string(summary.on_disk + summary.skipped) + " of " +
                 std::to_string(summary.images) +
                 " images are done; run the same command again to resume");
   return summary.failed > 0 ? 1 : 0;

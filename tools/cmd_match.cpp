@@ -1,5 +1,5 @@
 // aief match A B [--adaptive] [--matcher K] [-o matches.json] [--draw matches.png], and
-// aief match --pairs (tools/cmd_sfm.cpp)
+// aief match --pairs (its matching: tools/match_pairs.cpp)
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -15,7 +15,9 @@
 #include "io/record_fields.hpp"
 #include "io/temporary_files.hpp"
 #include "tools/cli_args.hpp"
+#include "core/options/option_table.hpp"
 #include "tools/commands.hpp"
+#include "tools/match_pairs.hpp"
 #include "tools/outputs_not_inputs.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
@@ -29,13 +31,13 @@ namespace {
 const std::vector<FlagSpec> kImagePairFlags = {
     {"--adaptive", "", false}, {"--output", "-o", true}, {"--draw", "", true}};
 const std::vector<FlagSpec> kPairsFlags = {
-    {"--pairs", "", true}, {"--features", "", true}, {"--output", "-o", true}};
+    {"--pairs", "", true}, {"--features-file", "", true}, {"--output", "-o", true}};
 
 void print_help() {
   std::cout
       << "usage: aief match A B [--adaptive] [--matcher K] [-o OUT.json] [--draw OUT.png]\n"
-      << "       aief match --pairs PAIRS.txt --features FEATURES.h5 -o MATCHES.h5 [--matcher "
-         "K]\n\n"
+      << "       aief match --pairs PAIRS.txt --features-file FEATURES.h5 -o MATCHES.h5 "
+         "[--matcher K]\n\n"
       << "Extracts both images, matches them, estimates the homography A -> B with RANSAC (3 "
          "px).\n\n"
       << flags_help<MatchOptions>()
@@ -43,11 +45,14 @@ void print_help() {
          "adapt)\n"
       << "  -o, --output FILE     matches, inliers and homography as JSON\n"
       << "  --draw FILE           both images side by side, inliers green, outliers red, PNG\n"
-      << "  --pairs FILE          hloc pairs (\"name0 name1\" per line) matched from --features "
-         "(aief extract\n"
-      << "                        --format h5) into -o MATCHES.h5, hloc's matches0 / "
-         "matching_scores0 layout;\n"
-      << "                        only the matcher's flags apply (the features are as extracted)\n"
+      << "  --pairs FILE          hloc pairs (\"name0 name1\" per line) matched from "
+         "--features-file (aief\n"
+      << "                        extract --format h5) into -o MATCHES.h5, hloc's matches0 / "
+         "matching_scores0\n"
+      << "                        layout; only the matcher's flags apply (the features are as "
+         "extracted)\n"
+      << "  --features-file FILE  with --pairs: the HDF5 features file (its earlier spelling,\n"
+      << "                        --features, is still accepted with --pairs)\n"
       << extractor_flags_help();
 }
 
@@ -62,19 +67,32 @@ std::vector<Point2> points_of(const Features& features, const std::vector<Match>
   return points;
 }
 
-// --pairs: the flags that do not apply to a features file are refused, never ignored.
+// --pairs: the flags that do not apply to a features file are refused, never ignored. The features
+// file was --features before it had a flag of its own (--features is --n-features' earlier
+// spelling): with --pairs and no --features-file, it is still the file.
 int run_pairs(const Args& args) {
   std::vector<FlagSpec> applying = flags_of<MatchOptions>();
   applying.insert(applying.end(), kPairsFlags.begin(), kPairsFlags.end());
+  std::optional<std::string> features_file = args.get("--features-file");
+  const std::string n_features(option_table::row("n_features").cli_flag);
+  if (!features_file && args.spelled(n_features) == "--features") {
+    features_file = args.get(n_features);
+    applying.push_back({n_features, "", true});
+    std::cerr << "aief: note: --pairs' features file is --features-file now (--features still "
+                 "accepted)\n";
+  }
   const std::vector<std::string> outside = flags_outside(args, applying);
   if (!outside.empty()) {
     std::string listed;
-    for (const std::string& flag : outside) listed += (listed.empty() ? "" : ", ") + flag;
+    for (const std::string& flag : outside)
+      listed += (listed.empty() ? "" : ", ") + args.spelled(flag);
     throw UsageError(
-        "--pairs matches the features of --features as they were extracted: " + listed +
+        "--pairs matches the features of --features-file as they were extracted: " + listed +
         (outside.size() == 1 ? " does" : " do") + " not apply (aief match --help)");
   }
-  return run_match_pairs(args, options_from_flags<MatchOptions>(args));
+  if (!features_file || !args.get("--output"))
+    throw UsageError("--pairs needs --features-file FEATURES.h5 and -o MATCHES.h5");
+  return run_match_pairs(args, *features_file, options_from_flags<MatchOptions>(args));
 }
 
 }  // namespace
@@ -85,7 +103,7 @@ int run_match(const Arguments& arguments) {
     for (const FlagSpec& flag : flags) {
       bool known = false;
       for (const FlagSpec& seen : spec) known = known || seen.name == flag.name;
-      if (!known) spec.push_back(flag);  // --features: n_features, or --pairs' file
+      if (!known) spec.push_back(flag);
     }
   spec.push_back({"--help", "-h", false});
   const Args args(arguments, spec);

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <bit>
 
-#include "core/level/detection_mask.hpp"
+#include "core/level/caller_mask.hpp"
 #include "core/entropy/entropy_fast_threshold.hpp"
 #include "core/kernels/fast9_scores_row.hpp"
 #include "core/detection/orbslam_cells.hpp"

@@ -33,7 +33,7 @@ void size_detection_scratch(const LevelGeometry& geometry, DetectionScratch& scr
 
 // Appends the candidates of the blocks `mask` keeps and blocks.detected does not list, and marks
 // them detected. With a detection mask on the level, candidates only at its allowed pixels, and
-// blocks with none are not scored (core/level/detection_mask.hpp).
+// blocks with none are not scored (core/level/caller_mask.hpp).
 void detect_kept_blocks(const PyramidLevel& level, BlockMask mask, const ExtractorOptions& options,
                         const KernelTable& kernels, LevelBlocks& blocks, DetectionScratch& scratch);
 

@@ -34,7 +34,7 @@ class FrameAnalysis {
   // buffers when the size is the same as the previous frame's. The image is read in place (it
   // is level 0) and must outlive the analysis of this frame. detection_mask (empty: none) is the
   // image's size (else aief::Error), non-zero where keypoints may be: each level's is made with
-  // its pixels and detection takes candidates only where it allows (core/level/detection_mask.hpp).
+  // its pixels and detection takes candidates only where it allows (core/level/caller_mask.hpp).
   void start(ImageView image, const ExtractorOptions& options, const KernelTable& kernels,
              Selections selections = Selections::one, ImageView detection_mask = {});
 

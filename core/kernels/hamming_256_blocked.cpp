@@ -30,8 +30,7 @@ void hamming_256_blocked_scalar(const std::uint8_t* query, const std::uint32_t* 
   std::uint32_t q[kDescriptorWords];
   std::memcpy(q, query, 32);
   for (int block = 0; block < n_blocks; ++block) {
-    const std::uint32_t* words =
-        blocked + static_cast<std::ptrdiff_t>(block) * kDescriptorWords * kHammingBlock;
+    const std::uint32_t* words = block_words(blocked, block);
     for (int lane = 0; lane < kHammingBlock; ++lane) {
       int distance = 0;
       for (int w = 0; w < kDescriptorWords; ++w)

@@ -4,6 +4,7 @@
 // little-endian uint32) of descriptor 16 g + t sits at blocked[(8 g + w) * 16 + t]: a vector kernel
 // compares the query with 16 trains per step (a broadcast query word, one XOR and one popcount per
 // word) and needs no horizontal sum per train.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +15,11 @@ constexpr int kDescriptorWords = 8;  // 32-bit words per 256-bit descriptor
 
 // Blocks needed for n descriptors.
 inline int hamming_block_count(int n) { return (n + kHammingBlock - 1) / kHammingBlock; }
+
+// The 16 * 8 words of block `block`: word w of its train t at [w * 16 + t].
+inline const std::uint32_t* block_words(const std::uint32_t* blocked, int block) {
+  return blocked + static_cast<std::ptrdiff_t>(block) * kDescriptorWords * kHammingBlock;
+}
 
 // Writes n descriptors of 32 bytes into the blocked layout, the last block padded with zero
 // descriptors; `blocked` is resized to hamming_block_count(n) * 16 * 8 words.

@@ -69,6 +69,32 @@ void x_groups_plan(OpenCvResizePlan& plan) {
   }
 }
 
+// One output's two source indices and the weight of the second.
+struct AxisTap {
+  std::int32_t first, second;
+  float f;
+};
+
+// One axis of the plan, n outputs: tap_of(i) gives output i's taps, their coefficients follow.
+template <class TapOf>
+void fill_axis(int n, std::vector<std::int32_t>& first, std::vector<std::int32_t>& second,
+               std::vector<std::int16_t>& coef0, std::vector<std::int16_t>& coef1,
+               const TapOf& tap_of) {
+  const auto size = static_cast<std::size_t>(n);
+  first.resize(size);
+  second.resize(size);
+  coef0.resize(size);
+  coef1.resize(size);
+  for (int i = 0; i < n; ++i) {
+    const AxisTap t = tap_of(i);
+    const auto k = static_cast<std::size_t>(i);
+    first[k] = t.first;
+    second[k] = t.second;
+    coef0[k] = coefficient(1.0f - t.f);
+    coef1[k] = coefficient(t.f);
+  }
+}
+
 }  // namespace
 
 OpenCvResizePlan make_opencv_resize_plan(int src_width, int src_height, int dst_width,
@@ -81,34 +107,16 @@ OpenCvResizePlan make_opencv_resize_plan(int src_width, int src_height, int dst_
   // cv::resize passes inv_scale = double(dst) / src, hal::resize takes 1 / inv_scale.
   const double scale_x = 1.0 / (static_cast<double>(dst_width) / src_width);
   const double scale_y = 1.0 / (static_cast<double>(dst_height) / src_height);
-  const auto columns = static_cast<std::size_t>(dst_width);
-  plan.x_left.resize(columns);
-  plan.x_right.resize(columns);
-  plan.x_coef0.resize(columns);
-  plan.x_coef1.resize(columns);
-  for (int x = 0; x < dst_width; ++x) {
+  fill_axis(dst_width, plan.x_left, plan.x_right, plan.x_coef0, plan.x_coef1, [&](int x) {
     Tap t = tap(x, scale_x);
     if (t.s < 0) t = {0, 0.0f};
     if (t.s >= src_width - 1) t = {src_width - 1, 0.0f};
-    const auto i = static_cast<std::size_t>(x);
-    plan.x_left[i] = t.s;
-    plan.x_right[i] = std::min(t.s + 1, src_width - 1);
-    plan.x_coef0[i] = coefficient(1.0f - t.f);
-    plan.x_coef1[i] = coefficient(t.f);
-  }
-  const auto rows = static_cast<std::size_t>(dst_height);
-  plan.y_top.resize(rows);
-  plan.y_bottom.resize(rows);
-  plan.y_coef0.resize(rows);
-  plan.y_coef1.resize(rows);
-  for (int y = 0; y < dst_height; ++y) {
+    return AxisTap{t.s, std::min(t.s + 1, src_width - 1), t.f};
+  });
+  fill_axis(dst_height, plan.y_top, plan.y_bottom, plan.y_coef0, plan.y_coef1, [&](int y) {
     const Tap t = tap(y, scale_y);
-    const auto i = static_cast<std::size_t>(y);
-    plan.y_top[i] = std::clamp(t.s, 0, src_height - 1);
-    plan.y_bottom[i] = std::clamp(t.s + 1, 0, src_height - 1);
-    plan.y_coef0[i] = coefficient(1.0f - t.f);
-    plan.y_coef1[i] = coefficient(t.f);
-  }
+    return AxisTap{std::clamp(t.s, 0, src_height - 1), std::clamp(t.s + 1, 0, src_height - 1), t.f};
+  });
   x_groups_plan(plan);
   return plan;
 }

@@ -18,7 +18,7 @@ struct LevelBlocks {
   std::vector<Candidate>
       candidates;  // the level's detected candidates, block by block, raster order within
   // With a detection mask, per block: 1 when any of its pixels is allowed (made by detection on
-  // first need; core/level/detection_mask.hpp). Empty otherwise.
+  // first need; core/level/caller_mask.hpp). Empty otherwise.
   std::vector<std::uint8_t> allowed;
   // DetectionCells::orbslam: the candidates in ORB-SLAM's order (core/detection/orbslam_cells.hpp), which
   // its octree's tie-breaks read; `candidates` holds them grouped by block. Empty otherwise.

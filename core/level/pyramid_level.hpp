@@ -15,7 +15,7 @@ struct PyramidLevel {
   // With PyramidResampling::opencv the pixels' plan (the detection mask keeps resize_plan).
   OpenCvResizePlan opencv_plan;
   // The detection mask at this level, 255 where keypoints may be and 0 elsewhere; 0 x 0 without
-  // a mask (core/level/detection_mask.hpp).
+  // a mask (core/level/caller_mask.hpp).
   GrayImage detection_mask;
   // What FAST reads: `pixels`, or with ExtractorOptions::low_entropy_sharpen `sharpened` once
   // stage 2 made it (core/entropy/low_entropy_sharpen.hpp). Orientation and descriptors read `pixels`.

@@ -11,9 +11,9 @@
 // How to add an option:
 //   1. a field with its default and one comment in its struct (include/aief/options.hpp, match.hpp,
 //      adapt.hpp, homography.hpp); an enum gets its name table in core/options/option_names.hpp;
-//   2. one row in its table (core/options/option_table.cpp for the extractor,
-//      core/options/matching_option_rows.cpp for the others): record key, CLI flag, Python keyword, help,
-//      kind and range (the extractor's: settings key, the value each mode sets), whether it
+//   2. one row in its table (core/options/extractor_option_rows.cpp for the extractor,
+//      core/options/matching_option_rows.cpp for the others): record key, CLI flag, Python keyword,
+//      help, kind and range (the extractor's: settings key, the value each mode sets), whether it
 //      changes the output;
 //   3. its parameter in python/aief/_aief.pyi, where the stub test says.
 // Nothing else: every front end, --help, validate() and the records pick the row up.
@@ -64,8 +64,8 @@ struct ValueSpec {
 };
 
 // How a row reads and writes its field of `Options`; made from the field's type by
-// access<&Options::x> (core/options/option_access.hpp): int -> integer, double -> number, bool -> toggle,
-// enum -> choice.
+// access<&Options::x> (core/options/option_access.hpp): int -> integer, double -> number, bool ->
+// toggle, enum -> choice.
 template <class Options>
 struct FieldAccess {
   ValueKind kind = ValueKind::integer;
@@ -93,6 +93,9 @@ struct Row {
   std::string_view python_keyword = {};  // aief.Extractor(n_features=...); empty: none
   int python_position = 0;  // 1, 2, ...: positional order in the Python call; 0: keyword only
   std::string_view yaml_key = {};  // the ORB-SLAM settings key
+  // Earlier spellings, still accepted (CHANGELOG.md): the CLI flag, the Python keyword, the
+  // settings key the option had before it took its record key's name; empty: none.
+  std::string_view old_cli_flag = {}, old_python_keyword = {}, old_yaml_key = {};
   std::string_view help = {};      // one line; --help adds the default
   double low = 0, high = 0;        // integer and number rows: the range [low, high]
   bool low_is_open = false;        // (low, high]
@@ -121,8 +124,14 @@ struct Row {
 
 using OptionRow = Row<ExtractorOptions>;
 
+// The per_mode word that takes ExtractorOptions{}'s value. The seven conventions every mode but
+// aief keeps from the code it reproduces (x * scale, no sub-pixel, no pool, frame-wide guard,
+// peak ranking, every block in the automatic F) are written with it.
+inline constexpr std::string_view kDefault = "default";
+
 // The rows of each options struct, in record order. ExtractorOptions' are in
-// core/options/option_table.cpp, the matcher's, sweep's and RANSAC's in core/options/matching_option_rows.cpp.
+// core/options/extractor_option_rows.cpp, the matcher's, sweep's and RANSAC's in
+// core/options/matching_option_rows.cpp.
 template <class Options>
 const std::vector<Row<Options>>& rows_of();
 template <>

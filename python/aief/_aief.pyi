@@ -70,15 +70,15 @@ class Features:
 
 class Extractor:
     """ORB features with the AIEF entropy mask; invalid options raise aief.Error."""
-    # Parameters, their order and defaults: the option table's rows (core/options/option_table.cpp);
+    # Parameters, their order and defaults: the option table's rows (core/options/extractor_option_rows.cpp);
     # python/tests/test_stub.py holds them to it. The keys of Extractor.options are keywords too.
     def __init__(
         self,
         n_features: int = 1000,
         mode: str = "aief",
-        threshold: Union[float, Literal["auto", "carried"]] = 4.0,
-        levels: int = 8,
-        scale: float = 1.2,
+        entropy_threshold: Union[float, Literal["auto", "carried"]] = 4.0,
+        n_levels: int = 8,
+        scale_factor: float = 1.2,
         threads: int = 0,
         kernels: str = "auto",
         *,
@@ -89,12 +89,12 @@ class Extractor:
         carry_every: int = 30,
         coordinates: Optional[str] = None,
         subpixel: Optional[bool] = None,
-        pool: Optional[Union[float, Literal["inf", "off"]]] = None,
-        ranking: Optional[str] = None,
+        candidate_pool: Optional[Union[float, Literal["inf", "off"]]] = None,
+        candidate_ranking: Optional[str] = None,
         starvation_guard: Optional[str] = None,
         auto_skips_uniform_blocks: Optional[bool] = None,
         auto_requires_two_classes: Optional[bool] = None,
-        pyramid: Optional[Literal["q8", "opencv"]] = None,
+        pyramid_resampling: Optional[Literal["q8", "opencv"]] = None,
         detection_cells: Optional[Literal["blocks", "orbslam"]] = None,
         quadtree_ties: Optional[Literal["full", "orbslam"]] = None,
         orientation: Optional[Literal["atan2", "fast-atan2"]] = None,
@@ -104,7 +104,7 @@ class Extractor:
         descriptor: Literal["rbrief", "box"] = "rbrief",
         detection_smoothing: float = 0,
         max_image_pixels: int = 67108864,
-        **record_keys: Any,
+        **record_keys: Any,  # and the earlier keywords, still accepted: threshold, levels, scale, ...
     ) -> None: ...
     def extract(self, image: ImageLike, mask: Optional[numpy.typing.ArrayLike] = None) -> Features:
         """Features of a gray, BGR or BGRA uint8 image; mask (2-D uint8 or bool, non-zero where
@@ -205,6 +205,9 @@ class FeaturesFile:
         """Writes the group `name` with the features, the source record and the option record."""
     def remove(self, name: str) -> None:
         """Removes the group `name`, if there is one."""
+    @property
+    def writes_on_disk(self) -> int:
+        """How many of this object's writes the file on disk holds (after a failed write: those before it that reached the disk)."""
     def close(self) -> None:
         """Closes the file, raising aief.Error when its last writes could not be stored."""
     def __enter__(self) -> FeaturesFile: ...

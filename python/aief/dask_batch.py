@@ -50,7 +50,8 @@ def extract_shard(inputs, output, options):
     extractor = aief.Extractor(**dict(options, threads=1))
     extracted = skipped = keypoints = 0
     failures = []
-    with aief.FeaturesFile(output) as file:
+    file = aief.FeaturesFile(output)
+    try:
         for path, name in inputs:
             try:
                 source = source_of(path)
@@ -65,17 +66,40 @@ def extract_shard(inputs, output, options):
             try:
                 file.write(name, features, source, extractor)
             except aief.Error as error:
-                raise aief.Error(f"shard {output} stopped after {extracted} new images: {error}; "
-                                 "run the same shard again to resume") from None
+                stopped(file, output, error)
             extracted += 1
             keypoints += len(features)
+        try:
+            file.close()  # the last writes reach the disk here, or fail
+        except aief.Error as error:
+            stopped(file, output, error)
+    finally:
+        try:
+            file.close()
+        except aief.Error:
+            pass
     return extracted, skipped, keypoints, failures
+
+
+def stopped(file, output, error):
+    """Raises the error of a shard whose file refused a write, counting only the new images the
+    file on disk holds (writes since its last flush are lost when the disk fills at a flush)."""
+    try:
+        file.close()
+    except aief.Error:
+        pass
+    raise aief.Error(f"shard {output} stopped with {file.writes_on_disk} new images on disk: {error}; "
+                     "run the same shard again to resume") from None
 
 
 def run(client, images, output_dir, shards, **options):
     """Extracts every image of the folder or list file `images` on the cluster of `client` into
     `shards` files in `output_dir`; `options` are aief.Extractor's keyword arguments. Returns
-    the shard files, the totals (extracted, skipped, keypoints) and the failures ("path: reason")."""
+    the shard files, the totals (extracted, skipped, keypoints) and the failures ("path: reason").
+    Raises aief.Error for fewer than one shard, and for threshold='carried' (a video's frames carry
+    F from one to the next: one extractor in frame order, `aief extract --batch VIDEO --threshold
+    carried`, not independent shards)."""
+    check_shards(shards, options)
     os.makedirs(output_dir, exist_ok=True)
     inputs = list_images(images)
     outputs = [shard_path(output_dir, i, shards) for i in range(shards)]
@@ -84,6 +108,16 @@ def run(client, images, output_dir, shards, **options):
     totals = tuple(sum(result[k] for result in results) for k in range(3))
     failures = sorted(failure for result in results for failure in result[3])
     return outputs, totals, failures
+
+
+def check_shards(shards, options):
+    """Refuses a run that would do nothing or split what must not be split (see run)."""
+    if not isinstance(shards, int) or shards < 1:
+        raise aief.Error(f"shards expects an integer >= 1, got {shards!r}")
+    if options.get("threshold") == "carried":
+        raise aief.Error("threshold='carried' carries F from frame to frame of one video, which "
+                         "independent shards cannot: extract the video with one extractor in frame "
+                         "order (aief extract --batch VIDEO --threshold carried)")
 
 
 def main():
@@ -95,8 +129,12 @@ def main():
     where = parser.add_mutually_exclusive_group(required=True)
     where.add_argument("--scheduler", help="address of a running dask scheduler, e.g. tcp://host:8786")
     where.add_argument("--local-workers", type=int, help="start a LocalCluster of this many worker processes")
-    parser.add_argument("--features", type=int, default=aief.default_options()["n_features"], help="n_features")
+    parser.add_argument("--n-features", "--features", dest="n_features", type=int,  # --features: the earlier
+                        default=aief.default_options()["n_features"], help="n_features")  # spelling
+
     args = parser.parse_args()
+    if args.shards < 1:
+        parser.error(f"--shards expects an integer >= 1, got {args.shards}")
     from dask.distributed import Client, LocalCluster
 
     if args.scheduler:
@@ -105,7 +143,7 @@ def main():
         client = Client(LocalCluster(n_workers=args.local_workers, threads_per_worker=1, processes=True))
     with client:
         outputs, (extracted, skipped, keypoints), failures = run(client, args.images, args.output_dir, args.shards,
-                                                                 n_features=args.features)
+                                                                 n_features=args.n_features)
     print(f"dask batch: {extracted} extracted, {skipped} already done, {len(failures)} failed; {keypoints} keypoints "
           f"in {len(outputs)} shard files")
     for failure in failures:

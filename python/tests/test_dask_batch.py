@@ -1,7 +1,9 @@
 """The Dask recipe on a LocalCluster of two worker processes equals the single-process CLI batch."""
 import os
+import re
 import shutil
 import subprocess
+import sys
 
 import h5py
 import numpy
@@ -124,3 +126,50 @@ def test_a_full_disk_stops_the_shard_clearly_and_keeps_what_was_complete(small_d
     os.remove(small_disk / "filler")
     extracted, skipped, _, failures = dask_batch.extract_shard(inputs, shard, {})
     assert failures == [] and skipped == len(kept) and extracted + skipped == len(inputs)
+
+
+def test_a_full_disk_without_fallocate_counts_only_the_images_on_disk(small_disk, tmp_path):
+    """On a file system without fallocate (NFSv3, FUSE) the writes since the last flush are lost
+    when the disk fills at a flush: the message counts the new images the file holds, not those
+    written (before: "stopped after 11 new images" for a file holding 1)."""
+    shim = os.environ.get("AIEF_NO_FALLOCATE_SHIM", "")
+    if not os.path.exists(shim):
+        pytest.skip("the no-fallocate shim (tests/no_fallocate_shim.cpp) is not built")
+    probe = subprocess.run(["fallocate", "-l", "1M", str(small_disk / "probe")], env=dict(os.environ, LD_PRELOAD=shim),
+                           capture_output=True)
+    assert probe.returncode != 0, "the shim does not take fallocate away"
+    images = tmp_path / "images"
+    images.mkdir()
+    for copy in range(4):
+        for sequence in SEQUENCES:
+            shutil.copy(sample_path(sequence, 1), images / f"{sequence}{copy}.png")
+    shard = small_disk / "features.0-of-1.h5"
+    free = shutil.disk_usage(small_disk).free
+    with open(small_disk / "filler", "wb") as filler:
+        filler.write(b"\0" * (free - 300_000))
+    script = ("import sys\nfrom aief import dask_batch\n"
+              "inputs = dask_batch.list_images(sys.argv[1])\n"
+              "dask_batch.extract_shard(inputs, sys.argv[2], {})\n")
+    run = subprocess.run([sys.executable, "-c", script, str(images), str(shard)], env=dict(os.environ, LD_PRELOAD=shim),
+                         capture_output=True, text=True)
+    assert run.returncode != 0, run.stderr
+    said = re.search(r"stopped with (\d+) new images on disk: .*No space left on device", run.stderr)
+    assert said, run.stderr
+    with h5py.File(shard, "r") as file:
+        assert len(group_names(file)) == int(said.group(1)), run.stderr
+
+
+@pytest.mark.parametrize("shards", [0, -1])
+def test_no_shards_is_refused(tmp_path, shards):
+    """Before: `--shards 0` exited 0 having done nothing."""
+    run = subprocess.run([sys.executable, "-m", "aief.dask_batch", str(tmp_path), str(tmp_path / "out"),
+                          "--shards", str(shards), "--local-workers", "1"], capture_output=True, text=True)
+    assert run.returncode == 2 and "--shards expects an integer >= 1" in run.stderr, run.stderr
+    with pytest.raises(aief.Error, match="shards expects an integer >= 1"):
+        dask_batch.run(None, tmp_path, tmp_path / "out", shards)
+
+
+def test_a_carried_threshold_is_refused():
+    """Shards of one video each carried their own F: merged, they differed from one process."""
+    with pytest.raises(aief.Error, match="carries F from frame to frame"):
+        dask_batch.run(None, "images", "out", 2, threshold="carried")

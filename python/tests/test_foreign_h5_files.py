@@ -94,3 +94,31 @@ def test_colmap_refuses_matches0_of_another_length_or_unsigned(cli, tmp_path, im
     expected = "matches0 has 300 rows but 'img1.png' has" if fault == "shorter" else "is unsigned uint8"
     assert expected in result.stderr, result.stderr
     assert not database.exists()
+
+
+def test_merge_refuses_another_tools_features_as_a_shard_or_the_output(cli, tmp_path, images):
+    """Before: merge copied hloc's SuperPoint groups beside aief's (exit 0)."""
+    superpoint = tmp_path / "feats-superpoint.h5"
+    superpoint_file(superpoint)
+    before = contents(superpoint)
+    shard = tmp_path / "shard.h5"
+    assert run(cli, "extract", "--batch", images, "-o", shard, "--format", "h5").returncode == 0
+    result = run(cli, "merge", "-o", tmp_path / "all.h5", shard, superpoint)
+    assert result.returncode == 1 and "another tool's features" in result.stderr, result.stderr
+    assert not (tmp_path / "all.h5").exists()
+    result = run(cli, "merge", "-o", superpoint, shard)
+    assert result.returncode == 1 and "the output" in result.stderr and "another tool's features" in result.stderr, result.stderr
+    assert contents(superpoint) == before
+
+
+def test_merge_says_it_leaves_out_incomplete_groups(cli, tmp_path, images):
+    """A group a killed write left incomplete (keypoints but no image_size): before, left out of
+    the merge without a word."""
+    shard = tmp_path / "shard.h5"
+    assert run(cli, "extract", "--batch", images, "-o", shard, "--format", "h5").returncode == 0
+    with h5py.File(shard, "a") as f:
+        del f["img2.png"]["image_size"]
+    result = run(cli, "merge", "-o", tmp_path / "all.h5", shard)
+    assert result.returncode == 0, result.stderr
+    assert "1 images merged" in result.stdout
+    assert "holds 1 incomplete image group(s)" in result.stderr and "'img2.png'" in result.stderr, result.stderr

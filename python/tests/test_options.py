@@ -33,6 +33,18 @@ def test_every_keyword_reaches_the_options(row):
         k: v for k, v in aief.default_options().items() if k != row["key"]}
 
 
+OLD = [row for row in ROWS if row["old_keyword"]]
+
+
+@pytest.mark.parametrize("row", OLD, ids=[row["old_keyword"] for row in OLD])
+def test_an_earlier_keyword_is_still_accepted(row):
+    """threshold= is entropy_threshold= (CHANGELOG.md): the same options, and not both at once."""
+    value = other_value(row, aief.default_options()[row["key"]])
+    assert aief.Extractor(**{row["old_keyword"]: value}).options == aief.Extractor(**{row["keyword"]: value}).options
+    with pytest.raises(TypeError, match="multiple values"):
+        aief.Extractor(**{row["old_keyword"]: value, row["keyword"]: value})
+
+
 def test_positional_arguments_keep_their_order():
     options = aief.Extractor(300, "quadtree-entropy", 3.5, 6, 1.3, 1, "scalar").options
     assert (options["n_features"], options["distribution"], options["entropy_threshold"], options["n_levels"],

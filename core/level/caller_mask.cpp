@@ -1,4 +1,4 @@
-#include "core/level/detection_mask.hpp"
+#include "core/level/caller_mask.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -1,5 +1,6 @@
 #pragma once
-// The detection mask through the pyramid (Extractor::extract with a mask; docs/opencv.md).
+// The caller's mask through the pyramid (Extractor::extract with a mask; docs/opencv.md): where
+// detection may take candidates. (Not the entropy mask, which is core/entropy/level_entropy.hpp.)
 //
 // The caller's mask allows a pixel where it is non-zero. Level 0's mask is that, as 255 / 0.
 // Level n's is level n - 1's resized exactly as the pyramid resizes the pixels

@@ -1,0 +1,376 @@
+// ExtractorOptions' option rows (core/options/option_table.hpp): the data, one row per option.
+// The value code that reads them (parsing, ranges, records, validate()) is in
+// core/options/option_table.cpp.
+#include <limits>
+#include <string_view>
+#include <vector>
+
+#include "core/options/option_access.hpp"
+#include "core/options/option_names.hpp"
+#include "core/options/option_table.hpp"
+
+namespace aief::option_table {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The mode: a preset over the fields, no field of its own.
+constexpr FieldAccess<ExtractorOptions> kPreset{ValueKind::choice, nullptr, nullptr,
+                                                choices_of<Mode>};
+
+// F, "auto" (the automatic threshold) or "carried" (F carried through a video).
+void set_threshold(ExtractorOptions& options, const OptionValue& value) {
+  const std::string_view* word = std::get_if<std::string_view>(&value);
+  options.auto_threshold = word != nullptr && *word == "auto";
+  options.carried_threshold = word != nullptr && *word == "carried";
+  if (word == nullptr) options.entropy_threshold = std::get<double>(value);
+}
+
+// P, or "inf" / "off": no pool.
+void set_pool(ExtractorOptions& options, const OptionValue& value) {
+  options.candidate_pool =
+      std::holds_alternative<std::string_view>(value) ? kInfinity : std::get<double>(value);
+}
+
+using M = ExtractorOptions;
+
+// The table. Record order is this order.
+std::vector<OptionRow> make_rows() {
+  return {
+      {.key = "mode",
+       .field = kPreset,
+       .cli_flag = "--mode",
+       .cli_value = "M",
+       .python_keyword = "mode",
+       .python_position = 2,
+       .yaml_key = "ORBextractor.mode",
+       .help = "named preset; aief-paper is the published algorithm to the byte (x * scale, no "
+               "sub-pixel, no pool, "
+               "frame-wide guard); orbslam2 keeps x * scale too"},
+      {.key = "n_features",
+       .field = access<&M::n_features>,
+       .cli_flag = "--n-features",
+       .cli_value = "N",
+       .python_keyword = "n_features",
+       .python_position = 1,
+       .yaml_key = "ORBextractor.nFeatures",
+       .old_cli_flag = "--features",
+       .help = "keypoints wanted over all levels",
+       .low = 1,
+       .high = 1'000'000},
+      {.key = "scale_factor",
+       .field = access<&M::scale_factor>,
+       .cli_flag = "--scale-factor",
+       .cli_value = "S",
+       .python_keyword = "scale_factor",
+       .python_position = 5,
+       .yaml_key = "ORBextractor.scaleFactor",
+       .old_cli_flag = "--scale",
+       .old_python_keyword = "scale",
+       .help = "scale factor between levels",
+       .low = 1,
+       .high = 4,
+       .low_is_open = true,
+       .per_mode = {"", "", "", "", "", "1.15"}},
+      {.key = "n_levels",
+       .field = access<&M::n_levels>,
+       .cli_flag = "--n-levels",
+       .cli_value = "L",
+       .python_keyword = "n_levels",
+       .python_position = 4,
+       .yaml_key = "ORBextractor.nLevels",
+       .old_cli_flag = "--levels",
+       .old_python_keyword = "levels",
+       .help = "pyramid levels",
+       .low = 1,
+       .high = 32,
+       .per_mode = {"", "", "", "", "", "10"}},
+      {.key = "fast_threshold",
+       .field = access<&M::fast_threshold>,
+       .cli_flag = "--fast-threshold",
+       .cli_value = "T",
+       .python_keyword = "fast_threshold",
+       .yaml_key = "ORBextractor.iniThFAST",
+       .help = "FAST threshold tried first in a block",
+       .low = 1,
+       .high = 254},
+      {.key = "fast_min_threshold",
+       .field = access<&M::fast_min_threshold>,
+       .cli_flag = "--fast-min-threshold",
+       .cli_value = "T",
+       .python_keyword = "fast_min_threshold",
+       .yaml_key = "ORBextractor.minThFAST",
+       .help = "retry threshold for a block without corners (at most the FAST threshold)",
+       .low = 1,
+       .high = 254},
+      {.key = "block_size",
+       .field = access<&M::block_size>,
+       .cli_flag = "--block-size",
+       .cli_value = "B",
+       .python_keyword = "block_size",
+       .yaml_key = "ORBextractor.blockSize",
+       .old_cli_flag = "--block",
+       .help = "entropy / distribution block side, pixels",
+       .low = 8,
+       .high = 1024},
+      {.key = "distribution",
+       .field = access<&M::distribution>,
+       .help = "set by the mode",
+       .per_mode = {kDefault, "proportional", "quadtree", "quadtree", "quadtree", kDefault}},
+      {.key = "entropy",
+       .field = access<&M::entropy>,
+       .cli_flag = "--entropy",
+       .cli_value = "E",
+       .python_keyword = "entropy",
+       .yaml_key = "ORBextractor.entropy",
+       .help = "what a block's entropy measures; off: no mask",
+       .per_mode = {"", "", "=off", "", "=off", ""}},
+      {.key = "entropy_threshold",
+       .field = access<&M::entropy_threshold>.with_set(set_threshold),
+       .cli_flag = "--entropy-threshold",
+       .cli_value = "F|auto|carried",
+       .python_keyword = "entropy_threshold",
+       .python_position = 3,
+       .yaml_key = "ORBextractor.entropyThreshold",
+       .old_cli_flag = "--threshold",
+       .old_python_keyword = "threshold",
+       .help = "entropy threshold F in bits (a block is kept when its entropy is > F); auto: "
+               "Otsu's split of the frame's own block entropies; carried: the adaptive sweep on "
+               "the previous and current frames every --carry-every frames, spread over the "
+               "frames that follow (F = 4 until the first sweep ends)",
+       .low = 0,
+       .high = 64,
+       .words = "auto|carried",
+       .needs_mask = "sets F of the entropy mask"},
+      {.key = "auto_threshold",
+       .field = access<&M::auto_threshold>,
+       .help = "set by --entropy-threshold auto",
+       .words = "on|off"},
+      {.key = "carried_threshold",
+       .field = access<&M::carried_threshold>,
+       .help = "set by --entropy-threshold carried",
+       .words = "on|off"},
+      {.key = "carry_every",
+       .field = access<&M::carry_every>,
+       .cli_flag = "--carry-every",
+       .cli_value = "N",
+       .python_keyword = "carry_every",
+       .yaml_key = "ORBextractor.carryEvery",
+       .help = "with --entropy-threshold carried: frames from the start of one sweep to the start of the "
+               "next (a sweep never starts while one runs)",
+       .low = 1,
+       .high = 1'000'000,
+       .needs_mask = "sets how often the carried F is swept"},
+      {.key = "coordinates",
+       .field = access<&M::coordinates>,
+       .cli_flag = "--coordinates",
+       .cli_value = "C",
+       .python_keyword = "coordinates",
+       .yaml_key = "ORBextractor.coordinates",
+       .help = "a keypoint's level-0 position: pixel-centre (x + 0.5) * W0 / Wn - 0.5, or scaled x "
+               "* scale^n",
+       .per_mode = {kDefault, "scaled", "scaled", "scaled", "scaled", kDefault}},
+      {.key = "subpixel",
+       .field = access<&M::subpixel>,
+       .cli_flag = "--subpixel",
+       .cli_value = "on|off",
+       .python_keyword = "subpixel",
+       .yaml_key = "ORBextractor.subpixel",
+       .help = "parabola peak of the FAST scores per axis",
+       .words = "on|off",
+       .per_mode = {kDefault, "off", "off", "off", "off", kDefault}},
+      {.key = "candidate_pool",
+       .field = access<&M::candidate_pool>.with_set(set_pool),
+       .cli_flag = "--candidate-pool",
+       .cli_value = "P|inf",
+       .python_keyword = "candidate_pool",
+       .yaml_key = "ORBextractor.candidatePool",
+       .old_cli_flag = "--pool",
+       .old_python_keyword = "pool",
+       .help = "candidate pool: each level keeps its best ceil(P x N_level) candidates before the "
+               "water-level "
+               "distribution; inf (or off): none",
+       .low = 1,
+       .high = kInfinity,
+       .words = "inf|off",
+       .per_mode = {kDefault, "inf", "inf", "inf", "inf", kDefault}},
+      {.key = "candidate_ranking",
+       .field = access<&M::candidate_ranking>,
+       .cli_flag = "--candidate-ranking",
+       .cli_value = "R",
+       .python_keyword = "candidate_ranking",
+       .yaml_key = "ORBextractor.candidateRanking",
+       .old_cli_flag = "--ranking",
+       .old_python_keyword = "ranking",
+       .old_yaml_key = "ORBextractor.ranking",
+       .help = "what the pool and the distribution rank candidates by: cross = FAST scores summed "
+               "over the corner "
+               "and its 4 neighbours, peak = the corner's score",
+       .per_mode = {kDefault, "peak", "peak", "peak", "peak", kDefault}},
+      {.key = "starvation_guard",
+       .field = access<&M::starvation_guard>,
+       .cli_flag = "--starvation-guard",
+       .cli_value = "G",
+       .python_keyword = "starvation_guard",
+       .yaml_key = "ORBextractor.starvationGuard",
+       .help = "level: F lowered per level until it has its budget, what a level still lacks going "
+               "to the levels "
+               "with candidates to spare, finest first; frame: F lowered for the whole frame until "
+               "it has n_features",
+       .per_mode = {kDefault, "frame", "frame", "frame", "frame", kDefault}},
+      {.key = "auto_skips_uniform_blocks",
+       .field = access<&M::auto_skips_uniform_blocks>,
+       .cli_flag = "--auto-uniform-blocks",
+       .cli_value = "skip|count",
+       .python_keyword = "auto_skips_uniform_blocks",
+       .yaml_key = "ORBextractor.autoUniformBlocks",
+       .help = "whether one-gray-level blocks take part in the automatic F",
+       .words = "skip|count",
+       .per_mode = {kDefault, "count", "count", "count", "count", kDefault}},
+      {.key = "auto_requires_two_classes",
+       .field = access<&M::auto_requires_two_classes>,
+       .cli_flag = "--auto-requires-two-classes",
+       .cli_value = "on|off",
+       .python_keyword = "auto_requires_two_classes",
+       .yaml_key = "ORBextractor.autoRequiresTwoClasses",
+       .old_cli_flag = "--auto-two-classes",
+       .old_yaml_key = "ORBextractor.autoTwoClasses",
+       .help = "automatic F: split only when the block entropies form two classes (Otsu's "
+               "effectiveness >= 0.75), "
+               "else F = 0 keeps every block",
+       .words = "on|off",
+       .per_mode = {kDefault, "off", "off", "off", "off", kDefault}},
+      {.key = "pyramid_resampling",
+       .field = access<&M::pyramid_resampling>,
+       .cli_flag = "--pyramid-resampling",
+       .cli_value = "R",
+       .python_keyword = "pyramid_resampling",
+       .yaml_key = "ORBextractor.pyramidResampling",
+       .old_cli_flag = "--pyramid",
+       .old_python_keyword = "pyramid",
+       .old_yaml_key = "ORBextractor.pyramid",
+       .help = "how a level is resampled from the one above: q8 (the engine's vector kernels) or "
+               "opencv (cv::resize INTER_LINEAR to the byte, ORB-SLAM's pixels; scalar)",
+       .per_mode = {"", "", "", "", "opencv", ""}},
+      {.key = "detection_cells",
+       .field = access<&M::detection_cells>,
+       .cli_flag = "--detection-cells",
+       .cli_value = "C",
+       .python_keyword = "detection_cells",
+       .yaml_key = "ORBextractor.detectionCells",
+       .help = "where the FAST retry and suppression act: blocks (the engine's, suppression over "
+               "the level) or orbslam (ORB-SLAM3's 35-pixel cells, each its own image)",
+       .per_mode = {"", "", "", "", "orbslam", ""}},
+      {.key = "quadtree_ties",
+       .field = access<&M::quadtree_ties>,
+       .cli_flag = "--quadtree-ties",
+       .cli_value = "T",
+       .python_keyword = "quadtree_ties",
+       .yaml_key = "ORBextractor.quadtreeTies",
+       .help = "how the quadtree breaks ties: full (written tie-break, exactly N per level) or "
+               "orbslam (ORB-SLAM's list order, up to N + 3 per level); the quadtree only",
+       .per_mode = {"", "", "", "", "orbslam", ""}},
+      {.key = "orientation",
+       .field = access<&M::orientation>,
+       .cli_flag = "--orientation",
+       .cli_value = "O",
+       .python_keyword = "orientation",
+       .yaml_key = "ORBextractor.orientation",
+       .help = "the angle of the intensity centroid: atan2 (in double) or fast-atan2 "
+               "(cv::fastAtan2, ORB-SLAM's, about 0.01 degrees off)",
+       .per_mode = {"", "", "", "", "fast-atan2", ""}},
+      {.key = "quadtree_weight",
+       .field = access<&M::quadtree_weight>,
+       .cli_flag = "--quadtree-weight",
+       .cli_value = "W",
+       .python_keyword = "quadtree_weight",
+       .yaml_key = "ORBextractor.quadtreeWeight",
+       .help = "what orders the quadtree's splits: none (every node each round) or entropy (the "
+               "node whose candidates' block entropies sum highest splits next; every leaf keeps "
+               "its strongest); the quadtree only"},
+      {.key = "fast_threshold_from",
+       .field = access<&M::fast_threshold_from>,
+       .cli_flag = "--fast-threshold-from",
+       .cli_value = "S",
+       .python_keyword = "fast_threshold_from",
+       .yaml_key = "ORBextractor.fastThresholdFrom",
+       .help = "a block's first FAST threshold: none (the FAST threshold) or entropy (from the "
+               "retry threshold at 0 bits up to the FAST threshold at 6 bits, linearly); the "
+               "engine's blocks only"},
+      {.key = "low_entropy_sharpen",
+       .field = access<&M::low_entropy_sharpen>,
+       .cli_flag = "--low-entropy-sharpen",
+       .cli_value = "on|off",
+       .python_keyword = "low_entropy_sharpen",
+       .yaml_key = "ORBextractor.lowEntropySharpen",
+       .help = "FAST detects on the level with its low-entropy blocks sharpened (unsharp mask, "
+               "amount 2 at 0 bits falling linearly to none at 6 bits, blended between blocks); "
+               "orientation and descriptors read the level as it is",
+       .words = "on|off"},
+      {.key = "descriptor",
+       .field = access<&M::descriptor>,
+       .cli_flag = "--descriptor",
+       .cli_value = "D",
+       .python_keyword = "descriptor",
+       .yaml_key = "ORBextractor.descriptor",
+       .help = "the 256-bit descriptor: rbrief (ORB's learned pattern on the blurred level) or box "
+               "(learned box-average tests on the level's integral image, TEBLID's form; a SLAM "
+               "vocabulary trained on rbrief needs retraining for it); files of different "
+               "descriptors never match"},
+      {.key = "detection_smoothing",
+       .field = access<&M::detection_smoothing>,
+       .cli_flag = "--detection-smoothing",
+       .cli_value = "SIGMA",
+       .python_keyword = "detection_smoothing",
+       .yaml_key = "ORBextractor.detectionSmoothing",
+       .help = "FAST detects on each level blurred to about SIGMA px (max(1, round(SIGMA^2)) "
+               "passes of the 5x5 binomial, sigma 1 each); orientation and descriptors read the "
+               "level as it is; 0: off",
+       .low = 0,
+       .high = 3,
+       .per_mode = {kDefault, kDefault, kDefault, kDefault, kDefault, "1.5"}},
+      {.key = "kernels",
+       .field = access<&M::kernels>,
+       .cli_flag = "--kernels",
+       .cli_value = "K",
+       .python_keyword = "kernels",
+       .python_position = 7,
+       .yaml_key = "ORBextractor.kernels",
+       .help = "the pixel kernels' instruction set; every set gives the same output",
+       .changes_output = false},
+      {.key = "threads",
+       .field = access<&M::threads>,
+       .cli_flag = "--threads",
+       .cli_value = "T",
+       .python_keyword = "threads",
+       .python_position = 6,
+       .yaml_key = "ORBextractor.threads",
+       .help = "worker threads, 0 = all cores; any count gives the same output",
+       .low = 0,
+       .high = 256,
+       .changes_output = false},
+      {.key = "max_image_pixels",
+       .field = access<&M::max_image_pixels>,
+       .cli_flag = "--max-image-pixels",
+       .cli_value = "N",
+       .python_keyword = "max_image_pixels",
+       .yaml_key = "ORBextractor.maxImagePixels",
+       .help = "largest image accepted, in pixels, refused before any allocation (at most 2^26: "
+               "the exact entropy "
+               "sums)",
+       .low = 1,
+       .high = static_cast<double>(kLargestMaxImagePixels),
+       .changes_output = false},
+  };
+}
+
+}  // namespace
+
+template <>
+const std::vector<Row<ExtractorOptions>>& rows_of<ExtractorOptions>() {
+  static const std::vector<OptionRow> table = make_rows();
+  return table;
+}
+
+}  // namespace aief::option_table
