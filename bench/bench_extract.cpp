@@ -27,7 +27,8 @@ void register_extract(const std::string& name, const cv::Mat* gray, ExtractorOpt
 void register_extract_benchmarks() {
   for (const NamedImage& image : benchmark_images()) {
     const cv::Mat* gray = &image.gray;
-    for (Mode mode : {Mode::aief, Mode::orbslam2, Mode::quadtree_entropy, Mode::faithful}) {
+    for (Mode mode :
+         {Mode::aief, Mode::orbslam2, Mode::quadtree_entropy, Mode::faithful, Mode::quality}) {
       for (KernelSet set : available_kernel_sets()) {
         for (int threads : {1, 2}) {
           // Other modes: one thread, the best set and AVX2 (the CPUs without AVX-512).
@@ -73,6 +74,43 @@ void register_extract_benchmarks() {
         register_extract(name, gray, options);
       }
     }
+    // The quality mode's parts, each alone on the aief mode: one thread, AVX2 (docs/speed.md).
+    static constexpr Variant kQualityParts[] = {
+        {"detection-smoothing-1.5", [](ExtractorOptions& o) { o.detection_smoothing = 1.5; }},
+        {"pyramid-1.15x10",
+         [](ExtractorOptions& o) {
+           o.scale_factor = 1.15;
+           o.n_levels = 10;
+         }},
+    };
+    for (const Variant& variant : kQualityParts) {
+      const std::string name =
+          "extract/aief+" + std::string(variant.name) + "/avx2/t1/" + image.name;
+      benchmark::RegisterBenchmark(name.c_str(), [gray, variant](benchmark::State& state) {
+        ExtractorOptions options = options_for_mode(Mode::aief);
+        variant.apply(options);
+        options.kernels = KernelSet::avx2;
+        options.threads = 1;
+        Extractor extractor(options);
+        Features features;
+        for (auto _ : state) extractor.extract(view_of(*gray), features);
+        state.counters["keypoints"] = static_cast<double>(features.keypoints.size());
+        state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
+      })->Unit(benchmark::kMillisecond);
+    }
+    // AKAZE with OpenCV's defaults, detectAndCompute (the quality mode's speed target).
+    benchmark::RegisterBenchmark(
+        ("extract/opencv_akaze/" + image.name).c_str(),
+        [gray](benchmark::State& state) {
+          cv::Ptr<cv::AKAZE> akaze = cv::AKAZE::create();
+          std::vector<cv::KeyPoint> keypoints;
+          cv::Mat descriptors;
+          for (auto _ : state)
+            akaze->detectAndCompute(*gray, cv::noArray(), keypoints, descriptors);
+          state.counters["keypoints"] = static_cast<double>(keypoints.size());
+          state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
+        })
+        ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(
         ("extract/opencv_orb/" + image.name).c_str(),
         [gray](benchmark::State& state) {

@@ -77,17 +77,17 @@ EvalRun with_rows(const EvalRun& full, const std::vector<std::size_t>& rows) {
 TEST(EvalReport, MarkdownJsonAndPlotsOfTheBundledPairsArePinned) {
   const EvalRun run = bundled_run();
   ASSERT_EQ(run.pairs.size(), 3u);
-  ASSERT_EQ(run.methods.size(), 8u);
+  ASSERT_EQ(run.methods.size(), 10u);
   const std::string markdown = markdown_report(run, "evaluation_plots");
   EXPECT_EQ(markdown.find("# aief evaluation"), 0u);
-  EXPECT_EQ(hash_of(markdown), 8858723817471973114ull) << markdown;
-  EXPECT_EQ(hash_of(json_report(run)), 7157074843877695771ull) << json_report(run);
+  EXPECT_EQ(hash_of(markdown), 15019944897818532957ull) << markdown;
+  EXPECT_EQ(hash_of(json_report(run)), 18293800664407377ull) << json_report(run);
   const test::TempFolder folder("aief_eval_report");
   const std::vector<std::string> plots = write_plots(run, folder.file("plots"));
   ASSERT_EQ(plots.size(), 3u);
   std::string all_plots;
   for (const std::string& path : plots) all_plots += bytes_of(path);
-  EXPECT_EQ(hash_of(all_plots), 13780459131209024433ull);
+  EXPECT_EQ(hash_of(all_plots), 16712150332293087105ull);
 
   // Without the automatic, the adaptive paper and cv::ORB rows (no F table, no targets); and
   // without the swept row (the targets, no F table), no plots folder.

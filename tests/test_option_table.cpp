@@ -47,6 +47,7 @@ std::string other_value(const table::OptionRow& row) {
     }
     case table::ValueKind::number: {
       const double v = std::get<double>(value);
+      if (v == 0) return table::text_of(row, row.high);  // 0 (off) scales to itself
       return table::text_of(row, v * 1.25 <= row.high ? v * 1.25 : v * 0.8);
     }
     case table::ValueKind::choice:
@@ -362,8 +363,8 @@ TEST(OptionTable, EnumNamesAndTheirEnumeratorsRead) {
     ADD_FAILURE();
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
-                 "unknown mode 'orb' (expected aief, aief-paper, orbslam2, quadtree-entropy or "
-                 "faithful)");
+                 "unknown mode 'orb' (expected aief, aief-paper, orbslam2, quadtree-entropy, "
+                 "faithful or quality)");
   }
 }
 

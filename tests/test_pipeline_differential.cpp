@@ -52,7 +52,7 @@ const cv::Mat& sample_image(int index) {
 }
 
 // Case `index` of the seeded sequence: every case depends only on the seed and its index.
-constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy,
+constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy, Mode::quality,
                                Mode::faithful};
 
 Case make_case(int index) {
@@ -97,6 +97,10 @@ Case make_case(int index) {
   // The box descriptor, a third of the cases, its own draws likewise.
   std::mt19937 descriptor_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 49979687u));
   if (uniform_int(descriptor_rng, 0, 2) == 0) c.options.descriptor = DescriptorKind::box;
+  // Detection on a smoothed level, a third of the cases at 1 to 4 passes, its own draws likewise.
+  std::mt19937 smoothing_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 67867967u));
+  if (uniform_int(smoothing_rng, 0, 2) == 0)
+    c.options.detection_smoothing = std::sqrt(static_cast<double>(uniform_int(smoothing_rng, 1, 4)));
 
   const int width = uniform_int(rng, 39, 539), height = uniform_int(rng, 39, 539);
   const int source = uniform_int(rng, 0, 3);
@@ -124,7 +128,8 @@ Case make_case(int index) {
       << to_string(c.options.quadtree_weight) << ", FAST threshold from "
       << to_string(c.options.fast_threshold_from) << ", low-entropy sharpen "
       << (c.options.low_entropy_sharpen ? "on" : "off") << ", descriptor "
-      << to_string(c.options.descriptor);
+      << to_string(c.options.descriptor) << ", detection smoothing "
+      << c.options.detection_smoothing;
   c.description = out.str();
   return c;
 }

@@ -37,7 +37,7 @@ void print_help() {
       << "                 [matcher options] [--repeat N] [--methods LIST] [extractor options]\n\n"
       << "Runs ORB-SLAM2 mode, Quadtree + entropy, AIEF paper and AIEF (adaptive F and pair-free "
          "automatic F),\n"
-      << "OpenCV ORB and OpenCV SIFT on the Oxford affine sequences in DIR (<seq>/img1..6, "
+      << "OpenCV ORB, SIFT, AKAZE and BRISK on the Oxford affine sequences in DIR (<seq>/img1..6, "
          "H1to2p..6p):\n"
       << "the paper's four tables (img1 -> img2 of graf, leuven, boat, bikes) beside its figures, "
          "and\n"

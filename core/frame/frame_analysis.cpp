@@ -91,6 +91,18 @@ void FrameAnalysis::build_level_rows(int n, int y_begin, int y_end) {
 }
 
 void FrameAnalysis::compute_entropies(int n) {
+  entropies_and_sharpening(n);
+  // After the sharpening (which reads the block entropies), before any detection, as it.
+  Level& level = at(n);
+  const int passes = detection_smoothing_passes(options_.detection_smoothing);
+  if (passes > 0 && level.pyramid.usable()) {
+    smooth_for_detection(level.pyramid.detection_pixels, passes, *kernels_, level.smoothing,
+                         level.pyramid.smoothed);
+    level.pyramid.detection_pixels = level.pyramid.smoothed.view();
+  }
+}
+
+void FrameAnalysis::entropies_and_sharpening(int n) {
   Level& level = at(n);
   const bool mask_on = options_.entropy != EntropyMeasure::off;
   // The entropy-weighted quadtree, the per-block FAST thresholds and the sharpening read the block

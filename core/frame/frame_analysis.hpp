@@ -22,6 +22,7 @@
 #include "core/detection/level_detection.hpp"
 #include "core/frame/level_selection.hpp"
 #include "core/entropy/low_entropy_sharpen.hpp"
+#include "core/level/detection_smoothing.hpp"
 #include "core/level/pyramid_level.hpp"
 #include "core/distribution/raster_order.hpp"
 
@@ -47,7 +48,8 @@ class FrameAnalysis {
   void build_level_rows(int n, int y_begin, int y_end);
   void build_level(int n) { build_level_rows(n, 0, level(n).geometry.height); }
   // Stage 2: block entropies of level n (no-op with entropy off and no option reading them),
-  // then with low_entropy_sharpen the sharpened pixels detection reads.
+  // then with low_entropy_sharpen the sharpened pixels detection reads, then with
+  // detection_smoothing those smoothed.
   void compute_entropies(int n);
   // Stage 3: FAST candidates of every block of level n kept at threshold F not yet detected.
   void detect(int n, double threshold);
@@ -94,9 +96,11 @@ class FrameAnalysis {
     RasterRanks raster_ranks;  // Selections::many
     DetectionScratch detection;
     SharpenScratch sharpen;  // ExtractorOptions::low_entropy_sharpen
+    SmoothingScratch smoothing;  // ExtractorOptions::detection_smoothing
     SelectionScratch selection;
     std::vector<std::int32_t> selected;
   };
+  void entropies_and_sharpening(int n);  // stage 2 up to the sharpening
   const Level& at(int n) const { return levels_[static_cast<std::size_t>(n)]; }
   Level& at(int n) { return levels_[static_cast<std::size_t>(n)]; }
 

@@ -7,6 +7,7 @@
 
 #include "aief/options.hpp"
 #include "core/kernels/accumulate_histogram.hpp"
+#include "core/kernels/binomial5_row.hpp"
 #include "core/kernels/box_describe.hpp"
 #include "core/kernels/fast9_local_maxima_bits.hpp"
 #include "core/kernels/fast9_scores_row.hpp"
@@ -42,7 +43,8 @@
   X(hamming_256_many)           \
   X(hamming_256_blocked)        \
   X(positions_within_bounds)    \
-  X(unsharp_row)
+  X(unsharp_row)                \
+  X(binomial5_row)
 
 namespace aief {
 

@@ -19,8 +19,10 @@ struct PyramidLevel {
   GrayImage detection_mask;
   // What FAST reads: `pixels`, or with ExtractorOptions::low_entropy_sharpen `sharpened` once
   // stage 2 made it (core/entropy/low_entropy_sharpen.hpp). Orientation and descriptors read `pixels`.
+  // With ExtractorOptions::detection_smoothing, `smoothed` (of `pixels` or `sharpened`).
   ImageView detection_pixels;
   GrayImage sharpened;
+  GrayImage smoothed;
 
   bool has_detection_mask() const { return detection_mask.width() > 0; }
 

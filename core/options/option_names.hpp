@@ -33,7 +33,8 @@ struct Table<Mode> {
       {Mode::aief_paper, "aief-paper", "aief_paper"},
       {Mode::orbslam2, "orbslam2", "orbslam2"},
       {Mode::quadtree_entropy, "quadtree-entropy", "quadtree_entropy"},
-      {Mode::faithful, "faithful", "faithful"}};
+      {Mode::faithful, "faithful", "faithful"},
+      {Mode::quality, "quality", "quality"}};
 };
 
 template <>

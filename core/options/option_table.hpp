@@ -103,10 +103,10 @@ struct Row {
   std::string_view words =
       {};  // toggle: "on|off" (true first); number: words taken instead ("inf|off")
   // The value each mode sets, in Mode order (aief, aief-paper, orbslam2, quadtree-entropy,
-  // faithful), as a front end would write it: "" leaves the option as it was, "default" takes
+  // faithful, quality), as a front end would write it: "" leaves the option as it was, "default" takes
   // ExtractorOptions{}'s value, and a leading '=' marks the mode's definition: a different given
   // value is refused.
-  std::array<std::string_view, 5> per_mode = {};
+  std::array<std::string_view, 6> per_mode = {};
   bool changes_output = true;  // false: kernels, threads, limits (the bytes never depend on them)
   std::string_view needs_mask = {};  // non-empty: refused with the entropy mask off when it changes
                                      // a value; says what it does

@@ -101,6 +101,8 @@ enum class Mode {
   orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
   faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells and octree tie-breaks
+  quality,           // aief with FAST on smoothed levels and a finer pyramid (1.15, 10 levels):
+                     // for offline mapping, docs/evaluation.md "Hard families"
 };
 
 struct ExtractorOptions {
@@ -177,6 +179,12 @@ struct ExtractorOptions {
   // The descriptor. rbrief in every mode (ORB-SLAM's vocabularies are trained on it); box is the
   // learned box descriptor (a vocabulary trained on rBRIEF needs retraining for it).
   DescriptorKind descriptor = DescriptorKind::rbrief;
+  // Detection on a smoothed level (core/level/detection_smoothing.hpp): FAST reads each level (its
+  // sharpened copy with low_entropy_sharpen) blurred to about this sigma, px, by passes of the 5x5
+  // binomial; orientation and descriptors read the level itself. 0: none (every mode but quality).
+  // Blur in one image of a pair moves FAST's corners and scores; smoothing both measures them on
+  // alike pixels (docs/evaluation.md, "Hard families").
+  double detection_smoothing = 0;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels

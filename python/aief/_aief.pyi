@@ -102,6 +102,7 @@ class Extractor:
         fast_threshold_from: Literal["none", "entropy"] = "none",
         low_entropy_sharpen: bool = False,
         descriptor: Literal["rbrief", "box"] = "rbrief",
+        detection_smoothing: float = 0,
         max_image_pixels: int = 67108864,
         **record_keys: Any,  # and the earlier keywords, still accepted: threshold, levels, scale, ...
     ) -> None: ...

@@ -328,6 +328,7 @@ std::string markdown_report(const EvalRun& run, const std::string& plot_folder) 
   write_paper_tables(md, run);
   write_correct_matches_table(md, run, sequences);
   write_summary_table(md, run);
+  md << family_tables(run);
   write_per_sequence_table(md, run, sequences);
   if (both_aief_thresholds) write_threshold_table(md, run, swept, automatic);
   if (orb >= 0) write_quality_targets(md, run, orb);

@@ -12,6 +12,7 @@
 #include "aief/cv_image_view.hpp"
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "core/options/option_names.hpp"
 #include "tools/eval/keypoint_metrics.hpp"
 
 namespace aief::eval {
@@ -24,6 +25,8 @@ bool operator==(const Method& a, const Method& b) {
 std::string method_name(const Method& method) {
   if (method.baseline == Baseline::opencv_orb) return "OpenCV ORB";
   if (method.baseline == Baseline::opencv_sift) return "OpenCV SIFT";
+  if (method.baseline == Baseline::opencv_akaze) return "OpenCV AKAZE";
+  if (method.baseline == Baseline::opencv_brisk) return "OpenCV BRISK";
   std::string name;
   switch (method.mode) {
     case Mode::orbslam2: name = "ORB-SLAM2 mode (ours)"; break;
@@ -31,6 +34,7 @@ std::string method_name(const Method& method) {
     case Mode::quadtree_entropy: name = "Quadtree + entropy (F = 4)"; break;
     case Mode::aief_paper: name = "AIEF paper"; break;
     case Mode::aief: name = "AIEF"; break;
+    case Mode::quality: name = "AIEF quality mode"; break;
   }
   switch (method.threshold) {
     case ThresholdChoice::mode: return name;
@@ -43,6 +47,8 @@ std::string method_name(const Method& method) {
 std::string method_key(const Method& method) {
   if (method.baseline == Baseline::opencv_orb) return "opencv_orb";
   if (method.baseline == Baseline::opencv_sift) return "opencv_sift";
+  if (method.baseline == Baseline::opencv_akaze) return "opencv_akaze";
+  if (method.baseline == Baseline::opencv_brisk) return "opencv_brisk";
   std::string key(to_string(method.mode));
   std::replace(key.begin(), key.end(), '-', '_');
   switch (method.threshold) {
@@ -56,6 +62,11 @@ std::string method_key(const Method& method) {
 Method parse_method_key(const std::string& key) {
   for (const Method& method : kAllMethods)
     if (method_key(method) == key) return method;
+  // Any mode with any way of choosing F, e.g. "aief" (F as the mode sets it) or "quality_auto".
+  for (const auto& mode : option_names::Table<Mode>::names)
+    for (ThresholdChoice threshold :
+         {ThresholdChoice::mode, ThresholdChoice::swept, ThresholdChoice::automatic})
+      if (const Method method{mode.value, threshold}; method_key(method) == key) return method;
   throw Error("unknown method '" + key + "'");
 }
 
@@ -120,9 +131,27 @@ ExtractorOptions options_of(const Method& method, const EvalSettings& s) {
   return options;
 }
 
+constexpr int kBaselineFeatures = 1000;  // every row's count
+
 cv::Ptr<cv::Feature2D> opencv_detector(Baseline baseline) {
-  if (baseline == Baseline::opencv_orb) return cv::ORB::create(1000, 1.2f, 8);
-  return cv::SIFT::create(1000);
+  if (baseline == Baseline::opencv_orb) return cv::ORB::create(kBaselineFeatures, 1.2f, 8);
+  if (baseline == Baseline::opencv_akaze) return cv::AKAZE::create();
+  if (baseline == Baseline::opencv_brisk) return cv::BRISK::create();
+  return cv::SIFT::create(kBaselineFeatures);
+}
+
+// Keypoints and descriptors of one image as the baseline gives them; AKAZE and BRISK, which take
+// no count, keep their kBaselineFeatures strongest before describing.
+void opencv_features(Baseline baseline, const cv::Ptr<cv::Feature2D>& detector,
+                     const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints,
+                     cv::Mat& descriptors) {
+  if (baseline == Baseline::opencv_akaze || baseline == Baseline::opencv_brisk) {
+    detector->detect(gray, keypoints);
+    cv::KeyPointsFilter::retainBest(keypoints, kBaselineFeatures);
+    detector->compute(gray, keypoints, descriptors);
+    return;
+  }
+  detector->detectAndCompute(gray, cv::noArray(), keypoints, descriptors);
 }
 
 PairResult run_ours(const Method& method, const cv::Mat& a, const cv::Mat& b,
@@ -157,8 +186,8 @@ PairResult run_opencv(Baseline baseline, const cv::Mat& a, const cv::Mat& b,
   const cv::Ptr<cv::Feature2D> detector = opencv_detector(baseline);
   std::vector<cv::KeyPoint> ka, kb;
   cv::Mat da, db;
-  detector->detectAndCompute(a, cv::noArray(), ka, da);
-  detector->detectAndCompute(b, cv::noArray(), kb, db);
+  opencv_features(baseline, detector, a, ka, da);
+  opencv_features(baseline, detector, b, kb, db);
   const auto points = [](const std::vector<cv::KeyPoint>& keypoints) {
     std::vector<Point2> out;
     for (const cv::KeyPoint& kp : keypoints) out.push_back({kp.pt.x, kp.pt.y});
@@ -182,16 +211,18 @@ PairResult run_opencv(Baseline baseline, const cv::Mat& a, const cv::Mat& b,
           {kb[static_cast<std::size_t>(m.train)].pt.x, kb[static_cast<std::size_t>(m.train)].pt.y});
     }
   } else if (!da.empty() && !db.empty()) {
-    // Float descriptors: L2, mutual nearest neighbours (cross-check); Lowe's ratio when asked.
+    // SIFT's float descriptors by L2, AKAZE's and BRISK's binary ones by Hamming: mutual
+    // nearest neighbours (cross-check); Lowe's ratio when asked.
+    const int norm = baseline == Baseline::opencv_sift ? cv::NORM_L2 : cv::NORM_HAMMING;
     std::vector<cv::DMatch> matches;
     if (s.match.kind == MatcherKind::ratio) {
       std::vector<std::vector<cv::DMatch>> knn;
-      cv::BFMatcher(cv::NORM_L2).knnMatch(da, db, knn, 2);
+      cv::BFMatcher(norm).knnMatch(da, db, knn, 2);
       for (const auto& pair : knn)
         if (pair.size() == 2 && pair[0].distance < s.match.ratio * pair[1].distance)
           matches.push_back(pair[0]);
     } else {
-      cv::BFMatcher(cv::NORM_L2, true).match(da, db, matches);
+      cv::BFMatcher(norm, true).match(da, db, matches);
     }
     for (const cv::DMatch& m : matches) {
       pa.push_back({ka[static_cast<std::size_t>(m.queryIdx)].pt.x,
@@ -220,11 +251,12 @@ void time_extractions(const std::vector<Method>& methods, const cv::Mat& gray_a,
   std::vector<std::function<void()>> work;
   for (std::size_t m = 0; m < methods.size(); ++m) {
     if (methods[m].baseline != Baseline::none) {
-      auto detector = opencv_detector(methods[m].baseline);
+      const Baseline baseline = methods[m].baseline;
+      auto detector = opencv_detector(baseline);
       auto keypoints = std::make_shared<std::vector<cv::KeyPoint>>();
       auto descriptors = std::make_shared<cv::Mat>();
       work.push_back(
-          [=] { detector->detectAndCompute(gray_a, cv::noArray(), *keypoints, *descriptors); });
+          [=] { opencv_features(baseline, detector, gray_a, *keypoints, *descriptors); });
     } else {
       ExtractorOptions options = options_of(methods[m], settings);
       if (methods[m].threshold == ThresholdChoice::swept)

@@ -25,7 +25,10 @@ enum class ThresholdChoice {
 };
 
 // The rows that are not our engine.
-enum class Baseline { none, opencv_orb, opencv_sift };
+// AKAZE and BRISK keep their 1000 strongest keypoints (cv::KeyPointsFilter::retainBest) before
+// describing, so every row holds the same count; their binary descriptors (486 and 512 bits) are
+// matched by OpenCV's Hamming matcher, mutual as ours.
+enum class Baseline { none, opencv_orb, opencv_sift, opencv_akaze, opencv_brisk };
 
 // A row of the evaluation: one of our modes with its way of choosing F, or an OpenCV baseline
 // (its mode and threshold unused). The aief mode's rows take their options from
@@ -46,7 +49,9 @@ inline const std::vector<Method> kAllMethods = {
     {Mode::aief, ThresholdChoice::swept},  // --mode aief (default): the measured departures
     {Mode::aief, ThresholdChoice::automatic},
     {Mode::aief, ThresholdChoice::mode, Baseline::opencv_orb},
-    {Mode::aief, ThresholdChoice::mode, Baseline::opencv_sift}};
+    {Mode::aief, ThresholdChoice::mode, Baseline::opencv_sift},
+    {Mode::aief, ThresholdChoice::mode, Baseline::opencv_akaze},
+    {Mode::aief, ThresholdChoice::mode, Baseline::opencv_brisk}};
 
 std::string method_name(const Method& method);  // the row label, e.g. "AIEF (adaptive F)"
 // The JSON key, the mode's name with _adaptive or _auto, e.g. "aief_adaptive"; "opencv_orb".
