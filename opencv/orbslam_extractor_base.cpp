@@ -9,6 +9,7 @@
 
 #include "aief/error.hpp"
 #include "core/options/option_names.hpp"
+#include "core/options/nearest_name.hpp"
 #include "core/options/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
@@ -106,9 +107,36 @@ void OrbSlamExtractorBase::compute_scales() {
   }
 }
 
+namespace {
+
+// An ORBextractor.* key no row reads: a misspelt key would leave the extractor other than the
+// settings say, without a word (ORBextractor.entropyTreshold: 2.5 ran with F = 4).
+void refuse_unknown_orbextractor_keys(const cv::FileStorage& settings) {
+  constexpr std::string_view kPrefix = "ORBextractor.";
+  const cv::FileNode root = settings.root();
+  if (!root.isMap()) return;
+  std::vector<std::string_view> known;
+  for (const option_table::OptionRow& row : option_table::rows())
+    if (!row.yaml_key.empty()) known.push_back(row.yaml_key);
+  for (const std::string& key : root.keys()) {
+    if (key.compare(0, kPrefix.size(), kPrefix) != 0 ||
+        std::find(known.begin(), known.end(), key) != known.end())
+      continue;
+    const std::string nearest = option_table::nearest_name(key, known);
+    std::string listed;
+    for (std::string_view k : known) listed += (listed.empty() ? "" : ", ") + std::string(k);
+    throw Error("unknown setting '" + key + "'" +
+                (nearest.empty() ? "" : " (did you mean " + nearest + "?)") +
+                "; the ORBextractor keys aief reads: " + listed);
+  }
+}
+
+}  // namespace
+
 ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStorage& settings,
                                                              Mode default_mode) {
   if (!settings.isOpened()) throw Error("settings file is not open");
+  refuse_unknown_orbextractor_keys(settings);
   std::vector<option_table::GivenOption> given;
   for (const option_table::OptionRow& row : option_table::rows()) {
     if (!row.has_front_ends()) continue;

@@ -154,10 +154,10 @@ template std::string flags_help<SweepOptions>();
 
 std::vector<FlagSpec> extractor_flags() { return flags_of<ExtractorOptions>(); }
 
-ExtractorOptions extractor_options(const Args& args) {
+ExtractorOptions extractor_options(const Args& args, option_table::Use use) {
   ExtractorOptions options;
   try {
-    options = option_table::resolve_options(given_flags<ExtractorOptions>(args));
+    options = option_table::resolve_options(given_flags<ExtractorOptions>(args), use);
   } catch (const Error& e) {
     throw UsageError(e.what());
   }

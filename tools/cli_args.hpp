@@ -8,6 +8,7 @@
 
 #include "aief/match.hpp"
 #include "aief/options.hpp"
+#include "core/options/option_table.hpp"
 
 namespace aief::cli {
 
@@ -55,7 +56,8 @@ std::vector<std::string> flags_outside(const Args& args, const std::vector<FlagS
 // Flags every command that extracts shares, and the options they set (defaults from
 // ExtractorOptions, never repeated here).
 std::vector<FlagSpec> extractor_flags();
-ExtractorOptions extractor_options(const Args& args);
+ExtractorOptions extractor_options(const Args& args,
+                                   option_table::Use use = option_table::Use::extraction);
 std::string extractor_flags_help();
 
 // aief match --pairs: matching of an HDF5 features file (tools/cmd_sfm.cpp).

@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "aief/error.hpp"
+#include "core/options/acts_with.hpp"
 #include "core/options/option_access.hpp"
 #include "core/options/option_names.hpp"
 
@@ -138,7 +139,8 @@ std::vector<OptionRow> make_rows() {
        .low = 0,
        .high = 64,
        .words = "auto|carried",
-       .needs_mask = "sets F of the entropy mask"},
+       .needs_mask = "sets F of the entropy mask",
+       .read_by_sweep = false},
       {.key = "auto_threshold",
        .field = access<&M::auto_threshold>,
        .help = "set by --threshold auto",
@@ -157,7 +159,8 @@ std::vector<OptionRow> make_rows() {
                "next (a sweep never starts while one runs)",
        .low = 1,
        .high = 1'000'000,
-       .needs_mask = "sets how often the carried F is swept"},
+       .needs_mask = "sets how often the carried F is swept",
+       .acts_with = "carried_threshold=on"},
       {.key = "coordinates",
        .field = access<&M::coordinates>,
        .cli_flag = "--coordinates",
@@ -188,7 +191,8 @@ std::vector<OptionRow> make_rows() {
        .low = 1,
        .high = kInfinity,
        .words = "inf|off",
-       .per_mode = {kDefault, "inf", "inf", "inf", "inf"}},
+       .per_mode = {kDefault, "inf", "inf", "inf", "inf"},
+       .acts_with = "distribution=proportional"},
       {.key = "candidate_ranking",
        .field = access<&M::candidate_ranking>,
        .cli_flag = "--ranking",
@@ -209,7 +213,8 @@ std::vector<OptionRow> make_rows() {
                "to the levels "
                "with candidates to spare, finest first; frame: F lowered for the whole frame until "
                "it has n_features",
-       .per_mode = {kDefault, "frame", "frame", "frame", "frame"}},
+       .per_mode = {kDefault, "frame", "frame", "frame", "frame"},
+       .read_by_sweep = false},
       {.key = "auto_skips_uniform_blocks",
        .field = access<&M::auto_skips_uniform_blocks>,
        .cli_flag = "--auto-uniform-blocks",
@@ -218,7 +223,8 @@ std::vector<OptionRow> make_rows() {
        .yaml_key = "ORBextractor.autoUniformBlocks",
        .help = "whether one-gray-level blocks take part in the automatic F",
        .words = "skip|count",
-       .per_mode = {kDefault, "count", "count", "count", "count"}},
+       .per_mode = {kDefault, "count", "count", "count", "count"},
+       .acts_with = "auto_threshold=on"},
       {.key = "auto_requires_two_classes",
        .field = access<&M::auto_requires_two_classes>,
        .cli_flag = "--auto-two-classes",
@@ -229,7 +235,8 @@ std::vector<OptionRow> make_rows() {
                "effectiveness >= 0.75), "
                "else F = 0 keeps every block",
        .words = "on|off",
-       .per_mode = {kDefault, "off", "off", "off", "off"}},
+       .per_mode = {kDefault, "off", "off", "off", "off"},
+       .acts_with = "auto_threshold=on"},
       {.key = "pyramid_resampling",
        .field = access<&M::pyramid_resampling>,
        .cli_flag = "--pyramid",
@@ -255,8 +262,10 @@ std::vector<OptionRow> make_rows() {
        .python_keyword = "quadtree_ties",
        .yaml_key = "ORBextractor.quadtreeTies",
        .help = "how the quadtree breaks ties: full (written tie-break, exactly N per level) or "
-               "orbslam (ORB-SLAM's list order, up to N + 3 per level); the quadtree only",
-       .per_mode = {"", "", "", "", "orbslam"}},
+               "orbslam (ORB-SLAM's list order, up to N + 3 per level); the unweighted quadtree "
+               "only",
+       .per_mode = {"", "", "", "", "orbslam"},
+       .acts_with = "distribution=quadtree,quadtree_weight=none"},
       {.key = "orientation",
        .field = access<&M::orientation>,
        .cli_flag = "--orientation",
@@ -274,7 +283,8 @@ std::vector<OptionRow> make_rows() {
        .yaml_key = "ORBextractor.quadtreeWeight",
        .help = "what orders the quadtree's splits: none (every node each round) or entropy (the "
                "node whose candidates' block entropies sum highest splits next; every leaf keeps "
-               "its strongest); the quadtree only"},
+               "its strongest); the quadtree only",
+       .acts_with = "distribution=quadtree"},
       {.key = "fast_threshold_from",
        .field = access<&M::fast_threshold_from>,
        .cli_flag = "--fast-threshold-from",
@@ -283,7 +293,8 @@ std::vector<OptionRow> make_rows() {
        .yaml_key = "ORBextractor.fastThresholdFrom",
        .help = "a block's first FAST threshold: none (the FAST threshold) or entropy (from the "
                "retry threshold at 0 bits up to the FAST threshold at 6 bits, linearly); the "
-               "engine's blocks only"},
+               "engine's blocks only",
+       .acts_with = "detection_cells=blocks"},
       {.key = "low_entropy_sharpen",
        .field = access<&M::low_entropy_sharpen>,
        .cli_flag = "--low-entropy-sharpen",
@@ -567,15 +578,17 @@ std::string text_of(const OptionDifference& difference) {
   return difference.key + " " + difference.before + " -> " + difference.after;
 }
 
-ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
+ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use) {
   Mode mode = Mode::aief;
   std::string mode_named = "mode";
+  bool mode_given = false;
   const GivenOption* entropy_given = nullptr;
   for (const GivenOption& g : given) {
     if (g.row->key == "mode") {
       mode = option_names::parse<Mode>(
           std::get<std::string_view>(parse_value(*g.row, g.text, g.named)));
       mode_named = g.named;
+      mode_given = true;
     }
     if (g.row->key == "entropy") entropy_given = &g;
   }
@@ -583,7 +596,7 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
   const std::string mode_name(option_names::name_of(mode));
   // Options that need the mask and change a value (given the value the options hold, one changes
   // nothing and is no request: Extractor(**extractor.options) of an orbslam2 extractor).
-  std::vector<const GivenOption*> needing_mask;
+  std::vector<const GivenOption*> needing_mask, changed;
   for (const OptionRow& row : rows()) {
     for (const GivenOption& g : given) {
       if (g.row != &row || !row.is_field()) continue;
@@ -594,13 +607,11 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
       if (fixed && *by_mode != value)
         throw Error(mode_named + " " + mode_name + " means " + g.named + " " +
                     text_of(row, *by_mode) + ", so " + g.named + " " + g.text + " cannot apply");
-      if (row.needs_mask.empty()) {
-        row.field.set(options, value);
-        continue;
-      }
       const auto before = record_of(options);
       row.field.set(options, value);
-      if (record_of(options) != before) needing_mask.push_back(&g);
+      if (record_of(options) == before) continue;
+      changed.push_back(&g);
+      if (!row.needs_mask.empty()) needing_mask.push_back(&g);
     }
   }
   if (options.entropy == EntropyMeasure::off)
@@ -608,6 +619,10 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
       throw Error(g->named + " " + std::string(g->row->needs_mask) + ", which " +
                   (entropy_given ? entropy_given->named + " off" : mode_named + " " + mode_name) +
                   " turns off: drop one of the two");
+  std::vector<Mode> reference = {mode};
+  if (!mode_given)
+    for (Mode whole : modes_given_whole(given)) reference.push_back(whole);
+  refuse_given_that_cannot_act(changed, given, options, reference, mode_named, mode, use);
   options.validate();
   return options;
 }
@@ -627,6 +642,7 @@ void ExtractorOptions::validate() const {
         "scale_factor must be > 1 and <= 4 in single precision (the pyramid computes in float), "
         "got " +
         option_table::number_text(scale_factor) + (used == 1.0f ? ", which is 1 as a float" : ""));
+  option_table::check_fields_act(*this);
   if (auto_threshold && carried_threshold)
     throw Error("auto_threshold and carried_threshold cannot both be on (one source of F)");
   if (fast_min_threshold > fast_threshold)
