@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -61,15 +62,33 @@ ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, 
 }
 
 // A settings value as the text the option table parses: FileStorage keeps numbers as int or
-// double (written back by their shortest round-trip text), names and words as strings.
-std::string text_of_node(const cv::FileNode& node, const std::string& key) {
-  if (node.isInt()) return std::to_string(static_cast<int>(node));
+// double (written back by their shortest round-trip text), names and words as strings. What
+// FileStorage cannot give back as written is said so: its integers are 32-bit (2147483648 reads
+// as -2147483648, 2^32 as 0), an empty value reads as the string "...", and .nan is shown as
+// YAML writes it (not "-nan").
+std::string text_of_node(const cv::FileNode& node, const option_table::OptionRow& row,
+                         const std::string& key) {
+  if (node.isInt()) {
+    const int value = static_cast<int>(node);
+    if (row.kind() == option_table::ValueKind::integer && (value < row.low || value > row.high))
+      throw Error(key + " expects " + option_table::expected_values(row) + ", got " +
+                  std::to_string(value) +
+                  " as OpenCV's settings reader reads it (it keeps integers in 32 bits: "
+                  "2147483648 reads as -2147483648, 4294967296 as 0)");
+    return std::to_string(value);
+  }
   if (node.isReal()) {
-    char buffer[32];
     const double value = node.real();
+    if (std::isnan(value)) return ".nan";
+    char buffer[32];
     return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
   }
-  if (node.isString()) return static_cast<std::string>(node);
+  if (node.isString()) {
+    const std::string text = static_cast<std::string>(node);
+    if (text == "...")  // what FileStorage makes of "key:" with nothing after it
+      throw Error(key + " has no value (write one, or leave the key out for the default)");
+    return text;
+  }
   throw Error(key + " must be a number or a name, not a list or a map");
 }
 
@@ -142,7 +161,7 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
     if (!row.has_front_ends()) continue;
     const std::string key(row.yaml_key);
     if (const cv::FileNode node = settings[key]; !node.empty())
-      given.push_back({&row, text_of_node(node, key), key});
+      given.push_back({&row, text_of_node(node, row, key), key});
   }
   // The drop-ins' own defaults over the mode's (with_keypoint_convention for this sensor), unless
   // set; their mode unless the settings name one.

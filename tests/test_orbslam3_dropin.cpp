@@ -281,9 +281,9 @@ TEST(OrbSlam3DropIn, MisspeltKeysAndSettingsThatCannotActAreRefused) {
                 .find("unknown setting 'ORBextractor.entropyTreshold' (did you mean "
                       "ORBextractor.entropyThreshold?)"),
             std::string::npos);
-  EXPECT_NE(settings_error("ORBextractor.nFeature: 300\n")
-                .find("(did you mean ORBextractor.nFeatures?)"),
-            std::string::npos);
+  EXPECT_NE(
+      settings_error("ORBextractor.nFeature: 300\n").find("(did you mean ORBextractor.nFeatures?)"),
+      std::string::npos);
   EXPECT_NE(settings_error("ORBextractor.fastThresholdFrom: \"entropy\"\n")
                 .find("ORBextractor.fastThresholdFrom entropy does nothing unless "
                       "ORBextractor.detectionCells blocks"),
@@ -296,6 +296,18 @@ TEST(OrbSlam3DropIn, MisspeltKeysAndSettingsThatCannotActAreRefused) {
   EXPECT_EQ(settings_error("ORBextractor.detectionCells: \"blocks\"\n"
                            "ORBextractor.fastThresholdFrom: \"entropy\"\n"),
             "");
+  // Values as written, or what OpenCV's reader made of them (was: 2147483648 shown as
+  // -2147483648, 2^32 as 0, an empty value as "...", .nan as "-nan").
+  EXPECT_NE(settings_error("ORBextractor.nFeatures: 2147483648\n")
+                .find("as OpenCV's settings reader reads it (it keeps integers in 32 bits"),
+            std::string::npos);
+  EXPECT_NE(settings_error("ORBextractor.nFeatures: 4294967296\n").find("got 0 as OpenCV's"),
+            std::string::npos);
+  EXPECT_NE(settings_error("ORBextractor.nFeatures:\n").find("ORBextractor.nFeatures has no value"),
+            std::string::npos);
+  EXPECT_NE(settings_error("ORBextractor.scaleFactor: .nan\n").find("got '.nan'"),
+            std::string::npos);
+  EXPECT_EQ(settings_error("ORBextractor.scaleFactor: .nan\n").find("-nan"), std::string::npos);
   EXPECT_EQ(settings_error("Camera.fx: 500.0\nORBextractor.nFeatures: 1200\n"
                            "ORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
                            "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\n"),

@@ -575,7 +575,15 @@ void add_difference(std::string_view key, const RecordedOptions& before,
 }
 
 std::string text_of(const OptionDifference& difference) {
-  return difference.key + " " + difference.before + " -> " + difference.after;
+  // A record holds numbers at 17 digits (io/json_writer.cpp): shown by their shortest text, the
+  // one that reads back as the same number (0.7, not 0.69999999999999996).
+  const auto shown = [](const std::string& text) {
+    long long integer = 0;
+    double number = 0;
+    if (parse_integer(text, integer) || !parse_decimal(text, number)) return text;
+    return number_text(number);
+  };
+  return difference.key + " " + shown(difference.before) + " -> " + shown(difference.after);
 }
 
 ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use) {
