@@ -139,10 +139,7 @@ std::optional<ImageHeader> tiff_header(const Bytes& b) {
                                                : *type == 4  ? read(entry + value_at, 4)
                                                : *type == 16 ? read(entry + value_at, 8)
                                                              : std::nullopt;
-    (*tag == 256   ? width
-     : *tag == 257 ? height
-     : *tag == 322 ? tile_width
-                   : tile_height) = value;
+    (*tag == 256 ? width : *tag == 257 ? height : *tag == 322 ? tile_width : tile_height) = value;
   }
   std::optional<ImageHeader> header = make("TIFF", width, height);
   if (header && (tile_width || tile_height)) {

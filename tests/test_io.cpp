@@ -320,11 +320,11 @@ std::vector<std::uint8_t> tiff_of_one_tile(std::uint32_t width, std::uint32_t he
   };
   entry(256, 4, width);
   entry(257, 4, height);
-  entry(258, 3, 8);    // BitsPerSample
-  entry(259, 3, 8);    // Compression: deflate
-  entry(262, 3, 1);    // Photometric: black is zero
-  entry(277, 3, 1);    // SamplesPerPixel
-  entry(284, 3, 1);    // PlanarConfiguration: contiguous
+  entry(258, 3, 8);     // BitsPerSample
+  entry(259, 3, 8);     // Compression: deflate
+  entry(262, 3, 1);     // Photometric: black is zero
+  entry(277, 3, 1);     // SamplesPerPixel
+  entry(284, 3, 1);     // PlanarConfiguration: contiguous
   entry(322, 4, tile);  // TileWidth
   entry(323, 4, tile);  // TileLength
   entry(324, 4, data);  // TileOffsets (TileByteCounts left out: the header is refused first)

@@ -415,9 +415,9 @@ TEST(OptionTable, AnOptionThatCannotActIsRefusedNamingWhatItNeeds) {
   ExtractorOptions weighted;
   weighted.quadtree_weight = QuadtreeWeight::entropy;
   EXPECT_THROW(weighted.validate(), Error);
-  ExtractorOptions carry;
+  ExtractorOptions carry;  // a number carried along in a struct: refused only when given
   carry.carry_every = 5;
-  EXPECT_THROW(carry.validate(), Error);
+  EXPECT_NO_THROW(carry.validate());
   // The adaptive sweep chooses F itself, without the fallback.
   const auto sweep_error = [](std::string_view key, const std::string& text) {
     try {
@@ -432,6 +432,10 @@ TEST(OptionTable, AnOptionThatCannotActIsRefusedNamingWhatItNeeds) {
   EXPECT_NE(sweep_error("starvation_guard", "frame").find("does nothing in the adaptive sweep"),
             std::string::npos);
   EXPECT_EQ(sweep_error("mode", "aief-paper"), "");
+  // aief eval turns the automatic F on per row: its options are taken without it.
+  EXPECT_NO_THROW(table::resolve_options(
+      {{&table::row("auto_requires_two_classes"), "off", "--auto-two-classes"}},
+      table::Use::evaluation));
   // The CLI says it, exit 2.
   const std::string a = test::sample_path("graf", "img1.png"),
                     b = test::sample_path("graf", "img2.png");
@@ -446,6 +450,20 @@ TEST(OptionTable, AnOptionThatCannotActIsRefusedNamingWhatItNeeds) {
     EXPECT_EQ(r.status, 2) << arguments << "\n" << r.output;
     EXPECT_NE(r.output.find("does nothing"), std::string::npos) << arguments << "\n" << r.output;
   }
+}
+
+// A record holds numbers at 17 digits; a difference shows them by their shortest text (was:
+// "ratio 0.69999999999999996 -> 0.80000000000000004").
+TEST(OptionTable, DifferencesShowNumbersByTheirShortestText) {
+  EXPECT_EQ(table::text_of(table::OptionDifference{"ratio", "0.69999999999999996",
+                                                   "0.80000000000000004"}),
+            "ratio 0.7 -> 0.8");
+  EXPECT_EQ(table::text_of(table::OptionDifference{"n_features", "500", "3000"}),
+            "n_features 500 -> 3000");
+  EXPECT_EQ(table::text_of(table::OptionDifference{"candidate_pool", "1.25", "inf"}),
+            "candidate_pool 1.25 -> inf");
+  EXPECT_EQ(table::text_of(table::OptionDifference{"mode", "not recorded", "quadtree"}),
+            "mode not recorded -> quadtree");
 }
 
 TEST(OptionTable, EnumNamesAndTheirEnumeratorsRead) {

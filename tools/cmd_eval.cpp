@@ -106,7 +106,8 @@ int run_eval(const Arguments& arguments) {
   settings.timing_repeats = args.get_int("--repeat", settings.timing_repeats, 1, 1000);
   settings.match = options_from_flags<MatchOptions>(args);  // the matcher's rows, as in match
   settings.aief =
-      extractor_options(args);  // the AIEF rows' flags, by the option table as in extract
+      extractor_options(args, option_table::Use::evaluation);  // the AIEF rows' flags, as in
+                                                               // extract
   std::vector<eval::Method> methods = eval::kAllMethods;
   if (const auto keys = args.get("--methods")) {
     methods.clear();

@@ -65,7 +65,11 @@ UnmetCondition unmet_condition(const OptionRow& row, const ExtractorOptions& opt
 
 void check_fields_act(const ExtractorOptions& options) {
   for (const OptionRow& row : rows()) {
-    if (row.acts_with.empty()) continue;
+    // The variants (choices and switches); a number carried along in a struct (carry_every kept
+    // while the carried F is turned off) is refused only when given (resolve_options).
+    if (row.acts_with.empty() || row.kind() == ValueKind::integer ||
+        row.kind() == ValueKind::number)
+      continue;
     const UnmetCondition unmet = unmet_condition(row, options);
     if (!unmet.row) continue;
     const std::string value = text_in(row, options);
@@ -112,7 +116,7 @@ void refuse_given_that_cannot_act(const std::vector<const GivenOption*>& changed
                   g->named);
     if (row.acts_with.empty()) continue;
     const UnmetCondition unmet = unmet_condition(row, options);
-    if (!unmet.row) continue;
+    if (!unmet.row || (use == Use::evaluation && unmet.row->key == "auto_threshold")) continue;
     const std::string value = text_in(row, options);
     bool set_by_a_mode = false;
     for (Mode m : reference)

@@ -8,8 +8,10 @@
 // Two halves, because a mode sets values the user did not ask for:
 //   - resolve_options refuses a *given* option that cannot act when it changes a value (the
 //     value the mode sets, or the value of a mode whose every value is given, is no request);
-//   - validate() refuses, in any options however made (C++, Feature2D, a pickle), a value of an
-//     option that cannot act which neither ExtractorOptions{} nor any mode holds.
+//   - validate() refuses, in any options however made (C++, Feature2D, a pickle), a variant (a
+//     choice or a switch) that cannot act which neither ExtractorOptions{} nor any mode holds
+//     (fast_threshold_from entropy with ORB-SLAM's cells); numbers, carried along in a struct,
+//     only when given.
 #include <string>
 #include <vector>
 

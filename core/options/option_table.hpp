@@ -112,7 +112,7 @@ struct Row {
   std::string_view applies_with_key = {}, applies_with_value = {};
   // The extractor's: the other fields this option needs to act, "key=value" joined by ','
   // (fast_threshold_from: "detection_cells=blocks"); without them it does nothing. Given a value
-  // other than the one it holds, it is refused naming what it needs (resolve_options); a value
+  // other than the one it holds, it is refused naming what it needs (resolve_options); a variant
   // neither the defaults nor any mode hold is refused by validate() (core/options/acts_with.hpp).
   std::string_view acts_with = {};
   // false: the adaptive sweep (aief adapt, match --adaptive) never reads it (it tries every F
@@ -219,9 +219,10 @@ struct Given {
 };
 using GivenOption = Given<ExtractorOptions>;
 
-// What the options are for: one extraction after another, or the adaptive sweep over a pair
-// (aief adapt, match --adaptive), which chooses F itself.
-enum class Use { extraction, sweep };
+// What the options are for: one extraction after another; the adaptive sweep over a pair (aief
+// adapt, match --adaptive), which chooses F itself; or aief eval's rows, which turn the
+// automatic F on per row (so the automatic F's options are taken without it).
+enum class Use { extraction, sweep, evaluation };
 
 // The extractor's resolution: the mode's values (aief unless given), then the given options in
 // table order, then validate(). Throws aief::Error for a bad value, a conflict with the mode, an
