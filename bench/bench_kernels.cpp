@@ -1,17 +1,17 @@
 // Per-kernel benchmarks: every kernel set the CPU runs, on the standard images, beside OpenCV's
 // kernel for the same job. Names read kernel/variant/image, the kernel named as in the kernel
-// list (core/kernels/kernel_table.hpp); fast9_detect is both FAST kernels and the corner walk, the job
-// cv::FAST with suppression does. Items are pixels so rates compare across sizes.
+// list (core/kernels/kernel_table.hpp); fast9_detect is both FAST kernels and the corner walk, the
+// job cv::FAST with suppression does. Items are pixels so rates compare across sizes.
 #include <benchmark/benchmark.h>
 
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "bench/bench_support.hpp"
-#include "core/kernels/fast9_detect.hpp"
+#include "core/kernels/resize_bilinear_rows.hpp"
 #include "core/level/level_geometry.hpp"
-#include "core/kernels/pyramid_resize.hpp"
 #include "simd/kernels.hpp"
+#include "tests/fast9_whole_image.hpp"
 
 namespace aief::bench {
 namespace {
@@ -53,7 +53,7 @@ constexpr const char* kResize = listed_kernel("resize_bilinear_rows");
 constexpr const char* kGaussian = listed_kernel("gaussian7_rows");
 constexpr const char* kHistogram = listed_kernel("accumulate_histogram");
 constexpr const char* kFast =
-    "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (core/kernels/fast9_detect.hpp)
+    "fast9_detect";  // fast9_scores_row + fast9_local_maxima_bits (tests/fast9_whole_image.hpp)
 
 std::string benchmark_name(const char* kernel, const std::string& variant,
                            const std::string& image) {
@@ -101,8 +101,8 @@ void register_kernel_benchmarks() {
                                      std::size_t found = 0;
                                      for (auto _ : state)
                                        for (const GrayImage& level : pyramid->levels) {
-                                         fast9_detect(level.view(), 20, *kernels, scores,
-                                                      maxima_bits, corners);
+                                         fast9_whole_image(level.view(), 20, *kernels, scores,
+                                                           maxima_bits, corners);
                                          found += corners.size();
                                        }
                                      benchmark::DoNotOptimize(found);

@@ -23,9 +23,14 @@ import tempfile
 import threading
 from collections import Counter
 
-KERNELS = ["resize_bilinear_rows", "resize_opencv_linear_rows", "gaussian7_rows", "accumulate_histogram", "fast9_scores_row",
-           "fast9_local_maxima_bits", "ic_moments", "rbrief_describe", "hamming_256_many",
-           "hamming_256_blocked", "unsharp_row", "extract"]
+def listed_kernels():
+    """The kernel list (AIEF_FOR_EACH_KERNEL in core/kernels/kernel_table.hpp), then the pipeline."""
+    table = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "core", "kernels", "kernel_table.hpp")
+    with open(table) as f:
+        return re.findall(r"^  X\((\w+)\)", f.read(), re.M) + ["extract"]
+
+
+KERNELS = listed_kernels()
 SETS = ["scalar", "neon64"]
 
 

@@ -83,6 +83,7 @@ std::string or_list(const std::vector<std::string>& items) {
 const std::vector<FeatureFormat>& feature_formats() {
   static const std::vector<FeatureFormat> formats = {
       {"json",
+       "JSON",
        {".json"},
        Layout::file_per_image,
        &write_features_json,
@@ -91,6 +92,7 @@ const std::vector<FeatureFormat>& feature_formats() {
        nullptr,
        nullptr},
       {"yml",
+       "OpenCV FileStorage YAML",
        {".yml", ".yaml"},
        Layout::file_per_image,
        &write_features_yaml,
@@ -99,6 +101,7 @@ const std::vector<FeatureFormat>& feature_formats() {
        nullptr,
        nullptr},
       {"npz",
+       "numpy",
        {".npz"},
        Layout::file_per_image,
        &write_npz,
@@ -107,6 +110,7 @@ const std::vector<FeatureFormat>& feature_formats() {
        nullptr,
        nullptr},
       {"h5",
+       "HDF5 in hloc's layout",
        {".h5"},
        Layout::one_file_per_batch,
        nullptr,
@@ -138,6 +142,13 @@ std::string feature_format_names() {
   return or_list(names);
 }
 
+std::vector<const FeatureFormat*> feature_formats_of(FeatureFormat::Layout layout) {
+  std::vector<const FeatureFormat*> formats;
+  for (const FeatureFormat& format : feature_formats())
+    if (format.layout == layout) formats.push_back(&format);
+  return formats;
+}
+
 std::string feature_format_extensions(FeatureFormat::Layout layout) {
   std::vector<std::string> extensions;
   for (const FeatureFormat& format : feature_formats())
@@ -163,6 +174,7 @@ void write_features(const std::string& path, const std::string& image_path,
   if (!format)
     throw Error("output '" + path + "' must end in " +
                 feature_format_extensions(Layout::file_per_image));
+  check_format_can_hold(*format, image_path, source ? source->name : image_path);
   format->write(path, image_path, features, options, source);
 }
 
@@ -179,10 +191,23 @@ bool is_features_file_name(const std::string& path) {
   return file_per_image_format_of(path) != nullptr;
 }
 
+void check_format_can_hold(const FeatureFormat& format, const std::string& image_path,
+                           const std::string& source_name) {
+  if (!format.check_can_hold) return;
+  try {
+    format.check_can_hold(image_path, source_name);
+  } catch (const Error& e) {
+    std::vector<std::string> holding_any;  // the first extension of each format that holds any name
+    for (const FeatureFormat* other : feature_formats_of(format.layout))
+      if (!other->check_can_hold) holding_any.push_back(other->extensions.front());
+    throw Error(std::string(e.what()) + " (write " + or_list(holding_any) + " for such names)");
+  }
+}
+
 void check_features_file_can_hold(const std::string& output_path, const std::string& image_path,
                                   const std::string& source_name) {
-  const FeatureFormat* format = file_per_image_format_of(output_path);
-  if (format && format->check_can_hold) format->check_can_hold(image_path, source_name);
+  if (const FeatureFormat* format = file_per_image_format_of(output_path))
+    check_format_can_hold(*format, image_path, source_name);
 }
 
 }  // namespace aief::io

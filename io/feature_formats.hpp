@@ -1,9 +1,9 @@
 #pragma once
-// Every features format, one row each: its --format name, its extensions, whether it is a file per
-// image or one file for a whole batch, its writer, the reader of what a resume checks, and which
-// names it cannot hold. The CLI's checks, the batch's sinks and the messages that list formats
-// are made from the rows. A new format is a writer and a row (CONTRIBUTING.md, "Adding a file
-// format").
+// Every features format, one row each: its --format name, what it is, its extensions, whether it is
+// a file per image or one file for a whole batch, its writer, the reader of what a resume checks,
+// and which names it cannot hold. The CLI's checks, aief extract --help, the batch's sinks and the
+// messages that list formats are made from the rows. A new format is a writer and a row
+// (CONTRIBUTING.md, "Adding a file format").
 #include <memory>
 #include <optional>
 #include <string>
@@ -38,6 +38,7 @@ class FeatureCollectionFile {
 struct FeatureFormat {
   enum class Layout { file_per_image, one_file_per_batch };
   const char* name;                     // --format's value; a file per image's output suffix
+  const char* what;                     // for --help: "OpenCV FileStorage YAML"
   std::vector<const char*> extensions;  // lower case, with the dot; the first is the usual one
   Layout layout;
   // A file per image: writes one image's features atomically (temporary, then rename).
@@ -61,6 +62,8 @@ const FeatureFormat* feature_format_named(const std::string& name);
 const FeatureFormat* feature_format_of_path(const std::string& path);
 // "json, yml, npz or h5": every --format name.
 std::string feature_format_names();
+// The formats of one layout, in the order messages list them.
+std::vector<const FeatureFormat*> feature_formats_of(FeatureFormat::Layout layout);
 // ".json, .yml, .yaml or .npz": the extensions of the formats of one layout.
 std::string feature_format_extensions(FeatureFormat::Layout layout);
 
@@ -74,7 +77,11 @@ OutputRecord features_file_record(const std::string& output_path, const SourceRe
 bool features_file_belongs_to(const std::string& output_path, const SourceRecord& source);
 // True when write_features accepts the path's extension: the CLI asks before any work.
 bool is_features_file_name(const std::string& path);
-// Throws aief::Error when the format of `output_path` cannot hold these names and read them back.
+// Throws aief::Error when `format` cannot hold these names and read them back, naming the formats
+// of its layout that can.
+void check_format_can_hold(const FeatureFormat& format, const std::string& image_path,
+                           const std::string& source_name);
+// The same for the format of `output_path`.
 // Commands ask before any work, so that such an image is not extracted for nothing.
 void check_features_file_can_hold(const std::string& output_path, const std::string& image_path,
                                   const std::string& source_name);

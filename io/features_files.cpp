@@ -13,6 +13,8 @@
 #include "io/json_writer.hpp"
 #include "io/npz_writer.hpp"
 #include "io/option_record.hpp"
+#include "io/record_fields.hpp"
+#include "io/temporary_files.hpp"
 
 namespace aief::io {
 
@@ -21,12 +23,7 @@ namespace {
 void write_info(JsonWriter& json, const ExtractionInfo& info,
                 const std::vector<std::string>* decoder_warnings) {
   json.key("info").begin_object();
-  json.field("entropy_threshold_requested", info.entropy_threshold_requested);
-  json.field("entropy_threshold_used", info.entropy_threshold_used);
-  json.field("threshold_lowered", info.threshold_lowered);
-  json.field("image_entropy_bits", info.image_entropy_bits);
-  json.field("blocks_total", info.blocks_total).field("blocks_kept", info.blocks_kept);
-  json.field("auto_threshold_effectiveness", info.auto_threshold_effectiveness);
+  for_each_field(info, [&](std::string_view key, const auto& value) { json.field(key, value); });
   if (decoder_warnings) {
     json.key("decoder_warnings").begin_array();
     for (const std::string& warning : *decoder_warnings) json.value(warning);
@@ -91,8 +88,7 @@ std::string yaml_quoted(const std::string& value, const char* key) {
           char hex[8];
           std::snprintf(hex, sizeof hex, "0x%02X", byte);
           throw Error(std::string("YAML cannot hold the ") + key + " '" + value +
-                      "': OpenCV's FileStorage reads no control character " + hex +
-                      " back (write .json or .npz for such names)");
+                      "': OpenCV's FileStorage reads no control character " + hex + " back");
         }
         quoted += c;
     }
@@ -100,8 +96,7 @@ std::string yaml_quoted(const std::string& value, const char* key) {
   if (quoted.size() - 1 > kLongestString)
     throw Error(std::string("YAML cannot hold the ") + key + " '" + value +
                 "': OpenCV's FileStorage reads strings of at most " +
-                std::to_string(kLongestString) +
-                " bytes, escapes counted (write .json or .npz for such names)");
+                std::to_string(kLongestString) + " bytes, escapes counted");
   return quoted + "\"";
 }
 

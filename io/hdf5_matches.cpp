@@ -115,10 +115,10 @@ std::optional<PairRecord> Hdf5File::pair_record(const std::string& name0,
   if (!may_hold(group_name)) return std::nullopt;
   const Handle group = open_complete_pair_group(file_, group_name);
   if (!group.ok()) return std::nullopt;
-  PairRecord record{
-      string_attribute(group.get(), "matcher"), string_attribute(group.get(), "options0"),
-      string_attribute(group.get(), "options1"), string_attribute(group.get(), "source0"),
-      string_attribute(group.get(), "source1")};
+  PairRecord record;
+  for_each_field(record, [&](std::string_view key, std::string& value) {
+    value = string_attribute(group.get(), std::string(key).c_str());
+  });
   if (record.matcher.empty()) return std::nullopt;
   return record;
 }
@@ -140,23 +140,20 @@ void Hdf5File::write_matches(const std::string& name0, const std::string& name1,
     scores0[static_cast<std::size_t>(m.query)] = 1.0f - static_cast<float>(m.distance) / 256.0f;
   }
   const hsize_t n = matches0.size();
-  const std::uint64_t record_bytes = record ? record->matcher.size() + record->options0.size() +
-                                                  record->options1.size() + record->source0.size() +
-                                                  record->source1.size()
-                                            : 0;
+  std::uint64_t record_bytes = 0;
+  if (record)
+    for_each_field(
+        *record, [&](std::string_view, const std::string& value) { record_bytes += value.size(); });
   write_guarded(n * (sizeof(std::int32_t) + sizeof(float)) + record_bytes,
                 "pair '" + pair_name + "'", [&] {
                   const Handle group = create_group(file_, pair_name, path_);
                   note_group(pair_name);
                   write_string_attribute(group.get(), "name0", name0, StringLength::fixed);
                   write_string_attribute(group.get(), "name1", name1, StringLength::fixed);
-                  if (record) {
-                    write_string_attribute(group.get(), "matcher", record->matcher);
-                    write_string_attribute(group.get(), "options0", record->options0);
-                    write_string_attribute(group.get(), "options1", record->options1);
-                    write_string_attribute(group.get(), "source0", record->source0);
-                    write_string_attribute(group.get(), "source1", record->source1);
-                  }
+                  if (record)
+                    for_each_field(*record, [&](std::string_view key, const std::string& value) {
+                      write_string_attribute(group.get(), std::string(key).c_str(), value);
+                    });
                   write_dataset(group.get(), "matches0", {n}, matches0, pair_name);
                   write_dataset(group.get(), "matching_scores0", {n}, scores0,
                                 pair_name);  // last: marks the pair complete

@@ -7,7 +7,8 @@
 // re-extracted features, or of another matcher, are never kept.
 //
 // Stored as the pair group's string attributes matcher, options0, options1, source0 and source1
-// ("" where the features file records nothing; source as "BYTES MTIME_NS").
+// ("" where the features file records nothing; source as "BYTES MTIME_NS"): PairRecord's field
+// list below.
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "aief/match.hpp"
+#include "io/record_fields.hpp"
 
 namespace aief::io {
 
@@ -24,13 +26,21 @@ struct PairRecord {
   std::string matcher;             // the matcher's option record, JSON text
   std::string options0, options1;  // each image's features' option record, JSON text, or ""
   std::string source0, source1;    // each image's source record, "BYTES MTIME_NS", or ""
-
-  // Written out, not defaulted: installed headers stay C++17 (tests/consumer builds with it).
-  bool operator==(const PairRecord& other) const {
-    return matcher == other.matcher && options0 == other.options0 && options1 == other.options1 &&
-           source0 == other.source0 && source1 == other.source1;
-  }
 };
+
+// The attributes of a pair group, in the order they are written.
+template <>
+struct RecordFields<PairRecord> {
+  using R = PairRecord;
+  static constexpr auto list =
+      std::tuple{field("matcher", &R::matcher), field("options0", &R::options0),
+                 field("options1", &R::options1), field("source0", &R::source0),
+                 field("source1", &R::source1)};
+};
+
+// Not defaulted: installed headers stay C++17 (tests/consumer builds with it).
+inline bool operator==(const PairRecord& a, const PairRecord& b) { return same_fields(a, b); }
+inline bool operator!=(const PairRecord& a, const PairRecord& b) { return !(a == b); }
 
 // What a recorded pair group does not share with this run's record `now`, for a message: the
 // matcher options that change the matches ("kind mutual -> ratio"), the image whose features

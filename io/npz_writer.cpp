@@ -8,8 +8,8 @@
 #include <iterator>
 #include <vector>
 
-#include "io/json_writer.hpp"
 #include "io/option_record.hpp"
+#include "io/temporary_files.hpp"
 
 namespace aief::io {
 

@@ -149,4 +149,46 @@ bool LockedTemporary::rename_unless_output_exists() {
   throw Error("cannot write '" + output_ + "': " + std::strerror(errno));
 }
 
+bool is_disk_failure(int code) {
+  return code == ENOSPC || code == EDQUOT || code == EROFS || code == EIO;
+}
+
+void write_file_atomically(const std::string& path, const std::string& content) {
+  // A few attempts: remove_stale_temporaries may take a temporary in the instant between its
+  // creation and its lock.
+  constexpr int kAttempts = 4;
+  for (int attempt = 1;; ++attempt) {
+    const std::string temporary = unique_temporary_path_of(path);
+    const auto fail = [&](int code, const std::string& what) {
+      ::unlink(temporary.c_str());
+      throw WriteError("cannot write '" + path + "': " + what + std::strerror(code),
+                       is_disk_failure(code));
+    };
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) {
+      const int code = errno;
+      if (code == EEXIST && attempt < kAttempts) continue;
+      throw WriteError("cannot write '" + path + "': cannot create its temporary '" + temporary +
+                           "': " + std::strerror(code),
+                       is_disk_failure(code));
+    }
+    ::flock(fd, LOCK_EX);  // released by close: held while the temporary is incomplete
+    for (std::size_t done = 0; done < content.size();) {
+      const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        const int code = errno;
+        ::close(fd);
+        fail(code, "");
+      }
+      done += static_cast<std::size_t>(n);
+    }
+    if (::close(fd) != 0) fail(errno, "");
+    if (::rename(temporary.c_str(), path.c_str()) == 0) return;
+    const int code = errno;
+    if (code == ENOENT && attempt < kAttempts) continue;  // taken for a killed write's: again
+    fail(code, "");
+  }
+}
+
 }  // namespace aief::io

@@ -5,6 +5,8 @@
 // and never end in an output extension, so a temporary is no output's name and no image's.
 #include <string>
 
+#include "aief/error.hpp"
+
 namespace aief::io {
 
 // The temporary of one write of `path`: "." + the 16 hex digits of a hash of the file name +
@@ -49,5 +51,28 @@ class LockedTemporary {
   int descriptor_ = -1;
   bool renamed_ = false;
 };
+
+// A file that could not be written. `of_the_disk`: the cause is the file system, not this one
+// file (no space, quota, read-only, I/O error): a batch stops rather than fail every image.
+class WriteError : public Error {
+ public:
+  WriteError(const std::string& message, bool of_the_disk)
+      : Error(message), of_the_disk_(of_the_disk) {}
+  bool of_the_disk() const { return of_the_disk_; }
+
+ private:
+  bool of_the_disk_;
+};
+
+// Whether the system error `code` (errno) is the file system's rather than one file's.
+bool is_disk_failure(int code);
+
+// Writes `content` to `path` atomically: a temporary file beside it, then rename, so an
+// interrupted run never leaves a half-written result, and a failed one leaves no temporary.
+// The temporary is this write's own (unique_temporary_path_of, created exclusively and locked
+// while written): two processes writing the same output (a batch resubmitted while the first
+// still runs) each rename a whole file of their own, and the output is whole either way.
+// Throws WriteError with the system's reason.
+void write_file_atomically(const std::string& path, const std::string& content);
 
 }  // namespace aief::io

@@ -211,6 +211,16 @@ void bind_testing(py::module_& m) {
         return out;
       },
       "Test hook: each call that takes options, as its option rows write it (for the stub test)");
+  m.def(
+      "_record_fields",
+      [] {
+        py::dict out;
+        out["ExtractionInfo"] = record_fields<ExtractionInfo>();
+        out["SweepPoint"] = record_fields<SweepPoint>();
+        return out;
+      },
+      "Test hook: each result record's keys and types, from its one field list (for the stub "
+      "test)");
   m.def("_arm_extraction_rendezvous", &arm_extraction_rendezvous, py::arg("parties"),
         py::arg("timeout_s"),
         "Test hook: every extraction waits, GIL released, until `parties` are inside at once (0 "

@@ -15,15 +15,15 @@ namespace aief::python {
 
 namespace {
 
-// N x 3 int32: query index, train index, Hamming distance.
+// N x 3 int32, a column per field of Match's list: query index, train index, Hamming distance.
 py::array_t<std::int32_t> matches_array(const std::vector<Match>& matches) {
-  py::array_t<std::int32_t> out({static_cast<py::ssize_t>(matches.size()), py::ssize_t{3}});
+  constexpr auto columns = static_cast<py::ssize_t>(io::field_list_size<Match>());
+  py::array_t<std::int32_t> out({static_cast<py::ssize_t>(matches.size()), columns});
   auto rows = out.mutable_unchecked<2>();
   for (std::size_t i = 0; i < matches.size(); ++i) {
     const auto r = static_cast<py::ssize_t>(i);
-    rows(r, 0) = matches[i].query;
-    rows(r, 1) = matches[i].train;
-    rows(r, 2) = matches[i].distance;
+    py::ssize_t column = 0;
+    io::for_each_field(matches[i], [&](std::string_view, int value) { rows(r, column++) = value; });
   }
   return out;
 }
@@ -146,19 +146,7 @@ void bind_matching(py::module_& m) {
           "curve",
           [](const AdaptResult& r) {
             py::list rows;
-            for (const SweepPoint& p : r.curve) {
-              py::dict row;
-              row["threshold"] = p.threshold;
-              row["kept_blocks"] = p.kept_blocks;
-              row["kept_blocks_b"] = p.kept_blocks_b;
-              row["keypoints_a"] = p.keypoints_a;
-              row["keypoints_b"] = p.keypoints_b;
-              row["putative"] = p.putative;
-              row["inliers"] = p.inliers;
-              row["cmr"] = p.cmr;
-              row["eligible"] = p.eligible;
-              rows.append(row);
-            }
+            for (const SweepPoint& p : r.curve) rows.append(record_dict(p));
             return rows;
           },
           "one dict per threshold tried: threshold, kept_blocks (a), kept_blocks_b, keypoints_a, "

@@ -2,6 +2,8 @@
 // Shared by the files of the Python module (python/module.cpp opens it): numpy images in,
 // numpy feature arrays out, and the functions that bind each part of the API.
 #include <string>
+#include <string_view>
+#include <type_traits>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -9,6 +11,7 @@
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
+#include "io/record_fields.hpp"
 
 namespace aief::python {
 
@@ -46,6 +49,29 @@ struct PyFeatures {
   int image_width = 0, image_height = 0;
 };
 PyFeatures to_python(const Features& features);
+
+// A result record (Features.info, AdaptResult.curve's rows) as a dict: its field list's keys and
+// values, in order (io/record_fields.hpp).
+template <class Record>
+py::dict record_dict(const Record& record) {
+  py::dict out;
+  io::for_each_field(record, [&](std::string_view key, const auto& value) {
+    out[py::str(key.data(), key.size())] = value;
+  });
+  return out;
+}
+
+// Its keys and Python types ("int", "float", "bool"), in order: what the stub's TypedDict says.
+template <class Record>
+py::list record_fields(const Record& record = {}) {
+  py::list out;
+  io::for_each_field(record, [&](std::string_view key, const auto& value) {
+    using T = std::decay_t<decltype(value)>;
+    const char* type = std::is_same_v<T, bool> ? "bool" : std::is_integral_v<T> ? "int" : "float";
+    out.append(py::make_tuple(py::str(key.data(), key.size()), type));
+  });
+  return out;
+}
 // N x 32 uint8 rows of a numpy array (or of a PyFeatures) as engine descriptors.
 std::vector<Descriptor> descriptors_from(const py::object& value, const char* name);
 

@@ -33,14 +33,7 @@ PyFeatures to_python(const Features& features) {
   std::uint8_t* descriptors = out.descriptors.mutable_data();
   for (const Descriptor& d : features.descriptors)
     descriptors = std::copy(d.begin(), d.end(), descriptors);
-  const ExtractionInfo& info = features.info;
-  out.info["entropy_threshold_requested"] = info.entropy_threshold_requested;
-  out.info["entropy_threshold_used"] = info.entropy_threshold_used;
-  out.info["threshold_lowered"] = info.threshold_lowered;
-  out.info["image_entropy_bits"] = info.image_entropy_bits;
-  out.info["blocks_total"] = info.blocks_total;
-  out.info["blocks_kept"] = info.blocks_kept;
-  out.info["auto_threshold_effectiveness"] = info.auto_threshold_effectiveness;
+  out.info = record_dict(features.info);
   out.image_width = features.image_width;
   out.image_height = features.image_height;
   return out;

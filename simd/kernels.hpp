@@ -25,7 +25,7 @@ inline constexpr const char* kKernelsEnvironmentVariable = "AIEF_KERNELS";
 // cannot run that set: a forced set that silently did not apply would defeat the purpose.
 KernelSet default_kernel_set();
 
-// kernel_table(set), the table of a set, is declared in core/kernels/kernel_table.hpp and defined in
-// simd/kernels.cpp.
+// kernel_table(set), the table of a set, is declared in core/kernels/kernel_table.hpp and defined
+// in simd/kernels.cpp.
 
 }  // namespace aief

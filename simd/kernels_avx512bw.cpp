@@ -7,7 +7,7 @@
 // frequency licence on Intel parts. Measured end to end on graf: entropy + FAST stage 3.08 ms
 // with this table vs 3.17 ms with avx2 (median of 31, same run). See bench/RESULTS.md.
 #include "simd/make_kernel_table.hpp"
-#include "simd/pyramid_resize_x86_avx512.hpp"
+#include "simd/resize_bilinear_rows_x86_avx512.hpp"
 
 namespace aief::simd_avx512bw {
 

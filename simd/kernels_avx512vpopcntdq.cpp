@@ -3,7 +3,7 @@
 // the avx512 set's flags plus -mavx512vpopcntdq (simd/CMakeLists.txt), and kernels.cpp puts it
 // into the avx512 table only when the CPU reports it; without it that table keeps the AVX2 form.
 #include "core/kernels/kernel_table.hpp"
-#include "simd/hamming_blocked_x86.hpp"
+#include "simd/hamming_256_blocked_x86.hpp"
 
 namespace aief::simd_avx512vpopcntdq {
 

@@ -1,5 +1,6 @@
 #pragma once
-// lane_bits and any_nonzero (simd/simd_support.hpp) for SSE4.2, AVX2 and AVX-512BW.
+// lane_bits and any_nonzero (simd/simd_support.hpp) for SSE4.2, AVX2 and AVX-512BW, and the
+// unaligned loads the intrinsics kernels share.
 #include <cstdint>
 #include <type_traits>
 
@@ -34,6 +35,29 @@ inline bool any_nonzero(const U8<Arch>& v) {
     const __m128i x = v;
     return !_mm_testz_si128(x, x);
   }
+}
+
+// Each byte's count of set bits (0..8), by a nibble table (vpshufb): the AVX2 popcount of the
+// Hamming kernels.
+template <class Arch>
+inline __m256i byte_popcounts(__m256i x) {
+  const __m256i table = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2,
+                                         1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
+  const __m256i low_nibble = _mm256_set1_epi8(0x0f);
+  return _mm256_add_epi8(
+      _mm256_shuffle_epi8(table, _mm256_and_si256(x, low_nibble)),
+      _mm256_shuffle_epi8(table, _mm256_and_si256(_mm256_srli_epi16(x, 4), low_nibble)));
+}
+
+// Unaligned 16- and 32-byte loads from any pointer. Arch only keeps each instruction set's copy
+// its own symbol.
+template <class Arch>
+inline __m128i load16(const void* p) {
+  return _mm_loadu_si128(static_cast<const __m128i*>(p));
+}
+template <class Arch>
+inline __m256i load32(const void* p) {
+  return _mm256_loadu_si256(static_cast<const __m256i*>(p));
 }
 
 }  // namespace AIEF_SIMD_TARGET

@@ -92,6 +92,12 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       // eval's matcher flags are the match rows' (core/options/matching_option_rows.cpp), as in match.
       {"eval --dataset . --matcher flann", "unknown matcher 'flann' for --matcher"},
       {"eval --dataset . --ratio 0.7", "--ratio applies to --matcher ratio only"},
+      // eval's extractor flags are the extractor rows' but those each row sets itself.
+      {"eval --dataset . --quadtree-weight heavy", "--quadtree-weight"},
+      {"eval --dataset . --threshold 3", "unknown option --threshold"},
+      {"eval --dataset . --mode orbslam2", "unknown option --mode"},
+      {"eval --dataset . --threads 2", "unknown option --threads"},
+      {"eval --dataset . --entropy off", "--entropy off leaves aief_adaptive"},
       // Flags a mode cannot honour are refused with the conflict named, never dropped.
       {"extract " + image + " --mode orbslam2 --threshold 7",
        "--threshold sets F of the entropy mask, which --mode orbslam2"},

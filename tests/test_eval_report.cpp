@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "tests/features_hash.hpp"
+#include "tests/field_count.hpp"
 #include "tests/test_support.hpp"
 #include "tools/eval/dataset.hpp"
 #include "tools/eval/methods.hpp"
@@ -94,6 +95,52 @@ TEST(EvalReport, MarkdownJsonAndPlotsOfTheBundledPairsArePinned) {
   EXPECT_EQ(hash_of(fewer), 9262577821685538527ull) << fewer;
   const std::string no_sweep = markdown_report(with_rows(run, {0, 3, 5, 6}), "plots");
   EXPECT_EQ(hash_of(no_sweep), 4373943680349144513ull) << no_sweep;
+}
+
+// One row on one pair, measured by hand: what write_reports and the record tests need.
+EvalRun one_row_run() {
+  EvalRun run;
+  run.pairs = {{"graf", 2, "img1.png", "img2.png", "H1to2p", {1, 0, 0, 0, 1, 0, 0, 0, 1}}};
+  run.methods = {kAllMethods.front()};
+  run.matcher = "mutual";
+  PairResult r;
+  r.keypoints_a = 10;
+  r.putative = 4;
+  r.correct = 3;
+  r.accuracy = 0.75;
+  run.results = {{r}};
+  return run;
+}
+
+TEST(EvalReport, TheJsonRowIsPairResultsFieldListEveryFieldInOrder) {
+  EXPECT_EQ(io::field_list_size<PairResult>(), test::field_count<PairResult>())
+      << "a field of PairResult without its entry in RecordFields<PairResult> (methods.hpp)";
+  const std::string json = json_report(one_row_run());
+  std::size_t at = json.find("\"orbslam2\"");
+  ASSERT_NE(at, std::string::npos) << json;
+  for (std::string_view key : io::field_keys<PairResult>()) {
+    const std::size_t next = json.find("\"" + std::string(key) + "\":", at);
+    ASSERT_NE(next, std::string::npos) << key << " is not in its place in\n" << json;
+    at = next;
+  }
+}
+
+TEST(EvalReport, WriteReportsPutsTheJsonAndPlotsBesideAndKeepsTheHandWrittenSection) {
+  const test::TempFolder folder("aief_eval_write_reports");
+  const std::string markdown = folder.file("out/report.md");
+  const EvalRun run = one_row_run();
+  ReportFiles files = write_reports(run, markdown);
+  EXPECT_EQ(files.markdown, markdown);
+  EXPECT_EQ(files.json, folder.file("out/report.json"));
+  EXPECT_EQ(files.plot_folder, folder.file("out/report_plots"));
+  ASSERT_EQ(files.plots.size(), 1u);
+  EXPECT_EQ(bytes_of(files.json), json_report(run));
+  EXPECT_EQ(bytes_of(markdown), markdown_report(run, "report_plots"));
+
+  const std::string kept = std::string(kHandWrittenMarker) + "\nmeasured by hand\n";
+  { std::ofstream(markdown, std::ios::app) << "\n" << kept; }
+  files = write_reports(run, markdown);
+  EXPECT_EQ(bytes_of(markdown), markdown_report(run, "report_plots") + "\n" + kept);
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "core/kernels/hamming.hpp"
+#include "core/kernels/hamming_256_many.hpp"
 #include "core/level/level_geometry.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,5 +1,5 @@
 // The faithful mode's pixels against OpenCV itself, no ORB-SLAM code needed: the OpenCV resize
-// (core/kernels/pyramid_resize_opencv.hpp) equals cv::resize(INTER_LINEAR) on random sizes, scale factors
+// (core/kernels/resize_opencv_linear_rows.hpp) equals cv::resize(INTER_LINEAR) on random sizes, scale factors
 // and images, and under every kernel set the whole pyramid equals ORB-SLAM2/3's ComputePyramid
 // (each level cv::resize of the level above, to cvRound(cols / scale_n) x cvRound(rows / scale_n)
 // with the scales in float) on odd-sized random images and the bundled photos. The keypoints'
@@ -14,7 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "aief/extractor.hpp"
-#include "core/kernels/pyramid_resize_opencv.hpp"
+#include "core/kernels/resize_opencv_linear_rows.hpp"
 #include "simd/kernels.hpp"
 #include "tests/features_hash.hpp"
 #include "tests/test_support.hpp"
@@ -43,7 +43,7 @@ std::string first_difference(const cv::Mat& expected, const cv::Mat& actual) {
   return "";
 }
 
-// Every kernel set: the scalar reference and the vector kernels (simd/pyramid_resize_opencv_*.hpp),
+// Every kernel set: the scalar reference and the vector kernels (simd/resize_opencv_linear_rows_*.hpp),
 // whose groups cover only some ratios and widths, the rest going to their scalar spans.
 TEST(OpenCvResize, EqualsCvResizeOnRandomSizesScalesAndImagesUnderEveryKernelSet) {
   std::mt19937 rng(977);

@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/features2d.hpp>
 
-#include "core/kernels/fast9.hpp"
-#include "core/kernels/fast9_detect.hpp"
+#include "core/kernels/fast9_scores_row.hpp"
+#include "tests/fast9_whole_image.hpp"
 #include "core/frame/frame_analysis.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
@@ -18,7 +18,7 @@ std::vector<FastCorner> ours(const cv::Mat& gray, int threshold) {
   std::vector<std::uint8_t> scores;
   std::vector<std::uint64_t> maxima_bits;
   std::vector<FastCorner> corners;
-  fast9_detect(view_of(gray), threshold, kernel_table(KernelSet::scalar), scores, maxima_bits,
+  fast9_whole_image(view_of(gray), threshold, kernel_table(KernelSet::scalar), scores, maxima_bits,
                corners);
   return corners;
 }

@@ -13,7 +13,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/kernels/gaussian_blur.hpp"
+#include "core/kernels/gaussian7_rows.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {

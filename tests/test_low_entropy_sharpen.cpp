@@ -1,4 +1,4 @@
-// Sharpened low-entropy blocks (core/entropy/low_entropy_sharpen.hpp, core/kernels/unsharp_mask.hpp): the row
+// Sharpened low-entropy blocks (core/entropy/low_entropy_sharpen.hpp, core/kernels/unsharp_row.hpp): the row
 // kernel against a direct 5x5 oracle on random odd sizes, the amount rule, the amounts' continuity
 // across block borders (no seam for FAST), what the option does to a weak-texture half and that
 // descriptors stay the unsharpened level's, every kernel set and thread count on real and random
@@ -23,7 +23,7 @@
 #include "aief/extractor.hpp"
 #include "core/kernels/kernel_table.hpp"
 #include "core/entropy/low_entropy_sharpen.hpp"
-#include "core/kernels/unsharp_mask.hpp"
+#include "core/kernels/unsharp_row.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 

@@ -5,7 +5,7 @@
 
 #include "aief/error.hpp"
 #include "aief/match.hpp"
-#include "core/kernels/hamming.hpp"
+#include "core/kernels/hamming_256_many.hpp"
 
 namespace aief {
 namespace {

@@ -14,7 +14,7 @@
 #include "core/frame/frame_analysis.hpp"
 #include "core/level/keypoint_position.hpp"
 #include "core/level/level_geometry.hpp"
-#include "core/kernels/pyramid_resize.hpp"
+#include "core/kernels/resize_bilinear_rows.hpp"
 #include "simd/kernels.hpp"
 #include "tests/candidate_level.hpp"
 #include "tests/test_support.hpp"

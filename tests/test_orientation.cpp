@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "core/kernels/orientation.hpp"
+#include "core/kernels/ic_moments.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {

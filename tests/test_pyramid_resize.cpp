@@ -11,7 +11,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/kernels/pyramid_resize.hpp"
+#include "core/kernels/resize_bilinear_rows.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {

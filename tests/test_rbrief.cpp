@@ -11,10 +11,10 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/kernels/gaussian_blur.hpp"
-#include "core/kernels/hamming.hpp"
-#include "core/kernels/orientation.hpp"
-#include "core/kernels/rbrief.hpp"
+#include "core/kernels/gaussian7_rows.hpp"
+#include "core/kernels/hamming_256_many.hpp"
+#include "core/kernels/ic_moments.hpp"
+#include "core/kernels/rbrief_describe.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -154,7 +154,7 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
             {widest, std::abs(cvRound(fx * a - fy * b)), std::abs(cvRound(fx * b + fy * a))});
       }
   }
-  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_portable.hpp) stores each sample as
+  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_describe_portable.hpp) stores each sample as
   // an unsigned offset from the patch corner 18 rows and columns up-left of the point.
   EXPECT_LT(widest, kEdgeBorder);
   EXPECT_LE(widest, 18);

@@ -18,7 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/kernels/gaussian_blur.hpp"
+#include "core/kernels/gaussian7_rows.hpp"
 
 extern char** environ;
 

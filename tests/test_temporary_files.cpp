@@ -13,7 +13,6 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "io/image_io.hpp"
-#include "io/json_writer.hpp"
 #include "io/temporary_files.hpp"
 #include "tests/test_support.hpp"
 #ifdef AIEF_HAVE_HDF5

@@ -2,7 +2,6 @@
 
 #include "io/batch_output_names.hpp"
 #include "io/feature_formats.hpp"
-#include "io/json_writer.hpp"
 #include "io/temporary_files.hpp"
 #include "io/option_record.hpp"
 #include "tools/batch_sink.hpp"
@@ -40,7 +39,7 @@ class FilePerImageSink : public BatchSink {
         found.option_changes = io::option_changes(record.options, settings_.options);
     }
     // Before the work: a name the format cannot hold (YAML: control characters).
-    if (!found.current() && format_.check_can_hold) format_.check_can_hold(input.path, input.name);
+    if (!found.current()) io::check_format_can_hold(format_, input.path, input.name);
     return found;
   }
 

@@ -79,12 +79,20 @@ namespace {
 
 // --help's lines of `Options`' flags: the flag and its placeholder, then the help (the names of a
 // choice, the default) wrapped at 100 columns.
+// `except`: record keys of rows left out.
 template <class Options>
-std::string help_of_rows() {
+bool is_among(const option_table::Row<Options>& row, const std::vector<std::string_view>& keys) {
+  for (std::string_view key : keys)
+    if (row.key == key) return true;
+  return false;
+}
+
+template <class Options>
+std::string help_of_rows(const std::vector<std::string_view>& except = {}) {
   constexpr std::size_t kColumn = 24, kWidth = 100;
   std::ostringstream out;
   for (const option_table::Row<Options>& row : option_table::rows_of<Options>()) {
-    if (row.cli_flag.empty()) continue;
+    if (row.cli_flag.empty() || is_among(row, except)) continue;
     std::string line = "  " + std::string(row.cli_flag) + " " + std::string(row.cli_value);
     line += line.size() + 1 < kColumn ? std::string(kColumn - line.size(), ' ')
                                       : "\n" + std::string(kColumn, ' ');
@@ -120,14 +128,20 @@ std::vector<option_table::Given<Options>> given_flags(const Args& args) {
   return given;
 }
 
+template <class Options>
+std::vector<FlagSpec> flags_except(const std::vector<std::string_view>& except) {
+  std::vector<FlagSpec> flags;
+  for (const option_table::Row<Options>& row : option_table::rows_of<Options>())
+    if (!row.cli_flag.empty() && !is_among(row, except))
+      flags.push_back({std::string(row.cli_flag), "", true});
+  return flags;
+}
+
 }  // namespace
 
 template <class Options>
 std::vector<FlagSpec> flags_of() {
-  std::vector<FlagSpec> flags;
-  for (const option_table::Row<Options>& row : option_table::rows_of<Options>())
-    if (!row.cli_flag.empty()) flags.push_back({std::string(row.cli_flag), "", true});
-  return flags;
+  return flags_except<Options>({});
 }
 
 template <class Options>
@@ -154,6 +168,11 @@ template std::string flags_help<SweepOptions>();
 
 std::vector<FlagSpec> extractor_flags() { return flags_of<ExtractorOptions>(); }
 
+std::vector<FlagSpec> extractor_flags_except(
+    const std::vector<std::string_view>& set_by_the_command) {
+  return flags_except<ExtractorOptions>(set_by_the_command);
+}
+
 ExtractorOptions extractor_options(const Args& args, option_table::Use use) {
   ExtractorOptions options;
   try {
@@ -174,6 +193,10 @@ ExtractorOptions extractor_options(const Args& args, option_table::Use use) {
 std::string extractor_flags_help() {
   return help_of_rows<ExtractorOptions>() +
          "  (a mode sets the options it names; the options given apply after it)\n";
+}
+
+std::string extractor_flags_help_except(const std::vector<std::string_view>& set_by_the_command) {
+  return help_of_rows<ExtractorOptions>(set_by_the_command);
 }
 
 std::vector<std::string> flags_outside(const Args& args, const std::vector<FlagSpec>& applying) {

@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aief/match.hpp"
@@ -41,8 +42,9 @@ class Args {
   std::vector<std::string> positionals_;
 };
 
-// The flags of an options struct's rows (core/options/option_table.hpp: MatchOptions, SweepOptions), the
-// options they set over `base` (throws UsageError), and their --help lines with the defaults.
+// The flags of an options struct's rows (core/options/option_table.hpp: MatchOptions,
+// SweepOptions), the options they set over `base` (throws UsageError), and their --help lines with
+// the defaults.
 template <class Options>
 std::vector<FlagSpec> flags_of();
 template <class Options>
@@ -59,6 +61,11 @@ std::vector<FlagSpec> extractor_flags();
 ExtractorOptions extractor_options(const Args& args,
                                    option_table::Use use = option_table::Use::extraction);
 std::string extractor_flags_help();
+// The same but the rows of `set_by_the_command` (record keys): a command that sets those options
+// itself (aief eval's rows: the mode, F, one thread) neither offers nor lists their flags.
+std::vector<FlagSpec> extractor_flags_except(
+    const std::vector<std::string_view>& set_by_the_command);
+std::string extractor_flags_help_except(const std::vector<std::string_view>& set_by_the_command);
 
 // aief match --pairs: matching of an HDF5 features file (tools/cmd_sfm.cpp).
 int run_match_pairs(const Args& args, const MatchOptions& match_options);

@@ -8,6 +8,8 @@
 #include "io/image_io.hpp"
 #include "io/json_writer.hpp"
 #include "io/plot.hpp"
+#include "io/record_fields.hpp"
+#include "io/temporary_files.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
 #include "tools/outputs_not_inputs.hpp"
@@ -86,17 +88,9 @@ int run_adapt(const Arguments& arguments) {
         .field("matcher", to_string(sweep.match.kind));
     json.key("curve").begin_array();
     for (const SweepPoint& p : result.curve) {
-      json.begin_object()
-          .field("threshold", p.threshold)
-          .field("kept_blocks", p.kept_blocks)
-          .field("kept_blocks_b", p.kept_blocks_b);
-      json.field("keypoints_a", p.keypoints_a)
-          .field("keypoints_b", p.keypoints_b)
-          .field("putative", p.putative);
-      json.field("inliers", p.inliers)
-          .field("cmr", p.cmr)
-          .field("eligible", p.eligible)
-          .end_object();
+      json.begin_object();
+      io::for_each_field(p, [&](std::string_view key, const auto& v) { json.field(key, v); });
+      json.end_object();
     }
     json.end_array();
     json.end_object();

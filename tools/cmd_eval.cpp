@@ -2,16 +2,14 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <sstream>
+#include <string_view>
 
 #include <opencv2/core.hpp>
 
 #include "aief/error.hpp"
 #include "io/image_io.hpp"
-#include "io/json_writer.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
 #include "tools/eval/dataset.hpp"
@@ -25,9 +23,18 @@ namespace aief::cli {
 
 namespace {
 
+// The extractor options each row sets itself, whose flags eval neither takes nor lists: the mode
+// (each row names its own), F (the row's way of choosing it), the carried F's period (a video's,
+// not a pair's) and the threads (one: per-core times, as the paper's and OpenCV's).
+const std::vector<std::string_view> kSetByEachRow = {"mode", "entropy_threshold", "carry_every",
+                                                     "threads"};
+
+std::string method_keys_text();
+
 void print_help() {
   std::cout
-      << "usage: aief eval --dataset DIR [--sequences a,b,...] [--pairs 1-2|all] [-o REPORT.md]\n\n"
+      << "usage: aief eval --dataset DIR [--sequences a,b,...] [--pairs 1-2|all] [-o REPORT.md]\n"
+      << "                 [matcher options] [--repeat N] [--methods LIST] [extractor options]\n\n"
       << "Runs ORB-SLAM2 mode, Quadtree + entropy, AIEF paper and AIEF (adaptive F and pair-free "
          "automatic F),\n"
       << "OpenCV ORB and OpenCV SIFT on the Oxford affine sequences in DIR (<seq>/img1..6, "
@@ -44,13 +51,11 @@ void print_help() {
       << flags_help<MatchOptions>()
       << "  --repeat N            interleaved timing rounds per pair, median (default 5)\n"
       << "  --methods LIST        comma-separated JSON keys of the rows to run (default all):\n"
-      << "                        orbslam2, quadtree_entropy, aief_paper_adaptive, "
-         "aief_paper_auto,\n"
-      << "                        aief_adaptive, aief_auto, opencv_orb, opencv_sift\n"
-      << "  --pool P|inf, --coordinates C, --subpixel on|off, --starvation-guard G, --ranking R,\n"
-      << "  --auto-two-classes on|off\n"
-      << "                        the AIEF rows' options, as in aief extract (defaults: the "
-         "library's)\n";
+      << "                        " << method_keys_text() << "\n\n"
+      << "extractor options of the AIEF rows (--mode aief; the other rows keep their mode's), as "
+         "in\n"
+      << "aief extract; each row sets its own mode, F and one thread:\n"
+      << extractor_flags_help_except(kSetByEachRow);
 }
 
 std::vector<std::string> split(const std::string& text) {
@@ -61,13 +66,34 @@ std::vector<std::string> split(const std::string& text) {
   return out;
 }
 
+// The JSON keys of every row, comma-separated, wrapped under --methods' help.
+std::string method_keys_text() {
+  std::string text;
+  std::size_t line = 0;
+  for (const eval::Method& method : eval::kAllMethods) {
+    const std::string key = eval::method_key(method);
+    if (!text.empty()) {
+      text += ",";
+      ++line;
+      if (line + 1 + key.size() > 74) {
+        text += "\n" + std::string(24, ' ');
+        line = 0;
+      } else {
+        text += " ";
+        ++line;
+      }
+    }
+    text += key;
+    line += key.size();
+  }
+  return text;
+}
+
 cv::Mat as_mat(const GrayImage& image) {
   return cv::Mat(image.height(), image.width(), CV_8UC1, const_cast<std::uint8_t*>(image.data()));
 }
 
-}  // namespace
-
-int run_eval(const Arguments& arguments) {
+std::vector<FlagSpec> flags_of_eval() {
   std::vector<FlagSpec> spec = flags_of<MatchOptions>();
   spec.insert(spec.end(), {{"--dataset", "", true},
                            {"--sequences", "", true},
@@ -75,78 +101,95 @@ int run_eval(const Arguments& arguments) {
                            {"--output", "-o", true},
                            {"--repeat", "", true},
                            {"--methods", "", true},
-                           {"--pool", "", true},
-                           {"--coordinates", "", true},
-                           {"--subpixel", "", true},
-                           {"--starvation-guard", "", true},
-                           {"--ranking", "", true},
-                           {"--auto-two-classes", "", true},
                            {"--help", "-h", false}});
-  const Args args(arguments, spec);
-  if (args.has("--help")) {
-    print_help();
-    return 0;
+  const std::vector<FlagSpec> extractor = extractor_flags_except(kSetByEachRow);
+  spec.insert(spec.end(), extractor.begin(), extractor.end());
+  return spec;
+}
+
+// The sequences asked for, or all eight of the Oxford set present in the dataset.
+std::vector<std::string> sequences_of(const Args& args, const std::string& dataset) {
+  if (const auto listed = args.get("--sequences")) return split(*listed);
+  std::vector<std::string> present;
+  for (const std::string& s : eval::kAllSequences)
+    if (std::filesystem::is_directory(std::filesystem::path(dataset) / s)) present.push_back(s);
+  return present;
+}
+
+// The rows --methods names, or every row.
+std::vector<eval::Method> methods_of(const Args& args) {
+  const auto keys = args.get("--methods");
+  if (!keys) return eval::kAllMethods;
+  std::vector<eval::Method> methods;
+  try {
+    for (const std::string& key : split(*keys)) methods.push_back(eval::parse_method_key(key));
+  } catch (const Error& e) {
+    throw UsageError(e.what());
   }
+  if (methods.empty()) throw UsageError("--methods needs at least one method");
+  return methods;
+}
+
+// The matcher's rows, as in match; the AIEF rows' extractor options, as in extract.
+eval::EvalSettings settings_of(const Args& args) {
+  eval::EvalSettings settings;
+  settings.timing_repeats = args.get_int("--repeat", settings.timing_repeats, 1, 1000);
+  settings.match = options_from_flags<MatchOptions>(args);
+  // The rows turn the automatic F on: its options are taken without it (Use::evaluation).
+  settings.aief = extractor_options(args, option_table::Use::evaluation);
+  return settings;
+}
+
+// What the command line asks for, checked before any work.
+struct EvalCommand {
+  std::string dataset, output;
+  bool all_pairs = true;
+  std::vector<std::string> sequences;
+  std::vector<eval::Method> methods;
+  eval::EvalSettings settings;
+};
+
+EvalCommand command_of(const Args& args) {
+  EvalCommand command;
   if (!args.positionals().empty())
     throw UsageError("eval takes no positional argument (did you mean --dataset?)");
   const auto dataset = args.get("--dataset");
   if (!dataset) throw UsageError("eval needs --dataset DIR");
+  command.dataset = *dataset;
   const std::string pairs_text = args.get("--pairs").value_or("all");
   if (pairs_text != "all" && pairs_text != "1-2")
     throw UsageError("--pairs expects 1-2 or all, got '" + pairs_text + "'");
-  std::vector<std::string> sequences =
-      args.get("--sequences") ? split(*args.get("--sequences")) : eval::kAllSequences;
-  if (!args.get("--sequences")) {  // all eight, or those present
-    std::vector<std::string> present;
-    for (const std::string& s : sequences)
-      if (std::filesystem::is_directory(std::filesystem::path(*dataset) / s)) present.push_back(s);
-    sequences = present;
-  }
-  eval::EvalSettings settings;
-  settings.timing_repeats = args.get_int("--repeat", settings.timing_repeats, 1, 1000);
-  settings.match = options_from_flags<MatchOptions>(args);  // the matcher's rows, as in match
-  settings.aief =
-      extractor_options(args, option_table::Use::evaluation);  // the AIEF rows' flags, as in
-                                                               // extract
-  std::vector<eval::Method> methods = eval::kAllMethods;
-  if (const auto keys = args.get("--methods")) {
-    methods.clear();
-    try {
-      for (const std::string& key : split(*keys)) methods.push_back(eval::parse_method_key(key));
-    } catch (const Error& e) {
-      throw UsageError(e.what());
-    }
-    if (methods.empty()) throw UsageError("--methods needs at least one method");
-  }
-  const std::string output = args.get("--output").value_or("evaluation.md");
+  command.all_pairs = pairs_text == "all";
+  command.sequences = sequences_of(args, command.dataset);
+  command.settings = settings_of(args);
+  command.methods = methods_of(args);
+  if (command.settings.aief.entropy == EntropyMeasure::off)
+    for (const eval::Method& method : command.methods)
+      if (method.mode == Mode::aief && method.baseline == eval::Baseline::none &&
+          method.threshold != eval::ThresholdChoice::mode)
+        throw UsageError("--entropy off leaves " + eval::method_key(method) +
+                         " no entropy threshold to choose");
+  command.output = args.get("--output").value_or("evaluation.md");
+  return command;
+}
 
-  eval::EvalRun run;
-  run.pairs = eval::find_pairs(*dataset, sequences, pairs_text == "all");
-  if (run.pairs.empty()) throw Error("no sequence found in '" + *dataset + "'");
-  std::filesystem::path json_path(output);
-  json_path.replace_extension(".json");
-  std::vector<std::string> inputs;
-  for (const eval::PairInput& pair : run.pairs)
-    inputs.insert(inputs.end(), {pair.path_a, pair.path_b, pair.truth_path});
-  refuse_outputs_that_are_inputs({{"-o", output}, {"-o (its data)", json_path.string()}}, inputs);
-  run.methods = methods;
-  run.matcher = std::string(to_string(settings.match.kind));
-  run.timing_rounds = settings.timing_repeats;
+// Every row on every pair of `run`, one pair after the other (image A read once per sequence),
+// then the pair's extraction times, interleaved.
+void evaluate(eval::EvalRun& run, const eval::EvalSettings& settings) {
   cv::setNumThreads(1);  // per-core times for every row
-
   const auto start = std::chrono::steady_clock::now();
   Progress progress("eval", static_cast<int>(run.pairs.size() * run.methods.size()));
+  const long long max_pixels = settings.aief.max_image_pixels;
   std::string loaded_a;
   GrayImage image_a;
   for (const eval::PairInput& pair : run.pairs) {
     if (pair.path_a != loaded_a) {
-      image_a = read_image_reporting(pair.path_a, ExtractorOptions{}.max_image_pixels);
+      image_a = read_image_reporting(pair.path_a, max_pixels);
       loaded_a = pair.path_a;
     }
-    const GrayImage image_b =
-        read_image_reporting(pair.path_b, ExtractorOptions{}.max_image_pixels);
+    const GrayImage image_b = read_image_reporting(pair.path_b, max_pixels);
     std::vector<eval::PairResult> row;
-    for (eval::Method method : run.methods) {
+    for (const eval::Method& method : run.methods) {
       row.push_back(
           eval::run_method(method, as_mat(image_a), as_mat(image_b), pair.truth, settings));
       progress.step(pair.sequence + " 1-" + std::to_string(pair.target) + " " +
@@ -157,27 +200,35 @@ int run_eval(const Arguments& arguments) {
   }
   progress.finish();
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-  const std::filesystem::path report_path(output);
-  const std::string plots_name = report_path.stem().string() + "_plots";
-  const std::filesystem::path plots_folder = report_path.parent_path() / plots_name;
-  if (!report_path.parent_path().empty())
-    std::filesystem::create_directories(report_path.parent_path());
-  const std::vector<std::string> plots = eval::write_plots(run, plots_folder.string());
-  std::string hand_written;  // kept from the report this one replaces
-  if (std::ifstream previous{output}) {
-    const std::string text((std::istreambuf_iterator<char>(previous)),
-                           std::istreambuf_iterator<char>());
-    hand_written = eval::hand_written_section(text);
+}  // namespace
+
+int run_eval(const Arguments& arguments) {
+  const Args args(arguments, flags_of_eval());
+  if (args.has("--help")) {
+    print_help();
+    return 0;
   }
-  std::string report = eval::markdown_report(run, plots_name);
-  if (!hand_written.empty()) report += "\n" + hand_written;
-  io::write_file_atomically(output, report);
-  io::write_file_atomically(json_path.string(), eval::json_report(run));
+  const EvalCommand command = command_of(args);
+  eval::EvalRun run;
+  run.pairs = eval::find_pairs(command.dataset, command.sequences, command.all_pairs);
+  if (run.pairs.empty()) throw Error("no sequence found in '" + command.dataset + "'");
+  std::vector<std::string> inputs;
+  for (const eval::PairInput& pair : run.pairs)
+    inputs.insert(inputs.end(), {pair.path_a, pair.path_b, pair.truth_path});
+  const std::string json_path =
+      std::filesystem::path(command.output).replace_extension(".json").string();
+  refuse_outputs_that_are_inputs({{"-o", command.output}, {"-o (its data)", json_path}}, inputs);
+  run.methods = command.methods;
+  run.matcher = std::string(to_string(command.settings.match.kind));
+  run.timing_rounds = command.settings.timing_repeats;
+  evaluate(run, command.settings);
+  const eval::ReportFiles files = eval::write_reports(run, command.output);
   std::printf(
       "evaluated %zu pairs x %zu methods in %.0f s\nreport: %s\ndata: %s\nplots: %s/ (%zu)\n",
-      run.pairs.size(), run.methods.size(), run.seconds, output.c_str(), json_path.string().c_str(),
-      plots_folder.string().c_str(), plots.size());
+      run.pairs.size(), run.methods.size(), run.seconds, files.markdown.c_str(), files.json.c_str(),
+      files.plot_folder.c_str(), files.plots.size());
   return 0;
 }
 

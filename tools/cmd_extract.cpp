@@ -1,4 +1,5 @@
-// aief extract IMAGE [-o out.json|out.yml] [--draw out.png] [extractor options]
+// aief extract IMAGE [-o FILE] [--draw out.png] [extractor options], or --batch: the formats are
+// io/feature_formats.cpp's rows.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -20,16 +21,56 @@ namespace aief::cli {
 
 namespace {
 
+using Layout = io::FeatureFormat::Layout;
+
+// The formats of a layout joined: their names ("json|yml|npz"), or "OUT.json|OUT.yml|OUT.npz"
+// (`prefix` before each usual extension, name false).
+std::string joined(Layout layout, const std::string& separator, bool names,
+                   const std::string& prefix = "") {
+  std::string text;
+  for (const io::FeatureFormat* format : io::feature_formats_of(layout))
+    text += (text.empty() ? prefix : separator + prefix) +
+            (names ? format->name : format->extensions.front());
+  return text;
+}
+
+// "a, b or c" of each format of `layout` as `item` writes it.
+template <class Item>
+std::string listed(Layout layout, Item item) {
+  const std::vector<const io::FeatureFormat*> formats = io::feature_formats_of(layout);
+  std::string text;
+  for (std::size_t i = 0; i < formats.size(); ++i) {
+    if (i > 0) text += i + 1 == formats.size() ? " or " : ", ";
+    text += item(*formats[i], i);
+  }
+  return text;
+}
+
+// "JSON (.json), OpenCV FileStorage YAML (.yml) or numpy (.npz)".
+std::string described(Layout layout) {
+  return listed(layout, [](const io::FeatureFormat& format, std::size_t) {
+    return std::string(format.what) + " (" + format.extensions.front() + ")";
+  });
+}
+
+// The default --format: the first file-per-image format.
+const char* default_format() {
+  return io::feature_formats_of(Layout::file_per_image).front()->name;
+}
+
 void print_help() {
+  const std::string per_image = joined(Layout::file_per_image, "|", true);
+  const std::string per_batch = joined(Layout::one_file_per_batch, "|", true);
   std::cout
-      << "usage: aief extract IMAGE [-o OUT.json|OUT.yml|OUT.npz] [--draw OUT.png] [options]\n"
-      << "       aief extract --batch LIST|DIR -o OUTDIR [--format json|yml|npz] [--shard i/n] "
-         "[options]\n"
-      << "       aief extract --batch LIST|DIR -o FEATURES.h5 --format h5 [--shard i/n] "
-         "[options]\n\n"
+      << "usage: aief extract IMAGE [-o " << joined(Layout::file_per_image, "|", false, "OUT")
+      << "] [--draw OUT.png] [options]\n"
+      << "       aief extract --batch LIST|DIR -o OUTDIR [--format " << per_image
+      << "] [--shard i/n] [options]\n"
+      << "       aief extract --batch LIST|DIR -o FEATURES"
+      << joined(Layout::one_file_per_batch, "|", false) << " --format " << per_batch
+      << " [--shard i/n] [options]\n\n"
       << "Keypoints and 256-bit rBRIEF descriptors of one image. Without -o, prints a summary.\n\n"
-      << "  -o, --output FILE     features as JSON (.json), OpenCV FileStorage YAML (.yml) or "
-         "numpy (.npz)\n"
+      << "  -o, --output FILE     features as " << described(Layout::file_per_image) << "\n"
       << "  --draw FILE           the keypoints drawn over the image, PNG\n"
       << "  --batch LIST|DIR      every image of a folder (recursively, symlinks followed) or of a "
          "list\n"
@@ -43,12 +84,17 @@ void print_help() {
       << "                        kept, any other is redone; outputs appear atomically. A bad "
          "image is\n"
       << "                        reported and skipped. Exit 1 if any failed.\n"
-      << "  --format F            json (default), yml or npz: a file per image in OUTDIR; h5: one "
-         "HDF5 file\n"
-      << "                        in hloc's layout, a group per image named by its relative path "
-         "(resumes\n"
-      << "                        at the first image not complete in it; one file per shard, then "
-         "aief merge)\n"
+      << "  --format F            "
+      << listed(Layout::file_per_image,
+                [](const io::FeatureFormat& format, std::size_t i) {
+                  return std::string(format.name) + (i == 0 ? " (default)" : "");
+                })
+      << ": a file per image in OUTDIR;\n"
+      << "                        " << per_batch << ": one file, "
+      << described(Layout::one_file_per_batch) << ", a group per image named by\n"
+      << "                        its path below DIR (resumes at the first image not complete in "
+         "it; one\n"
+      << "                        file per shard, then aief merge)\n"
       << "  --shard i/n           this run takes images i, i+n, i+2n ... of the list sorted by "
          "name,\n"
       << "                        0 <= i < n: machines split a collection, no coordinator. Slurm:\n"
@@ -66,7 +112,7 @@ int run_extract_batch(const Args& args) {
   const auto output = args.get("--output");
   if (!output) throw UsageError("--batch needs -o OUTDIR");
   settings.output_dir = *output;
-  settings.format = args.get("--format").value_or("json");
+  settings.format = args.get("--format").value_or(default_format());
   if (!io::feature_format_named(settings.format))
     throw UsageError("--format expects " + io::feature_format_names() + ", got '" +
                      settings.format + "'");

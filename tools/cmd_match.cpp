@@ -12,6 +12,8 @@
 #include "io/drawing.hpp"
 #include "io/image_io.hpp"
 #include "io/json_writer.hpp"
+#include "io/record_fields.hpp"
+#include "io/temporary_files.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
 #include "tools/outputs_not_inputs.hpp"
@@ -161,12 +163,9 @@ int run_match(const Arguments& arguments) {
     for (std::size_t i = 0; i < matches.size(); ++i) {
       const Keypoint& ka = features_a.keypoints[static_cast<std::size_t>(matches[i].query)];
       const Keypoint& kb = features_b.keypoints[static_cast<std::size_t>(matches[i].train)];
-      json.begin_object().field("query", matches[i].query).field("train", matches[i].train);
-      json.field("distance", matches[i].distance)
-          .field("xa", ka.x)
-          .field("ya", ka.y)
-          .field("xb", kb.x)
-          .field("yb", kb.y);
+      json.begin_object();
+      io::for_each_field(matches[i], [&](std::string_view key, int v) { json.field(key, v); });
+      json.field("xa", ka.x).field("ya", ka.y).field("xb", kb.x).field("yb", kb.y);
       json.field("inlier", homography.found && homography.inlier_mask[i] != 0).end_object();
     }
     json.end_array();

@@ -6,7 +6,7 @@
 #include <cassert>
 #include <cstring>
 
-#include "core/kernels/orientation.hpp"
+#include "core/kernels/ic_moments.hpp"
 #include "core/description/patch_blur.hpp"
 
 namespace aief {

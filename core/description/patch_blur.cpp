@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "aief/options.hpp"
-#include "core/kernels/rbrief.hpp"
+#include "core/kernels/rbrief_describe.hpp"
 
 namespace aief {
 

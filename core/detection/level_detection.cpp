@@ -5,7 +5,7 @@
 
 #include "core/level/detection_mask.hpp"
 #include "core/entropy/entropy_fast_threshold.hpp"
-#include "core/kernels/fast9.hpp"
+#include "core/kernels/fast9_scores_row.hpp"
 #include "core/detection/orbslam_cells.hpp"
 #include "core/detection/score_band.hpp"
 
@@ -118,7 +118,7 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options,
   const MutableImageView scores = scratch.score_band.mutable_view();
   const bool per_block_threshold = options.fast_threshold_from == FastThresholdFrom::entropy;
 
-  // Local maxima of the score map (threshold-free, see core/kernels/fast9.hpp) over the whole run, one
+  // Local maxima of the score map (threshold-free, see core/kernels/fast9_scores_row.hpp) over the whole run, one
   // bit row per level row, and the strong ones (score >= fast_threshold) likewise, also OR-ed
   // over the rows, which is what the retry rule asks.
   const int words = fast9_maxima_words(x_end - x_begin);

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <utility>
 
-#include "core/kernels/fast9.hpp"
+#include "core/kernels/fast9_scores_row.hpp"
 
 namespace aief {
 

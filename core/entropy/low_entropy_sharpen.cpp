@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/kernels/unsharp_mask.hpp"
+#include "core/kernels/unsharp_row.hpp"
 
 namespace aief {
 

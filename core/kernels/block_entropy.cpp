@@ -52,26 +52,6 @@ double entropy_from_sums(std::uint64_t n, Uint128 sum_q32) {
 
 }  // namespace
 
-void accumulate_histogram_scalar(const std::uint8_t* data, std::ptrdiff_t stride, int width,
-                                 int height, std::uint32_t* hist) {
-  // Four sub-histograms: consecutive equal pixels would otherwise wait on each other's
-  // increment (store-to-load forwarding chain).
-  std::uint32_t banks[4][256];
-  std::memset(banks, 0, sizeof banks);
-  for (int y = 0; y < height; ++y) {
-    const std::uint8_t* row = data + y * stride;
-    int x = 0;
-    for (; x + 4 <= width; x += 4) {
-      ++banks[0][row[x]];
-      ++banks[1][row[x + 1]];
-      ++banks[2][row[x + 2]];
-      ++banks[3][row[x + 3]];
-    }
-    for (; x < width; ++x) ++banks[0][row[x]];
-  }
-  for (int k = 0; k < 256; ++k) hist[k] += banks[0][k] + banks[1][k] + banks[2][k] + banks[3][k];
-}
-
 double histogram_entropy_bits(const std::uint32_t* hist) {
   std::uint64_t n = 0;
   for (int k = 0; k < 256; ++k) n += hist[k];

@@ -10,14 +10,9 @@
 #include <vector>
 
 #include "aief/options.hpp"
+#include "core/kernels/accumulate_histogram.hpp"
 
 namespace aief {
-
-using Histogram256 = std::uint32_t[256];
-
-// Adds the counts of the width x height pixels at data (row stride `stride`) to hist.
-void accumulate_histogram_scalar(const std::uint8_t* data, std::ptrdiff_t stride, int width,
-                                 int height, std::uint32_t* hist);
 
 // Shannon entropy in bits of a histogram of n = sum(hist) pixels:
 //   E = log2(n) - (1/n) * sum_k c_k log2 c_k; 0 when n == 0 or the block is flat; at most 8.

@@ -2,8 +2,8 @@
 // One pyramid level's pixels: its geometry, how it is made from the level above, and the pixels.
 #include "aief/image.hpp"
 #include "core/level/level_geometry.hpp"
-#include "core/kernels/pyramid_resize.hpp"
-#include "core/kernels/pyramid_resize_opencv.hpp"
+#include "core/kernels/resize_bilinear_rows.hpp"
+#include "core/kernels/resize_opencv_linear_rows.hpp"
 
 namespace aief {
 

@@ -118,7 +118,7 @@ class SweepMatcher {
     std::vector<std::int32_t> index_of_id;  // index in the current set, -1 when absent
     std::vector<NeighbourList> lists;
     std::vector<std::int16_t> bounds;    // lists[i].bound(), or -1 where no list is kept
-    std::vector<std::uint32_t> blocked;  // this call's descriptors (core/kernels/hamming_blocked.hpp)
+    std::vector<std::uint32_t> blocked;  // this call's descriptors (core/kernels/hamming_256_blocked.hpp)
     std::vector<std::int32_t> new_index_of_old;  // this call: where each previous element went
     std::vector<std::uint8_t> is_new;            // this call: per element, new to the set
     std::vector<std::int32_t> new_elements;      // this call: their indices, ascending

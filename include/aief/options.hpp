@@ -51,8 +51,8 @@ enum class CandidateRanking {
 
 // How a pyramid level is resampled from the level above (docs/design.md §2).
 enum class PyramidResampling {
-  q8,      // the engine's Q8 bilinear, vector kernels (core/kernels/pyramid_resize.hpp)
-  opencv,  // cv::resize INTER_LINEAR to the byte: ORB-SLAM's pixels (core/kernels/pyramid_resize_opencv)
+  q8,      // the engine's Q8 bilinear, vector kernels (core/kernels/resize_bilinear_rows.hpp)
+  opencv,  // cv::resize INTER_LINEAR to the byte: ORB-SLAM's pixels (core/kernels/resize_opencv_linear_rows)
 };
 
 // Where detection's threshold retry and non-maximum suppression act (docs/design.md §5).

@@ -51,3 +51,20 @@ def test_a_number_that_takes_words_names_them():
         if row["kind"] == "number" and row["words"]:
             for word in row["words"].split("|"):
                 assert f"'{word}'" in annotations[row["keyword"]], (row["keyword"], word)
+
+
+@pytest.mark.parametrize("record", sorted(aief._aief._record_fields()))
+def test_the_stubs_typed_dicts_are_the_records_field_lists(record):
+    """Each result record's TypedDict has its one field list's keys, in order, with their types
+    (io/record_fields.hpp): the dicts Features.info and AdaptResult.curve hand out."""
+    node = next((n for n in STUB.body if isinstance(n, ast.ClassDef) and n.name == record), None)
+    assert node is not None, f"{record} is not in the stub"
+    stub = [(n.target.id, ast.unparse(n.annotation)) for n in node.body if isinstance(n, ast.AnnAssign)]
+    assert stub == [tuple(field) for field in aief._aief._record_fields()[record]]
+
+
+def test_the_dicts_handed_out_are_the_field_lists():
+    import numpy
+    extractor = aief.Extractor(n_features=50)
+    info = extractor.extract(numpy.full((64, 64), 7, numpy.uint8)).info
+    assert list(info) == [key for key, _ in aief._aief._record_fields()["ExtractionInfo"]]

@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "io/record_fields.hpp"
 #include "tools/eval/timing.hpp"
 
 #include "aief/homography.hpp"
@@ -72,6 +73,33 @@ struct PairResult {
   double repeatability = 0;  // keypoints of A repeated in B within 3 px (keypoint_metrics.hpp)
   double spread = 0;         // share of image A's 32 px cells holding a keypoint
 };
+
+}  // namespace aief::eval
+
+// PairResult's one field list: its keys in aief eval's JSON (tools/eval/report.cpp), in order.
+template <>
+struct aief::io::RecordFields<aief::eval::PairResult> {
+  using R = aief::eval::PairResult;
+  static constexpr auto list = std::tuple{field("keypoints_a", &R::keypoints_a),
+                                          field("keypoints_b", &R::keypoints_b),
+                                          field("putative", &R::putative),
+                                          field("inliers", &R::inliers),
+                                          field("cmr", &R::cmr),
+                                          field("correct", &R::correct),
+                                          field("accuracy", &R::accuracy),
+                                          field("corner_error", &R::corner_error),
+                                          field("homography_ok", &R::homography_ok),
+                                          field("extract_ms", &R::extract_ms),
+                                          field("extract_min_ms", &R::extract_min_ms),
+                                          field("extract_max_ms", &R::extract_max_ms),
+                                          field("extract_wall_ms", &R::extract_wall_ms),
+                                          field("sweep_ms", &R::sweep_ms),
+                                          field("threshold", &R::threshold),
+                                          field("repeatability", &R::repeatability),
+                                          field("spread", &R::spread)};
+};
+
+namespace aief::eval {
 
 struct EvalSettings {
   MatchOptions match;      // mutual by default

@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "io/json_writer.hpp"
 #include "io/plot.hpp"
+#include "io/temporary_files.hpp"
 
 namespace aief::eval {
 
@@ -24,25 +27,11 @@ std::string hand_written_section(const std::string& previous_report) {
 
 namespace {
 
-// One row's measures on one pair, as a JSON object.
+// One row's measures on one pair, as a JSON object: PairResult's field list (methods.hpp).
 void write_pair_result(io::JsonWriter& json, const PairResult& r) {
   json.begin_object();
-  json.field("keypoints_a", r.keypoints_a)
-      .field("keypoints_b", r.keypoints_b)
-      .field("putative", r.putative);
-  json.field("inliers", r.inliers)
-      .field("cmr", r.cmr)
-      .field("correct", r.correct)
-      .field("accuracy", r.accuracy);
-  json.field("corner_error", r.corner_error)
-      .field("homography_ok", r.homography_ok)
-      .field("extract_ms", r.extract_ms);
-  json.field("extract_min_ms", r.extract_min_ms).field("extract_max_ms", r.extract_max_ms);
-  json.field("extract_wall_ms", r.extract_wall_ms);
-  json.field("sweep_ms", r.sweep_ms)
-      .field("threshold", r.threshold)
-      .field("repeatability", r.repeatability);
-  json.field("spread", r.spread).end_object();
+  io::for_each_field(r, [&](std::string_view key, const auto& value) { json.field(key, value); });
+  json.end_object();
 }
 
 }  // namespace
@@ -100,6 +89,29 @@ std::vector<std::string> write_plots(const EvalRun& run, const std::string& fold
     written.push_back(path);
   }
   return written;
+}
+
+ReportFiles write_reports(const EvalRun& run, const std::string& markdown_path) {
+  const std::filesystem::path report_path(markdown_path);
+  ReportFiles files;
+  files.markdown = markdown_path;
+  files.json = std::filesystem::path(report_path).replace_extension(".json").string();
+  const std::string plots_name = report_path.stem().string() + "_plots";
+  files.plot_folder = (report_path.parent_path() / plots_name).string();
+  if (!report_path.parent_path().empty())
+    std::filesystem::create_directories(report_path.parent_path());
+  files.plots = write_plots(run, files.plot_folder);
+  std::string hand_written;  // kept from the report this one replaces
+  if (std::ifstream previous{markdown_path}) {
+    const std::string text((std::istreambuf_iterator<char>(previous)),
+                           std::istreambuf_iterator<char>());
+    hand_written = hand_written_section(text);
+  }
+  std::string report = markdown_report(run, plots_name);
+  if (!hand_written.empty()) report += "\n" + hand_written;
+  io::write_file_atomically(files.markdown, report);
+  io::write_file_atomically(files.json, json_report(run));
+  return files;
 }
 
 }  // namespace aief::eval

@@ -37,4 +37,14 @@ std::string json_report(const EvalRun& run);
 // One PNG per sequence in `folder`: correct matches and accuracy against the pair index.
 std::vector<std::string> write_plots(const EvalRun& run, const std::string& folder);
 
+// Where write_reports put the report, its data and its plots.
+struct ReportFiles {
+  std::string markdown, json, plot_folder;
+  std::vector<std::string> plots;
+};
+// The markdown report at `markdown_path` (keeping the hand-written section of the report it
+// replaces), the JSON beside it (REPORT.json) and a plot per sequence in REPORT_plots/, each
+// written atomically.
+ReportFiles write_reports(const EvalRun& run, const std::string& markdown_path);
+
 }  // namespace aief::eval

@@ -1,0 +1,46 @@
+#pragma once
+// The unsharp mask row, for every set: the contract of core/kernels/unsharp_row.hpp, the same
+// bytes.
+//
+// Written for the compiler's vectoriser, not with xsimd batches: both passes are straight loops
+// over restrict-qualified rows (the u8 -> u16 vertical sums, then the 32-bit blur, detail,
+// multiply by the amount and clamp), which GCC and Clang vectorise at the width of the unit's
+// flags (kernels_<set>.cpp); xsimd 8.1 has no widening load from bytes to 16 or 32-bit lanes.
+// Every operation is the reference's integer operation, so the vector and scalar paths (and the
+// vectoriser's tail) give the same bytes. Measured: callgrind instructions of the sharpening
+// stage in docs/design.md §5.
+#include <cstdint>
+
+#include "core/kernels/unsharp_row.hpp"
+#include "simd/simd_support.hpp"
+
+namespace aief::simd {
+inline namespace AIEF_SIMD_TARGET {
+
+template <class Arch>
+void unsharp_row(ImageView src, int y, const std::int16_t* amount_q8, std::uint16_t* column_sums,
+                 std::uint8_t* dst) {
+  const int width = src.width, last_row = src.height - 1;
+  const std::uint8_t* __restrict r0 = src.row(y >= 2 ? y - 2 : 0);
+  const std::uint8_t* __restrict r1 = src.row(y >= 1 ? y - 1 : 0);
+  const std::uint8_t* __restrict r2 = src.row(y);
+  const std::uint8_t* __restrict r3 = src.row(y + 1 <= last_row ? y + 1 : last_row);
+  const std::uint8_t* __restrict r4 = src.row(y + 2 <= last_row ? y + 2 : last_row);
+  std::uint16_t* __restrict v = column_sums + 2;
+  for (int x = 0; x < width; ++x)
+    v[x] = static_cast<std::uint16_t>(r0[x] + r4[x] + 4 * (r1[x] + r3[x]) + 6 * r2[x]);
+  v[-2] = v[-1] = v[0];
+  v[width] = v[width + 1] = v[width - 1];
+  const std::int16_t* __restrict amount = amount_q8;
+  std::uint8_t* __restrict out = dst;
+  for (int x = 0; x < width; ++x) {
+    const std::int32_t blur = v[x - 2] + v[x + 2] + 4 * (v[x - 1] + v[x + 1]) + 6 * v[x];
+    const std::int32_t detail = 256 * r2[x] - blur;
+    const std::int32_t added = ((amount[x] * detail + (1 << 15) + (1 << 26)) >> 16) - (1 << 10);
+    const std::int32_t sharpened = r2[x] + added;
+    out[x] = static_cast<std::uint8_t>(sharpened < 0 ? 0 : (sharpened > 255 ? 255 : sharpened));
+  }
+}
+
+}  // namespace AIEF_SIMD_TARGET
+}  // namespace aief::simd
