@@ -80,4 +80,16 @@ if(TARGET aief_python)
  Extraction, Hamming matching, RANSAC and the adaptive threshold sweep on numpy arrays.")
 endif()
 
+# The licence in every package (LICENSE, NOTICE): Debian's machine-readable copyright file, naming
+# the third-party data NOTICE names, at share/doc/<package>/copyright, with LICENSE and NOTICE
+# beside it (the Apache License asks that NOTICE travel with every copy).
+foreach(component IN LISTS CPACK_COMPONENTS_ALL)
+  string(TOUPPER ${component} component_upper)
+  set(package_doc ${CMAKE_INSTALL_DATAROOTDIR}/doc/${CPACK_DEBIAN_${component_upper}_PACKAGE_NAME})
+  install(FILES ${PROJECT_SOURCE_DIR}/cmake/debian_copyright DESTINATION ${package_doc}
+          RENAME copyright COMPONENT ${component})
+  install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/NOTICE DESTINATION ${package_doc}
+          COMPONENT ${component})
+endforeach()
+
 include(CPack)

@@ -168,7 +168,10 @@ std::string Hdf5File::foreign_descriptors(const std::string& group) const {
   const bool bytes = H5Tget_class(type.get()) == H5T_INTEGER && H5Tget_size(type.get()) == 1;
   if (rank == 2 && dims[0] == kDescriptorBytes && bytes) return "";
   const H5T_class_t kind = H5Tget_class(type.get());
+  // numpy's names: uint8 for unsigned bytes (SuperPoint's float32, aief's uint8), int8 signed.
+  const bool is_unsigned = kind == H5T_INTEGER && H5Tget_sign(type.get()) == H5T_SGN_NONE;
   const std::string type_name = (kind == H5T_FLOAT     ? "float"
+                                 : is_unsigned         ? "uint"
                                  : kind == H5T_INTEGER ? "int"
                                                        : "other") +
                                 std::to_string(8 * H5Tget_size(type.get()));

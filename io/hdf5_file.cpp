@@ -18,6 +18,7 @@
 
 #include "aief/error.hpp"
 #include "io/hdf5_objects.hpp"
+#include "io/hdf5_unwritable.hpp"
 #include "io/json_writer.hpp"
 #include "io/temporary_files.hpp"
 
@@ -80,6 +81,7 @@ std::string open_failure(const std::string& path, bool creating, const std::stri
     return "cannot create '" + path +
            "': " + (hdf5_said.empty() ? std::string("libhdf5 could not write it") : hdf5_said);
   }
+  if (std::string whole = whole_file_not_writable(path, hdf5_said); !whole.empty()) return whole;
   return damaged_file(path, hdf5_said);
 }
 
@@ -201,7 +203,10 @@ void Hdf5File::flush_created_file() {
     if (::renameat2(AT_FDCWD, creating_as_.c_str(), AT_FDCWD, path_.c_str(), RENAME_NOREPLACE) !=
             0 &&
         (errno != EINVAL || ::rename(creating_as_.c_str(), path_.c_str()) != 0))
-      throw Error(std::strerror(errno));
+      throw Error(errno == EEXIST ? "another run created it at the same moment (this run wrote "
+                                    "nothing to it): run this command again, which adds to "
+                                    "that file"
+                                  : std::strerror(errno));
   } catch (const std::exception& e) {
     fence();
     H5Fclose(std::exchange(file_, -1));

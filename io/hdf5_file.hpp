@@ -76,6 +76,10 @@ namespace aief::io {
 std::string image_group(const std::string& image);
 std::string image_of_group(const std::string& group);
 
+// The note a failed write's message ends with (Hdf5File::write_guarded): the file keeps what was
+// complete before it. A merge, whose file is a temporary it removes, leaves it out.
+inline constexpr const char* kCompleteBeforeIsKept = " (what was complete before is kept)";
+
 class Hdf5File {
  public:
   // read_in_name_order: for a reader that goes through the file once, image after image in name

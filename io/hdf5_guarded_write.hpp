@@ -28,7 +28,7 @@ void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write
     }
     fence();
     throw Error("cannot write " + what + " to '" + path_ + "': " + failure_ +
-                " (what was complete before is kept)");
+                kCompleteBeforeIsKept);
   }
   try {
     write();
@@ -41,7 +41,7 @@ void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write
     failure_ = e.what();
     fence();
     throw Error("cannot write " + what + " to '" + path_ + "': " + failure_ +
-                " (what was complete before is kept)");
+                kCompleteBeforeIsKept);
   }
 }
 

@@ -236,12 +236,23 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     throw Error("cannot merge into '" + output + "' (left as it was): " + e.code().message());
   } catch (const std::exception& e) {
     fs::remove(temporary, ec);
-    throw Error("cannot merge into '" + output + "' (left as it was): " + e.what());
+    // The temporary's own "what was complete before is kept" is not the output's: the output
+    // is left as it was, the temporary removed.
+    std::string why = e.what();
+    if (const std::size_t note = why.rfind(kCompleteBeforeIsKept); note != std::string::npos)
+      why.erase(note, std::string_view(kCompleteBeforeIsKept).size());
+    throw Error("cannot merge into '" + output + "' (left as it was): " + why);
   }
-  fs::rename(temporary, output, ec);
-  if (ec) {
+  if (fs::rename(temporary, output, ec); ec) {
+    // The rename's own error (a later call would overwrite it: "Success"); a temporary gone
+    // missing was removed by another program meanwhile (a cleaner of old files?).
+    const std::string why = ec == std::errc::no_such_file_or_directory
+                                ? "its temporary '" + temporary +
+                                      "' was removed by another program while the merge ran (a "
+                                      "cleaner of temporary files?); run the merge again"
+                                : ec.message();
     fs::remove(temporary, ec);
-    throw Error("cannot merge into '" + output + "' (left as it was): " + ec.message());
+    throw Error("cannot merge into '" + output + "' (left as it was): " + why);
   }
   if (replaced) *replaced = static_cast<int>(stale.size());
   if (kept_newer_count > 0 && notes) {

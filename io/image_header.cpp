@@ -116,7 +116,7 @@ std::optional<ImageHeader> tiff_header(const Bytes& b) {
   if (!entries) return std::nullopt;
   const std::size_t first = *ifd + (big ? 8 : 2), entry_size = big ? 20 : 12,
                     value_at = big ? 12 : 8;
-  std::optional<std::uint64_t> width, height, bits, samples;
+  std::optional<std::uint64_t> width, height, bits, samples, tile_width, tile_height;
   for (std::uint64_t i = 0; i < *entries && first + i * entry_size + entry_size <= b.size(); ++i) {
     const std::size_t entry = first + static_cast<std::size_t>(i) * entry_size;
     const std::optional<std::uint64_t> tag = read(entry, 2), type = read(entry + 2, 2);
@@ -132,15 +132,23 @@ std::optional<ImageHeader> tiff_header(const Bytes& b) {
                                        : offset      ? read(*offset, 2)
                                                      : std::nullopt;
     }
-    if (!tag || !type || (*tag != 256 && *tag != 257)) continue;
+    // ImageWidth (256), ImageLength (257), TileWidth (322), TileLength (323).
+    if (!tag || !type || (*tag != 256 && *tag != 257 && *tag != 322 && *tag != 323)) continue;
     // SHORT (3) or LONG (4), or LONG8 (16) in BigTIFF; the value sits in the entry itself.
     const std::optional<std::uint64_t> value = *type == 3    ? read(entry + value_at, 2)
                                                : *type == 4  ? read(entry + value_at, 4)
                                                : *type == 16 ? read(entry + value_at, 8)
                                                              : std::nullopt;
-    (*tag == 256 ? width : height) = value;
+    (*tag == 256 ? width : *tag == 257 ? height : *tag == 322 ? tile_width : tile_height) = value;
   }
   std::optional<ImageHeader> header = make("TIFF", width, height);
+  if (header && (tile_width || tile_height)) {
+    // A tiled TIFF: libtiff and OpenCV decode tile by tile, each into a buffer of a whole tile.
+    const std::optional<ImageHeader> tile =
+        make("TIFF", tile_width.value_or(0), tile_height.value_or(0));
+    header->tile_width = tile->width;
+    header->tile_height = tile->height;
+  }
   if (header && bits) header->bytes_per_channel = bytes_per_channel_of(*bits);
   if (header && samples) header->channels = static_cast<int>(std::min<std::uint64_t>(*samples, 64));
   return header;

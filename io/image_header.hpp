@@ -3,7 +3,7 @@
 // allocated, so a 1 MB PNG declaring 30000 x 30000 pixels is refused before the decoder would
 // ask for gigabytes. OpenCV 4.6 has no header-only API (cv::imdecode allocates the full image),
 // hence this parser of the formats its imgcodecs reads here: PNG (IHDR), JPEG (SOFn), TIFF and
-// BigTIFF (first IFD's ImageWidth / ImageLength), WebP (VP8, VP8L, VP8X), BMP, PNM / PAM / PFM,
+// BigTIFF (first IFD's ImageWidth / ImageLength, and TileWidth / TileLength), WebP (VP8, VP8L, VP8X), BMP, PNM / PAM / PFM,
 // Sun raster, Radiance HDR, JPEG 2000 (JP2 ihdr box, J2K SIZ marker). Besides the size: the
 // decoded pixel layout where the header gives it (PNG, JPEG, TIFF, PNM, PAM, JPEG 2000), and a
 // JPEG's number of scans, so that what decoding would cost is known before it starts.
@@ -24,6 +24,10 @@ struct ImageHeader {
   // JPEG: the start-of-scan markers in the whole file (a progressive JPEG has about ten; each
   // costs the decoder a pass over the image's coefficients). 0 for other formats.
   long long scans = 0;
+  // TIFF: the tile the decoder holds whole at once (TileWidth x TileLength), which the header may
+  // declare far larger than the image (a 64 x 64 image of one 16384 x 16384 tile: 1 GB for the
+  // tile buffer). 0 x 0 when the image has no tiles (strips: a band of the image itself).
+  long long tile_width = 0, tile_height = 0;
 };
 
 // The declared size, or nullopt when the bytes start with no format above or its header is cut

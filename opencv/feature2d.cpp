@@ -5,8 +5,10 @@
 #include <string_view>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "aief/error.hpp"
+#include "core/options/nearest_name.hpp"
 #include "core/options/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
@@ -113,10 +115,16 @@ void refuse_unknown_keys(const cv::FileNode& node) {
         throw Error("Feature2D::read: '" + key + "' is cv::ORB's setting, not aief's (" +
                     std::string(instead) + ")");
     std::string keys;
+    std::vector<std::string_view> known;
     for (const option_table::OptionRow& r : option_table::rows())
-      if (r.is_field()) keys += (keys.empty() ? "" : ", ") + std::string(r.key);
-    throw Error("Feature2D::read: unknown key '" + key +
-                "' (it reads what write() writes: " + keys + ")");
+      if (r.is_field()) {
+        keys += (keys.empty() ? "" : ", ") + std::string(r.key);
+        known.push_back(r.key);
+      }
+    const std::string nearest = option_table::nearest_name(key, known);
+    throw Error("Feature2D::read: unknown key '" + key + "'" +
+                (nearest.empty() ? "" : " (did you mean " + nearest + "?)") +
+                " (it reads what write() writes: " + keys + ")");
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -9,6 +10,7 @@
 
 #include "aief/error.hpp"
 #include "core/options/option_names.hpp"
+#include "core/options/nearest_name.hpp"
 #include "core/options/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
@@ -60,15 +62,33 @@ ExtractorOptions orbslam_options(int nfeatures, float scaleFactor, int nlevels, 
 }
 
 // A settings value as the text the option table parses: FileStorage keeps numbers as int or
-// double (written back by their shortest round-trip text), names and words as strings.
-std::string text_of_node(const cv::FileNode& node, const std::string& key) {
-  if (node.isInt()) return std::to_string(static_cast<int>(node));
+// double (written back by their shortest round-trip text), names and words as strings. What
+// FileStorage cannot give back as written is said so: its integers are 32-bit (2147483648 reads
+// as -2147483648, 2^32 as 0), an empty value reads as the string "...", and .nan is shown as
+// YAML writes it (not "-nan").
+std::string text_of_node(const cv::FileNode& node, const option_table::OptionRow& row,
+                         const std::string& key) {
+  if (node.isInt()) {
+    const int value = static_cast<int>(node);
+    if (row.kind() == option_table::ValueKind::integer && (value < row.low || value > row.high))
+      throw Error(key + " expects " + option_table::expected_values(row) + ", got " +
+                  std::to_string(value) +
+                  " as OpenCV's settings reader reads it (it keeps integers in 32 bits: "
+                  "2147483648 reads as -2147483648, 4294967296 as 0)");
+    return std::to_string(value);
+  }
   if (node.isReal()) {
-    char buffer[32];
     const double value = node.real();
+    if (std::isnan(value)) return ".nan";
+    char buffer[32];
     return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
   }
-  if (node.isString()) return static_cast<std::string>(node);
+  if (node.isString()) {
+    const std::string text = static_cast<std::string>(node);
+    if (text == "...")  // what FileStorage makes of "key:" with nothing after it
+      throw Error(key + " has no value (write one, or leave the key out for the default)");
+    return text;
+  }
   throw Error(key + " must be a number or a name, not a list or a map");
 }
 
@@ -106,9 +126,39 @@ void OrbSlamExtractorBase::compute_scales() {
   }
 }
 
+namespace {
+
+// An ORBextractor.* key no row reads: a misspelt key would leave the extractor other than the
+// settings say, without a word (ORBextractor.entropyTreshold: 2.5 ran with F = 4).
+void refuse_unknown_orbextractor_keys(const cv::FileStorage& settings) {
+  constexpr std::string_view kPrefix = "ORBextractor.";
+  const cv::FileNode root = settings.root();
+  if (!root.isMap()) return;
+  std::vector<std::string_view> known, earlier;  // earlier spellings are read, never suggested
+  for (const option_table::OptionRow& row : option_table::rows()) {
+    if (!row.yaml_key.empty()) known.push_back(row.yaml_key);
+    if (!row.old_yaml_key.empty()) earlier.push_back(row.old_yaml_key);
+  }
+  for (const std::string& key : root.keys()) {
+    if (key.compare(0, kPrefix.size(), kPrefix) != 0 ||
+        std::find(known.begin(), known.end(), key) != known.end() ||
+        std::find(earlier.begin(), earlier.end(), key) != earlier.end())
+      continue;
+    const std::string nearest = option_table::nearest_name(key, known);
+    std::string listed;
+    for (std::string_view k : known) listed += (listed.empty() ? "" : ", ") + std::string(k);
+    throw Error("unknown setting '" + key + "'" +
+                (nearest.empty() ? "" : " (did you mean " + nearest + "?)") +
+                "; the ORBextractor keys aief reads: " + listed);
+  }
+}
+
+}  // namespace
+
 ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStorage& settings,
                                                              Mode default_mode) {
   if (!settings.isOpened()) throw Error("settings file is not open");
+  refuse_unknown_orbextractor_keys(settings);
   std::vector<option_table::GivenOption> given;
   for (const option_table::OptionRow& row : option_table::rows()) {
     if (!row.has_front_ends()) continue;
@@ -116,7 +166,7 @@ ExtractorOptions OrbSlamExtractorBase::options_from_settings(const cv::FileStora
       const std::string key(spelling);
       if (key.empty()) continue;
       if (const cv::FileNode node = settings[key]; !node.empty()) {
-        given.push_back({&row, text_of_node(node, key), key});
+        given.push_back({&row, text_of_node(node, row, key), key});
         break;
       }
     }

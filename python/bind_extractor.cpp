@@ -205,6 +205,7 @@ void bind_testing(py::module_& m) {
                                   : row.kind() == table::ValueKind::choice ? "choice"
                                                                            : "toggle");
           r["words"] = std::string(row.words);
+          r["acts_with"] = std::string(row.acts_with);
           r["low"] = row.low;
           r["high"] = row.high;
           py::list names;

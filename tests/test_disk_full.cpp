@@ -224,11 +224,37 @@ TEST_F(DiskFull, MergeLeavesTheOutputAsItWas) {
   const std::uintmax_t size = fs::file_size(merged);
   const int before = readable_images(merged);
   fill_leaving(512 << 10);
-  expect_clean_stop(run("merge -o " + merged.string() + " " + (work_.path() / "s1.h5").string()),
-                    "merge into a full disk");
+  const CliResult full =
+      run("merge -o " + merged.string() + " " + (work_.path() / "s1.h5").string());
+  expect_clean_stop(full, "merge into a full disk");
+  // One account of the output: left as it was. Was: also "what was complete before is kept",
+  // said of the temporary the merge then removed.
+  EXPECT_NE(full.output.find("left as it was"), std::string::npos) << full.output;
+  EXPECT_EQ(full.output.find("what was complete before is kept"), std::string::npos) << full.output;
   EXPECT_EQ(fs::file_size(merged), size);
   EXPECT_EQ(readable_images(merged), before);
   EXPECT_EQ(leftovers(disk_), std::vector<std::string>{});
+}
+
+// A whole .h5 on a read-only file system was called "damaged or cut short ... move it away".
+TEST_F(DiskFull, AWholeFileOnAReadOnlyFileSystemSaysSoAndThatItIsWhole) {
+  const fs::path h5 = disk_ / "whole.h5";
+  {
+    aief::io::Hdf5File file(h5.string(), aief::io::Hdf5File::Mode::read_write);
+    file.close();
+  }
+  ASSERT_EQ(::mount(nullptr, disk_.c_str(), nullptr, MS_REMOUNT | MS_RDONLY, nullptr), 0)
+      << std::strerror(errno);
+  std::string message;
+  try {
+    aief::io::Hdf5File(h5.string(), aief::io::Hdf5File::Mode::read_write);
+  } catch (const std::exception& e) {
+    message = e.what();
+  }
+  ::mount(nullptr, disk_.c_str(), nullptr, MS_REMOUNT, nullptr);
+  EXPECT_NE(message.find("it is on a read-only file system"), std::string::npos) << message;
+  EXPECT_NE(message.find("the file itself is whole"), std::string::npos) << message;
+  EXPECT_EQ(message.find("damaged"), std::string::npos) << message;
 }
 
 #ifdef AIEF_HAVE_COLMAP_EXPORT

@@ -102,6 +102,30 @@ TEST(Feature2D, ReadRefusesKeysItDoesNotReadNamingThem) {
             std::string::npos);
   EXPECT_EQ(message_of("name: Feature2D.AIEF\nn_features: 500\n"), "no error");
   EXPECT_EQ(detector->options().n_features, 500);
+  // The nearest key is named (as the ORB-SLAM settings reader names it).
+  EXPECT_NE(message_of("n_featres: 300\n").find("(did you mean n_features?)"), std::string::npos);
+}
+
+// An option that cannot act with the others is refused however the detector is made: from options
+// (validate(), core/options/acts_with.hpp) or by read(). Was: faithful with the per-block FAST
+// thresholds from entropy gave faithful's keypoints.
+TEST(Feature2D, AnOptionThatCannotActIsRefused) {
+  ExtractorOptions faithful = options_for_mode(Mode::faithful);
+  faithful.fast_threshold_from = FastThresholdFrom::entropy;
+  try {
+    opencv::Feature2D::create(faithful);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "fast_threshold_from entropy does nothing unless detection_cells blocks"),
+              std::string::npos)
+        << e.what();
+  }
+  const cv::Ptr<opencv::Feature2D> detector = opencv::Feature2D::create();
+  cv::FileStorage in("%YAML:1.0\nquadtree_weight: entropy\n",
+                     cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  EXPECT_THROW(detector->read(in.root()), Error);  // the default distribution is proportional
+  EXPECT_EQ(detector->options().quadtree_weight, QuadtreeWeight::none) << "left as it was";
 }
 
 TEST(Feature2D, DetectAndComputeGivesTheEnginesFeatures) {

@@ -190,6 +190,39 @@ TEST(Hdf5Features, OpenFailuresSayWhich) {
   EXPECT_NE(cut.find("run that command again"), std::string::npos) << cut;
 }
 
+// A whole file that cannot be opened for writing (another handle holds it, no permission, a
+// read-only file system) was called "damaged or cut short ... move it away". Now the reason, and
+// that the file is whole.
+TEST(Hdf5Features, AWholeFileThatCannotBeWrittenSaysWhyAndThatItIsWhole) {
+  OwnTempDir dir;
+  using Mode = io::Hdf5File::Mode;
+  const std::string path = dir.file("whole.h5");
+  io::Hdf5File(path, Mode::read_write).write_features("a.png", sample_features("boat", 1));
+  const auto message = [&] {
+    try {
+      io::Hdf5File(path, Mode::read_write);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("opened");
+  };
+  {
+    const io::Hdf5File reader(path, Mode::read);  // as an h5py.File or FeaturesFile left open
+    const std::string held = message();
+    EXPECT_NE(held.find("another handle holds it open"), std::string::npos) << held;
+    EXPECT_NE(held.find("the file itself is whole"), std::string::npos) << held;
+    EXPECT_EQ(held.find("damaged"), std::string::npos) << held;
+  }
+  if (::geteuid() != 0) {  // root writes a file of mode 444 all the same
+    std::filesystem::permissions(path, std::filesystem::perms::owner_read |
+                                           std::filesystem::perms::group_read |
+                                           std::filesystem::perms::others_read);
+    const std::string denied = message();
+    EXPECT_NE(denied.find("you have no permission to write it"), std::string::npos) << denied;
+    EXPECT_NE(denied.find("the file itself is whole"), std::string::npos) << denied;
+  }
+}
+
 // A failed merge (an image in two inputs, a missing, cut or non-HDF5 input) leaves the output
 // as it was, or absent, and no temporary.
 TEST(Hdf5Features, FailedMergeLeavesTheOutputAsItWas) {

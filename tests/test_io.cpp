@@ -297,6 +297,109 @@ TEST(ImageIo, AJpegOfTooManyScansIsRefusedBeforeDecoding) {
   EXPECT_NE(message.find("more than the 500"), std::string::npos) << message;
 }
 
+// A little-endian TIFF header: `width` x `height` 8-bit gray, deflate, one tile of `tile` x `tile`
+// pixels (its data a few bytes: nothing reaches the decoder).
+std::vector<std::uint8_t> tiff_of_one_tile(std::uint32_t width, std::uint32_t height,
+                                           std::uint32_t tile) {
+  std::vector<std::uint8_t> b = {'I', 'I', 42, 0, 8, 0, 0, 0};
+  const auto u16 = [&](std::uint32_t v) {
+    b.push_back(static_cast<std::uint8_t>(v));
+    b.push_back(static_cast<std::uint8_t>(v >> 8));
+  };
+  const auto u32 = [&](std::uint32_t v) {
+    u16(v & 0xFFFF);
+    u16(v >> 16);
+  };
+  const std::uint32_t entries = 10, data = 8 + 2 + entries * 12 + 4;
+  u16(entries);
+  const auto entry = [&](std::uint32_t tag, std::uint32_t type, std::uint32_t value) {
+    u16(tag);
+    u16(type);
+    u32(1);
+    u32(value);
+  };
+  entry(256, 4, width);
+  entry(257, 4, height);
+  entry(258, 3, 8);     // BitsPerSample
+  entry(259, 3, 8);     // Compression: deflate
+  entry(262, 3, 1);     // Photometric: black is zero
+  entry(277, 3, 1);     // SamplesPerPixel
+  entry(284, 3, 1);     // PlanarConfiguration: contiguous
+  entry(322, 4, tile);  // TileWidth
+  entry(323, 4, tile);  // TileLength
+  entry(324, 4, data);  // TileOffsets (TileByteCounts left out: the header is refused first)
+  u32(0);               // no next IFD
+  for (int i = 0; i < 16; ++i) b.push_back(0);
+  return b;
+}
+
+// A TIFF of 64 x 64 pixels in one 16384 x 16384 deflate tile (1.1 MB) took 7.5 s and 1.11 GB, also
+// with --max-image-pixels 5000: the decoder holds a whole tile. The tile is bounded as the image.
+TEST(ImageIo, ATiffTileLargerThanAllowedIsRefusedBeforeDecoding) {
+  TempDir dir;
+  const std::vector<std::uint8_t> bomb = tiff_of_one_tile(64, 64, 16384);
+  const std::optional<io::ImageHeader> header = io::read_image_header(bomb.data(), bomb.size());
+  ASSERT_TRUE(header.has_value());
+  EXPECT_EQ(header->width, 64);
+  EXPECT_EQ(header->tile_width, 16384);
+  EXPECT_EQ(header->tile_height, 16384);
+  std::ofstream(dir.file("tile.tiff"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(bomb.data()), static_cast<std::streamsize>(bomb.size()));
+  for (const long long limit : {ExtractorOptions{}.max_image_pixels, 5000LL}) {
+    try {
+      io::read_gray_image(dir.file("tile.tiff"), limit);
+      ADD_FAILURE() << "not refused";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("is a TIFF of 16384x16384-pixel tiles"),
+                std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("refused before decoding"), std::string::npos);
+    }
+  }
+  // Tiles within the limit are read as before: OpenCV's own tiled TIFF (256 x 256 tiles).
+  const cv::Mat gray = test::random_image(300, 200, 3);
+  const std::optional<io::ImageHeader> small = io::read_image_header(
+      tiff_of_one_tile(300, 200, 256).data(), tiff_of_one_tile(300, 200, 256).size());
+  ASSERT_TRUE(small.has_value());
+  EXPECT_EQ(small->tile_width, 256);
+  ASSERT_TRUE(cv::imwrite(dir.file("strips.tiff"), gray));
+  EXPECT_EQ(io::read_gray_image(dir.file("strips.tiff"), 300 * 200).width(), 300);
+}
+
+// Bytes this process has read through read() so far (/proc/self/io's rchar).
+long long bytes_read_so_far() {
+  std::ifstream io("/proc/self/io");
+  std::string key;
+  long long value = 0;
+  while (io >> key >> value)
+    if (key == "rchar:") return value;
+  return -1;
+}
+
+// A 320 x 240 PNG padded to 1.5 GB was read whole before its header was checked (25 s, 1.6 GB).
+// Now the header is read first and a PNG no further than its IEND chunk. The padding here is a
+// hole of a sparse file (64 MB that cost no disk), and what was read is counted by the kernel.
+TEST(ImageIo, AFileIsReadNoFurtherThanItsFormatNeeds) {
+  TempDir dir;
+  if (bytes_read_so_far() < 0) GTEST_SKIP() << "no /proc/self/io here";
+  constexpr std::uintmax_t kPadding = 64u << 20;
+  const std::string padded = dir.file("padded.png");
+  ASSERT_TRUE(cv::imwrite(padded, test::random_image(320, 240, 5)));
+  std::filesystem::resize_file(padded, std::filesystem::file_size(padded) + kPadding);
+  long long before = bytes_read_so_far();
+  EXPECT_EQ(io::read_gray_image(padded).width(), 320);
+  EXPECT_LT(bytes_read_so_far() - before, 4 << 20);
+  // A bomb's header is refused before the rest of the file is read.
+  const std::vector<std::uint8_t> bomb = test::png_declaring(30000, 30000);
+  const std::string bomb_path = dir.file("bomb.png");
+  std::ofstream(bomb_path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bomb.data()), static_cast<std::streamsize>(bomb.size()));
+  std::filesystem::resize_file(bomb_path, bomb.size() + kPadding);
+  before = bytes_read_so_far();
+  EXPECT_NE(error_of(bomb_path).find("refused before decoding"), std::string::npos);
+  EXPECT_LT(bytes_read_so_far() - before, 1 << 20);
+}
+
 TEST(ImageIo, AJpegCutShortIsDecodedWithAWarning) {
   TempDir dir;
   const cv::Mat colour = cv::imread(test::sample_path("boat", "img1.png"));

@@ -19,6 +19,7 @@
 #include "aief/orbslam2_extractor.hpp"
 #include "aief/version.hpp"
 #include "core/options/option_names.hpp"
+#include "core/options/acts_with.hpp"
 #include "core/options/option_table.hpp"
 #include "tests/field_count.hpp"
 #include "tests/test_support.hpp"
@@ -150,16 +151,42 @@ std::string record_json(const table::OptionRow& row, const std::string& text) {
   return "";
 }
 
+// What a row needs beside it to act (its acts_with conditions the defaults do not meet), as
+// (key, text) of the rows that set them: the quadtree by a mode that keeps the mask, the
+// automatic and the carried F by the threshold's word.
+std::vector<std::pair<std::string_view, std::string>> companions(const table::OptionRow& row) {
+  std::vector<std::pair<std::string_view, std::string>> out;
+  ExtractorOptions options;
+  row.field.set(options, table::parse_value(row, other_value(row), row.key));
+  for (table::UnmetCondition unmet = table::unmet_condition(row, options); unmet.row;
+       unmet = table::unmet_condition(row, options)) {
+    const std::string_view key = unmet.row->key;
+    if (key == "distribution")
+      out.emplace_back("mode", "quadtree-entropy");
+    else if (key == "auto_threshold")
+      out.emplace_back("entropy_threshold", "auto");
+    else if (key == "carried_threshold")
+      out.emplace_back("entropy_threshold", "carried");
+    else
+      out.emplace_back(key, unmet.needed);
+    unmet.row->field.set(options, table::parse_value(*unmet.row, unmet.needed, key));
+  }
+  return out;
+}
+
 TEST(OptionTable, EveryCliFlagReachesTheOutputRecord) {
   const test::TempFolder folder("aief_option_table");
   const std::string image = test::sample_path("boat", "img1.png");
   for (const table::OptionRow& row : table::rows()) {
     if (!row.is_field() || !row.has_front_ends()) continue;
     const std::string value = other_value(row), output = folder.file("f.json");
+    std::string beside;
+    for (const auto& [key, text] : companions(row))
+      beside += " " + std::string(table::row(key).cli_flag) + " " + text;
     for (std::string_view flag : {row.cli_flag, row.old_cli_flag}) {  // the earlier one too
       if (flag.empty()) continue;
-      const CliResult r =
-          run_cli("extract " + image + " " + std::string(flag) + " " + value + " -o " + output);
+      const CliResult r = run_cli("extract " + image + " " + std::string(flag) + " " + value +
+                                  beside + " -o " + output);
       ASSERT_EQ(r.status, 0) << flag << " " << value << "\n" << r.output;
       std::ifstream in(output);
       const std::string json((std::istreambuf_iterator<char>(in)),
@@ -184,8 +211,15 @@ TEST(OptionTable, EverySettingsKeyReachesTheOptions) {
     const std::string value = other_value(row);
     const bool is_text =
         row.kind() == table::ValueKind::choice || row.kind() == table::ValueKind::toggle;
-    // In AIEF mode, where every key applies (the drop-ins' own mode, orbslam2, has no mask).
-    const std::string aief_mode = "%YAML:1.0\nORBextractor.mode: \"aief\"\n";
+    // In AIEF mode, where every key applies (the drop-ins' own mode, orbslam2, has no mask),
+    // with what the key needs to act.
+    std::string aief_mode = "%YAML:1.0\n";
+    std::string mode = "aief";
+    for (const auto& [key, text] : companions(row)) {
+      if (key == "mode") mode = text;
+      else aief_mode += std::string(table::row(key).yaml_key) + ": \"" + text + "\"\n";
+    }
+    aief_mode += "ORBextractor.mode: \"" + mode + "\"\n";
     for (std::string_view key : {row.yaml_key, row.old_yaml_key}) {  // the earlier key is read too
       if (key.empty()) continue;
       const std::string yaml =
@@ -351,6 +385,112 @@ TEST(OptionTable, TheModeSetsTheOptionsGivenOverrideConflictsAreRefused) {
     EXPECT_EQ(table::record_of(resolve({{"mode", std::string(mode.name)}})),
               table::record_of(options_for_mode(mode.value)))
         << mode.name;
+}
+
+// Options that cannot act with the others were accepted and did nothing (--mode faithful
+// --fast-threshold-from entropy gave faithful's bytes); now refused, naming what they need, in
+// every front end (one rule: core/options/acts_with.hpp).
+TEST(OptionTable, AnOptionThatCannotActIsRefusedNamingWhatItNeeds) {
+  const auto refused = [](const std::vector<std::pair<std::string_view, std::string>>& given,
+                          const std::string& says) {
+    const std::string error = resolve_error(given);
+    EXPECT_NE(error.find(says), std::string::npos) << "'" << error << "' lacks '" << says << "'";
+  };
+  refused({{"mode", "faithful"}, {"fast_threshold_from", "entropy"}},
+          "fast_threshold_from entropy does nothing unless detection_cells blocks, and mode "
+          "faithful makes it orbslam");
+  refused({{"detection_cells", "orbslam"}, {"fast_threshold_from", "entropy"}},
+          "detection_cells orbslam is given");
+  refused({{"mode", "aief"}, {"quadtree_weight", "entropy"}},
+          "does nothing unless distribution quadtree (modes orbslam2, quadtree-entropy, faithful)");
+  refused({{"mode", "orbslam2"}, {"quadtree_weight", "entropy"}, {"quadtree_ties", "orbslam"}},
+          "quadtree_ties orbslam does nothing unless quadtree_weight none");
+  refused({{"quadtree_ties", "orbslam"}}, "does nothing unless distribution quadtree");
+  refused({{"carry_every", "10"}}, "does nothing unless carried_threshold on");
+  refused({{"mode", "orbslam2"}, {"candidate_pool", "2"}},
+          "does nothing unless distribution proportional");
+  refused({{"auto_requires_two_classes", "off"}}, "does nothing unless auto_threshold on");
+  refused({{"auto_skips_uniform_blocks", "count"}}, "does nothing unless auto_threshold on");
+  // Where they act they are taken; a value the mode sets is no request.
+  EXPECT_EQ(resolve_error({{"mode", "faithful"}, {"quadtree_weight", "entropy"}}), "");
+  EXPECT_EQ(resolve_error({{"mode", "orbslam2"}, {"fast_threshold_from", "entropy"}}), "");
+  EXPECT_EQ(resolve_error({{"entropy_threshold", "carried"}, {"carry_every", "10"}}), "");
+  EXPECT_EQ(resolve_error({{"entropy_threshold", "auto"}, {"auto_requires_two_classes", "off"}}),
+            "");
+  EXPECT_EQ(resolve_error({{"mode", "faithful"}, {"fast_threshold_from", "none"}}), "");
+  EXPECT_EQ(resolve_error({{"mode", "orbslam2"}, {"candidate_pool", "inf"}}), "");
+  // Every mode's options given whole without the mode (Extractor(**extractor.options)) make the
+  // same options, faithful with the weighted quadtree too.
+  std::vector<ExtractorOptions> presets;
+  for (const auto& mode : option_names::Table<Mode>::names)
+    presets.push_back(options_for_mode(mode.value));
+  presets.push_back(options_for_mode(Mode::faithful));
+  presets.back().quadtree_weight = QuadtreeWeight::entropy;
+  for (const ExtractorOptions& preset : presets) {
+    std::vector<std::pair<std::string_view, std::string>> whole;
+    for (const auto& [key, value] : table::record_of(preset))
+      whole.emplace_back(key, table::text_of(table::row(key), value));
+    EXPECT_EQ(resolve_error(whole), "");
+    if (resolve_error(whole).empty()) {
+      EXPECT_EQ(table::record_of(resolve(whole)), table::record_of(preset));
+    }
+  }
+  // validate() refuses what no preset holds, however the options were made (C++, Feature2D).
+  ExtractorOptions faithful = options_for_mode(Mode::faithful);
+  faithful.fast_threshold_from = FastThresholdFrom::entropy;
+  EXPECT_THROW(faithful.validate(), Error);
+  ExtractorOptions weighted;
+  weighted.quadtree_weight = QuadtreeWeight::entropy;
+  EXPECT_THROW(weighted.validate(), Error);
+  ExtractorOptions carry;  // a number carried along in a struct: refused only when given
+  carry.carry_every = 5;
+  EXPECT_NO_THROW(carry.validate());
+  // The adaptive sweep chooses F itself, without the fallback.
+  const auto sweep_error = [](std::string_view key, const std::string& text) {
+    try {
+      table::resolve_options({{&table::row(key), text, std::string(key)}}, table::Use::sweep);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(sweep_error("entropy_threshold", "7").find("does nothing in the adaptive sweep"),
+            std::string::npos);
+  EXPECT_NE(sweep_error("starvation_guard", "frame").find("does nothing in the adaptive sweep"),
+            std::string::npos);
+  EXPECT_EQ(sweep_error("mode", "aief-paper"), "");
+  // aief eval turns the automatic F on per row: its options are taken without it.
+  EXPECT_NO_THROW(table::resolve_options(
+      {{&table::row("auto_requires_two_classes"), "off", "--auto-two-classes"}},
+      table::Use::evaluation));
+  // The CLI says it, exit 2.
+  const std::string a = test::sample_path("graf", "img1.png"),
+                    b = test::sample_path("graf", "img2.png");
+  for (const std::string& arguments :
+       {"extract " + a + " --mode faithful --fast-threshold-from entropy",
+        "extract " + a + " --detection-cells orbslam --fast-threshold-from entropy",
+        "extract " + a + " --mode aief --quadtree-weight entropy",
+        "extract " + a + " --mode orbslam2 --quadtree-weight entropy --quadtree-ties orbslam",
+        "extract " + a + " --carry-every 10", "match " + a + " " + b + " --adaptive --threshold 7",
+        "adapt " + a + " " + b + " --threshold 7"}) {
+    const CliResult r = run_cli(arguments);
+    EXPECT_EQ(r.status, 2) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find("does nothing"), std::string::npos) << arguments << "\n" << r.output;
+  }
+}
+
+// A record holds numbers at 17 digits; a difference shows them by their shortest text (was:
+// "ratio 0.69999999999999996 -> 0.80000000000000004").
+TEST(OptionTable, DifferencesShowNumbersByTheirShortestText) {
+  EXPECT_EQ(table::text_of(table::OptionDifference{"ratio", "0.69999999999999996",
+                                                   "0.80000000000000004"}),
+            "ratio 0.7 -> 0.8");
+  EXPECT_EQ(table::text_of(table::OptionDifference{"n_features", "500", "3000"}),
+            "n_features 500 -> 3000");
+  EXPECT_EQ(table::text_of(table::OptionDifference{"candidate_pool", "1.25", "inf"}),
+            "candidate_pool 1.25 -> inf");
+  EXPECT_EQ(table::text_of(table::OptionDifference{"mode", "not recorded", "quadtree"}),
+            "mode not recorded -> quadtree");
 }
 
 TEST(OptionTable, EnumNamesAndTheirEnumeratorsRead) {

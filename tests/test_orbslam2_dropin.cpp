@@ -85,8 +85,7 @@ TEST(OrbSlam2DropIn, ReadsItsSettingsKeys) {
       "ORBextractor.nFeatures: 1500\nORBextractor.scaleFactor: 1.3\nORBextractor.nLevels: 6\n"
       "ORBextractor.iniThFAST: 25\nORBextractor.minThFAST: 9\nORBextractor.mode: "
       "\"quadtree-entropy\"\n"
-      "ORBextractor.entropyThreshold: 3.5\nORBextractor.blockSize: 40\nORBextractor.candidatePool: "
-      "1.5\n");
+      "ORBextractor.entropyThreshold: 3.5\nORBextractor.blockSize: 40\n");
   const ORBextractor orb = ORBextractor::from_settings(file.open());
   const ExtractorOptions& o = orb.extractor().options();
   EXPECT_EQ(o.n_features, 1500);
@@ -99,7 +98,7 @@ TEST(OrbSlam2DropIn, ReadsItsSettingsKeys) {
   EXPECT_EQ(o.entropy_threshold, 3.5);
   EXPECT_FALSE(o.auto_threshold);
   EXPECT_EQ(o.block_size, 40);
-  EXPECT_EQ(o.candidate_pool, 1.5);
+  EXPECT_TRUE(std::isinf(o.candidate_pool));  // a pool acts on the proportional distribution only
   EXPECT_EQ(orb.GetLevels(), 6);
   EXPECT_EQ(orb.GetScaleFactor(), 1.3f);
 }
@@ -157,8 +156,12 @@ TEST(OrbSlam2DropIn, SettingsModesAndAutoThreshold) {
     EXPECT_TRUE(std::isinf(o.candidate_pool));
   }
   {
-    const SettingsFile file("ORBextractor.candidatePool: 1.25\n");  // the engine's pool, if asked
+    // The engine's pool, if asked, where it acts (the proportional distribution); under this
+    // drop-in's orbslam2 mode (the quadtree) it would do nothing, and is refused.
+    const SettingsFile file("ORBextractor.mode: \"aief\"\nORBextractor.candidatePool: 1.25\n");
     EXPECT_EQ(ORBextractor::options_from_settings(file.open()).candidate_pool, 1.25);
+    const SettingsFile quadtree("ORBextractor.candidatePool: 1.25\n");
+    EXPECT_THROW(ORBextractor::options_from_settings(quadtree.open()), Error);
   }
   {
     const SettingsFile file(

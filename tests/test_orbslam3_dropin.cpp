@@ -263,6 +263,57 @@ TEST(OrbSlam3DropIn, OrbSlam3sOwnSettingsGiveTheSameExtractorAsItsConstructor) {
 // Settings that describe a stereo rig or a depth camera (either settings format) get ORB-SLAM's
 // integer level pixels, which Frame::ComputeStereoMatches needs; monocular settings the engine's
 // pixel-centre, sub-pixel keypoints (docs/slam.md, "The keypoint convention in monocular").
+std::string settings_error(const std::string& body) {
+  try {
+    ORBextractor::options_from_settings(
+        cv::FileStorage("%YAML:1.0\n" + body, cv::FileStorage::READ | cv::FileStorage::MEMORY));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A misspelt ORBextractor key was ignored (ORBextractor.entropyTreshold: 2.5 and
+// ORBextractor.nFeature: 300 ran with F = 4 and 1000 features), and fastThresholdFrom, which
+// docs/slam.md recommends, did nothing under this drop-in's default (faithful: ORB-SLAM's cells).
+TEST(OrbSlam3DropIn, MisspeltKeysAndSettingsThatCannotActAreRefused) {
+  EXPECT_NE(settings_error("ORBextractor.mode: \"aief\"\nORBextractor.entropyTreshold: 2.5\n")
+                .find("unknown setting 'ORBextractor.entropyTreshold' (did you mean "
+                      "ORBextractor.entropyThreshold?)"),
+            std::string::npos);
+  EXPECT_NE(
+      settings_error("ORBextractor.nFeature: 300\n").find("(did you mean ORBextractor.nFeatures?)"),
+      std::string::npos);
+  EXPECT_NE(settings_error("ORBextractor.fastThresholdFrom: \"entropy\"\n")
+                .find("ORBextractor.fastThresholdFrom entropy does nothing unless "
+                      "ORBextractor.detectionCells blocks"),
+            std::string::npos);
+  // With the engine's blocks it acts (docs/slam.md's fto: orbslam2 mode), and ORB-SLAM's own keys
+  // and other sections' keys are read as before.
+  EXPECT_EQ(settings_error("ORBextractor.mode: \"orbslam2\"\n"
+                           "ORBextractor.fastThresholdFrom: \"entropy\"\n"),
+            "");
+  EXPECT_EQ(settings_error("ORBextractor.detectionCells: \"blocks\"\n"
+                           "ORBextractor.fastThresholdFrom: \"entropy\"\n"),
+            "");
+  // Values as written, or what OpenCV's reader made of them (was: 2147483648 shown as
+  // -2147483648, 2^32 as 0, an empty value as "...", .nan as "-nan").
+  EXPECT_NE(settings_error("ORBextractor.nFeatures: 2147483648\n")
+                .find("as OpenCV's settings reader reads it (it keeps integers in 32 bits"),
+            std::string::npos);
+  EXPECT_NE(settings_error("ORBextractor.nFeatures: 4294967296\n").find("got 0 as OpenCV's"),
+            std::string::npos);
+  EXPECT_NE(settings_error("ORBextractor.nFeatures:\n").find("ORBextractor.nFeatures has no value"),
+            std::string::npos);
+  EXPECT_NE(settings_error("ORBextractor.scaleFactor: .nan\n").find("got '.nan'"),
+            std::string::npos);
+  EXPECT_EQ(settings_error("ORBextractor.scaleFactor: .nan\n").find("-nan"), std::string::npos);
+  EXPECT_EQ(settings_error("Camera.fx: 500.0\nORBextractor.nFeatures: 1200\n"
+                           "ORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
+                           "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\n"),
+            "");
+}
+
 TEST(OrbSlam3DropIn, KeypointConventionFollowsTheSensorTheSettingsDescribe) {
   const auto options_of_settings = [](const std::string& body) {
     return ORBextractor::options_from_settings(

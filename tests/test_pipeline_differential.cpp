@@ -87,8 +87,11 @@ Case make_case(int index) {
   if (uniform_int(faithful_rng, 0, 3) == 0) c.options.orientation = Orientation::opencv_fast;
   // The entropy-guided variants, a quarter of the cases each, their own draws likewise.
   std::mt19937 variant_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 15485863u));
-  if (uniform_int(variant_rng, 0, 3) == 0) c.options.quadtree_weight = QuadtreeWeight::entropy;
-  if (uniform_int(variant_rng, 0, 3) == 0)
+  // Each where it acts (validate() refuses it elsewhere: core/options/acts_with.hpp).
+  if (uniform_int(variant_rng, 0, 3) == 0 && c.options.distribution == Distribution::quadtree)
+    c.options.quadtree_weight = QuadtreeWeight::entropy;
+  if (uniform_int(variant_rng, 0, 3) == 0 &&
+      c.options.detection_cells == DetectionCells::blocks)
     c.options.fast_threshold_from = FastThresholdFrom::entropy;
   // The sharpened low-entropy blocks, a quarter of the cases, their own draws (the earlier cases'
   // options stay as they were).

@@ -199,10 +199,10 @@ std::vector<FlagSpec> extractor_flags_except(
   return flags_except<ExtractorOptions>(set_by_the_command);
 }
 
-ExtractorOptions extractor_options(const Args& args) {
+ExtractorOptions extractor_options(const Args& args, option_table::Use use) {
   ExtractorOptions options;
   try {
-    options = option_table::resolve_options(given_flags<ExtractorOptions>(args));
+    options = option_table::resolve_options(given_flags<ExtractorOptions>(args), use);
   } catch (const Error& e) {
     throw UsageError(e.what());
   }

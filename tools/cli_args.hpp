@@ -9,6 +9,7 @@
 
 #include "aief/match.hpp"
 #include "aief/options.hpp"
+#include "core/options/option_table.hpp"
 
 namespace aief::cli {
 
@@ -61,7 +62,8 @@ std::vector<std::string> flags_outside(const Args& args, const std::vector<FlagS
 // Flags every command that extracts shares, and the options they set (defaults from
 // ExtractorOptions, never repeated here).
 std::vector<FlagSpec> extractor_flags();
-ExtractorOptions extractor_options(const Args& args);
+ExtractorOptions extractor_options(const Args& args,
+                                   option_table::Use use = option_table::Use::extraction);
 std::string extractor_flags_help();
 // The same but the rows of `set_by_the_command` (record keys): a command that sets those options
 // itself (aief eval's rows: the mode, F, one thread) neither offers nor lists their flags.

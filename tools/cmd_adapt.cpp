@@ -51,7 +51,7 @@ int run_adapt(const Arguments& arguments) {
   if (args.positionals().size() != 2)
     throw UsageError("adapt expects two images A B (aief adapt --help)");
   check_picture_flag(args, "--plot");
-  const ExtractorOptions options = extractor_options(args);
+  const ExtractorOptions options = extractor_options(args, option_table::Use::sweep);
   if (options.entropy == EntropyMeasure::off)
     throw UsageError("adapt needs an entropy mode (aief or quadtree-entropy)");
   SweepOptions sweep = options_from_flags<SweepOptions>(args);

@@ -135,7 +135,8 @@ eval::EvalSettings settings_of(const Args& args) {
   eval::EvalSettings settings;
   settings.timing_repeats = args.get_int("--repeat", settings.timing_repeats, 1, 1000);
   settings.match = options_from_flags<MatchOptions>(args);
-  settings.aief = extractor_options(args);
+  // The rows turn the automatic F on: its options are taken without it (Use::evaluation).
+  settings.aief = extractor_options(args, option_table::Use::evaluation);
   return settings;
 }
 

@@ -116,7 +116,8 @@ int run_match(const Arguments& arguments) {
   if (args.positionals().size() != 2)
     throw UsageError("match expects two images A B (aief match --help)");
   check_picture_flag(args, "--draw");
-  const ExtractorOptions options = extractor_options(args);
+  const ExtractorOptions options = extractor_options(
+      args, args.has("--adaptive") ? option_table::Use::sweep : option_table::Use::extraction);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
   refuse_outputs_that_are_inputs(args, {"--output", "--draw"}, {path_a, path_b});

@@ -142,7 +142,8 @@ std::vector<OptionRow> make_rows() {
        .low = 0,
        .high = 64,
        .words = "auto|carried",
-       .needs_mask = "sets F of the entropy mask"},
+       .needs_mask = "sets F of the entropy mask",
+       .read_by_sweep = false},
       {.key = "auto_threshold",
        .field = access<&M::auto_threshold>,
        .help = "set by --entropy-threshold auto",
@@ -161,7 +162,8 @@ std::vector<OptionRow> make_rows() {
                "next (a sweep never starts while one runs)",
        .low = 1,
        .high = 1'000'000,
-       .needs_mask = "sets how often the carried F is swept"},
+       .needs_mask = "sets how often the carried F is swept",
+       .acts_with = "carried_threshold=on"},
       {.key = "coordinates",
        .field = access<&M::coordinates>,
        .cli_flag = "--coordinates",
@@ -194,7 +196,8 @@ std::vector<OptionRow> make_rows() {
        .low = 1,
        .high = kInfinity,
        .words = "inf|off",
-       .per_mode = {kDefault, "inf", "inf", "inf", "inf", kDefault}},
+       .per_mode = {kDefault, "inf", "inf", "inf", "inf", kDefault},
+       .acts_with = "distribution=proportional"},
       {.key = "candidate_ranking",
        .field = access<&M::candidate_ranking>,
        .cli_flag = "--candidate-ranking",
@@ -218,7 +221,8 @@ std::vector<OptionRow> make_rows() {
                "to the levels "
                "with candidates to spare, finest first; frame: F lowered for the whole frame until "
                "it has n_features",
-       .per_mode = {kDefault, "frame", "frame", "frame", "frame", kDefault}},
+       .per_mode = {kDefault, "frame", "frame", "frame", "frame", kDefault},
+       .read_by_sweep = false},
       {.key = "auto_skips_uniform_blocks",
        .field = access<&M::auto_skips_uniform_blocks>,
        .cli_flag = "--auto-uniform-blocks",
@@ -227,7 +231,8 @@ std::vector<OptionRow> make_rows() {
        .yaml_key = "ORBextractor.autoUniformBlocks",
        .help = "whether one-gray-level blocks take part in the automatic F",
        .words = "skip|count",
-       .per_mode = {kDefault, "count", "count", "count", "count", kDefault}},
+       .per_mode = {kDefault, "count", "count", "count", "count", kDefault},
+       .acts_with = "auto_threshold=on"},
       {.key = "auto_requires_two_classes",
        .field = access<&M::auto_requires_two_classes>,
        .cli_flag = "--auto-requires-two-classes",
@@ -240,7 +245,8 @@ std::vector<OptionRow> make_rows() {
                "effectiveness >= 0.75), "
                "else F = 0 keeps every block",
        .words = "on|off",
-       .per_mode = {kDefault, "off", "off", "off", "off", kDefault}},
+       .per_mode = {kDefault, "off", "off", "off", "off", kDefault},
+       .acts_with = "auto_threshold=on"},
       {.key = "pyramid_resampling",
        .field = access<&M::pyramid_resampling>,
        .cli_flag = "--pyramid-resampling",
@@ -269,8 +275,10 @@ std::vector<OptionRow> make_rows() {
        .python_keyword = "quadtree_ties",
        .yaml_key = "ORBextractor.quadtreeTies",
        .help = "how the quadtree breaks ties: full (written tie-break, exactly N per level) or "
-               "orbslam (ORB-SLAM's list order, up to N + 3 per level); the quadtree only",
-       .per_mode = {"", "", "", "", "orbslam", ""}},
+               "orbslam (ORB-SLAM's list order, up to N + 3 per level); the unweighted quadtree "
+               "only",
+       .per_mode = {"", "", "", "", "orbslam", ""},
+       .acts_with = "distribution=quadtree,quadtree_weight=none"},
       {.key = "orientation",
        .field = access<&M::orientation>,
        .cli_flag = "--orientation",
@@ -288,7 +296,8 @@ std::vector<OptionRow> make_rows() {
        .yaml_key = "ORBextractor.quadtreeWeight",
        .help = "what orders the quadtree's splits: none (every node each round) or entropy (the "
                "node whose candidates' block entropies sum highest splits next; every leaf keeps "
-               "its strongest); the quadtree only"},
+               "its strongest); the quadtree only",
+       .acts_with = "distribution=quadtree"},
       {.key = "fast_threshold_from",
        .field = access<&M::fast_threshold_from>,
        .cli_flag = "--fast-threshold-from",
@@ -297,7 +306,8 @@ std::vector<OptionRow> make_rows() {
        .yaml_key = "ORBextractor.fastThresholdFrom",
        .help = "a block's first FAST threshold: none (the FAST threshold) or entropy (from the "
                "retry threshold at 0 bits up to the FAST threshold at 6 bits, linearly); the "
-               "engine's blocks only"},
+               "engine's blocks only",
+       .acts_with = "detection_cells=blocks"},
       {.key = "low_entropy_sharpen",
        .field = access<&M::low_entropy_sharpen>,
        .cli_flag = "--low-entropy-sharpen",

@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "aief/error.hpp"
+#include "core/options/acts_with.hpp"
 #include "core/options/option_access.hpp"
 #include "core/options/option_names.hpp"
 
@@ -248,18 +249,28 @@ void add_difference(std::string_view key, const RecordedOptions& before,
 }
 
 std::string text_of(const OptionDifference& difference) {
-  return difference.key + " " + difference.before + " -> " + difference.after;
+  // A record holds numbers at 17 digits (io/json_writer.cpp): shown by their shortest text, the
+  // one that reads back as the same number (0.7, not 0.69999999999999996).
+  const auto shown = [](const std::string& text) {
+    long long integer = 0;
+    double number = 0;
+    if (parse_integer(text, integer) || !parse_decimal(text, number)) return text;
+    return number_text(number);
+  };
+  return difference.key + " " + shown(difference.before) + " -> " + shown(difference.after);
 }
 
-ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
+ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use) {
   Mode mode = Mode::aief;
   std::string mode_named = "mode";
+  bool mode_given = false;
   const GivenOption* entropy_given = nullptr;
   for (const GivenOption& g : given) {
     if (g.row->key == "mode") {
       mode = option_names::parse<Mode>(
           std::get<std::string_view>(parse_value(*g.row, g.text, g.named)));
       mode_named = g.named;
+      mode_given = true;
     }
     if (g.row->key == "entropy") entropy_given = &g;
   }
@@ -267,7 +278,7 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
   const std::string mode_name(option_names::name_of(mode));
   // Options that need the mask and change a value (given the value the options hold, one changes
   // nothing and is no request: Extractor(**extractor.options) of an orbslam2 extractor).
-  std::vector<const GivenOption*> needing_mask;
+  std::vector<const GivenOption*> needing_mask, changed;
   for (const OptionRow& row : rows()) {
     for (const GivenOption& g : given) {
       if (g.row != &row || !row.is_field()) continue;
@@ -278,13 +289,11 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
       if (fixed && *by_mode != value)
         throw Error(mode_named + " " + mode_name + " means " + g.named + " " +
                     text_of(row, *by_mode) + ", so " + g.named + " " + g.text + " cannot apply");
-      if (row.needs_mask.empty()) {
-        row.field.set(options, value);
-        continue;
-      }
       const auto before = record_of(options);
       row.field.set(options, value);
-      if (record_of(options) != before) needing_mask.push_back(&g);
+      if (record_of(options) == before) continue;
+      changed.push_back(&g);
+      if (!row.needs_mask.empty()) needing_mask.push_back(&g);
     }
   }
   if (options.entropy == EntropyMeasure::off)
@@ -292,6 +301,10 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given) {
       throw Error(g->named + " " + std::string(g->row->needs_mask) + ", which " +
                   (entropy_given ? entropy_given->named + " off" : mode_named + " " + mode_name) +
                   " turns off: drop one of the two");
+  std::vector<Mode> reference = {mode};
+  if (!mode_given)
+    for (Mode whole : modes_given_whole(given)) reference.push_back(whole);
+  refuse_given_that_cannot_act(changed, given, options, reference, mode_named, mode, use);
   options.validate();
   return options;
 }
@@ -311,6 +324,7 @@ void ExtractorOptions::validate() const {
         "scale_factor must be > 1 and <= 4 in single precision (the pyramid computes in float), "
         "got " +
         option_table::number_text(scale_factor) + (used == 1.0f ? ", which is 1 as a float" : ""));
+  option_table::check_fields_act(*this);
   if (auto_threshold && carried_threshold)
     throw Error("auto_threshold and carried_threshold cannot both be on (one source of F)");
   if (fast_min_threshold > fast_threshold)

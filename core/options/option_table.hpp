@@ -113,6 +113,14 @@ struct Row {
   // Non-empty: the row applies only while the row `applies_with_key` holds `applies_with_value`
   // (--ratio with --matcher ratio); given otherwise, it is refused.
   std::string_view applies_with_key = {}, applies_with_value = {};
+  // The extractor's: the other fields this option needs to act, "key=value" joined by ','
+  // (fast_threshold_from: "detection_cells=blocks"); without them it does nothing. Given a value
+  // other than the one it holds, it is refused naming what it needs (resolve_options); a variant
+  // neither the defaults nor any mode hold is refused by validate() (core/options/acts_with.hpp).
+  std::string_view acts_with = {};
+  // false: the adaptive sweep (aief adapt, match --adaptive) never reads it (it tries every F
+  // itself, without the threshold fallback); given to the sweep, it is refused.
+  bool read_by_sweep = true;
 
   ValueKind kind() const { return field.kind; }
   bool is_field() const { return field.get != nullptr; }
@@ -220,10 +228,19 @@ struct Given {
 };
 using GivenOption = Given<ExtractorOptions>;
 
+// What the options are for: one extraction after another; the adaptive sweep over a pair (aief
+// adapt, match --adaptive), which chooses F itself; or aief eval's rows, which turn the
+// automatic F on per row (so the automatic F's options are taken without it).
+enum class Use { extraction, sweep, evaluation };
+
 // The extractor's resolution: the mode's values (aief unless given), then the given options in
-// table order, then validate(). Throws aief::Error for a bad value, a conflict with the mode, or
-// an option that needs the entropy mask while it is off (and would change a value).
-ExtractorOptions resolve_options(const std::vector<GivenOption>& given);
+// table order, then validate(). Throws aief::Error for a bad value, a conflict with the mode, an
+// option that needs the entropy mask while it is off, or one that cannot act with the other
+// options (acts_with) or in the sweep (read_by_sweep), when it would change a value. Without a
+// given mode, a mode whose every value is given (Extractor(**extractor.options)) is the mode
+// too: a value it sets is no request.
+ExtractorOptions resolve_options(const std::vector<GivenOption>& given,
+                                 Use use = Use::extraction);
 
 // The same for a struct without modes (MatchOptions, SweepOptions, RansacOptions): `options` (the
 // defaults unless given), the given options in table order, the applies_with rule, validate().

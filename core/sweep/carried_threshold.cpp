@@ -7,10 +7,12 @@ namespace aief {
 
 namespace {
 
-// The sweep's options: the extractor's, with F left to the sweep.
+// The sweep's options: the extractor's, with F left to the sweep (and carry_every, which acts
+// only with the carried F, at its default: core/options/acts_with.hpp).
 ExtractorOptions sweep_options(ExtractorOptions options) {
   options.carried_threshold = false;
   options.auto_threshold = false;
+  options.carry_every = ExtractorOptions{}.carry_every;
   return options;
 }
 

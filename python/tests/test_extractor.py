@@ -205,3 +205,18 @@ def test_file_names_as_path_objects_bytes_and_names_that_are_not_utf8(cli, tmp_p
     numpy.testing.assert_array_equal(aief.read_image(inputs[0][0]), expected)
     run = subprocess.run([cli, "extract", "--batch", folder, "-o", str(tmp_path / "out")], capture_output=True)
     assert run.returncode == 0 and b"1 extracted" in run.stdout, run.stdout
+
+
+# A TIFF of 64 x 64 pixels in one 16384 x 16384 deflate tile took 7.5 s and 1.11 GB through
+# aief.read_image: the decoder holds a whole tile. The tile is bounded as the image is, from the header.
+def test_read_image_refuses_a_tiff_tile_larger_than_allowed_before_decoding(tmp_path):
+    import struct
+    entries = [(256, 4, 64), (257, 4, 64), (258, 3, 8), (259, 3, 8), (262, 3, 1), (277, 3, 1), (284, 3, 1),
+               (322, 4, 16384), (323, 4, 16384), (324, 4, 8 + 2 + 10 * 12 + 4)]
+    data = b"II*\0" + struct.pack("<I", 8) + struct.pack("<H", len(entries))
+    data += b"".join(struct.pack("<HHII", tag, kind, 1, value) for tag, kind, value in entries)
+    data += struct.pack("<I", 0) + bytes(16)
+    path = tmp_path / "tile.tiff"
+    path.write_bytes(data)
+    with pytest.raises(aief.Error, match="is a TIFF of 16384x16384-pixel tiles"):
+        aief.read_image(path)

@@ -50,6 +50,18 @@ def test_extract_refuses_another_tools_features_file(cli, tmp_path, images):
     assert contents(target) == before
 
 
+# uint8 descriptors of another layout (64 x N bytes) were named "int8": numpy's names now.
+@pytest.mark.parametrize("dtype, named", [(numpy.uint8, "64 x 10 uint8"), (numpy.int8, "64 x 10 int8")])
+def test_another_tools_byte_descriptors_are_named_as_numpy_names_them(cli, tmp_path, images, dtype, named):
+    target = tmp_path / "bytes.h5"
+    superpoint_file(target)
+    with h5py.File(target, "a") as f:
+        del f["img1.png/descriptors"]
+        f["img1.png/descriptors"] = numpy.ones((64, 10), dtype)
+    result = run(cli, "extract", "--batch", images, "-o", target, "--format", "h5")
+    assert result.returncode == 1 and named + " descriptors" in result.stderr, result.stderr
+
+
 def test_extract_refuses_a_matches_file_and_match_refuses_a_features_file(cli, tmp_path, images):
     features, matches = tmp_path / "f.h5", tmp_path / "m.h5"
     pairs = tmp_path / "pairs.txt"

@@ -20,6 +20,18 @@ def other_value(row, default):
                 if name != default and name not in ("off", "sse4.2", "avx2", "avx512", "neon64"))
 
 
+# What a row needs beside it to act (its acts_with conditions the defaults do not meet).
+NEEDS = {"distribution=quadtree": dict(mode="quadtree-entropy"), "auto_threshold=on": dict(threshold="auto"),
+         "carried_threshold=on": dict(threshold="carried")}
+
+
+def companions(row):
+    beside = {}
+    for condition in filter(None, row["acts_with"].split(",")):
+        beside.update(NEEDS.get(condition, {}))
+    return beside
+
+
 @pytest.mark.parametrize("row", ROWS, ids=[row["keyword"] for row in ROWS])
 def test_every_keyword_reaches_the_options(row):
     if row["key"] == "mode":
@@ -27,10 +39,32 @@ def test_every_keyword_reaches_the_options(row):
         return
     default = aief.default_options()[row["key"]]
     value = other_value(row, default)
-    options = aief.Extractor(**{row["keyword"]: value}).options
+    beside = companions(row)
+    options = aief.Extractor(**{row["keyword"]: value}, **beside).options
     assert options[row["key"]] == value
     assert {k: v for k, v in options.items() if k != row["key"]} == {
-        k: v for k, v in aief.default_options().items() if k != row["key"]}
+        k: v for k, v in aief.Extractor(**beside).options.items() if k != row["key"]}
+
+
+# Options that cannot act with the others were accepted and did nothing: Extractor(mode='faithful',
+# fast_threshold_from='entropy') gave faithful's bytes. Refused now, naming what they need.
+@pytest.mark.parametrize("kwargs, says", [
+    (dict(mode="faithful", fast_threshold_from="entropy"),
+     "fast_threshold_from entropy does nothing unless detection_cells blocks, and mode faithful makes it orbslam"),
+    (dict(detection_cells="orbslam", fast_threshold_from="entropy"), "detection_cells orbslam is given"),
+    (dict(quadtree_weight="entropy"), "does nothing unless distribution quadtree"),
+    (dict(mode="orbslam2", quadtree_weight="entropy", quadtree_ties="orbslam"), "unless quadtree_weight none"),
+    (dict(carry_every=10), "does nothing unless carried_threshold on"),
+    (dict(mode="orbslam2", pool=2), "does nothing unless distribution proportional"),
+])
+def test_an_option_that_cannot_act_is_refused(kwargs, says):
+    with pytest.raises(aief.Error, match=says):
+        aief.Extractor(**kwargs)
+
+
+def test_the_options_of_a_variant_rebuild_it():
+    extractor = aief.Extractor(mode="faithful", quadtree_weight="entropy")
+    assert aief.Extractor(**extractor.options).options == extractor.options
 
 
 OLD = [row for row in ROWS if row["old_keyword"]]
