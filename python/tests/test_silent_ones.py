@@ -1,4 +1,4 @@
-"""Smaller silent faults of issue 32, item 6, in the Python module: an aief.Features made by
+"""Smaller silent faults in the Python module: an aief.Features made by
 Features.__new__ alone crashed when read; a carried Extractor lost its F when pickled or copied;
 one bad name to FeaturesFile.write made every later write fail; names nesting one group in another."""
 import copy
