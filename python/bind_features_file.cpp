@@ -90,10 +90,11 @@ class FeaturesFile {
              const std::array<long long, 2>& source, const PyExtractor& extractor) {
     const std::string name = filesystem_path(name_given);
     const io::SourceRecord record = source_record(name, source);
+    const Features engine = engine_features(features);
     // The group records the extractor's options: they must be the features' own.
-    require_same_descriptor(features.descriptor, "features", extractor.options().descriptor,
+    require_same_descriptor(engine.descriptor, "features", extractor.options().descriptor,
                             "the extractor");
-    open().write_features(name, engine_features(features), &record, &extractor.options());
+    open().write_features(name, engine, &record, &extractor.options());
   }
   void remove(const py::object& name) { open().remove_features(filesystem_path(name)); }
   int writes_on_disk() const { return file_ ? file_->groups_on_disk() : writes_on_disk_; }
