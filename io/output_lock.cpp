@@ -15,6 +15,9 @@
 
 #include "aief/error.hpp"
 #include "io/temporary_files.hpp"
+#ifdef AIEF_HAVE_HDF5
+#include "io/hdf5_unwritable.hpp"
+#endif
 
 namespace aief::io {
 
@@ -111,6 +114,13 @@ OutputLock::OutputLock(const std::string& output)
                       "' does not exist");
         // A folder that takes no new file takes no output either: the setting would not help.
         const bool no_new_file = code == EROFS || code == EACCES || code == EPERM;
+#ifdef AIEF_HAVE_HDF5
+        // A whole file where no lock file can be made: say why it cannot be written and that the
+        // file is fine, as opening it for writing would (io/hdf5_unwritable.hpp).
+        if (no_new_file && fs::exists(output_, ec))
+          if (const std::string whole = whole_file_not_writable(output_, ""); !whole.empty())
+            throw Error(whole);
+#endif
         throw Error("cannot write '" + output_ + "': cannot create its lock file '" + lock_path_ +
                     "' beside it: " + std::strerror(code) +
                     (no_new_file ? std::string()

@@ -58,7 +58,10 @@ class Features:
         """N int32, pyramid level."""
     @property
     def descriptors(self) -> numpy.ndarray:
-        """N x 32 uint8, rBRIEF-256."""
+        """N x 32 uint8, 256 bits: rBRIEF or the box descriptor (see descriptor)."""
+    @property
+    def descriptor(self) -> Literal["rbrief", "box"]:
+        """Which descriptor the rows hold; sets of different descriptors never match."""
     @property
     def info(self) -> ExtractionInfo:
         """How the entropy mask went (threshold used, blocks kept)."""
@@ -77,8 +80,8 @@ class Extractor:
         n_features: int = 1000,
         mode: str = "aief",
         entropy_threshold: Union[float, Literal["auto", "carried"]] = 4.0,
-        n_levels: int = 8,
-        scale_factor: float = 1.2,
+        n_levels: Optional[int] = None,
+        scale_factor: Optional[float] = None,
         threads: int = 0,
         kernels: str = "auto",
         *,
@@ -102,7 +105,7 @@ class Extractor:
         fast_threshold_from: Literal["none", "entropy"] = "none",
         low_entropy_sharpen: bool = False,
         descriptor: Literal["rbrief", "box"] = "rbrief",
-        detection_smoothing: float = 0,
+        detection_smoothing: Optional[float] = None,
         max_image_pixels: int = 67108864,
         **record_keys: Any,  # and the earlier keywords, still accepted: threshold, levels, scale, ...
     ) -> None: ...
