@@ -19,4 +19,9 @@ namespace aief {
 // image); dst does not overlap src or column_sums.
 void binomial5_row_scalar(ImageView src, int y, std::uint16_t* column_sums, std::uint8_t* dst);
 
+// The vertical pass both 5x5 kernels share (this blur and core/kernels/unsharp_row.hpp's): the
+// column sums v(x) of row y for x = -2 .. src.width + 1 into column_sums[0, src.width + 4), the
+// two outer ones on each side replicated; returns column_sums + 2, which is v(0).
+std::uint16_t* binomial5_column_sums(ImageView src, int y, std::uint16_t* column_sums);
+
 }  // namespace aief

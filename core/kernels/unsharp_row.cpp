@@ -1,5 +1,7 @@
 #include "core/kernels/unsharp_row.hpp"
 
+#include "core/kernels/binomial5_row.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <random>
@@ -14,18 +16,9 @@ namespace aief {
 void unsharp_row_scalar(ImageView src, int y, const std::int16_t* amount_q8,
                         std::uint16_t* column_sums, std::uint8_t* dst) {
   assert(!src.empty() && y >= 0 && y < src.height);
-  const int width = src.width, last_row = src.height - 1;
-  const std::uint8_t* r0 = src.row(std::max(y - 2, 0));
-  const std::uint8_t* r1 = src.row(std::max(y - 1, 0));
+  const int width = src.width;
   const std::uint8_t* r2 = src.row(y);
-  const std::uint8_t* r3 = src.row(std::min(y + 1, last_row));
-  const std::uint8_t* r4 = src.row(std::min(y + 2, last_row));
-  // v holds the column sums of x = -2 .. width + 1, the outer two on each side replicated.
-  std::uint16_t* v = column_sums + 2;
-  for (int x = 0; x < width; ++x)
-    v[x] = static_cast<std::uint16_t>(r0[x] + 4 * r1[x] + 6 * r2[x] + 4 * r3[x] + r4[x]);
-  v[-2] = v[-1] = v[0];
-  v[width] = v[width + 1] = v[width - 1];
+  const std::uint16_t* v = binomial5_column_sums(src, y, column_sums);
   for (int x = 0; x < width; ++x) {
     const std::int32_t blur = v[x - 2] + 4 * v[x - 1] + 6 * v[x] + 4 * v[x + 1] + v[x + 2];
     const std::int32_t detail = 256 * r2[x] - blur;
