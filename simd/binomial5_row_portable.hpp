@@ -15,8 +15,9 @@
 namespace aief::simd {
 inline namespace AIEF_SIMD_TARGET {
 
-template <class Arch>
-void binomial5_row(ImageView src, int y, std::uint16_t* column_sums, std::uint8_t* dst) {
+// The vertical pass both 5x5 kernels share, for the vectoriser (binomial5_column_sums' contract,
+// core/kernels/binomial5_row.hpp): column sums of row y into column_sums, v(0) returned.
+inline std::uint16_t* binomial5_vertical_pass(ImageView src, int y, std::uint16_t* column_sums) {
   const int width = src.width, last_row = src.height - 1;
   const std::uint8_t* __restrict r0 = src.row(y >= 2 ? y - 2 : 0);
   const std::uint8_t* __restrict r1 = src.row(y >= 1 ? y - 1 : 0);
@@ -28,6 +29,13 @@ void binomial5_row(ImageView src, int y, std::uint16_t* column_sums, std::uint8_
     v[x] = static_cast<std::uint16_t>(r0[x] + r4[x] + 4 * (r1[x] + r3[x]) + 6 * r2[x]);
   v[-2] = v[-1] = v[0];
   v[width] = v[width + 1] = v[width - 1];
+  return v;
+}
+
+template <class Arch>
+void binomial5_row(ImageView src, int y, std::uint16_t* column_sums, std::uint8_t* dst) {
+  const int width = src.width;
+  const std::uint16_t* __restrict v = binomial5_vertical_pass(src, y, column_sums);
   std::uint8_t* __restrict out = dst;
   for (int x = 0; x < width; ++x) {
     const std::uint32_t blur =

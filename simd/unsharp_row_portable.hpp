@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "core/kernels/unsharp_row.hpp"
+#include "simd/binomial5_row_portable.hpp"
 #include "simd/simd_support.hpp"
 
 namespace aief::simd {
@@ -20,17 +21,9 @@ inline namespace AIEF_SIMD_TARGET {
 template <class Arch>
 void unsharp_row(ImageView src, int y, const std::int16_t* amount_q8, std::uint16_t* column_sums,
                  std::uint8_t* dst) {
-  const int width = src.width, last_row = src.height - 1;
-  const std::uint8_t* __restrict r0 = src.row(y >= 2 ? y - 2 : 0);
-  const std::uint8_t* __restrict r1 = src.row(y >= 1 ? y - 1 : 0);
+  const int width = src.width;
   const std::uint8_t* __restrict r2 = src.row(y);
-  const std::uint8_t* __restrict r3 = src.row(y + 1 <= last_row ? y + 1 : last_row);
-  const std::uint8_t* __restrict r4 = src.row(y + 2 <= last_row ? y + 2 : last_row);
-  std::uint16_t* __restrict v = column_sums + 2;
-  for (int x = 0; x < width; ++x)
-    v[x] = static_cast<std::uint16_t>(r0[x] + r4[x] + 4 * (r1[x] + r3[x]) + 6 * r2[x]);
-  v[-2] = v[-1] = v[0];
-  v[width] = v[width + 1] = v[width - 1];
+  const std::uint16_t* __restrict v = binomial5_vertical_pass(src, y, column_sums);
   const std::int16_t* __restrict amount = amount_q8;
   std::uint8_t* __restrict out = dst;
   for (int x = 0; x < width; ++x) {
