@@ -23,6 +23,9 @@ import tempfile
 # arguments (a sort's comparator), so those come before the generic rows.
 STAGES = [
     ("pyramid (resize)", ["resize_bilinear", "resize_opencv"]),
+    ("detection smoothing", ["binomial5", "smooth_for_detection"]),
+    ("integral images", ["integral_image", "IntegralImage"]),
+    ("box descriptor", ["box_describe"]),
     ("entropy: block histograms", ["accumulate_histogram"]),
     ("entropy: sums and logs", ["entropy_bits", "compute_block_entropies", "__log2", "log2"]),
     ("FAST scores", ["fast9_scores_row", "compute_score_rows"]),

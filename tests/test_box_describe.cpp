@@ -14,6 +14,9 @@
 
 #include "core/kernels/box_describe.hpp"
 #include "core/kernels/integral_image.hpp"
+#include "core/kernels/integral_image_row.hpp"
+#include "core/kernels/kernel_table.hpp"
+#include "simd/kernels.hpp"
 
 namespace aief {
 namespace {
@@ -123,6 +126,44 @@ TEST(BoxDescriptor, IntegralImageSumsEveryRectangle) {
         for (int i = 0; i < x; ++i) sum += image.view().at(i, j);
       ASSERT_EQ(v.row(y)[x], sum) << x << ", " << y;
     }
+}
+
+// The row kernel (core/kernels/integral_image_row.hpp) of every set against the sums written out,
+// on widths around the vector widths and above a row near 2^32 (the entries wrap), and the
+// integral image it makes equal to the scalar one.
+TEST(BoxDescriptor, IntegralRowOfEverySetIsTheRunningSum) {
+  for (int width : {1, 2, 7, 8, 9, 15, 16, 17, 31, 33, 64, 71}) {
+    const GrayImage image = random_image(width, 3, 40 + static_cast<std::uint32_t>(width));
+    std::vector<std::uint32_t> above(static_cast<std::size_t>(width) + 1), expected(above.size());
+    for (std::size_t x = 0; x < above.size(); ++x)
+      above[x] = 0xFFFFF000u + static_cast<std::uint32_t>(x * 977u % 4096u);
+    for (int y = 0; y < image.height(); ++y) {
+      std::uint32_t sum = 0;
+      expected[0] = 0;
+      for (int x = 0; x < width; ++x) {
+        sum += image.view().at(x, y);
+        expected[static_cast<std::size_t>(x) + 1] = above[static_cast<std::size_t>(x) + 1] + sum;
+      }
+      std::vector<std::uint32_t> out(above.size(), 12345u);
+      integral_image_row_scalar(image.view().row(y), width, above.data(), out.data());
+      EXPECT_EQ(out, expected) << "scalar, width " << width;
+      for (KernelSet set : available_kernel_sets()) {
+        std::fill(out.begin(), out.end(), 12345u);
+        kernel_table(set).integral_image_row(image.view().row(y), width, above.data(), out.data());
+        EXPECT_EQ(out, expected) << to_string(set) << ", width " << width;
+      }
+    }
+  }
+  const GrayImage image = random_image(301, 29, 9);
+  IntegralImage scalar;
+  scalar.compute(image.view());
+  for (KernelSet set : available_kernel_sets()) {
+    IntegralImage other;
+    other.compute(image.view(), kernel_table(set));
+    for (int y = 0; y <= image.height(); ++y)
+      for (int x = 0; x <= image.width(); ++x)
+        ASSERT_EQ(other.view().row(y)[x], scalar.view().row(y)[x]) << to_string(set);
+  }
 }
 
 TEST(BoxDescriptor, ScalarReferenceEqualsThePixelByPixelOracle) {

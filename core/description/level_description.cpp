@@ -95,7 +95,7 @@ void LevelDescriptions::describe(const PyramidLevel& level,
 
 void LevelDescriptions::blur_level(const PyramidLevel& level, const KernelTable& kernels) {
   if (descriptor_ == DescriptorKind::box) {
-    integral_.compute(level.pixels);
+    integral_.compute(level.pixels, kernels);
     blurred_end_ = level.geometry.height;
     return;
   }

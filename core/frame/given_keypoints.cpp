@@ -100,7 +100,7 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
       scratch.descriptor_row[static_cast<std::size_t>(members[k])] =
           static_cast<std::int32_t>(first_row + k);
     if (options.descriptor == DescriptorKind::box) {  // as select() does: the level's integral
-      scratch.integral.compute(level.pixels);
+      scratch.integral.compute(level.pixels, kernels);
       scratch.box_points.clear();
       for (const PixelPoint& p : scratch.points)
         scratch.box_points.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});

@@ -12,6 +12,8 @@
 
 namespace aief {
 
+struct KernelTable;
+
 // Read-only view of an integral image: entry (y, x) at data[y * stride + x], y in [0, height],
 // x in [0, width] (width and height are the image's).
 struct IntegralView {
@@ -26,7 +28,10 @@ struct IntegralView {
 class IntegralImage {
  public:
   IntegralView view() const { return {entries_.data(), width_, height_, width_ + 1}; }
-  // Computes the integral of `image` (scalar; one add per pixel and row).
+  // Computes the integral of `image`, a row at a time by `kernels`' integral_image_row
+  // (core/kernels/integral_image_row.hpp; the same entries under every kernel set).
+  void compute(ImageView image, const KernelTable& kernels);
+  // The same with the scalar reference (tests, and inputs made outside a timed pass).
   void compute(ImageView image);
 
  private:

@@ -15,6 +15,7 @@
 #include "core/kernels/hamming_256_blocked.hpp"
 #include "core/kernels/hamming_256_many.hpp"
 #include "core/kernels/ic_moments.hpp"
+#include "core/kernels/integral_image_row.hpp"
 #include "core/kernels/positions_within_bounds.hpp"
 #include "core/kernels/rbrief_describe.hpp"
 #include "core/kernels/resize_bilinear_rows.hpp"
@@ -44,7 +45,8 @@
   X(hamming_256_blocked)        \
   X(positions_within_bounds)    \
   X(unsharp_row)                \
-  X(binomial5_row)
+  X(binomial5_row)              \
+  X(integral_image_row)
 
 namespace aief {
 
