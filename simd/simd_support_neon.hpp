@@ -34,5 +34,15 @@ inline int32x4_t multiply_add_pairs(int16x8_t a, int16x8_t b) {
   return vpaddq_s32(vmull_s16(vget_low_s16(a), vget_low_s16(b)), vmull_high_s16(a, b));
 }
 
+// A batch of uint16 lanes from as many bytes (zero-extended), and back (each lane <= 255).
+template <class Arch>
+inline xsimd::batch<std::uint16_t, Arch> load_widened(const std::uint8_t* p) {
+  return vmovl_u8(vld1_u8(p));
+}
+template <class Arch>
+inline void store_narrowed(std::uint8_t* p, const xsimd::batch<std::uint16_t, Arch>& v) {
+  vst1_u8(p, vmovn_u16(static_cast<uint16x8_t>(v)));
+}
+
 }  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

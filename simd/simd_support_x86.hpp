@@ -60,5 +60,31 @@ inline __m256i load32(const void* p) {
   return _mm256_loadu_si256(static_cast<const __m256i*>(p));
 }
 
+// A batch of uint16 lanes from as many bytes (zero-extended: vpmovzxbw), and back (each lane
+// <= 255: a pack). xsimd 8.1 has neither.
+template <class Arch>
+inline xsimd::batch<std::uint16_t, Arch> load_widened(const std::uint8_t* p) {
+  if constexpr (std::is_base_of_v<xsimd::avx512bw, Arch>) {
+    return _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)));
+  } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+    return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+  } else {
+    return _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
+  }
+}
+template <class Arch>
+inline void store_narrowed(std::uint8_t* p, const xsimd::batch<std::uint16_t, Arch>& v) {
+  if constexpr (std::is_base_of_v<xsimd::avx512bw, Arch>) {
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm512_cvtepi16_epi8(v));
+  } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+    const __m256i x = v;
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p),
+                     _mm_packus_epi16(_mm256_castsi256_si128(x), _mm256_extracti128_si256(x, 1)));
+  } else {
+    const __m128i x = v;
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(x, x));
+  }
+}
+
 }  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd
