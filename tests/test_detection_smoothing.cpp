@@ -69,16 +69,25 @@ TEST(DetectionSmoothing, SigmaRunsItsSquareInPassesAtLeastOne) {
   EXPECT_EQ(detection_smoothing_passes(3), 9);
 }
 
+// Two passes run in bands of rows (core/level/detection_smoothing.cpp): heights around the band's
+// size and its multiples, every kernel set, against one pass run on one pass's whole image.
 TEST(DetectionSmoothing, TwoPassesAreOnePassOfOnePass) {
-  const cv::Mat image = test::random_textured_image(83, 61, 7);
   const KernelTable& scalar = kernel_table(KernelSet::scalar);
-  SmoothingScratch scratch;
-  GrayImage once, twice, again;
-  smooth_for_detection(view_of_mat(image), 1, scalar, scratch, once);
-  smooth_for_detection(view_of_mat(image), 2, scalar, scratch, twice);
-  smooth_for_detection(once.view(), 1, scalar, scratch, again);
-  ASSERT_EQ(twice.width(), 83);
-  EXPECT_EQ(std::memcmp(twice.data(), again.data(), 83 * 61), 0);
+  for (int height : {5, 35, 36, 37, 61, 64, 66, 67, 97, 131}) {
+    const cv::Mat image = test::random_textured_image(83, height, 7);
+    SmoothingScratch scratch;
+    GrayImage once, again;
+    smooth_for_detection(view_of_mat(image), 1, scalar, scratch, once);
+    smooth_for_detection(once.view(), 1, scalar, scratch, again);
+    for (KernelSet set : available_kernel_sets()) {
+      GrayImage twice;
+      smooth_for_detection(view_of_mat(image), 2, kernel_table(set), scratch, twice);
+      ASSERT_EQ(twice.width(), 83);
+      ASSERT_EQ(twice.height(), height);
+      EXPECT_EQ(std::memcmp(twice.data(), again.data(), static_cast<std::size_t>(83 * height)), 0)
+          << to_string(set) << ", height " << height;
+    }
+  }
 }
 
 TEST(DetectionSmoothing, OffInEveryModeButQualityAndRefusedOutOfRange) {
