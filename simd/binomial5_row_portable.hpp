@@ -32,12 +32,14 @@ inline std::uint16_t* binomial5_vertical_pass(ImageView src, int y, std::uint16_
   return v;
 }
 
-// xsimd batches of uint16 lanes (8, 16 a step; the AVX-512 table takes the AVX2 instance): every
+// xsimd batches of uint16 lanes (8, 16 a vector; the AVX-512 table takes the AVX2 instance): every
 // sum fits (v(x) <= 4080, b(x) + 128 <= 65408), so each lane computes the reference's integers.
-// Both passes end with one vector overlapping the one before (the same values written twice)
-// instead of a scalar tail; rows narrower than a vector take the reference.
+// Two vectors a step (one pack and store for both), then one more if a whole one is left, then
+// one vector overlapping the one before (the same values written twice) instead of a scalar
+// tail; rows narrower than a vector take the reference. 4 v(x-1) + 6 v(x) + 4 v(x+1) is
+// 2 (2 (v(x-1) + v(x) + v(x+1)) + v(x)): shifts and adds, as for the column sums.
 // Callgrind, graf quality mode (AVX2, 10 levels, 2 passes): 12.14 M instructions a frame with
-// the vectoriser's loops and their scalar tails, this way 6.9 M.
+// the vectoriser's loops and their scalar tails, 9.95 M a vector a step, 8.24 M this way.
 template <class Arch>
 void binomial5_row(ImageView src, int y, std::uint16_t* column_sums, std::uint8_t* dst) {
   using U16 = xsimd::batch<std::uint16_t, Arch>;
@@ -53,25 +55,41 @@ void binomial5_row(ImageView src, int y, std::uint16_t* column_sums, std::uint8_
   const std::uint8_t* r3 = src.row(y + 1 <= last_row ? y + 1 : last_row);
   const std::uint8_t* r4 = src.row(y + 2 <= last_row ? y + 2 : last_row);
   std::uint16_t* v = column_sums + 2;
-  const U16 six(6), rounding(128);
+  // outer + 4 inner + 6 centre = outer + 2 (2 (inner + centre) + centre)
+  const auto taps = [](const U16& outer, const U16& inner, const U16& centre) {
+    return outer + ((((inner + centre) << 1) + centre) << 1);
+  };
   const auto vertical = [&](int x) {
-    const U16 outer = load_widened<Arch>(r0 + x) + load_widened<Arch>(r4 + x);
-    const U16 inner = load_widened<Arch>(r1 + x) + load_widened<Arch>(r3 + x);
-    (outer + (inner << 2) + load_widened<Arch>(r2 + x) * six).store_unaligned(v + x);
+    return taps(load_widened<Arch>(r0 + x) + load_widened<Arch>(r4 + x),
+                load_widened<Arch>(r1 + x) + load_widened<Arch>(r3 + x), load_widened<Arch>(r2 + x));
   };
   int x = 0;
-  for (; x + kLanes <= width; x += kLanes) vertical(x);
-  if (x < width) vertical(width - kLanes);
+  for (; x + 2 * kLanes <= width; x += 2 * kLanes) {
+    const U16 first = vertical(x), second = vertical(x + kLanes);
+    first.store_unaligned(v + x);
+    second.store_unaligned(v + x + kLanes);
+  }
+  if (x + kLanes <= width) {
+    vertical(x).store_unaligned(v + x);
+    x += kLanes;
+  }
+  if (x < width) vertical(width - kLanes).store_unaligned(v + width - kLanes);
   v[-2] = v[-1] = v[0];
   v[width] = v[width + 1] = v[width - 1];
+  const U16 rounding(128);
   const auto horizontal = [&](int x) {
-    const U16 outer = U16::load_unaligned(v + x - 2) + U16::load_unaligned(v + x + 2);
-    const U16 inner = U16::load_unaligned(v + x - 1) + U16::load_unaligned(v + x + 1);
-    const U16 blur = outer + (inner << 2) + U16::load_unaligned(v + x) * six;
-    store_narrowed<Arch>(dst + x, (blur + rounding) >> 8);
+    const U16 blur = taps(U16::load_unaligned(v + x - 2) + U16::load_unaligned(v + x + 2),
+                          U16::load_unaligned(v + x - 1) + U16::load_unaligned(v + x + 1),
+                          U16::load_unaligned(v + x));
+    return (blur + rounding) >> 8;
   };
-  for (x = 0; x + kLanes <= width; x += kLanes) horizontal(x);
-  if (x < width) horizontal(width - kLanes);
+  for (x = 0; x + 2 * kLanes <= width; x += 2 * kLanes)
+    store_narrowed_pair<Arch>(dst + x, horizontal(x), horizontal(x + kLanes));
+  if (x + kLanes <= width) {
+    store_narrowed<Arch>(dst + x, horizontal(x));
+    x += kLanes;
+  }
+  if (x < width) store_narrowed<Arch>(dst + width - kLanes, horizontal(width - kLanes));
 }
 
 }  // namespace AIEF_SIMD_TARGET

@@ -44,5 +44,13 @@ inline void store_narrowed(std::uint8_t* p, const xsimd::batch<std::uint16_t, Ar
   vst1_u8(p, vmovn_u16(static_cast<uint16x8_t>(v)));
 }
 
+// Two such batches, a then b, in one store.
+template <class Arch>
+inline void store_narrowed_pair(std::uint8_t* p, const xsimd::batch<std::uint16_t, Arch>& a,
+                                const xsimd::batch<std::uint16_t, Arch>& b) {
+  vst1q_u8(p, vcombine_u8(vmovn_u16(static_cast<uint16x8_t>(a)),
+                          vmovn_u16(static_cast<uint16x8_t>(b))));
+}
+
 }  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd

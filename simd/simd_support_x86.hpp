@@ -86,5 +86,20 @@ inline void store_narrowed(std::uint8_t* p, const xsimd::batch<std::uint16_t, Ar
   }
 }
 
+// Two such batches, a then b, in one store (vpackuswb and a vpermq to undo its lane order).
+template <class Arch>
+inline void store_narrowed_pair(std::uint8_t* p, const xsimd::batch<std::uint16_t, Arch>& a,
+                                const xsimd::batch<std::uint16_t, Arch>& b) {
+  if constexpr (std::is_base_of_v<xsimd::avx512bw, Arch>) {
+    store_narrowed<Arch>(p, a);
+    store_narrowed<Arch>(p + xsimd::batch<std::uint16_t, Arch>::size, b);
+  } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p),
+                        _mm256_permute4x64_epi64(_mm256_packus_epi16(a, b), 0xD8));
+  } else {
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(a, b));
+  }
+}
+
 }  // namespace AIEF_SIMD_TARGET
 }  // namespace aief::simd
