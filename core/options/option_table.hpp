@@ -12,9 +12,9 @@
 //   1. a field with its default and one comment in its struct (include/aief/options.hpp, match.hpp,
 //      adapt.hpp, homography.hpp); an enum gets its name table in core/options/option_names.hpp;
 //   2. one row in its table (core/options/extractor_option_rows.json for the extractor,
-//      core/options/matching_option_rows.json for the others): record key, CLI flag, Python keyword,
-//      help, kind and range (the extractor's: settings key, the value each mode sets), whether it
-//      changes the output;
+//      core/options/matching_option_rows.json for the others; cmake/generate_option_rows.cmake
+//      makes them C++): record key, CLI flag, Python keyword, help, kind and range (the
+//      extractor's: settings key, the value each mode sets), whether it changes the output;
 //   3. its parameter in python/aief/_aief.pyi, where the stub test says.
 // Nothing else: every front end, --help, validate() and the records pick the row up.
 //
