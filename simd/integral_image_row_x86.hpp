@@ -15,8 +15,7 @@
 #include "core/kernels/integral_image_row.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 void integral_image_row(const std::uint8_t* pixels, int width, const std::uint32_t* above,
@@ -75,5 +74,4 @@ void integral_image_row(const std::uint8_t* pixels, int width, const std::uint32
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

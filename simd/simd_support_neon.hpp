@@ -8,8 +8,7 @@
 
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 inline std::uint64_t lane_bits(const xsimd::batch_bool<std::uint8_t, Arch>& b) {
@@ -52,5 +51,4 @@ inline void store_narrowed_pair(std::uint8_t* p, const xsimd::batch<std::uint16_
                           vmovn_u16(static_cast<uint16x8_t>(b))));
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -8,8 +8,7 @@
 
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 inline std::uint64_t lane_bits(const xsimd::batch_bool<std::uint8_t, Arch>& b) {
@@ -101,5 +100,4 @@ inline void store_narrowed_pair(std::uint8_t* p, const xsimd::batch<std::uint16_
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END
