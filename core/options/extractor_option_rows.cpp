@@ -340,6 +340,18 @@ std::vector<OptionRow> make_rows() {
        .low = 0,
        .high = 3,
        .per_mode = {kDefault, kDefault, kDefault, kDefault, kDefault, "1.5"}},
+      {.key = "scale_selection",
+       .field = access<&M::scale_selection>,
+       .cli_flag = "--scale-selection",
+       .cli_value = "S",
+       .python_keyword = "scale_selection",
+       .yaml_key = "ORBextractor.scaleSelection",
+       .help = "which levels keep a corner FAST finds on several: off (every level its copy) or "
+               "extrema (a candidate stays only where no candidate of an adjacent level at the "
+               "same place is stronger); the engine's blocks only",
+       .per_mode = {kDefault, kDefault, kDefault, kDefault, kDefault, kDefault},
+       .acts_with = "detection_cells=blocks",
+       .read_by_sweep = false},
       {.key = "kernels",
        .field = access<&M::kernels>,
        .cli_flag = "--kernels",

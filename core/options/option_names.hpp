@@ -145,6 +145,13 @@ struct Table<DescriptorKind> {
                                                    {DescriptorKind::box, "box", "box"}};
 };
 
+template <>
+struct Table<ScaleSelection> {
+  static constexpr std::string_view what = "scale selection";
+  static constexpr Name<ScaleSelection> names[] = {{ScaleSelection::off, "off", "off"},
+                                                   {ScaleSelection::extrema, "extrema", "extrema"}};
+};
+
 // The name of `value`; "?" for a value outside the table (an invalid cast).
 template <class Enum>
 std::string_view name_of(Enum value) {

@@ -94,6 +94,14 @@ enum class DescriptorKind {
            // core/kernels/box_describe.hpp)
 };
 
+// Which pyramid level keeps a corner that FAST finds on several (docs/design.md §5, "Scale
+// selection").
+enum class ScaleSelection {
+  off,     // every level keeps its own candidates, each level its budget N_n (ORB, ORB-SLAM)
+  extrema, // a candidate stays only where its strength is not beaten by a candidate of an
+           // adjacent level at the same place (core/detection/scale_selection.hpp)
+};
+
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
   aief,              // AIEF with six measured departures (docs/design.md §11; the defaults below)
@@ -185,6 +193,9 @@ struct ExtractorOptions {
   // Blur in one image of a pair moves FAST's corners and scores; smoothing both measures them on
   // alike pixels (docs/evaluation.md, "Hard families").
   double detection_smoothing = 0;
+  // Scale selection (core/detection/scale_selection.hpp): off in every mode (measured worse,
+  // docs/evaluation.md "Scale selection").
+  ScaleSelection scale_selection = ScaleSelection::off;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
@@ -213,6 +224,7 @@ std::string_view to_string(Orientation value);
 std::string_view to_string(QuadtreeWeight value);
 std::string_view to_string(FastThresholdFrom value);
 std::string_view to_string(DescriptorKind value);
+std::string_view to_string(ScaleSelection value);
 Distribution parse_distribution(std::string_view name);
 EntropyMeasure parse_entropy_measure(std::string_view name);
 KernelSet parse_kernel_set(std::string_view name);

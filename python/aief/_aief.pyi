@@ -106,6 +106,7 @@ class Extractor:
         low_entropy_sharpen: bool = False,
         descriptor: Literal["rbrief", "box"] = "rbrief",
         detection_smoothing: Optional[float] = None,
+        scale_selection: Literal["off", "extrema"] = "off",
         max_image_pixels: int = 67108864,
         **record_keys: Any,  # and the earlier keywords, still accepted: threshold, levels, scale, ...
     ) -> None: ...
