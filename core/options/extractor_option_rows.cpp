@@ -72,7 +72,7 @@ std::vector<OptionRow> make_rows() {
        .low = 1,
        .high = 4,
        .low_is_open = true,
-       .per_mode = {"", "", "", "", "", "1.15"}},
+       .per_mode = {"", "", "", "", "", "1.1"}},
       {.key = "n_levels",
        .field = access<&M::n_levels>,
        .cli_flag = "--n-levels",
@@ -85,7 +85,7 @@ std::vector<OptionRow> make_rows() {
        .help = "pyramid levels",
        .low = 1,
        .high = 32,
-       .per_mode = {"", "", "", "", "", "10"}},
+       .per_mode = {"", "", "", "", "", "18"}},
       {.key = "fast_threshold",
        .field = access<&M::fast_threshold>,
        .cli_flag = "--fast-threshold",
@@ -327,7 +327,8 @@ std::vector<OptionRow> make_rows() {
        .help = "the 256-bit descriptor: rbrief (ORB's learned pattern on the blurred level) or box "
                "(learned box-average tests on the level's integral image, TEBLID's form; a SLAM "
                "vocabulary trained on rbrief needs retraining for it); files of different "
-               "descriptors never match"},
+               "descriptors never match",
+       .per_mode = {"", "", "", "", "", "box"}},
       {.key = "detection_smoothing",
        .field = access<&M::detection_smoothing>,
        .cli_flag = "--detection-smoothing",

@@ -109,7 +109,8 @@ enum class Mode {
   orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
   faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells and octree tie-breaks
-  quality,           // aief with FAST on smoothed levels and a finer pyramid (1.15, 10 levels):
+  quality,           // aief with FAST on smoothed levels, a finer pyramid (1.1, 18 levels) and the
+                     // box descriptor:
                      // for offline mapping, docs/evaluation.md "Hard families"
 };
 
@@ -184,8 +185,8 @@ struct ExtractorOptions {
   // sharpened (an unsharp mask whose amount falls with the block's entropy, blended between
   // blocks; core/entropy/low_entropy_sharpen.hpp); orientation and descriptors read the level itself.
   bool low_entropy_sharpen = false;
-  // The descriptor. rbrief in every mode (ORB-SLAM's vocabularies are trained on it); box is the
-  // learned box descriptor (a vocabulary trained on rBRIEF needs retraining for it).
+  // The descriptor. rbrief in every mode but quality (ORB-SLAM's vocabularies are trained on it);
+  // box is the learned box descriptor (a vocabulary trained on rBRIEF needs retraining for it).
   DescriptorKind descriptor = DescriptorKind::rbrief;
   // Detection on a smoothed level (core/level/detection_smoothing.hpp): FAST reads each level (its
   // sharpened copy with low_entropy_sharpen) blurred to about this sigma, px, by passes of the 5x5
