@@ -340,6 +340,10 @@ std::optional<ImageHeader> read_image_header(const std::uint8_t* bytes, std::siz
   if (b.starts_with("\x59\xA6\x6A\x95"))
     return make("Sun raster", b.big_endian(4, 4), b.big_endian(8, 4));
   if (b.starts_with("#?RADIANCE") || b.starts_with("#?RGBE")) return hdr_header(b);
+  // OpenCV asks its DICOM decoder (GDCM) after the formats above and before its JPEG 2000 ones,
+  // so bytes of a JPEG 2000 start that also carry DICOM's signature ("DICM" at offset 128) go to
+  // GDCM, which aborts the process on a damaged file. aief does not read DICOM: refused here.
+  if (b.starts_with("DICM", 128)) return std::nullopt;
   if (b.starts_with(std::string_view("\0\0\0\x0CjP  \r\n\x87\n", 12))) return jp2_header(b);
   if (b.starts_with("\xFF\x4F\xFF\x51")) return j2k_header(b, 0);
   return std::nullopt;

@@ -140,6 +140,16 @@ class FeaturesFile {
 #endif
 
 }  // namespace
+}  // namespace aief::python
+
+// A FeaturesFile made by __new__ alone is refused, not read (python/constructed_only.hpp).
+namespace pybind11::detail {
+template <>
+class type_caster<aief::python::FeaturesFile>
+    : public aief::python::ConstructedOnlyCaster<aief::python::FeaturesFile> {};
+}  // namespace pybind11::detail
+
+namespace aief::python {
 
 void bind_features_file(py::module_& m) {
   py::class_<FeaturesFile>(
@@ -178,7 +188,14 @@ void bind_features_file(py::module_& m) {
                file.close();
              } catch (const std::exception&) {
              }
-           });
+           })
+      // An open file is no value to send to another process (and Python's default reduction
+      // of a pybind11 object aborted the interpreter): refused by name.
+      .def("__reduce__", [](const py::object&) -> py::object {
+        throw Error("an aief.FeaturesFile (an open file) cannot be pickled or copied: send its "
+                    "path and open it where it is needed");
+      })
+      .def("__reduce_ex__", [](const py::object& self, int) { return self.attr("__reduce__")(); });
 }
 
 }  // namespace aief::python

@@ -8,10 +8,12 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "aief/adapt.hpp"
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
 #include "io/record_fields.hpp"
+#include "python/constructed_only.hpp"
 
 namespace aief::python {
 
@@ -50,8 +52,8 @@ struct PyFeatures {
   DescriptorKind descriptor = DescriptorKind::rbrief;  // what `descriptors` holds
 };
 PyFeatures to_python(const Features& features);
-// The aief.Features `object` holds; aief.Error when it holds none: made by Features.__new__
-// alone, which constructs nothing (reading its arrays crashed).
+// The aief.Features `object` holds; aief.Error when it is none (or holds none: made by
+// Features.__new__ alone, see python/constructed_only.hpp).
 const PyFeatures& features_of(const py::handle& object);
 
 // A result record (Features.info, AdaptResult.curve's rows) as a dict: its field list's keys and
@@ -94,3 +96,14 @@ void bind_pickling(py::module_& m);
 void bind_testing(py::module_& m);
 
 }  // namespace aief::python
+
+// Their objects made by __new__ alone are refused, not read (python/constructed_only.hpp).
+namespace pybind11::detail {
+template <>
+class type_caster<aief::python::PyFeatures> : public aief::python::ConstructedOnlyCaster<aief::python::PyFeatures> {};
+}  // namespace pybind11::detail
+
+namespace pybind11::detail {
+template <>
+class type_caster<aief::AdaptResult> : public aief::python::ConstructedOnlyCaster<aief::AdaptResult> {};
+}  // namespace pybind11::detail

@@ -8,12 +8,10 @@
 namespace aief::python {
 
 const PyFeatures& features_of(const py::handle& object) {
-  auto* instance = reinterpret_cast<py::detail::instance*>(object.ptr());
-  if (!py::isinstance<PyFeatures>(object) || !instance->get_value_and_holder().holder_constructed())
-    throw Error(
-        "this aief.Features holds nothing: it was made by Features.__new__, not by extract(), "
-        "describe() or unpickling");
-  return object.cast<const PyFeatures&>();
+  if (!py::isinstance<PyFeatures>(object))
+    throw Error("expected aief.Features, got " +
+                std::string(py::str(py::type::of(object).attr("__name__"))));
+  return object.cast<const PyFeatures&>();  // refuses one made by __new__ alone
 }
 
 PyFeatures to_python(const Features& features) {

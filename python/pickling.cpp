@@ -159,19 +159,20 @@ AdaptResult adapt_result_from(const py::bytes& state) {
 }
 
 // Pickle protocols 0 and 1 do not go through __getstate__ alone: Python's default reduction for
-// them (copyreg._reduce_ex) builds the object by calling its base's constructor, which a pybind11
-// class cannot do (it aborted the interpreter: "instance allocation failed"). Every protocol gets
-// the reduction protocol 2 makes: copyreg.__newobj__(type) (an instance not yet constructed), then
-// __setstate__(state).
+// them (copyreg._reduce_ex, also what a direct obj.__reduce__() runs) builds the object by
+// calling its base's constructor, which a pybind11 class cannot do (it aborted the interpreter:
+// "instance allocation failed"). Every protocol, and __reduce__, gets the reduction protocol 2
+// makes: copyreg.__newobj__(type) (an instance not yet constructed), then __setstate__(state).
+py::tuple reduction(const py::object& self) {
+  return py::make_tuple(py::module_::import("copyreg").attr("__newobj__"),
+                        py::make_tuple(py::type::of(self)), self.attr("__getstate__")());
+}
+
 template <class Class>
 void reduce_for_every_protocol(Class& cls) {
-  cls.def(
-      "__reduce_ex__",
-      [](const py::object& self, int /*protocol*/) {
-        return py::make_tuple(py::module_::import("copyreg").attr("__newobj__"),
-                              py::make_tuple(py::type::of(self)), self.attr("__getstate__")());
-      },
-      py::arg("protocol"));
+  cls.def("__reduce_ex__", [](const py::object& self, int /*protocol*/) { return reduction(self); },
+          py::arg("protocol"));
+  cls.def("__reduce__", &reduction);
 }
 
 }  // namespace

@@ -33,3 +33,8 @@ class PyExtractor {
 };
 
 }  // namespace aief::python
+
+namespace pybind11::detail {
+template <>
+class type_caster<aief::python::PyExtractor> : public aief::python::ConstructedOnlyCaster<aief::python::PyExtractor> {};
+}  // namespace pybind11::detail

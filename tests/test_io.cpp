@@ -1,5 +1,6 @@
 // Image reading (conversions, clear errors) and result files (JSON, OpenCV YAML read back).
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -127,6 +128,28 @@ std::vector<std::uint8_t> bytes_of(const std::string& path) {
   return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)),
                                    std::istreambuf_iterator<char>());
 }
+
+// OpenCV hands bytes carrying DICOM's signature ("DICM" at offset 128) to GDCM before its JPEG 2000
+// decoders, and GDCM aborts the process on a damaged file (the fuzzer's finding, kept in
+// fuzz/corpus/image_bytes/regression_dicom_signature): such bytes are refused before decoding.
+TEST(ImageIo, BytesOpenCvWouldHandToItsDicomDecoderAreRefused) {
+  std::vector<std::uint8_t> jpeg2000;
+  ASSERT_TRUE(cv::imencode(".jp2", test::random_image(64, 64, 1), jpeg2000));
+  ASSERT_GT(jpeg2000.size(), 132u);
+  EXPECT_EQ(io::decode_gray_image(jpeg2000, "plain.jp2").width(), 64);
+  std::memcpy(jpeg2000.data() + 128, "DICM", 4);
+  try {
+    io::decode_gray_image(jpeg2000, "dicom_signature.jp2");
+    ADD_FAILURE() << "decoded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not an image aief can read"), std::string::npos)
+        << e.what();
+  }
+  const std::string finding =
+      std::string(AIEF_DATA_DIR) + "/../fuzz/corpus/image_bytes/regression_dicom_signature";
+  EXPECT_THROW(io::decode_gray_image(bytes_of(finding), finding), Error);
+}
+
 
 TEST(ImageHeader, ReadsTheSizeEveryFormatDeclaresAndSurvivesEveryCut) {
   // OpenCV's encoders are the oracle: what they write at 37 x 33, the parser reads back.

@@ -21,6 +21,45 @@ def test_a_features_made_by_new_alone_raises_instead_of_crashing():
     assert "holding nothing" in repr(empty)
 
 
+@pytest.mark.parametrize("name", ["Extractor", "AdaptResult", "FeaturesFile", "Features"])
+def test_every_class_made_by_new_alone_raises_in_every_method_and_property(name):
+    # pybind11 handed such an object's methods raw memory: Extractor.__new__(...).options and
+    # AdaptResult's properties crashed the interpreter. Every attribute bound in C++ is tried
+    # (the Python-level ones call them).
+    cls = getattr(aief, name)
+    empty = cls.__new__(cls)
+    bound = [a for a in dir(cls) if (not a.startswith("_") or a in ("__len__", "__getstate__"))
+             and type(getattr(cls, a)).__name__ in ("property", "instancemethod")]
+    assert len(bound) >= 4
+    for attribute in bound:
+        with pytest.raises(aief.Error, match="holds nothing"):
+            value = getattr(empty, attribute)
+            for count in range(8):  # as many arguments as it takes (`self` is checked first)
+                try:
+                    value(*[None] * count)
+                except TypeError:
+                    continue
+
+
+def test_reduce_called_directly_reduces_as_pickle_does():
+    # object.__reduce__ (copyreg._reduce_ex) aborted the interpreter on a pybind11 class.
+    extractor = aief.Extractor(n_features=300)
+    function, arguments, state = extractor.__reduce__()
+    rebuilt = function(*arguments)
+    rebuilt.__setstate__(state)
+    assert rebuilt.options == extractor.options
+    for protocol in range(pickle.HIGHEST_PROTOCOL + 1):
+        assert pickle.loads(pickle.dumps(extractor, protocol)).options == extractor.options
+
+
+def test_an_open_features_file_is_not_pickled(tmp_path):
+    with aief.FeaturesFile(str(tmp_path / "f.h5")) as file:
+        for copying in (lambda: file.__reduce__(), lambda: pickle.dumps(file),
+                        lambda: copy.deepcopy(file)):
+            with pytest.raises(aief.Error, match="cannot be pickled"):
+                copying()
+
+
 def test_a_carried_extractor_is_not_pickled_or_copied_after_its_first_frame():
     extractor = aief.Extractor(threshold="carried")
     copy.deepcopy(extractor)  # before its first frame a copy is the same extractor
