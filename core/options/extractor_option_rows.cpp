@@ -350,7 +350,6 @@ std::vector<OptionRow> make_rows() {
        .help = "which levels keep a corner FAST finds on several: off (every level its copy) or "
                "extrema (a candidate stays only where no candidate of an adjacent level at the "
                "same place is stronger); the engine's blocks only",
-       .per_mode = {kDefault, kDefault, kDefault, kDefault, kDefault, kDefault},
        .acts_with = "detection_cells=blocks",
        .read_by_sweep = false},
       {.key = "kernels",
