@@ -86,17 +86,11 @@ void register_extract_benchmarks() {
     for (const Variant& variant : kQualityParts) {
       const std::string name =
           "extract/aief+" + std::string(variant.name) + "/avx2/t1/" + image.name;
-      benchmark::RegisterBenchmark(name.c_str(), [gray, variant](benchmark::State& state) {
-        ExtractorOptions options = options_for_mode(Mode::aief);
-        variant.apply(options);
-        options.kernels = KernelSet::avx2;
-        options.threads = 1;
-        Extractor extractor(options);
-        Features features;
-        for (auto _ : state) extractor.extract(view_of(*gray), features);
-        state.counters["keypoints"] = static_cast<double>(features.keypoints.size());
-        state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
-      })->Unit(benchmark::kMillisecond);
+      ExtractorOptions options = options_for_mode(Mode::aief);
+      variant.apply(options);
+      options.kernels = KernelSet::avx2;
+      options.threads = 1;
+      register_extract(name, gray, options);
     }
     // AKAZE with OpenCV's defaults, detectAndCompute (the quality mode's speed target).
     benchmark::RegisterBenchmark(

@@ -101,6 +101,21 @@ std::string benchmark_name(const char* kernel, const std::string& variant,
   return std::string(kernel) + "/" + variant + "/" + image;
 }
 
+// A descriptor kernel's benchmark: one pass of describe(out) over the keypoints an iteration,
+// 32 bytes a keypoint; items are the keypoints.
+template <class Describe>
+void register_describe(const std::string& name, std::shared_ptr<const Level0Keypoints> keypoints,
+                       Describe describe) {
+  benchmark::RegisterBenchmark(name.c_str(), [keypoints, describe](benchmark::State& state) {
+    std::vector<std::uint8_t> out(keypoints->points.size() * 32);
+    for (auto _ : state) {
+      describe(out.data());
+      benchmark::DoNotOptimize(out.data());
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<long long>(keypoints->points.size()));
+  });
+}
+
 void register_kernel_benchmarks() {
   for (const NamedImage& image : benchmark_images()) {
     const auto pyramid = std::make_shared<Pyramid>(make_pyramid(image.gray));
@@ -164,33 +179,20 @@ void register_kernel_benchmarks() {
                                      state.SetItemsProcessed(state.iterations() * pyramid->pixels);
                                    });
       // Items are keypoints: rbrief and box per keypoint, same keypoints, same run.
-      benchmark::RegisterBenchmark(
-          benchmark_name(kRbrief, variant, image.name).c_str(),
-          [keypoints, kernels](benchmark::State& state) {
-            std::vector<std::uint8_t> out(keypoints->points.size() * 32);
-            for (auto _ : state) {
-              kernels->rbrief_describe(keypoints->blurred.view(), keypoints->points.data(),
-                                       keypoints->angles_deg.data(),
-                                       static_cast<int>(keypoints->points.size()), out.data());
-              benchmark::DoNotOptimize(out.data());
-            }
-            state.SetItemsProcessed(state.iterations() *
-                                    static_cast<long long>(keypoints->points.size()));
-          });
-      benchmark::RegisterBenchmark(
-          benchmark_name(kBox, variant, image.name).c_str(),
-          [keypoints, kernels](benchmark::State& state) {
-            std::vector<std::uint8_t> out(keypoints->points.size() * 32);
-            for (auto _ : state) {
-              kernels->box_describe(keypoints->integral.view(), keypoints->box_points.data(),
-                                    keypoints->angles_deg.data(),
-                                    static_cast<int>(keypoints->box_points.size()), kBoxLevelScale,
-                                    out.data());
-              benchmark::DoNotOptimize(out.data());
-            }
-            state.SetItemsProcessed(state.iterations() *
-                                    static_cast<long long>(keypoints->points.size()));
-          });
+      register_describe(benchmark_name(kRbrief, variant, image.name), keypoints,
+                        [keypoints, kernels](std::uint8_t* out) {
+                          kernels->rbrief_describe(keypoints->blurred.view(),
+                                                   keypoints->points.data(),
+                                                   keypoints->angles_deg.data(),
+                                                   static_cast<int>(keypoints->points.size()), out);
+                        });
+      register_describe(benchmark_name(kBox, variant, image.name), keypoints,
+                        [keypoints, kernels](std::uint8_t* out) {
+                          kernels->box_describe(
+                              keypoints->integral.view(), keypoints->box_points.data(),
+                              keypoints->angles_deg.data(),
+                              static_cast<int>(keypoints->box_points.size()), kBoxLevelScale, out);
+                        });
       benchmark::RegisterBenchmark(benchmark_name(kHistogram, variant, image.name).c_str(),
                                    [pyramid, kernels](benchmark::State& state) {
                                      std::uint32_t hist[256];

@@ -3,16 +3,14 @@
 # initializer list of core/kernels/box_describe.hpp's BoxTest, so the engine needs no file at run
 # time. The threshold, a decimal with at most two decimals, becomes an integer in hundredths, so the
 # kernel compares in integers (exact in every build). Called at configure time by core/CMakeLists.txt.
+include(${CMAKE_CURRENT_LIST_DIR}/data_table_lines.cmake)
+
 function(aief_generate_box_table input output)
-  file(STRINGS "${input}" lines)
+  aief_data_table_lines("${input}" lines)
   get_filename_component(name "${input}" NAME_WE)
   set(body "")
   set(count 0)
   foreach(line IN LISTS lines)
-    string(STRIP "${line}" line)
-    if(line STREQUAL "" OR line MATCHES "^#")
-      continue()
-    endif()
     math(EXPR count "${count} + 1")
     string(REGEX REPLACE "[ \t]+" ";" fields "${line}")
     list(LENGTH fields field_count)

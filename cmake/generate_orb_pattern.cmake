@@ -1,18 +1,15 @@
 # Turns data/orb_pattern_31.txt (the learned ORB pattern, kept as data) into a C++ initializer
 # list, so the engine needs no file at run time. Called at configure time by core/CMakeLists.txt.
+include(${CMAKE_CURRENT_LIST_DIR}/data_table_lines.cmake)
+
 function(aief_generate_orb_pattern input output)
-  file(STRINGS "${input}" lines)
+  aief_data_table_lines("${input}" lines)
   set(body "")
-  set(count 0)
   foreach(line IN LISTS lines)
-    string(STRIP "${line}" line)
-    if(line STREQUAL "" OR line MATCHES "^#")
-      continue()
-    endif()
     string(REGEX REPLACE "[ \t]+" ", " values "${line}")
     string(APPEND body "    {${values}},\n")
-    math(EXPR count "${count} + 1")
   endforeach()
+  list(LENGTH lines count)
   if(NOT count EQUAL 256)
     message(FATAL_ERROR "${input}: expected 256 pattern lines, found ${count}")
   endif()

@@ -19,38 +19,33 @@ void JsonWriter::before_value() {
   }
 }
 
-JsonWriter& JsonWriter::begin_object() {
+JsonWriter& JsonWriter::open(char bracket) {
   before_value();
-  out_ << '{';
+  out_ << bracket;
   first_.push_back(true);
   return *this;
 }
 
-JsonWriter& JsonWriter::end_object() {
+JsonWriter& JsonWriter::close(char bracket) {
   const bool empty = first_.back();
   first_.pop_back();
   if (!empty && static_cast<int>(first_.size()) < newline_depth_)
     out_ << '\n' << std::string(first_.size() * 2, ' ');
-  out_ << '}';
+  out_ << bracket;
+  return *this;
+}
+
+JsonWriter& JsonWriter::begin_object() { return open('{'); }
+
+JsonWriter& JsonWriter::end_object() {
+  close('}');
   if (first_.empty()) out_ << '\n';
   return *this;
 }
 
-JsonWriter& JsonWriter::begin_array() {
-  before_value();
-  out_ << '[';
-  first_.push_back(true);
-  return *this;
-}
+JsonWriter& JsonWriter::begin_array() { return open('['); }
 
-JsonWriter& JsonWriter::end_array() {
-  const bool empty = first_.back();
-  first_.pop_back();
-  if (!empty && static_cast<int>(first_.size()) < newline_depth_)
-    out_ << '\n' << std::string(first_.size() * 2, ' ');
-  out_ << ']';
-  return *this;
-}
+JsonWriter& JsonWriter::end_array() { return close(']'); }
 
 JsonWriter& JsonWriter::key(std::string_view name) {
   value(name);

@@ -39,6 +39,9 @@ class JsonWriter {
 
  private:
   void before_value();
+  // A container's opening and closing bracket, '{' / '}' or '[' / ']'.
+  JsonWriter& open(char bracket);
+  JsonWriter& close(char bracket);
   std::ostream& out_;
   std::vector<bool> first_;  // per open container: no element written yet
   bool after_key_ = false;

@@ -1,7 +1,7 @@
 #pragma once
 // The record of a pair group in matches.h5 (aief match --pairs): the matcher options it was
-// matched with (their option record, core/options/matching_option_rows.cpp) and what it matched, each
-// image's features as the features file records them (the group's option record and source,
+// matched with (their option record, core/options/matching_option_rows.json) and what it matched,
+// each image's features as the features file records them (the group's option record and source,
 // io/hdf5_file.hpp). A resumed run keeps a pair only when both are the same, and redoes it
 // otherwise, as extract --batch redoes an image whose options or file changed: matches of
 // re-extracted features, or of another matcher, are never kept.
@@ -32,10 +32,9 @@ struct PairRecord {
 template <>
 struct RecordFields<PairRecord> {
   using R = PairRecord;
-  static constexpr auto list =
-      std::tuple{field("matcher", &R::matcher), field("options0", &R::options0),
-                 field("options1", &R::options1), field("source0", &R::source0),
-                 field("source1", &R::source1)};
+  static constexpr auto list = std::tuple{AIEF_RECORD_FIELD(matcher), AIEF_RECORD_FIELD(options0),
+                                          AIEF_RECORD_FIELD(options1), AIEF_RECORD_FIELD(source0),
+                                          AIEF_RECORD_FIELD(source1)};
 };
 
 // Not defaulted: installed headers stay C++17 (tests/consumer builds with it).

@@ -7,8 +7,9 @@
 // the stub's TypedDicts to the lists.
 //
 // A record's list is a specialisation of RecordFields<Record> holding `list`, a tuple of
-// field("key", &Record::member); the lists of the engine's records are below, aief eval's rows'
-// beside PairResult (tools/eval/methods.hpp).
+// field("key", &Record::member), AIEF_RECORD_FIELD(member) where the key is the member's name; the
+// lists of the engine's records are below, aief eval's rows' beside PairResult
+// (tools/eval/methods.hpp).
 #include <cstddef>
 #include <string_view>
 #include <tuple>
@@ -34,6 +35,10 @@ constexpr RecordField<Record, T> field(std::string_view key, T Record::*member) 
 
 template <class Record>
 struct RecordFields;  // specialised per record: static constexpr auto list = std::tuple{...};
+
+// field("member", &R::member) in a specialisation whose `R` is the record: a field whose key is
+// its member's name (every field so far), the name written once.
+#define AIEF_RECORD_FIELD(member) ::aief::io::field(#member, &R::member)
 
 // visit(key, value) for each field of `record`, in the list's order (value const if record is).
 template <class Record, class Visit>
@@ -67,37 +72,33 @@ constexpr std::size_t field_list_size() {
 template <>
 struct RecordFields<ExtractionInfo> {
   using R = ExtractionInfo;
-  static constexpr auto list =
-      std::tuple{field("entropy_threshold_requested", &R::entropy_threshold_requested),
-                 field("entropy_threshold_used", &R::entropy_threshold_used),
-                 field("threshold_lowered", &R::threshold_lowered),
-                 field("image_entropy_bits", &R::image_entropy_bits),
-                 field("blocks_total", &R::blocks_total),
-                 field("blocks_kept", &R::blocks_kept),
-                 field("auto_threshold_effectiveness", &R::auto_threshold_effectiveness)};
+  static constexpr auto list = std::tuple{AIEF_RECORD_FIELD(entropy_threshold_requested),
+                                          AIEF_RECORD_FIELD(entropy_threshold_used),
+                                          AIEF_RECORD_FIELD(threshold_lowered),
+                                          AIEF_RECORD_FIELD(image_entropy_bits),
+                                          AIEF_RECORD_FIELD(blocks_total),
+                                          AIEF_RECORD_FIELD(blocks_kept),
+                                          AIEF_RECORD_FIELD(auto_threshold_effectiveness)};
 };
 
 // One threshold of the adaptive sweep: AdaptResult::curve.
 template <>
 struct RecordFields<SweepPoint> {
   using R = SweepPoint;
-  static constexpr auto list = std::tuple{field("threshold", &R::threshold),
-                                          field("kept_blocks", &R::kept_blocks),
-                                          field("kept_blocks_b", &R::kept_blocks_b),
-                                          field("keypoints_a", &R::keypoints_a),
-                                          field("keypoints_b", &R::keypoints_b),
-                                          field("putative", &R::putative),
-                                          field("inliers", &R::inliers),
-                                          field("cmr", &R::cmr),
-                                          field("eligible", &R::eligible)};
+  static constexpr auto list =
+      std::tuple{AIEF_RECORD_FIELD(threshold),     AIEF_RECORD_FIELD(kept_blocks),
+                 AIEF_RECORD_FIELD(kept_blocks_b), AIEF_RECORD_FIELD(keypoints_a),
+                 AIEF_RECORD_FIELD(keypoints_b),   AIEF_RECORD_FIELD(putative),
+                 AIEF_RECORD_FIELD(inliers),       AIEF_RECORD_FIELD(cmr),
+                 AIEF_RECORD_FIELD(eligible)};
 };
 
 // One putative match: aief match's JSON rows, the columns of Python's match arrays (M x 3).
 template <>
 struct RecordFields<Match> {
   using R = Match;
-  static constexpr auto list = std::tuple{
-      field("query", &R::query), field("train", &R::train), field("distance", &R::distance)};
+  static constexpr auto list =
+      std::tuple{AIEF_RECORD_FIELD(query), AIEF_RECORD_FIELD(train), AIEF_RECORD_FIELD(distance)};
 };
 
 }  // namespace aief::io

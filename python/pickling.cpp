@@ -24,6 +24,12 @@ std::string layout_tag() {
          std::to_string(sizeof(Homography));
 }
 
+// The engine's Features in a state (AdaptResult's two): one list for writing and reading.
+template <class State, class FeaturesRef>
+void features_fields(State& state, FeaturesRef& f) {
+  state.fields(f.image_width, f.image_height, f.keypoints, f.descriptors, f.info, f.descriptor);
+}
+
 class StateWriter {
  public:
   StateWriter() { put_string(layout_tag()); }
@@ -42,9 +48,25 @@ class StateWriter {
     put(static_cast<std::uint64_t>(text.size()));
     bytes_ += text;
   }
+  // Each value in order, as its type is written (StateReader::fields reads them back).
+  template <typename... T>
+  void fields(const T&... values) {
+    (field(values), ...);
+  }
   py::bytes bytes() const { return py::bytes(bytes_); }
 
  private:
+  template <typename T>
+  void field(const T& value) {
+    put(value);
+  }
+  template <typename T>
+  void field(const std::vector<T>& values) {
+    put_vector(values);
+  }
+  void field(const std::string& text) { put_string(text); }
+  void field(const Features& features) { features_fields(*this, features); }
+
   std::string bytes_;
 };
 
@@ -77,6 +99,11 @@ class StateReader {
     if (size > bytes_.size() - at_) cut_short();
     return std::string(take(size), size);
   }
+  // Each value in order, read as StateWriter::fields wrote it.
+  template <typename... T>
+  void fields(T&... values) {
+    (field(values), ...);
+  }
   void expect_end() const {
     if (at_ != bytes_.size())
       throw Error(std::string("cannot unpickle aief.") + what_ + ": trailing bytes");
@@ -92,68 +119,45 @@ class StateReader {
   [[noreturn]] void cut_short() const {
     throw Error(std::string("cannot unpickle aief.") + what_ + ": the state is cut short");
   }
+  template <typename T>
+  void field(T& value) {
+    value = get<T>();
+  }
+  template <typename T>
+  void field(std::vector<T>& values) {
+    values = get_vector<T>();
+  }
+  void field(std::string& text) { text = get_string(); }
+  void field(Features& features) {
+    features_fields(*this, features);
+    if (features.descriptors.size() != features.keypoints.size())
+      throw Error(std::string("cannot unpickle aief.") + what_ +
+                  ": keypoints and descriptors differ in number");
+  }
 
   std::string bytes_;
   const char* what_;
   std::size_t at_ = 0;
 };
 
-void put_features(StateWriter& out, const Features& features) {
-  out.put(features.image_width);
-  out.put(features.image_height);
-  out.put_vector(features.keypoints);
-  out.put_vector(features.descriptors);
-  out.put(features.info);
-  out.put(features.descriptor);
-}
-
-Features get_features(StateReader& in) {
-  Features features;
-  features.image_width = in.get<int>();
-  features.image_height = in.get<int>();
-  features.keypoints = in.get_vector<Keypoint>();
-  features.descriptors = in.get_vector<Descriptor>();
-  features.info = in.get<ExtractionInfo>();
-  features.descriptor = in.get<DescriptorKind>();
-  if (features.descriptors.size() != features.keypoints.size())
-    throw Error("cannot unpickle aief.AdaptResult: keypoints and descriptors differ in number");
-  return features;
+// AdaptResult's state: one list for writing and reading.
+template <class State, class Result>
+void adapt_result_fields(State& state, Result& r) {
+  state.fields(r.found, r.threshold, r.chosen_index, r.image_entropy_bits, r.curve, r.features_a,
+               r.features_b, r.matches, r.homography.found, r.homography.H,
+               r.homography.inlier_mask, r.homography.inliers, r.homography.failure);
 }
 
 py::bytes adapt_result_state(const AdaptResult& r) {
   StateWriter out;
-  out.put(r.found);
-  out.put(r.threshold);
-  out.put(r.chosen_index);
-  out.put(r.image_entropy_bits);
-  out.put_vector(r.curve);
-  put_features(out, r.features_a);
-  put_features(out, r.features_b);
-  out.put_vector(r.matches);
-  out.put(r.homography.found);
-  out.put(r.homography.H);
-  out.put_vector(r.homography.inlier_mask);
-  out.put(r.homography.inliers);
-  out.put_string(r.homography.failure);
+  adapt_result_fields(out, r);
   return out.bytes();
 }
 
 AdaptResult adapt_result_from(const py::bytes& state) {
   StateReader in(state, "AdaptResult");
   AdaptResult r;
-  r.found = in.get<bool>();
-  r.threshold = in.get<double>();
-  r.chosen_index = in.get<int>();
-  r.image_entropy_bits = in.get<double>();
-  r.curve = in.get_vector<SweepPoint>();
-  r.features_a = get_features(in);
-  r.features_b = get_features(in);
-  r.matches = in.get_vector<Match>();
-  r.homography.found = in.get<bool>();
-  r.homography.H = in.get<Homography>();
-  r.homography.inlier_mask = in.get_vector<std::uint8_t>();
-  r.homography.inliers = in.get<int>();
-  r.homography.failure = in.get_string();
+  adapt_result_fields(in, r);
   in.expect_end();
   return r;
 }

@@ -189,10 +189,10 @@ def _rotation(angle_deg, scale):
     return a, b
 
 
-def responses(pyramid, kps, geometry, integral_mode="level", chunk=512):
-    """mean(box 1) - mean(box 2) per keypoint and test: float32, len(kps) x len(geometry)."""
-    geometry = np.asarray(geometry, dtype=np.int64).reshape(-1, 5)
-    out = np.empty((len(kps), len(geometry)), dtype=np.float32)
+def _by_level(pyramid, kps, integral_mode):
+    """Per level read: the rows of its keypoints, and box_sums(g) of tests g (float32, n x 5) at
+    them: [(sums, areas) of box 1, (sums, areas) of box 2], each len(rows) x n, as the engine
+    places the boxes (rotated and scaled about the keypoint, rounded to pixels)."""
     levels, centres, scales = placements(pyramid, kps, integral_mode)
     for n in np.unique(levels):
         rows = np.flatnonzero(levels == n)
@@ -201,40 +201,38 @@ def responses(pyramid, kps, geometry, integral_mode="level", chunk=512):
         x = centres[rows, 0].astype(np.float32)[:, None]
         y = centres[rows, 1].astype(np.float32)[:, None]
         a, b = a[:, None], b[:, None]
-        for start in range(0, len(geometry), chunk):
-            g = geometry[start:start + chunk].astype(np.float32)
-            means = []
+        scale = scales[rows, None].astype(np.float32)
+
+        def box_sums(g):
+            radius = np.rint(scale * g[:, 4]).astype(np.int64)
+            sums = []
             for px, py in ((g[:, 0], g[:, 1]), (g[:, 2], g[:, 3])):
                 cx = np.rint(x + (px * a - py * b)).astype(np.int64)
                 cy = np.rint(y + (px * b + py * a)).astype(np.int64)
-                radius = np.rint(scales[rows, None].astype(np.float32) * g[:, 4]).astype(np.int64)
-                s, area = _box_sums(integral, cx, cy, radius)
-                means.append(s / area)
-            out[rows, start:start + chunk] = means[0] - means[1]
+                sums.append(_box_sums(integral, cx, cy, radius))
+            return sums
+
+        yield rows, box_sums
+
+
+def responses(pyramid, kps, geometry, integral_mode="level", chunk=512):
+    """mean(box 1) - mean(box 2) per keypoint and test: float32, len(kps) x len(geometry)."""
+    geometry = np.asarray(geometry, dtype=np.int64).reshape(-1, 5)
+    out = np.empty((len(kps), len(geometry)), dtype=np.float32)
+    for rows, box_sums in _by_level(pyramid, kps, integral_mode):
+        for start in range(0, len(geometry), chunk):
+            (s1, a1), (s2, a2) = box_sums(geometry[start:start + chunk].astype(np.float32))
+            out[rows, start:start + chunk] = s1 / a1 - s2 / a2
     return out
 
 
 def describe(pyramid, kps, table, integral_mode="level"):
     """Bits (len(kps) x len(table), uint8 0/1), the engine's test exactly in integers."""
-    geometry = table.geometry.astype(np.int64)
+    geometry = table.geometry.astype(np.float32)
     hundredths = np.rint(table.thresholds * 100).astype(np.int64)
     bits = np.empty((len(kps), len(table)), dtype=np.uint8)
-    levels, centres, scales = placements(pyramid, kps, integral_mode)
-    for n in np.unique(levels):
-        rows = np.flatnonzero(levels == n)
-        integral = pyramid.integral(int(n))
-        a, b = _rotation(kps.angle[rows].astype(np.float32), scales[rows].astype(np.float32))
-        x = centres[rows, 0].astype(np.float32)[:, None]
-        y = centres[rows, 1].astype(np.float32)[:, None]
-        a, b = a[:, None], b[:, None]
-        g = geometry.astype(np.float32)
-        radius = np.rint(scales[rows, None].astype(np.float32) * g[:, 4]).astype(np.int64)
-        sums = []
-        for px, py in ((g[:, 0], g[:, 1]), (g[:, 2], g[:, 3])):
-            cx = np.rint(x + (px * a - py * b)).astype(np.int64)
-            cy = np.rint(y + (px * b + py * a)).astype(np.int64)
-            sums.append(_box_sums(integral, cx, cy, radius))
-        (s1, a1), (s2, a2) = sums
+    for rows, box_sums in _by_level(pyramid, kps, integral_mode):
+        (s1, a1), (s2, a2) = box_sums(geometry)
         bits[rows] = (100 * s1 * a2 - 100 * s2 * a1 <= hundredths * a1 * a2)
     return bits
 

@@ -64,7 +64,20 @@ HELD_OUT_IMAGES = ["data/samples/leuven/img1.png", GRACE]
 
 DEFAULTS = dict(seed=31, warps=12, candidates=2500, positives=200, integral="level",
                 n_features=1000, shrinkage=0.1, max_threshold=12.0,
-                lighting=0.7, max_correlation=1.0, loss="pair", rate=0.05)
+                lighting=0.7, max_correlation=1.0, loss="pair", rate=0.05, refresh=8)
+
+# The numeric flags of `train` (flag, type, help), each defaulting to DEFAULTS under its name.
+TRAIN_FLAGS = (
+    ("--warps", int, "random pairs per image"),
+    ("--candidates", int, "size of the random pool of box pairs"),
+    ("--positives", int, "at most this many positive pairs per image pair"),
+    ("--shrinkage", float, "damping of the boosting's reweighting (1: plain AdaBoost)"),
+    ("--refresh", int, "score every candidate every N rounds, the best 256 between (1: exact)"),
+    ("--max-correlation", float, "largest |correlation| of a new bit with a chosen one (1: no limit)"),
+    ("--rate", float, "triplet loss: weight exp(-rate x margin in bits)"),
+    ("--max-threshold", float, "largest |threshold| a test may take (mean gray levels)"),
+    ("--lighting", float, "probability of a lighting change in a training pair"),
+)
 
 
 def import_aief():
@@ -307,26 +320,12 @@ def main(argv=None):
         p.add_argument("--images", nargs="+", help="training images (default: the built-in list)")
         if name == "train":
             p.add_argument("--out", default="data/box_descriptor/aief_256.txt")
-            p.add_argument("--warps", type=int, default=DEFAULTS["warps"], help="random pairs per image")
-            p.add_argument("--candidates", type=int, default=DEFAULTS["candidates"],
-                           help="size of the random pool of box pairs")
-            p.add_argument("--positives", type=int, default=DEFAULTS["positives"],
-                           help="at most this many positive pairs per image pair")
-            p.add_argument("--shrinkage", type=float, default=DEFAULTS["shrinkage"],
-                           help="damping of the boosting's reweighting (1: plain AdaBoost)")
-            p.add_argument("--refresh", type=int, default=8,
-                           help="score every candidate every N rounds, the best 256 between (1: exact)")
-            p.add_argument("--max-correlation", type=float, default=DEFAULTS["max_correlation"],
-                           help="largest |correlation| of a new bit with a chosen one (1: no limit)")
+            for flag, kind, text in TRAIN_FLAGS:
+                p.add_argument(flag, type=kind, default=DEFAULTS[flag[2:].replace("-", "_")],
+                               help=text)
             p.add_argument("--loss", choices=["pair", "triplet"], default=DEFAULTS["loss"],
                            help="pair: AdaBoost on labelled pairs (BEBLID); triplet: weights by "
                                 "the margin of anchor-positive-negative triplets (TEBLID)")
-            p.add_argument("--rate", type=float, default=DEFAULTS["rate"],
-                           help="triplet loss: weight exp(-rate x margin in bits)")
-            p.add_argument("--max-threshold", type=float, default=DEFAULTS["max_threshold"],
-                           help="largest |threshold| a test may take (mean gray levels)")
-            p.add_argument("--lighting", type=float, default=DEFAULTS["lighting"],
-                           help="probability of a lighting change in a training pair")
         else:
             p.add_argument("tables", nargs="+", help="table files to compare")
             p.add_argument("--oxford", help="a folder of Oxford sequences (<seq>/img1..6, H1toNp)")

@@ -18,8 +18,7 @@
 
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace histogram_detail {
 
@@ -87,5 +86,4 @@ void accumulate_histogram(const std::uint8_t* data, std::ptrdiff_t stride, int w
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -12,8 +12,7 @@
 #include "core/kernels/binomial5_row.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 // The vertical pass both 5x5 kernels share, for the vectoriser (binomial5_column_sums' contract,
 // core/kernels/binomial5_row.hpp): column sums of row y into column_sums, v(0) returned.
@@ -44,5 +43,4 @@ void binomial5_row(ImageView src, int y, std::uint16_t* column_sums, std::uint8_
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -3,51 +3,38 @@
 //   1. the 512 box centres in float lanes with exactly the scalar contract's operations
 //      (multiply, multiply, subtract or add, add the position, round half to even), so they are
 //      the same integers; stored as the offset of each box's top-left integral entry, box 1 and
-//      box 2 of test t side by side (as simd/rbrief_portable.hpp lays out its samples), while the
-//      lanes keep the smallest and largest box edge;
+//      box 2 of test t side by side (simd/point_pair_pattern.hpp, as rbrief_describe's samples),
+//      while the lanes keep the smallest and largest box edge;
 //   2. when no box is clipped (edges inside the image), the 256 tests with plain loads: four
 //      entries a box at offsets fixed for the call (the radius is), S1 - S2 against the test's
 //      threshold in integers, floor(threshold * A / 100), fixed for the call too; the bit shifted
 //      into the descriptor word, last test first. A keypoint with a clipped box takes the scalar
 //      reference (a few per cent of them, near the level's edges).
-// No hardware gathers, for rbrief_describe's reason (simd/rbrief_portable.hpp): on Zen 4 a gather
-// costs more than its scalar loads.
+// No hardware gathers, for rbrief_describe's reason (simd/rbrief_describe_portable.hpp): on Zen 4 a
+// gather costs more than its scalar loads.
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 
 #include "core/kernels/box_describe.hpp"
+#include "simd/point_pair_pattern.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace box_detail {
 
 constexpr int kBoxes = 2 * kBoxTests;
-constexpr int box_one(int t) { return 2 * t; }
-constexpr int box_two(int t) { return 2 * t + 1; }
 
-// The table's box centres as two float arrays, test t's at box_one(t) and box_two(t).
-struct BoxPattern {
-  alignas(64) float x[kBoxes], y[kBoxes];
-};
-
-inline const BoxPattern& box_pattern() {
-  static const BoxPattern interleaved = [] {
-    BoxPattern p{};
-    const BoxTest* table = box_table();
-    for (int t = 0; t < kBoxTests; ++t) {
-      p.x[box_one(t)] = table[t].x1;
-      p.y[box_one(t)] = table[t].y1;
-      p.x[box_two(t)] = table[t].x2;
-      p.y[box_two(t)] = table[t].y2;
-    }
-    return p;
-  }();
-  return interleaved;
+// The table's box centres, test t's two boxes side by side.
+inline const PointPairPattern<kBoxTests>& box_pattern() {
+  static const auto pattern = point_pair_pattern<kBoxTests>([table = box_table()](int t) {
+    return std::array<int, 4>{table[t].x1, table[t].y1, table[t].x2, table[t].y2};
+  });
+  return pattern;
 }
 
 // floor(a / b) for b > 0.
@@ -63,10 +50,8 @@ void box_describe(IntegralView integral, const BoxPoint* points, const float* an
   using F32 = xsimd::batch<float, Arch>;
   using I32 = xsimd::batch<std::int32_t, Arch>;
   constexpr int kLanes = static_cast<int>(F32::size);
-  using box_detail::box_one;
-  using box_detail::box_two;
   using box_detail::kBoxes;
-  const box_detail::BoxPattern& pattern = box_detail::box_pattern();
+  const PointPairPattern<kBoxTests>& pattern = box_detail::box_pattern();
   const BoxTest* table = box_table();
   const std::ptrdiff_t stride = integral.stride;
   // The call's radii (scale is fixed), each box's, and per test the offsets of the other three
@@ -78,7 +63,7 @@ void box_describe(IntegralView integral, const BoxPoint* points, const float* an
   for (int t = 0; t < kBoxTests; ++t) {
     const long r = std::lrint(scale * static_cast<float>(table[t].radius));
     const long side = 2 * r + 1;
-    radius[box_one(t)] = radius[box_two(t)] = static_cast<std::int32_t>(r);
+    radius[first_point(t)] = radius[second_point(t)] = static_cast<std::int32_t>(r);
     right[t] = side;
     below[t] = side * stride;
     threshold[t] = static_cast<std::int32_t>(
@@ -126,8 +111,8 @@ void box_describe(IntegralView integral, const BoxPoint* points, const float* an
       std::uint64_t bits = 0;
 #pragma GCC unroll 8
       for (int t = 64 * w + 63; t >= 64 * w; --t) {
-        const std::uint32_t* one = entries + offset[box_one(t)];
-        const std::uint32_t* two = entries + offset[box_two(t)];
+        const std::uint32_t* one = entries + offset[first_point(t)];
+        const std::uint32_t* two = entries + offset[second_point(t)];
         const std::ptrdiff_t dx = right[t], dy = below[t];
         const std::uint32_t sum_one = one[dy + dx] - one[dy] - one[dx] + one[0];  // modulo 2^32
         const std::uint32_t sum_two = two[dy + dx] - two[dy] - two[dx] + two[0];
@@ -140,5 +125,4 @@ void box_describe(IntegralView integral, const BoxPoint* points, const float* an
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

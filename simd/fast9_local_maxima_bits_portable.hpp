@@ -8,8 +8,7 @@
 #include "core/kernels/fast9_local_maxima_bits.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 // The next narrower x86 arch, whose vectors fit a run too short for Arch's (void: none).
 template <class Arch>
@@ -101,5 +100,4 @@ void fast9_local_maxima_bits(const std::uint8_t* above, const std::uint8_t* row,
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -21,8 +21,7 @@
 #include "core/kernels/fast9_scores_row.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 // Lowest (Lower = true) or highest value of the best arc of 9: max over arcs of the arc's min,
 // or min over arcs of the arc's max. ring(k) loads ring pixel k: each pixel is loaded where it
@@ -76,5 +75,4 @@ void fast9_scores_row(const std::uint8_t* center, std::ptrdiff_t stride, int x_b
   if (x < x_end) batch_at(x_end - N);  // one overlapping last batch: same values rewritten
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -5,8 +5,7 @@
 
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 namespace blur_detail {
 
 // Vertical sums v (0..65280) are stored as the int16 v - kBias (|v - kBias| <= 32640), so the
@@ -14,5 +13,4 @@ namespace blur_detail {
 constexpr std::int16_t kBias = 32640;
 
 }  // namespace blur_detail
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

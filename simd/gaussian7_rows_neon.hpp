@@ -8,8 +8,7 @@
 #include "simd/gaussian7_rows_bias.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace blur_detail {
 
@@ -50,5 +49,4 @@ struct Vec {
 
 }  // namespace blur_detail
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -30,8 +30,7 @@
 #include "simd/gaussian7_rows_x86.hpp"
 #endif
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace blur_detail {
 
@@ -233,5 +232,4 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

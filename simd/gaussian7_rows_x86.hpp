@@ -8,14 +8,21 @@
 #include "simd/gaussian7_rows_bias.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace blur_detail {
 
-// The operations every width has alike, from its intrinsics' prefix P (_mm, _mm256, _mm512)
-// and its width B: loads and stores of int16 lanes, broadcasts, and the lane-wise arithmetic.
-#define AIEF_BLUR_VEC_OPERATIONS(P, B)                                                            \
+// What every width has alike, from its intrinsics' prefix P (_mm, _mm256, _mm512), its width B
+// and the asm constraint of its registers: the register type, its u16 lanes (kColumns, also the
+// outputs of one horizontal step), a barrier the compiler cannot see through (opaque), loads and
+// stores of int16 lanes, broadcasts, and the lane-wise arithmetic.
+#define AIEF_BLUR_VEC_OPERATIONS(P, B, REGISTER)                                                  \
+  using V = __m##B##i;                                                                            \
+  static constexpr int kColumns = B / 16;                                                         \
+  static V opaque(V v) {                                                                          \
+    __asm__("" : REGISTER(v));                                                                    \
+    return v;                                                                                     \
+  }                                                                                               \
   static V load(const std::int16_t* p) { return P##_loadu_si##B(reinterpret_cast<const V*>(p)); } \
   static void store(std::int16_t* p, V v) { P##_storeu_si##B(reinterpret_cast<V*>(p), v); }       \
   static V set16(int v) { return P##_set1_epi16(static_cast<short>(v)); }                         \
@@ -35,17 +42,11 @@ struct Vec;
 
 template <class Arch>
 struct Vec<Arch, 128> {
-  using V = __m128i;
-  static constexpr int kColumns = 8;           // u16 lanes; also the outputs of one horizontal step
+  AIEF_BLUR_VEC_OPERATIONS(_mm, 128, "+x")
   static constexpr bool kMaskedTail = false;   // the last step of a span overlaps the one before
   static constexpr bool kPairedStores = true;  // output_pairs and store_output_pairs
   static V columns(const std::uint8_t* p) {
     return _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
-  }
-  AIEF_BLUR_VEC_OPERATIONS(_mm, 128)
-  static V opaque(V v) {
-    __asm__("" : "+x"(v));
-    return v;
   }
   // even = outputs x, x + 2, ...; odd = x + 1, x + 3, ..., each as S + 2^15 - 2^23 in int32
   // lanes: bits 16..31 hold the output - 128 as an int16, so one arithmetic shift, a word blend
@@ -74,17 +75,11 @@ struct Vec<Arch, 128> {
 #if defined(__AVX2__)
 template <class Arch>
 struct Vec<Arch, 256> {
-  using V = __m256i;
-  static constexpr int kColumns = 16;
+  AIEF_BLUR_VEC_OPERATIONS(_mm256, 256, "+x")
   static constexpr bool kMaskedTail = false;
   static constexpr bool kPairedStores = true;
   static V columns(const std::uint8_t* p) {
     return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-  }
-  AIEF_BLUR_VEC_OPERATIONS(_mm256, 256)
-  static V opaque(V v) {
-    __asm__("" : "+x"(v));
-    return v;
   }
   static void store_outputs(std::uint8_t* out, V even, V odd) {
     const V pairs = _mm256_blend_epi16(_mm256_srai_epi32(even, 16), odd, 0xAA);
@@ -113,16 +108,10 @@ struct Vec<Arch, 256> {
 // step and none narrower than 32 outputs falls back to scalar code.
 template <class Arch>
 struct Vec<Arch, 512> {
-  using V = __m512i;
-  static constexpr int kColumns = 32;
+  AIEF_BLUR_VEC_OPERATIONS(_mm512, 512, "+v")
   static constexpr bool kMaskedTail = true;
   static V columns(const std::uint8_t* p) {
     return _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)));
-  }
-  AIEF_BLUR_VEC_OPERATIONS(_mm512, 512)
-  static V opaque(V v) {
-    __asm__("" : "+v"(v));
-    return v;
   }
   // The outputs in the low byte of each word, in order (the 128-bit form's (e - 128, o - 128)
   // pairs, xor 0x80); vpmovwb narrows them without a lane shuffle.
@@ -145,5 +134,4 @@ struct Vec<Arch, 512> {
 
 }  // namespace blur_detail
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

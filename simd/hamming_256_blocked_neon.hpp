@@ -11,8 +11,7 @@
 #include "core/kernels/hamming_256_blocked.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 void hamming_256_blocked(const std::uint8_t* query, const std::uint32_t* blocked, int n_blocks,
@@ -36,5 +35,4 @@ void hamming_256_blocked(const std::uint8_t* query, const std::uint32_t* blocked
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -13,8 +13,7 @@
 #include "core/kernels/hamming_256_blocked.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 #if defined(__AVX512VPOPCNTDQ__)
 // One block (16 trains) per iteration: 8 loads, XORs, popcounts and adds, one narrowing store.
@@ -84,5 +83,4 @@ void hamming_256_blocked(const std::uint8_t* query, const std::uint32_t* blocked
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

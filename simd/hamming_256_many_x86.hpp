@@ -8,8 +8,7 @@
 
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int n_train,
@@ -39,5 +38,4 @@ void hamming_256_many(const std::uint8_t* query, const std::uint8_t* train, int 
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -5,9 +5,9 @@
 #include <cstdint>
 
 #include "core/kernels/ic_moments.hpp"
+#include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 inline constexpr int kDiscRows = 2 * kPatchRadius + 1;
 
@@ -37,5 +37,4 @@ inline void for_each_disc_point(ImageView level, const PixelPoint* points, int n
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -10,8 +10,7 @@
 #include "simd/ic_moments_disc.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* m10,
@@ -86,5 +85,4 @@ void ic_moments(ImageView level, const PixelPoint* points, int n, std::int32_t* 
   });
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -10,8 +10,7 @@
 
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 int positions_within_bounds(const std::uint16_t* distances, const std::int16_t* train_bounds, int n,
@@ -49,5 +48,4 @@ int positions_within_bounds(const std::uint16_t* distances, const std::int16_t* 
   return count;
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -3,7 +3,7 @@
 //   1. the 512 rotated sample offsets, in float lanes with exactly the scalar contract's
 //      operations (multiply, multiply, subtract or add, round half to even), so they are the
 //      same integers; stored as signed byte offsets from the keypoint (dy * stride + dx), laid
-//      out as p_sample / q_sample say;
+//      out as simd/point_pair_pattern.hpp says (a test's two samples side by side);
 //   2. the 256 tests with plain loads: two 32-bit loads give a test's offsets, a byte load and a
 //      compare against the other byte in memory its result, and the compare's carry is shifted
 //      into the descriptor word (adc), last test first, so test i lands on bit i % 64 of word
@@ -14,49 +14,32 @@
 // Callgrind (AVX2, graf, 1000 keypoints): 3.00 M instructions with p and q offsets side by side
 // in one 64-bit load (split by a move and a shift) and the carry through _addcarry_u64 (GCC 12
 // stores its result to the stack after every test), 2.38 M this way.
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 
 #include "core/kernels/rbrief_describe.hpp"
+#include "simd/point_pair_pattern.hpp"
 #include "simd/simd_support.hpp"
 
 #if !defined(__aarch64__)
 #include <immintrin.h>
 #endif
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace rbrief_detail {
 
 constexpr int kTests = 256;
 constexpr int kSamples = 2 * kTests;
 
-// Test t's samples sit side by side, p0 q0 p1 q1 ...: two plain loads on x86-64, one ldpsw on
-// AArch64 (qemu, bench/kernel_instructions.py, 875 points: 3.52 M neon64 instructions with the
-// p samples first and the q samples after them, 3.28 M side by side; the same on x86-64).
-constexpr int p_sample(int t) { return 2 * t; }
-constexpr int q_sample(int t) { return 2 * t + 1; }
-
-// The learned pattern's points as two float arrays, test t's at p_sample(t) and q_sample(t).
-struct SamplePattern {
-  alignas(64) float x[kSamples], y[kSamples];
-};
-
-inline const SamplePattern& sample_pattern() {
-  static const SamplePattern interleaved = [] {
-    SamplePattern s{};
-    const std::int8_t(*pattern)[4] = orb_pattern_31();
-    for (int i = 0; i < kTests; ++i) {
-      s.x[p_sample(i)] = pattern[i][0];
-      s.y[p_sample(i)] = pattern[i][1];
-      s.x[q_sample(i)] = pattern[i][2];
-      s.y[q_sample(i)] = pattern[i][3];
-    }
-    return s;
-  }();
-  return interleaved;
+// The learned pattern's samples, test t's two side by side.
+inline const PointPairPattern<kTests>& sample_pattern() {
+  static const auto pattern = point_pair_pattern<kTests>([samples = orb_pattern_31()](int t) {
+    return std::array<int, 4>{samples[t][0], samples[t][1], samples[t][2], samples[t][3]};
+  });
+  return pattern;
 }
 
 // 2 * bits + (p < q): on x86-64 a compare of p against q in memory and an adc of its carry (the
@@ -78,7 +61,7 @@ void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* a
   using F32 = xsimd::batch<float, Arch>;
   using I32 = xsimd::batch<std::int32_t, Arch>;
   using rbrief_detail::kSamples;
-  const rbrief_detail::SamplePattern& pattern = rbrief_detail::sample_pattern();
+  const PointPairPattern<rbrief_detail::kTests>& pattern = rbrief_detail::sample_pattern();
   const float kRadiansPerDegree = static_cast<float>(3.14159265358979323846 / 180.0);
   const std::ptrdiff_t stride = blurred.stride;
   const I32 step(static_cast<std::int32_t>(stride));
@@ -101,13 +84,12 @@ void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* a
       std::uint64_t bits = 0;
 #pragma GCC unroll 16
       for (int t = 64 * w + 63; t >= 64 * w; --t)
-        bits = rbrief_detail::shift_in_less(bits, center[offset[rbrief_detail::p_sample(t)]],
-                                            center[offset[rbrief_detail::q_sample(t)]]);
+        bits = rbrief_detail::shift_in_less(bits, center[offset[first_point(t)]],
+                                            center[offset[second_point(t)]]);
       words[w] = bits;
     }
     std::memcpy(descriptors + static_cast<std::ptrdiff_t>(k) * 32, words, sizeof words);
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -6,9 +6,9 @@
 #include <cstdint>
 
 #include "core/kernels/resize_bilinear_rows.hpp"
+#include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 // Group g's 16 source bytes start at start[g]; half h's 16 shuffle bytes are at
 // shuffle[h] + 16 g, its 8 int16 weights at weight[h] + 8 g.
@@ -43,5 +43,4 @@ inline void resize_rows_by_groups(ImageView src, const ResizePlan& plan, Mutable
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -12,8 +12,7 @@
 #include "simd/resize_bilinear_rows_groups.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace resize_neon_detail {
 
@@ -55,5 +54,4 @@ void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageVie
       });
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

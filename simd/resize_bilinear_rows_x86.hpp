@@ -22,32 +22,27 @@
 #include "simd/resize_bilinear_rows_groups.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace resize_detail {
 
 // 4 outputs per 128-bit lane, in 32-bit lanes: (h0 (256 - wy) + h1 wy + 32768) >> 16 with
-// h0, h1 the horizontal sums of the top and bottom row (see the header comment).
-template <class Arch>
-inline __m128i bilinear4(__m128i top, __m128i bottom, __m128i shuffle, __m128i wx, __m128i wy) {
-  const __m128i h0 = _mm_madd_epi16(_mm_shuffle_epi8(top, shuffle), wx);
-  const __m128i h1 = _mm_madd_epi16(_mm_shuffle_epi8(bottom, shuffle), wx);
-  const __m128i pair = _mm_xor_si128(_mm_or_si128(h0, _mm_slli_epi32(h1, 16)),
-                                     _mm_set1_epi32(static_cast<int>(0x80008000u)));
-  return _mm_srli_epi32(
-      _mm_add_epi32(_mm_madd_epi16(pair, wy), _mm_set1_epi32((1 << 23) + (1 << 15))), 16);
-}
-
-template <class Arch>
-inline __m256i bilinear4(__m256i top, __m256i bottom, __m256i shuffle, __m256i wx, __m256i wy) {
-  const __m256i h0 = _mm256_madd_epi16(_mm256_shuffle_epi8(top, shuffle), wx);
-  const __m256i h1 = _mm256_madd_epi16(_mm256_shuffle_epi8(bottom, shuffle), wx);
-  const __m256i pair = _mm256_xor_si256(_mm256_or_si256(h0, _mm256_slli_epi32(h1, 16)),
-                                        _mm256_set1_epi32(static_cast<int>(0x80008000u)));
-  return _mm256_srli_epi32(
-      _mm256_add_epi32(_mm256_madd_epi16(pair, wy), _mm256_set1_epi32((1 << 23) + (1 << 15))), 16);
-}
+// h0, h1 the horizontal sums of the top and bottom row (see the header comment). Written once for
+// both widths, from the intrinsics' prefix P (_mm, _mm256) and the register width B.
+#define AIEF_RESIZE_BILINEAR4(P, B)                                                            \
+  template <class Arch>                                                                        \
+  inline __m##B##i bilinear4(__m##B##i top, __m##B##i bottom, __m##B##i shuffle, __m##B##i wx, \
+                             __m##B##i wy) {                                                   \
+    const __m##B##i h0 = P##_madd_epi16(P##_shuffle_epi8(top, shuffle), wx);                   \
+    const __m##B##i h1 = P##_madd_epi16(P##_shuffle_epi8(bottom, shuffle), wx);                \
+    const __m##B##i pair = P##_xor_si##B(P##_or_si##B(h0, P##_slli_epi32(h1, 16)),             \
+                                         P##_set1_epi32(static_cast<int>(0x80008000u)));       \
+    return P##_srli_epi32(                                                                     \
+        P##_add_epi32(P##_madd_epi16(pair, wy), P##_set1_epi32((1 << 23) + (1 << 15))), 16);   \
+  }
+AIEF_RESIZE_BILINEAR4(_mm, 128)
+AIEF_RESIZE_BILINEAR4(_mm256, 256)
+#undef AIEF_RESIZE_BILINEAR4
 
 }  // namespace resize_detail
 
@@ -99,5 +94,4 @@ void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageVie
       });
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -20,9 +20,9 @@
 
 #include "core/kernels/resize_bilinear_rows.hpp"
 #include "simd/resize_bilinear_rows_x86.hpp"
+#include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 void resize_bilinear_rows_avx512(ImageView src, const ResizePlan& plan, MutableImageView dst,
@@ -62,5 +62,4 @@ void resize_bilinear_rows_avx512(ImageView src, const ResizePlan& plan, MutableI
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

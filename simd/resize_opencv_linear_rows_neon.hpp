@@ -12,8 +12,7 @@
 #include "core/kernels/resize_opencv_linear_rows.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace resize_opencv_neon_detail {
 
@@ -70,5 +69,4 @@ void resize_opencv_linear_rows(ImageView src, const OpenCvResizePlan& plan, Muta
   resize_opencv_rows_with(src, plan, dst, y_begin, y_end, horizontal, vertical);
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

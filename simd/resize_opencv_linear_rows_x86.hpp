@@ -18,8 +18,7 @@
 #include "core/kernels/resize_opencv_linear_rows.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 namespace resize_opencv_detail {
 
@@ -110,5 +109,4 @@ void resize_opencv_linear_rows(ImageView src, const OpenCvResizePlan& plan, Muta
           std::uint8_t* out) { vertical_row<Arch>(top, bottom, b0, b1, plan.dst_width, out); });
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

@@ -20,14 +20,20 @@
 #error "simd kernels are compiled only in the per-instruction-set units, simd/kernels_<set>.cpp"
 #endif
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+// Every simd/ header opens and closes that namespace with these, written once here.
+#define AIEF_SIMD_NAMESPACE_BEGIN \
+  namespace aief::simd {          \
+  inline namespace AIEF_SIMD_TARGET {
+#define AIEF_SIMD_NAMESPACE_END \
+  }                             \
+  }
+
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 using U8 = xsimd::batch<std::uint8_t, Arch>;
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END
 
 #if defined(__aarch64__)
 #include "simd/simd_support_neon.hpp"

@@ -15,8 +15,7 @@
 #include "simd/binomial5_row_portable.hpp"
 #include "simd/simd_support.hpp"
 
-namespace aief::simd {
-inline namespace AIEF_SIMD_TARGET {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 template <class Arch>
 void unsharp_row(ImageView src, int y, const std::int16_t* amount_q8, std::uint16_t* column_sums,
@@ -35,5 +34,4 @@ void unsharp_row(ImageView src, int y, const std::int16_t* amount_q8, std::uint1
   }
 }
 
-}  // namespace AIEF_SIMD_TARGET
-}  // namespace aief::simd
+AIEF_SIMD_NAMESPACE_END

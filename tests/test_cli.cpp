@@ -89,7 +89,7 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --auto-two-classes yes", "--auto-two-classes"},
       {"eval --dataset . --ranking harris", "unknown candidate ranking"},
       {"eval --dataset . --methods orb", "unknown method"},
-      // eval's matcher flags are the match rows' (core/options/matching_option_rows.cpp), as in match.
+      // eval's matcher flags are the match rows' (core/options/matching_option_rows.json), as in match.
       {"eval --dataset . --matcher flann", "unknown matcher 'flann' for --matcher"},
       {"eval --dataset . --ratio 0.7", "--ratio applies to --matcher ratio only"},
       // eval's extractor flags are the extractor rows' but those each row sets itself.

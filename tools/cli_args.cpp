@@ -83,6 +83,15 @@ int Args::get_int(const std::string& name, int fallback, int min, int max) const
   return static_cast<int>(value);
 }
 
+std::optional<Args> command_args(const std::vector<std::string>& tokens, std::vector<FlagSpec> spec,
+                                 void (*print_help)()) {
+  spec.push_back({"--help", "-h", false});
+  Args args(tokens, spec);
+  if (!args.has("--help")) return args;
+  print_help();
+  return std::nullopt;
+}
+
 namespace {
 
 // --help's lines of `Options`' flags: the flag and its placeholder, then the help (the names of a

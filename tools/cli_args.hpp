@@ -46,6 +46,11 @@ class Args {
   std::vector<std::string> positionals_;
 };
 
+// A command's arguments read by `spec` with -h/--help added. Asked for help, prints it
+// (`print_help`) and returns nothing: the command ends there, successfully.
+std::optional<Args> command_args(const std::vector<std::string>& tokens, std::vector<FlagSpec> spec,
+                                 void (*print_help)());
+
 // The flags of an options struct's rows (core/options/option_table.hpp: MatchOptions,
 // SweepOptions), the options they set over `base` (throws UsageError), and their --help lines with
 // the defaults.

@@ -41,13 +41,10 @@ int run_adapt(const Arguments& arguments) {
   std::vector<FlagSpec> spec = extractor_flags();
   for (const auto& flags : {flags_of<SweepOptions>(), flags_of<MatchOptions>()})
     spec.insert(spec.end(), flags.begin(), flags.end());
-  spec.insert(spec.end(),
-              {{"--output", "-o", true}, {"--plot", "", true}, {"--help", "-h", false}});
-  const Args args(arguments, spec);
-  if (args.has("--help")) {
-    print_help();
-    return 0;
-  }
+  spec.insert(spec.end(), {{"--output", "-o", true}, {"--plot", "", true}});
+  const std::optional<Args> parsed = command_args(arguments, spec, print_help);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   if (args.positionals().size() != 2)
     throw UsageError("adapt expects two images A B (aief adapt --help)");
   check_picture_flag(args, "--plot");

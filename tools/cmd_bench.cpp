@@ -207,12 +207,9 @@ int run_bench(const Arguments& arguments) {
   std::vector<FlagSpec> spec = extractor_flags();
   spec.push_back({"--repeat", "", true});
   spec.push_back({"--pair", "", true});
-  spec.push_back({"--help", "-h", false});
-  const Args args(arguments, spec);
-  if (args.has("--help")) {
-    print_help();
-    return 0;
-  }
+  const std::optional<Args> parsed = command_args(arguments, spec, print_help);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   if (args.positionals().size() != 1)
     throw UsageError("bench expects one IMAGE (aief bench --help)");
   const int repeat = args.get_int("--repeat", 21, 1, 100000);

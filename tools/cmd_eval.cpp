@@ -100,8 +100,7 @@ std::vector<FlagSpec> flags_of_eval() {
                            {"--pairs", "", true},
                            {"--output", "-o", true},
                            {"--repeat", "", true},
-                           {"--methods", "", true},
-                           {"--help", "-h", false}});
+                           {"--methods", "", true}});
   const std::vector<FlagSpec> extractor = extractor_flags_except(kSetByEachRow);
   spec.insert(spec.end(), extractor.begin(), extractor.end());
   return spec;
@@ -205,11 +204,9 @@ void evaluate(eval::EvalRun& run, const eval::EvalSettings& settings) {
 }  // namespace
 
 int run_eval(const Arguments& arguments) {
-  const Args args(arguments, flags_of_eval());
-  if (args.has("--help")) {
-    print_help();
-    return 0;
-  }
+  const std::optional<Args> parsed = command_args(arguments, flags_of_eval(), print_help);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   const EvalCommand command = command_of(args);
   eval::EvalRun run;
   run.pairs = eval::find_pairs(command.dataset, command.sequences, command.all_pairs);

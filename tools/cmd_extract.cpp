@@ -171,12 +171,9 @@ int run_extract(const Arguments& arguments) {
   spec.push_back({"--batch", "", true});
   spec.push_back({"--format", "", true});
   spec.push_back({"--shard", "", true});
-  spec.push_back({"--help", "-h", false});
-  const Args args(arguments, spec);
-  if (args.has("--help")) {
-    print_help();
-    return 0;
-  }
+  const std::optional<Args> parsed = command_args(arguments, spec, print_help);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   // Flags that belong to the other form are refused, never dropped.
   if (args.has("--batch") && args.has("--draw"))
     throw UsageError("--draw pictures one image; --batch writes features only");

@@ -105,12 +105,9 @@ int run_match(const Arguments& arguments) {
       for (const FlagSpec& seen : spec) known = known || seen.name == flag.name;
       if (!known) spec.push_back(flag);
     }
-  spec.push_back({"--help", "-h", false});
-  const Args args(arguments, spec);
-  if (args.has("--help")) {
-    print_help();
-    return 0;
-  }
+  const std::optional<Args> parsed = command_args(arguments, spec, print_help);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   if (args.has("--pairs")) return run_pairs(args);
   const MatchOptions match_options = options_from_flags<MatchOptions>(args);
   if (args.positionals().size() != 2)

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "core/distribution/strongest_of_leaves.hpp"
+
 namespace aief {
 
 namespace {
@@ -240,27 +242,7 @@ void distribute_quadtree(const std::vector<Candidate>& candidates, int min_x, in
   }
 
   // The strongest candidate of each leaf; ORB-SLAM2 may overshoot by up to 3, drop the weakest.
-  const std::size_t first = selected.size();
-  for (const Node& node : tree.nodes) {
-    if (!node.alive) continue;
-    std::int32_t best = tree.keys[static_cast<std::size_t>(node.begin)];
-    for (std::int32_t k = node.begin + 1; k < node.end; ++k) {
-      const std::int32_t key = tree.keys[static_cast<std::size_t>(k)];
-      if (stronger(candidates[static_cast<std::size_t>(key)],
-                   candidates[static_cast<std::size_t>(best)]))
-        best = key;
-    }
-    selected.push_back(best);
-  }
-  const std::size_t kept = selected.size() - first;
-  if (kept > static_cast<std::size_t>(n_wanted)) {
-    std::sort(selected.begin() + static_cast<std::ptrdiff_t>(first), selected.end(),
-              [&](std::int32_t a, std::int32_t b) {
-                return stronger(candidates[static_cast<std::size_t>(a)],
-                                candidates[static_cast<std::size_t>(b)]);
-              });
-    selected.resize(first + static_cast<std::size_t>(n_wanted));
-  }
+  keep_strongest_of_leaves(tree.nodes, tree.keys, candidates, n_wanted, selected);
 }
 
 }  // namespace aief

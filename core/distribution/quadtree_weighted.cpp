@@ -5,6 +5,8 @@
 #include <cmath>
 #include <queue>
 
+#include "core/distribution/strongest_of_leaves.hpp"
+
 namespace aief {
 
 std::int64_t entropy_weight(double entropy_bits) {
@@ -124,26 +126,7 @@ void distribute_quadtree_weighted(const std::vector<Candidate>& candidates,
   }
 
   // The strongest candidate of each leaf; a last split's overshoot (up to 3) drops the weakest.
-  const std::size_t start = selected.size();
-  for (const WeightedNode& node : nodes) {
-    if (!node.alive) continue;
-    std::int32_t best = keys[static_cast<std::size_t>(node.begin)];
-    for (std::int32_t k = node.begin + 1; k < node.end; ++k) {
-      const std::int32_t key = keys[static_cast<std::size_t>(k)];
-      if (stronger(candidates[static_cast<std::size_t>(key)],
-                   candidates[static_cast<std::size_t>(best)]))
-        best = key;
-    }
-    selected.push_back(best);
-  }
-  if (selected.size() - start > static_cast<std::size_t>(n_wanted)) {
-    std::sort(selected.begin() + static_cast<std::ptrdiff_t>(start), selected.end(),
-              [&](std::int32_t a, std::int32_t b) {
-                return stronger(candidates[static_cast<std::size_t>(a)],
-                                candidates[static_cast<std::size_t>(b)]);
-              });
-    selected.resize(start + static_cast<std::size_t>(n_wanted));
-  }
+  keep_strongest_of_leaves(nodes, keys, candidates, n_wanted, selected);
 }
 
 }  // namespace aief

@@ -25,132 +25,69 @@ struct Name {
 template <class Enum>
 struct Table;
 
-template <>
-struct Table<Mode> {
-  static constexpr std::string_view what = "mode";
-  static constexpr Name<Mode> names[] = {
-      {Mode::aief, "aief", "aief"},
-      {Mode::aief_paper, "aief-paper", "aief_paper"},
-      {Mode::orbslam2, "orbslam2", "orbslam2"},
-      {Mode::quadtree_entropy, "quadtree-entropy", "quadtree_entropy"},
-      {Mode::faithful, "faithful", "faithful"},
-      {Mode::quality, "quality", "quality"}};
-};
+// One enum's table: the kind, then each value as AIEF_NAME(enumerator, "name"), in --help's order.
+// The enumerator is written once: its C++ spelling is the row's `enumerator` too.
+#define AIEF_NAME(enumerator, written) \
+  Name<E> { E::enumerator, written, #enumerator }
+#define AIEF_NAME_TABLE(Enum, kind, ...)                 \
+  template <>                                            \
+  struct Table<Enum> {                                   \
+    using E = Enum;                                      \
+    static constexpr std::string_view what = kind;       \
+    static constexpr Name<Enum> names[] = {__VA_ARGS__}; \
+  };
 
-template <>
-struct Table<Distribution> {
-  static constexpr std::string_view what = "distribution";
-  static constexpr Name<Distribution> names[] = {
-      {Distribution::proportional, "proportional", "proportional"},
-      {Distribution::quadtree, "quadtree", "quadtree"}};
-};
+AIEF_NAME_TABLE(Mode, "mode", AIEF_NAME(aief, "aief"), AIEF_NAME(aief_paper, "aief-paper"),
+                AIEF_NAME(orbslam2, "orbslam2"), AIEF_NAME(quadtree_entropy, "quadtree-entropy"),
+                AIEF_NAME(faithful, "faithful"), AIEF_NAME(quality, "quality"))
 
-template <>
-struct Table<EntropyMeasure> {
-  static constexpr std::string_view what = "entropy measure";
-  static constexpr Name<EntropyMeasure> names[] = {
-      {EntropyMeasure::histogram, "histogram", "histogram"},
-      {EntropyMeasure::intensity, "intensity", "intensity"},
-      {EntropyMeasure::off, "off", "off"}};
-};
+AIEF_NAME_TABLE(Distribution, "distribution", AIEF_NAME(proportional, "proportional"),
+                AIEF_NAME(quadtree, "quadtree"))
 
-template <>
-struct Table<KernelSet> {
-  static constexpr std::string_view what = "kernel set";
-  static constexpr Name<KernelSet> names[] = {
-      {KernelSet::auto_select, "auto", "auto_select"}, {KernelSet::scalar, "scalar", "scalar"},
-      {KernelSet::sse4_2, "sse4.2", "sse4_2"},         {KernelSet::avx2, "avx2", "avx2"},
-      {KernelSet::avx512bw, "avx512", "avx512bw"},     {KernelSet::neon64, "neon64", "neon64"}};
-};
+AIEF_NAME_TABLE(EntropyMeasure, "entropy measure", AIEF_NAME(histogram, "histogram"),
+                AIEF_NAME(intensity, "intensity"), AIEF_NAME(off, "off"))
 
-template <>
-struct Table<CoordinateMap> {
-  static constexpr std::string_view what = "coordinate map";
-  static constexpr Name<CoordinateMap> names[] = {
-      {CoordinateMap::pixel_centre, "pixel-centre", "pixel_centre"},
-      {CoordinateMap::scaled, "scaled", "scaled"}};
-};
+AIEF_NAME_TABLE(KernelSet, "kernel set", AIEF_NAME(auto_select, "auto"),
+                AIEF_NAME(scalar, "scalar"), AIEF_NAME(sse4_2, "sse4.2"), AIEF_NAME(avx2, "avx2"),
+                AIEF_NAME(avx512bw, "avx512"), AIEF_NAME(neon64, "neon64"))
 
-template <>
-struct Table<StarvationGuard> {
-  static constexpr std::string_view what = "starvation guard";
-  static constexpr Name<StarvationGuard> names[] = {{StarvationGuard::level, "level", "level"},
-                                                    {StarvationGuard::frame, "frame", "frame"}};
-};
+AIEF_NAME_TABLE(CoordinateMap, "coordinate map", AIEF_NAME(pixel_centre, "pixel-centre"),
+                AIEF_NAME(scaled, "scaled"))
 
-template <>
-struct Table<CandidateRanking> {
-  static constexpr std::string_view what = "candidate ranking";
-  static constexpr Name<CandidateRanking> names[] = {
-      {CandidateRanking::cross_score, "cross", "cross_score"},
-      {CandidateRanking::peak_score, "peak", "peak_score"}};
-};
+AIEF_NAME_TABLE(StarvationGuard, "starvation guard", AIEF_NAME(level, "level"),
+                AIEF_NAME(frame, "frame"))
 
-template <>
-struct Table<MatcherKind> {
-  static constexpr std::string_view what = "matcher";
-  static constexpr Name<MatcherKind> names[] = {{MatcherKind::mutual, "mutual", "mutual"},
-                                                {MatcherKind::ratio, "ratio", "ratio"},
-                                                {MatcherKind::paper, "paper", "paper"}};
-};
+AIEF_NAME_TABLE(CandidateRanking, "candidate ranking", AIEF_NAME(cross_score, "cross"),
+                AIEF_NAME(peak_score, "peak"))
 
-template <>
-struct Table<PyramidResampling> {
-  static constexpr std::string_view what = "pyramid resampling";
-  static constexpr Name<PyramidResampling> names[] = {
-      {PyramidResampling::q8, "q8", "q8"}, {PyramidResampling::opencv, "opencv", "opencv"}};
-};
+AIEF_NAME_TABLE(MatcherKind, "matcher", AIEF_NAME(mutual, "mutual"), AIEF_NAME(ratio, "ratio"),
+                AIEF_NAME(paper, "paper"))
 
-template <>
-struct Table<DetectionCells> {
-  static constexpr std::string_view what = "detection cells";
-  static constexpr Name<DetectionCells> names[] = {{DetectionCells::blocks, "blocks", "blocks"},
-                                                   {DetectionCells::orbslam, "orbslam", "orbslam"}};
-};
+AIEF_NAME_TABLE(PyramidResampling, "pyramid resampling", AIEF_NAME(q8, "q8"),
+                AIEF_NAME(opencv, "opencv"))
 
-template <>
-struct Table<Orientation> {
-  static constexpr std::string_view what = "orientation";
-  static constexpr Name<Orientation> names[] = {
-      {Orientation::atan2, "atan2", "atan2"},
-      {Orientation::opencv_fast, "fast-atan2", "opencv_fast"}};
-};
+AIEF_NAME_TABLE(DetectionCells, "detection cells", AIEF_NAME(blocks, "blocks"),
+                AIEF_NAME(orbslam, "orbslam"))
 
-template <>
-struct Table<QuadtreeTies> {
-  static constexpr std::string_view what = "quadtree ties";
-  static constexpr Name<QuadtreeTies> names[] = {{QuadtreeTies::full, "full", "full"},
-                                                 {QuadtreeTies::orbslam, "orbslam", "orbslam"}};
-};
+AIEF_NAME_TABLE(Orientation, "orientation", AIEF_NAME(atan2, "atan2"),
+                AIEF_NAME(opencv_fast, "fast-atan2"))
 
-template <>
-struct Table<QuadtreeWeight> {
-  static constexpr std::string_view what = "quadtree weight";
-  static constexpr Name<QuadtreeWeight> names[] = {{QuadtreeWeight::none, "none", "none"},
-                                                   {QuadtreeWeight::entropy, "entropy", "entropy"}};
-};
+AIEF_NAME_TABLE(QuadtreeTies, "quadtree ties", AIEF_NAME(full, "full"),
+                AIEF_NAME(orbslam, "orbslam"))
 
-template <>
-struct Table<FastThresholdFrom> {
-  static constexpr std::string_view what = "FAST threshold source";
-  static constexpr Name<FastThresholdFrom> names[] = {
-      {FastThresholdFrom::none, "none", "none"},
-      {FastThresholdFrom::entropy, "entropy", "entropy"}};
-};
+AIEF_NAME_TABLE(QuadtreeWeight, "quadtree weight", AIEF_NAME(none, "none"),
+                AIEF_NAME(entropy, "entropy"))
 
-template <>
-struct Table<DescriptorKind> {
-  static constexpr std::string_view what = "descriptor";
-  static constexpr Name<DescriptorKind> names[] = {{DescriptorKind::rbrief, "rbrief", "rbrief"},
-                                                   {DescriptorKind::box, "box", "box"}};
-};
+AIEF_NAME_TABLE(FastThresholdFrom, "FAST threshold source", AIEF_NAME(none, "none"),
+                AIEF_NAME(entropy, "entropy"))
 
-template <>
-struct Table<ScaleSelection> {
-  static constexpr std::string_view what = "scale selection";
-  static constexpr Name<ScaleSelection> names[] = {{ScaleSelection::off, "off", "off"},
-                                                   {ScaleSelection::extrema, "extrema", "extrema"}};
-};
+AIEF_NAME_TABLE(DescriptorKind, "descriptor", AIEF_NAME(rbrief, "rbrief"), AIEF_NAME(box, "box"))
+
+AIEF_NAME_TABLE(ScaleSelection, "scale selection", AIEF_NAME(off, "off"),
+                AIEF_NAME(extrema, "extrema"))
+
+#undef AIEF_NAME_TABLE
+#undef AIEF_NAME
 
 // The name of `value`; "?" for a value outside the table (an invalid cast).
 template <class Enum>

@@ -11,10 +11,10 @@
 // How to add an option:
 //   1. a field with its default and one comment in its struct (include/aief/options.hpp, match.hpp,
 //      adapt.hpp, homography.hpp); an enum gets its name table in core/options/option_names.hpp;
-//   2. one row in its table (core/options/extractor_option_rows.cpp for the extractor,
-//      core/options/matching_option_rows.cpp for the others): record key, CLI flag, Python keyword,
-//      help, kind and range (the extractor's: settings key, the value each mode sets), whether it
-//      changes the output;
+//   2. one row in its table (core/options/extractor_option_rows.json for the extractor,
+//      core/options/matching_option_rows.json for the others; cmake/generate_option_rows.cmake
+//      makes them C++): record key, CLI flag, Python keyword, help, kind and range (the
+//      extractor's: settings key, the value each mode sets), whether it changes the output;
 //   3. its parameter in python/aief/_aief.pyi, where the stub test says.
 // Nothing else: every front end, --help, validate() and the records pick the row up.
 //
@@ -138,8 +138,8 @@ using OptionRow = Row<ExtractorOptions>;
 inline constexpr std::string_view kDefault = "default";
 
 // The rows of each options struct, in record order. ExtractorOptions' are in
-// core/options/extractor_option_rows.cpp, the matcher's, sweep's and RANSAC's in
-// core/options/matching_option_rows.cpp.
+// core/options/extractor_option_rows.json, the matcher's, sweep's and RANSAC's in
+// core/options/matching_option_rows.json.
 template <class Options>
 const std::vector<Row<Options>>& rows_of();
 template <>

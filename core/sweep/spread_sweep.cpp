@@ -78,6 +78,13 @@ void SpreadSweep::next_level_or(Phase after) {
   }
 }
 
+void SpreadSweep::next_image_or(Phase after) {
+  if (image_ == 0)
+    image_ = 1;
+  else
+    phase_ = after;
+}
+
 void SpreadSweep::next_threshold(AdaptResult& out) {
   image_ = 0;
   if (++c_ < thresholds_) {
@@ -91,34 +98,37 @@ void SpreadSweep::next_threshold(AdaptResult& out) {
 
 double SpreadSweep::run_piece(double room, bool must, AdaptResult& out) {
   const auto fits = [&](double work) { return must || work <= room; };
+  const auto level_pixels = [&] {
+    return pixels(sweep_.level_width(image_, level_), sweep_.level_height(image_, level_));
+  };
+  // A piece over the current level's pixels, `per_pixel` each: step() when it fits.
+  const auto level_piece = [&](double per_pixel, const auto& step) {
+    const double work = per_pixel * level_pixels();
+    if (!fits(work)) return -1.0;
+    step();
+    return work;
+  };
   switch (phase_) {
     case Phase::idle: return -1;
     case Phase::entropies: {
       const double work =
-          kEntropiesPerPixel * (level_ == 0 ? pixels(images_[image_].width, images_[image_].height)
-                                            : pixels(sweep_.level_width(image_, level_),
-                                                     sweep_.level_height(image_, level_)));
+          kEntropiesPerPixel *
+          (level_ == 0 ? pixels(images_[image_].width, images_[image_].height) : level_pixels());
       if (!fits(work)) return -1;
       if (level_ == 0) sweep_.start_analysis(image_, images_[image_]);
       sweep_.level_entropies(image_, level_);
       phase_ = Phase::detect;
       return work;
     }
-    case Phase::detect: {
-      const double work = kDetectPerPixel * pixels(sweep_.level_width(image_, level_),
-                                                   sweep_.level_height(image_, level_));
-      if (!fits(work)) return -1;
-      sweep_.detect_level(image_, level_);
-      phase_ = Phase::entropies;
-      if (++level_ == sweep_.level_count(image_)) {
-        level_ = 0;
-        if (image_ == 0)
-          image_ = 1;
-        else
-          phase_ = Phase::begin_thresholds;
-      }
-      return work;
-    }
+    case Phase::detect:
+      return level_piece(kDetectPerPixel, [&] {
+        sweep_.detect_level(image_, level_);
+        phase_ = Phase::entropies;
+        if (++level_ == sweep_.level_count(image_)) {
+          level_ = 0;
+          next_image_or(Phase::begin_thresholds);
+        }
+      });
     case Phase::begin_thresholds: {
       if (!fits(kFixedPiece)) return -1;
       thresholds_ = sweep_.begin_thresholds(Repeats::referenced);
@@ -135,10 +145,7 @@ double SpreadSweep::run_piece(double room, bool must, AdaptResult& out) {
       }
       if (!fits(kFixedPiece)) return -1;
       sweep_.repeat_previous(image_, c_);
-      if (image_ == 0)
-        image_ = 1;
-      else
-        phase_ = Phase::begin_evaluation;
+      next_image_or(Phase::begin_evaluation);
       return kFixedPiece;
     }
     case Phase::choose: {
@@ -153,14 +160,11 @@ double SpreadSweep::run_piece(double room, bool must, AdaptResult& out) {
         next_level_or(Phase::finish_threshold);
       return work;
     }
-    case Phase::blur: {
-      const double work = kBlurPerPixel * pixels(sweep_.level_width(image_, level_),
-                                                 sweep_.level_height(image_, level_));
-      if (!fits(work)) return -1;
-      sweep_.blur_level(image_, level_);
-      phase_ = Phase::describe;
-      return work;
-    }
+    case Phase::blur:
+      return level_piece(kBlurPerPixel, [&] {
+        sweep_.blur_level(image_, level_);
+        phase_ = Phase::describe;
+      });
     case Phase::describe: {
       const int left = sweep_.undescribed(image_, level_);
       int count = std::min(left, static_cast<int>(room / kDescribePerKeypoint));

@@ -62,6 +62,8 @@ class SpreadSweep {
   // negative number when it did not fit. Sets done_ when the sweep completed.
   double run_piece(double room, bool must, AdaptResult& out);
   void next_level_or(Phase after);
+  // Image b when at image a, else `after`.
+  void next_image_or(Phase after);
   void next_threshold(AdaptResult& out);
 
   SweepPipeline sweep_;

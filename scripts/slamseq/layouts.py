@@ -61,31 +61,30 @@ class SequenceWriter:
 
     def finish(self, camera, baseline, fps, info):
         join = lambda *parts: os.path.join(self.folder, *parts)
+
+        def write(name, header, lines):
+            with open(join(name), "w") as f:
+                f.write(header)
+                f.writelines(lines)
+
         for cam in ("cam0", "cam1"):
-            with open(join("mav0", cam, "data.csv"), "w") as f:
-                f.write("#timestamp [ns],filename\n")
-                f.writelines(f"{ns},{ns}.png\n" for ns, _ in self.rows)
-        with open(join("times.txt"), "w") as f:
-            f.writelines(f"{ns}\n" for ns, _ in self.rows)
-        with open(join("mav0/state_groundtruth_estimate0/data.csv"), "w") as f:
-            f.write("#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], q_RS_z []\n")
-            for ns, pose in self.rows:
-                q = quaternion_wxyz(pose[:3, :3])
-                f.write(f"{ns},{pose[0, 3]:.9f},{pose[1, 3]:.9f},{pose[2, 3]:.9f},{q[0]:.9f},{q[1]:.9f},{q[2]:.9f},{q[3]:.9f}\n")
+            write(os.path.join("mav0", cam, "data.csv"), "#timestamp [ns],filename\n",
+                  (f"{ns},{ns}.png\n" for ns, _ in self.rows))
+        write("times.txt", "", (f"{ns}\n" for ns, _ in self.rows))
+        # (ns, t, q): the position and the quaternion (w, x, y, z) of each frame's T_world_cam0.
+        poses = [(ns, pose[:3, 3], quaternion_wxyz(pose[:3, :3])) for ns, pose in self.rows]
+        write("mav0/state_groundtruth_estimate0/data.csv",
+              "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], q_RS_z []\n",
+              (f"{ns},{t[0]:.9f},{t[1]:.9f},{t[2]:.9f},{q[0]:.9f},{q[1]:.9f},{q[2]:.9f},{q[3]:.9f}\n" for ns, t, q in poses))
         if not os.path.lexists(join("rgb")):
             os.symlink(os.path.join("mav0", "cam0", "data"), join("rgb"))
-        with open(join("rgb.txt"), "w") as f:
-            f.write("# color images\n# timestamp filename\n")
-            f.writelines(f"{ns / 1e9:.6f} rgb/{ns}.png\n" for ns, _ in self.rows)
-        with open(join("groundtruth.txt"), "w") as f:
-            f.write("# ground truth trajectory: T_world_cam0\n# timestamp tx ty tz qx qy qz qw\n")
-            for ns, pose in self.rows:
-                q = quaternion_wxyz(pose[:3, :3])
-                f.write(f"{ns / 1e9:.6f} {pose[0, 3]:.9f} {pose[1, 3]:.9f} {pose[2, 3]:.9f} {q[1]:.9f} {q[2]:.9f} {q[3]:.9f} {q[0]:.9f}\n")
+        write("rgb.txt", "# color images\n# timestamp filename\n",
+              (f"{ns / 1e9:.6f} rgb/{ns}.png\n" for ns, _ in self.rows))
+        write("groundtruth.txt", "# ground truth trajectory: T_world_cam0\n# timestamp tx ty tz qx qy qz qw\n",
+              (f"{ns / 1e9:.6f} {t[0]:.9f} {t[1]:.9f} {t[2]:.9f} {q[1]:.9f} {q[2]:.9f} {q[3]:.9f} {q[0]:.9f}\n" for ns, t, q in poses))
         if self.with_depth:
-            with open(join("depth.txt"), "w") as f:
-                f.write("# depth maps\n# timestamp filename\n")
-                f.writelines(f"{ns / 1e9:.6f} depth/{ns}.png\n" for ns, _ in self.rows)
+            write("depth.txt", "# depth maps\n# timestamp filename\n",
+                  (f"{ns / 1e9:.6f} depth/{ns}.png\n" for ns, _ in self.rows))
         write_settings(self.folder, camera, baseline, fps)
         with open(join("sequence.json"), "w") as f:
             json.dump(dict(info, frames=len(self.rows), fps=fps, baseline_m=baseline,

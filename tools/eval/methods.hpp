@@ -85,23 +85,23 @@ struct PairResult {
 template <>
 struct aief::io::RecordFields<aief::eval::PairResult> {
   using R = aief::eval::PairResult;
-  static constexpr auto list = std::tuple{field("keypoints_a", &R::keypoints_a),
-                                          field("keypoints_b", &R::keypoints_b),
-                                          field("putative", &R::putative),
-                                          field("inliers", &R::inliers),
-                                          field("cmr", &R::cmr),
-                                          field("correct", &R::correct),
-                                          field("accuracy", &R::accuracy),
-                                          field("corner_error", &R::corner_error),
-                                          field("homography_ok", &R::homography_ok),
-                                          field("extract_ms", &R::extract_ms),
-                                          field("extract_min_ms", &R::extract_min_ms),
-                                          field("extract_max_ms", &R::extract_max_ms),
-                                          field("extract_wall_ms", &R::extract_wall_ms),
-                                          field("sweep_ms", &R::sweep_ms),
-                                          field("threshold", &R::threshold),
-                                          field("repeatability", &R::repeatability),
-                                          field("spread", &R::spread)};
+  static constexpr auto list = std::tuple{AIEF_RECORD_FIELD(keypoints_a),
+                                          AIEF_RECORD_FIELD(keypoints_b),
+                                          AIEF_RECORD_FIELD(putative),
+                                          AIEF_RECORD_FIELD(inliers),
+                                          AIEF_RECORD_FIELD(cmr),
+                                          AIEF_RECORD_FIELD(correct),
+                                          AIEF_RECORD_FIELD(accuracy),
+                                          AIEF_RECORD_FIELD(corner_error),
+                                          AIEF_RECORD_FIELD(homography_ok),
+                                          AIEF_RECORD_FIELD(extract_ms),
+                                          AIEF_RECORD_FIELD(extract_min_ms),
+                                          AIEF_RECORD_FIELD(extract_max_ms),
+                                          AIEF_RECORD_FIELD(extract_wall_ms),
+                                          AIEF_RECORD_FIELD(sweep_ms),
+                                          AIEF_RECORD_FIELD(threshold),
+                                          AIEF_RECORD_FIELD(repeatability),
+                                          AIEF_RECORD_FIELD(spread)};
 };
 
 namespace aief::eval {
