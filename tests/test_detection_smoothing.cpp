@@ -96,8 +96,9 @@ TEST(DetectionSmoothing, OffInEveryModeButQualityAndRefusedOutOfRange) {
     EXPECT_EQ(options_for_mode(mode).detection_smoothing, 0.0) << to_string(mode);
   const ExtractorOptions quality = options_for_mode(Mode::quality);
   EXPECT_EQ(quality.detection_smoothing, 1.5);
-  EXPECT_EQ(quality.scale_factor, 1.15);
-  EXPECT_EQ(quality.n_levels, 10);
+  EXPECT_EQ(quality.scale_factor, 1.1);
+  EXPECT_EQ(quality.n_levels, 18);
+  EXPECT_EQ(quality.descriptor, DescriptorKind::box);
   ExtractorOptions options;
   options.detection_smoothing = 3.5;
   EXPECT_THROW(options.validate(), Error);

@@ -407,6 +407,9 @@ TEST(OptionTable, AnOptionThatCannotActIsRefusedNamingWhatItNeeds) {
           "quadtree_ties orbslam does nothing unless quadtree_weight none");
   refused({{"quadtree_ties", "orbslam"}}, "does nothing unless distribution quadtree");
   refused({{"carry_every", "10"}}, "does nothing unless carried_threshold on");
+  refused({{"mode", "faithful"}, {"scale_selection", "extrema"}},
+          "scale_selection extrema does nothing unless detection_cells blocks, and mode "
+          "faithful makes it orbslam");
   refused({{"mode", "orbslam2"}, {"candidate_pool", "2"}},
           "does nothing unless distribution proportional");
   refused({{"auto_requires_two_classes", "off"}}, "does nothing unless auto_threshold on");

@@ -104,6 +104,10 @@ Case make_case(int index) {
   std::mt19937 smoothing_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 67867967u));
   if (uniform_int(smoothing_rng, 0, 2) == 0)
     c.options.detection_smoothing = std::sqrt(static_cast<double>(uniform_int(smoothing_rng, 1, 4)));
+  // Scale selection, a quarter of the cases where it acts (the engine's blocks), its own draws.
+  std::mt19937 scale_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 86028121u));
+  if (uniform_int(scale_rng, 0, 3) == 0 && c.options.detection_cells == DetectionCells::blocks)
+    c.options.scale_selection = ScaleSelection::extrema;
 
   const int width = uniform_int(rng, 39, 539), height = uniform_int(rng, 39, 539);
   const int source = uniform_int(rng, 0, 3);
@@ -132,7 +136,8 @@ Case make_case(int index) {
       << to_string(c.options.fast_threshold_from) << ", low-entropy sharpen "
       << (c.options.low_entropy_sharpen ? "on" : "off") << ", descriptor "
       << to_string(c.options.descriptor) << ", detection smoothing "
-      << c.options.detection_smoothing;
+      << c.options.detection_smoothing << ", scale selection "
+      << to_string(c.options.scale_selection);
   c.description = out.str();
   return c;
 }

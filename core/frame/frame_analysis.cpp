@@ -143,6 +143,30 @@ void FrameAnalysis::detect(int n, double threshold) {
   level.descriptions.track(level.blocks.candidates.size());
 }
 
+void FrameAnalysis::index_scales(int n) {
+  Level& level = at(n);
+  if (!level.pyramid.usable()) return;
+  index_candidates(level.blocks.candidates, level.pyramid.geometry.width,
+                   level.pyramid.geometry.height, level.scale_index);
+}
+
+void FrameAnalysis::mark_scale_extrema(int n) {
+  Level& level = at(n);
+  if (!level.pyramid.usable()) return;
+  const auto view = [&](int m) {
+    if (m < 0 || m >= level_count() || !at(m).pyramid.usable()) return ScaleLevel{};
+    return ScaleLevel{&at(m).blocks.candidates, &at(m).scale_index};
+  };
+  aief::mark_scale_extrema(view(n), view(n - 1), view(n + 1), level.scale_keep);
+}
+
+void FrameAnalysis::keep_scale_extrema(int n) {
+  Level& level = at(n);
+  if (!level.pyramid.usable()) return;
+  remove_unkept_candidates(level.scale_keep, level.blocks);
+  level.descriptions.track(level.blocks.candidates.size());
+}
+
 void FrameAnalysis::select(int n, double threshold, std::vector<std::int32_t>& chosen) {
   select(n, threshold, level(n).geometry.n_features, chosen);
 }

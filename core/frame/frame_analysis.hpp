@@ -20,6 +20,7 @@
 #include "core/level/level_blocks.hpp"
 #include "core/description/level_description.hpp"
 #include "core/detection/level_detection.hpp"
+#include "core/detection/scale_selection.hpp"
 #include "core/frame/level_selection.hpp"
 #include "core/entropy/low_entropy_sharpen.hpp"
 #include "core/level/detection_smoothing.hpp"
@@ -53,6 +54,12 @@ class FrameAnalysis {
   void compute_entropies(int n);
   // Stage 3: FAST candidates of every block of level n kept at threshold F not yet detected.
   void detect(int n, double threshold);
+  // Scale selection (core/detection/scale_selection.hpp), after every level detected every
+  // block, in three passes over the levels (each pass may run its levels in parallel): index
+  // level n's candidates, mark its scale extrema (reads levels n - 1 and n + 1), remove the rest.
+  void index_scales(int n);
+  void mark_scale_extrema(int n);
+  void keep_scale_extrema(int n);
   // Stage 4: the keypoints of level n at threshold F: distribution, orientation, descriptors.
   // Writes the chosen candidate indices (raster order) to `chosen`.
   void select(int n, double threshold, std::vector<std::int32_t>& chosen);
@@ -98,6 +105,8 @@ class FrameAnalysis {
     SharpenScratch sharpen;  // ExtractorOptions::low_entropy_sharpen
     SmoothingScratch smoothing;  // ExtractorOptions::detection_smoothing
     SelectionScratch selection;
+    ScaleIndex scale_index;               // ExtractorOptions::scale_selection
+    std::vector<std::uint8_t> scale_keep;  // the same
     std::vector<std::int32_t> selected;
   };
   void entropies_and_sharpening(int n);  // stage 2 up to the sharpening

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "core/frame/auto_threshold.hpp"
 
@@ -71,6 +72,8 @@ void FramePipeline::extract(ImageView image, Features& out, StageTimes* times,
   const int levels = analysis_.level_count();
   const bool entropy_on = options_.entropy != EntropyMeasure::off;
   const bool automatic = entropy_on && options_.auto_threshold;
+  // Scale selection needs every level detected before any selects: it waits as the automatic F.
+  const bool scales = options_.scale_selection != ScaleSelection::off;
   double requested = entropy_on ? options_.entropy_threshold : 0.0;
   double effectiveness = 0;
   for (int n = 0; n < levels; ++n) budgets_[static_cast<std::size_t>(n)] = level_budget(n);
@@ -84,7 +87,7 @@ void FramePipeline::extract(ImageView image, Features& out, StageTimes* times,
       levels, [&](int n) { build_level(n); },
       [&](int n) {
         compute_entropies(n);
-        if (!automatic) detect_and_select(n);
+        if (!automatic && !scales) detect_and_select(n);
       });
   if (automatic) {
     timed(Stage::frame, -1, [&] {
@@ -94,8 +97,25 @@ void FramePipeline::extract(ImageView image, Features& out, StageTimes* times,
       requested = chosen.threshold_bits;
       effectiveness = chosen.effectiveness;
     });
-    scheduler_.for_each(levels, detect_and_select);
   }
+  if (scales) {
+    // Every block of every level (whatever F keeps: a corner's scale does not depend on it), then
+    // the extrema (core/detection/scale_selection.hpp); the levels select as with the automatic
+    // F, each with its budget N_n, the threshold fallback and the shortfall as always.
+    scheduler_.for_each(levels, [&](int n) {
+      detect_level(n, -std::numeric_limits<double>::infinity());
+    });
+    scheduler_.for_each(levels, [&](int n) {
+      timed(Stage::detect, n, [&] { analysis_.index_scales(n); });
+    });
+    scheduler_.for_each(levels, [&](int n) {
+      timed(Stage::detect, n, [&] { analysis_.mark_scale_extrema(n); });
+    });
+    scheduler_.for_each(levels, [&](int n) {
+      timed(Stage::detect, n, [&] { analysis_.keep_scale_extrema(n); });
+    });
+  }
+  if (automatic || scales) scheduler_.for_each(levels, detect_and_select);
 
   // The fallback's frame rules, then the levels whose F or budget they changed select again.
   selected_thresholds_ = thresholds_;

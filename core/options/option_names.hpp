@@ -83,6 +83,9 @@ AIEF_NAME_TABLE(FastThresholdFrom, "FAST threshold source", AIEF_NAME(none, "non
 
 AIEF_NAME_TABLE(DescriptorKind, "descriptor", AIEF_NAME(rbrief, "rbrief"), AIEF_NAME(box, "box"))
 
+AIEF_NAME_TABLE(ScaleSelection, "scale selection", AIEF_NAME(off, "off"),
+                AIEF_NAME(extrema, "extrema"))
+
 #undef AIEF_NAME_TABLE
 #undef AIEF_NAME
 

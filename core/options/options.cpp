@@ -22,6 +22,7 @@ std::string_view to_string(Orientation value) { return option_names::name_of(val
 std::string_view to_string(QuadtreeWeight value) { return option_names::name_of(value); }
 std::string_view to_string(FastThresholdFrom value) { return option_names::name_of(value); }
 std::string_view to_string(DescriptorKind value) { return option_names::name_of(value); }
+std::string_view to_string(ScaleSelection value) { return option_names::name_of(value); }
 
 Distribution parse_distribution(std::string_view name) {
   return option_names::parse<Distribution>(name);

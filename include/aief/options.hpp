@@ -94,6 +94,14 @@ enum class DescriptorKind {
            // core/kernels/box_describe.hpp)
 };
 
+// Which pyramid level keeps a corner that FAST finds on several (docs/design.md §5, "Scale
+// selection").
+enum class ScaleSelection {
+  off,     // every level keeps its own candidates, each level its budget N_n (ORB, ORB-SLAM)
+  extrema, // a candidate stays only where its strength is not beaten by a candidate of an
+           // adjacent level at the same place (core/detection/scale_selection.hpp)
+};
+
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
   aief,              // AIEF with six measured departures (docs/design.md §11; the defaults below)
@@ -101,7 +109,8 @@ enum class Mode {
   orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
   faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells and octree tie-breaks
-  quality,           // aief with FAST on smoothed levels and a finer pyramid (1.15, 10 levels):
+  quality,           // aief with FAST on smoothed levels, a finer pyramid (1.1, 18 levels) and the
+                     // box descriptor:
                      // for offline mapping, docs/evaluation.md "Hard families"
 };
 
@@ -176,8 +185,8 @@ struct ExtractorOptions {
   // sharpened (an unsharp mask whose amount falls with the block's entropy, blended between
   // blocks; core/entropy/low_entropy_sharpen.hpp); orientation and descriptors read the level itself.
   bool low_entropy_sharpen = false;
-  // The descriptor. rbrief in every mode (ORB-SLAM's vocabularies are trained on it); box is the
-  // learned box descriptor (a vocabulary trained on rBRIEF needs retraining for it).
+  // The descriptor. rbrief in every mode but quality (ORB-SLAM's vocabularies are trained on it);
+  // box is the learned box descriptor (a vocabulary trained on rBRIEF needs retraining for it).
   DescriptorKind descriptor = DescriptorKind::rbrief;
   // Detection on a smoothed level (core/level/detection_smoothing.hpp): FAST reads each level (its
   // sharpened copy with low_entropy_sharpen) blurred to about this sigma, px, by passes of the 5x5
@@ -185,6 +194,9 @@ struct ExtractorOptions {
   // Blur in one image of a pair moves FAST's corners and scores; smoothing both measures them on
   // alike pixels (docs/evaluation.md, "Hard families").
   double detection_smoothing = 0;
+  // Scale selection (core/detection/scale_selection.hpp): off in every mode (measured worse,
+  // docs/evaluation.md "Scale selection").
+  ScaleSelection scale_selection = ScaleSelection::off;
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
@@ -213,6 +225,7 @@ std::string_view to_string(Orientation value);
 std::string_view to_string(QuadtreeWeight value);
 std::string_view to_string(FastThresholdFrom value);
 std::string_view to_string(DescriptorKind value);
+std::string_view to_string(ScaleSelection value);
 Distribution parse_distribution(std::string_view name);
 EntropyMeasure parse_entropy_measure(std::string_view name);
 KernelSet parse_kernel_set(std::string_view name);

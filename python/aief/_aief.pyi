@@ -104,8 +104,9 @@ class Extractor:
         quadtree_weight: Literal["none", "entropy"] = "none",
         fast_threshold_from: Literal["none", "entropy"] = "none",
         low_entropy_sharpen: bool = False,
-        descriptor: Literal["rbrief", "box"] = "rbrief",
+        descriptor: Optional[Literal["rbrief", "box"]] = None,
         detection_smoothing: Optional[float] = None,
+        scale_selection: Literal["off", "extrema"] = "off",
         max_image_pixels: int = 67108864,
         **record_keys: Any,  # and the earlier keywords, still accepted: threshold, levels, scale, ...
     ) -> None: ...
