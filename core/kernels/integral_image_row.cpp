@@ -13,12 +13,8 @@ namespace aief {
 void integral_image_row_scalar(const std::uint8_t* pixels, int width, const std::uint32_t* above,
                                std::uint32_t* out) {
   assert(width >= 1);
-  std::uint32_t row_sum = 0;
   out[0] = 0;
-  for (int x = 0; x < width; ++x) {
-    row_sum += pixels[x];
-    out[x + 1] = above[x + 1] + row_sum;
-  }
+  integral_image_row_from(pixels, 0, 0, width, above, out);
 }
 
 // The whole integral image of `src` row by row, and once more above a row of large entries

@@ -13,4 +13,15 @@ namespace aief {
 void integral_image_row_scalar(const std::uint8_t* pixels, int width, const std::uint32_t* above,
                                std::uint32_t* out);
 
+// Entries x + 1 .. width of the row, from pixel x on, `row_sum` being pixels[0] + ... +
+// pixels[x - 1]: the reference's loop, the scalar kernel's whole row (from x = 0) and each vector
+// kernel's tail.
+inline void integral_image_row_from(const std::uint8_t* pixels, int x, std::uint32_t row_sum,
+                                    int width, const std::uint32_t* above, std::uint32_t* out) {
+  for (; x < width; ++x) {
+    row_sum += pixels[x];
+    out[x + 1] = above[x + 1] + row_sum;
+  }
+}
+
 }  // namespace aief
