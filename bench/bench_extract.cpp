@@ -13,11 +13,17 @@
 namespace aief::bench {
 namespace {
 
+// Every row times a frame after one untimed frame (OpenCV's rows too): the steady cost of a
+// video's frames, not the first frame's allocation of its buffers, which the page faults make
+// several times a frame (quality mode at 1920 x 1080: 97-190 ms first, 18-20 ms after; with few
+// iterations a repetition, as there, the first frame decided the median).
+
 // One extraction of `gray` per iteration under `options`.
 void register_extract(const std::string& name, const cv::Mat* gray, ExtractorOptions options) {
   benchmark::RegisterBenchmark(name.c_str(), [gray, options](benchmark::State& state) {
     Extractor extractor(options);
     Features features;
+    extractor.extract(view_of(*gray), features);  // untimed
     for (auto _ : state) extractor.extract(view_of(*gray), features);
     state.counters["keypoints"] = static_cast<double>(features.keypoints.size());
     state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);
@@ -107,6 +113,7 @@ void register_extract_benchmarks() {
           cv::Ptr<cv::AKAZE> akaze = cv::AKAZE::create();
           std::vector<cv::KeyPoint> keypoints;
           cv::Mat descriptors;
+          akaze->detectAndCompute(*gray, cv::noArray(), keypoints, descriptors);  // untimed
           for (auto _ : state)
             akaze->detectAndCompute(*gray, cv::noArray(), keypoints, descriptors);
           state.counters["keypoints"] = static_cast<double>(keypoints.size());
@@ -119,6 +126,7 @@ void register_extract_benchmarks() {
           cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 8);
           std::vector<cv::KeyPoint> keypoints;
           cv::Mat descriptors;
+          orb->detectAndCompute(*gray, cv::noArray(), keypoints, descriptors);  // untimed
           for (auto _ : state) orb->detectAndCompute(*gray, cv::noArray(), keypoints, descriptors);
           state.counters["keypoints"] = static_cast<double>(keypoints.size());
           state.SetItemsProcessed(state.iterations() * gray->cols * gray->rows);

@@ -70,7 +70,7 @@ void box_describe(IntegralView integral, const BoxPoint* points, const float* an
         box_detail::floor_div(std::int64_t{table[t].threshold_hundredths} * side * side, 100));
   }
   const float kRadiansPerDegree = static_cast<float>(3.14159265358979323846 / 180.0);
-  const I32 step(static_cast<std::int32_t>(stride));
+  const I32 step(static_cast<std::int32_t>(stride)), first_row(integral.first_row);
   const std::uint32_t* entries = integral.data;
   for (int k = 0; k < n; ++k) {
     std::uint8_t* out = descriptors + static_cast<std::ptrdiff_t>(k) * 32;
@@ -96,7 +96,7 @@ void box_describe(IntegralView integral, const BoxPoint* points, const float* an
       const I32 left = cx - r, top = cy - r;
       low = xsimd::min(low, xsimd::min(left, top));
       high = xsimd::max(high, xsimd::max(cx + r + 1 - width, cy + r + 1 - height));
-      (top * step + left).store_aligned(offset + i);
+      ((top - first_row) * step + left).store_aligned(offset + i);
     }
     alignas(64) std::int32_t lows[kLanes], highs[kLanes];
     low.store_aligned(lows);

@@ -206,5 +206,52 @@ TEST(BoxDescriptor, FlatImageGivesEachTestTheSignOfItsThreshold) {
         << "test " << i;
 }
 
+// A band of integral rows from its own origin row (zeros there, not the image's top), as the
+// extractor holds it (core/description/level_description.cpp), describes every point whose reach
+// it holds as the whole integral image does, under every kernel set (the band is exactly the
+// rows box_reach names, so a read outside it is one the sanitizer build reports).
+TEST(BoxDescriptor, ABandFromAnyOriginRowDescribesAsTheWholeIntegral) {
+  const GrayImage image = random_image(203, 157, 21);
+  IntegralImage whole;
+  whole.compute(image.view());
+  const int reach = box_reach(kBoxLevelScale);
+  ASSERT_GT(reach, 16);
+  ASSERT_LT(reach, 40);
+  const int width = image.width();
+  const std::ptrdiff_t stride = width + 1;
+  // Rows [origin, end) of the integral from `origin`.
+  const auto band_from = [&](int origin, int end) {
+    std::vector<std::uint32_t> band(static_cast<std::size_t>((end - origin) * stride), 0u);
+    for (int r = origin + 1; r < end; ++r)
+      integral_image_row_scalar(image.view().row(r - 1), width, band.data() + (r - 1 - origin) * stride,
+                                band.data() + (r - origin) * stride);
+    return band;
+  };
+  std::mt19937 rng(5);
+  for (int y : {0, 3, reach, reach + 1, 78, image.height() - reach - 1, image.height() - 1}) {
+    std::vector<BoxPoint> points;
+    std::vector<float> angles;
+    for (int x = 0; x < width; x += 9) {
+      points.push_back({static_cast<float>(x), static_cast<float>(y)});
+      angles.push_back(static_cast<float>(rng() % 3600) / 10.0f);
+    }
+    const int n = static_cast<int>(points.size());
+    std::vector<std::uint8_t> expected(points.size() * 32), described(expected.size());
+    box_describe_scalar(whole.view(), points.data(), angles.data(), n, kBoxLevelScale,
+                        expected.data());
+    const int origin = std::max(0, y - reach), end = std::min(image.height() + 1, y + reach + 1);
+    const std::vector<std::uint32_t> band = band_from(origin, end);
+    const IntegralView view{band.data(), width, image.height(), stride, origin};
+    box_describe_scalar(view, points.data(), angles.data(), n, kBoxLevelScale, described.data());
+    EXPECT_EQ(described, expected) << "scalar, keypoint row " << y;
+    for (KernelSet set : available_kernel_sets()) {
+      std::fill(described.begin(), described.end(), std::uint8_t{0});
+      kernel_table(set).box_describe(view, points.data(), angles.data(), n, kBoxLevelScale,
+                                     described.data());
+      EXPECT_EQ(described, expected) << to_string(set) << ", keypoint row " << y;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace aief

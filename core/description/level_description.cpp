@@ -13,9 +13,39 @@ namespace aief {
 
 namespace {
 
-// Rows of keypoints one band of blurred rows serves at a time; the band adds kEdgeBorder rows
-// above and below (every rBRIEF sample lies within kEdgeBorder of its keypoint).
-constexpr int kBlurBandKeypointRows = 96;
+// Rows of keypoints one band serves at a time; the band adds the rows a describe reads above and
+// below (kEdgeBorder for rBRIEF, box_reach for the box). The integral band's rows are 4 bytes a
+// pixel and the rows it keeps when it slides are moved, so it serves more rows at a time: on a
+// 1920 x 1080 frame in the quality mode, 96 rows moved 11.4 M instructions of memmove a frame, 192
+// rows 5.7 M (docs/speed.md); the whole level's integral image held 46 MB.
+constexpr int kBandKeypointRows = 96;
+constexpr int kBoxBandKeypointRows = 192;
+
+// The points come in raster order, so the rows they read, [y - reach, y + reach] (clipped to
+// [0, rows)), form a window sliding down the level. A band of `capacity` rows holds rows [top,
+// end); when a point needs a row below it, the points before it are described
+// (describe(first, last, top)), and make_rows(top, new_top, kept_end, new_end) moves rows
+// [new_top, kept_end), already made, to the band's start and makes rows [kept_end, new_end)
+// after them: every row is made once, in a buffer that stays in cache, and rows no point reads
+// are not made.
+template <class MakeRows, class Describe>
+void describe_through_sliding_band(const std::vector<PixelPoint>& points, int count, int reach,
+                                   int rows, int capacity, MakeRows make_rows, Describe describe) {
+  int top = 0, end = 0;
+  int first = 0;  // first point not yet described
+  for (int i = 0; i < count; ++i) {
+    const int y = points[static_cast<std::size_t>(i)].y;
+    if (std::min(rows, y + reach + 1) <= end) continue;
+    if (i > first) describe(first, i, top);
+    first = i;
+    const int new_top = std::max(0, y - reach);
+    const int new_end = std::min(rows, new_top + capacity);
+    make_rows(top, new_top, std::max(new_top, end), new_end);
+    top = new_top;
+    end = new_end;
+  }
+  if (count > first) describe(first, count, top);
+}
 
 }  // namespace
 
@@ -27,7 +57,14 @@ void LevelDescriptions::start(const LevelGeometry& geometry, Selections selectio
     if (selections_ == Selections::many)
       blurred_.resize(w, h);
     else
-      blurred_.resize(w, std::min(h, kBlurBandKeypointRows + 2 * kEdgeBorder));
+      blurred_.resize(w, std::min(h, kBandKeypointRows + 2 * kEdgeBorder));
+  }
+  if (geometry.grid.count() > 0 && descriptor_ == DescriptorKind::box &&
+      selections_ == Selections::one) {
+    static const int reach = box_reach(kBoxLevelScale);
+    integral_band_rows_ = std::min(h + 1, kBoxBandKeypointRows + 2 * reach + 1);
+    integral_band_.resize(static_cast<std::size_t>(integral_band_rows_) *
+                          (static_cast<std::size_t>(w) + 1));
   }
   blurred_top_ = blurred_end_ = 0;
   memo_slot_.clear();
@@ -67,14 +104,18 @@ void LevelDescriptions::describe(const PyramidLevel& level,
     angles_[static_cast<std::size_t>(i)] =
         angle(m10_[static_cast<std::size_t>(i)], m01_[static_cast<std::size_t>(i)]);
   if (descriptor_ == DescriptorKind::box) {
-    if (!level_blurred()) blur_level(level, kernels);
     box_points_.resize(todo_.size());
     for (int i = 0; i < count; ++i) {
       const PixelPoint& p = points_[static_cast<std::size_t>(i)];
       box_points_[static_cast<std::size_t>(i)] = {static_cast<float>(p.x), static_cast<float>(p.y)};
     }
-    kernels.box_describe(integral_.view(), box_points_.data(), angles_.data(), count,
-                         kBoxLevelScale, descriptors_.data());
+    if (selections_ == Selections::one) {
+      box_describe_through_band(level, kernels, count);
+    } else {
+      if (!level_blurred()) blur_level(level, kernels);
+      kernels.box_describe(integral_.view(), box_points_.data(), angles_.data(), count,
+                           kBoxLevelScale, descriptors_.data());
+    }
   } else if (selections_ == Selections::many) {
     if (!level_blurred()) blur_level(level, kernels);
     kernels.rbrief_describe(blurred_.view(), points_.data(), angles_.data(), count,
@@ -107,51 +148,67 @@ void LevelDescriptions::blur_level(const PyramidLevel& level, const KernelTable&
 
 void LevelDescriptions::describe_through_band(const PyramidLevel& level, const KernelTable& kernels,
                                               int count) {
-  // The points come in raster order, so the blurred rows they read, [y - kEdgeBorder, y +
-  // kEdgeBorder], form a window sliding down the level. The band holds blurred rows [top, end);
-  // when a point needs a row below it, the rows still needed move to the band's top and only
-  // the new ones are blurred: every blurred row is computed once, in a buffer that stays in cache,
-  // and only at the columns the points' patches cover (core/description/patch_blur.hpp).
-  const std::vector<PixelPoint>& points = points_;
+  // The blurred rows only at the columns the points' patches cover
+  // (core/description/patch_blur.hpp).
+  const int width = level.geometry.width;
+  const MutableImageView band = blurred_.mutable_view();
   std::vector<PixelPoint>& shifted = band_points_;
   shifted.resize(static_cast<std::size_t>(count));
-  const int width = level.geometry.width, height = level.geometry.height;
-  const int capacity = blurred_.height();
-  const MutableImageView band = blurred_.mutable_view();
-  int& top = blurred_top_;
-  int& end = blurred_end_;
-  top = end = 0;
-  int first = 0;  // first point not yet described
-  const auto describe_up_to = [&](int last) {
-    if (last == first) return;
+  const auto make_rows = [&](int top, int new_top, int kept_end, int new_end) {
+    if (kept_end > new_top)
+      std::memmove(band.data, band.row(new_top - top),
+                   static_cast<std::size_t>(kept_end - new_top) * static_cast<std::size_t>(band.stride));
+    blur_patch_rows(kernels, level.pixels,
+                    {band.row(kept_end - new_top), width, new_end - kept_end, band.stride},
+                    kept_end, new_end, points_.data(), count, blur_columns_);
+    blurred_top_ = new_top;
+    blurred_end_ = new_end;
+  };
+  const auto describe = [&](int first, int last, int top) {
     for (int i = first; i < last; ++i) {
-      const PixelPoint& p = points[static_cast<std::size_t>(i)];
+      const PixelPoint& p = points_[static_cast<std::size_t>(i)];
       shifted[static_cast<std::size_t>(i)] = {p.x, p.y - top};
     }
     kernels.rbrief_describe(
-        {band.data, width, end - top, band.stride}, shifted.data() + first, angles_.data() + first,
-        last - first, descriptors_.data() + static_cast<std::size_t>(first) * kDescriptorBytes);
-    first = last;
+        {band.data, width, blurred_end_ - top, band.stride}, shifted.data() + first,
+        angles_.data() + first, last - first,
+        descriptors_.data() + static_cast<std::size_t>(first) * kDescriptorBytes);
   };
-  for (int i = 0; i < count; ++i) {
-    const int y = points[static_cast<std::size_t>(i)].y;
-    if (y + kEdgeBorder < end) continue;
-    describe_up_to(i);
-    const int new_top = y - kEdgeBorder;
-    const int new_end = std::min(height, new_top + capacity);
-    int kept_end = new_top;  // rows [new_top, kept_end) are already blurred in the band
-    if (end > new_top) {
-      std::memmove(band.data, band.row(new_top - top),
-                   static_cast<std::size_t>(end - new_top) * static_cast<std::size_t>(band.stride));
-      kept_end = end;
+  describe_through_sliding_band(points_, count, kEdgeBorder, level.geometry.height,
+                                blurred_.height(), make_rows, describe);
+}
+
+void LevelDescriptions::box_describe_through_band(const PyramidLevel& level,
+                                                  const KernelTable& kernels, int count) {
+  // Integral rows [top, end) from the origin row of the band's first fill (zeros; entry
+  // differences within the band are the integral's, core/kernels/integral_image.hpp): a point
+  // far below the band starts a new origin, so rows between points are never summed.
+  const int width = level.geometry.width, height = level.geometry.height;
+  const std::ptrdiff_t stride = width + 1;
+  std::uint32_t* band = integral_band_.data();
+  const auto row = [&](int r) { return band + r * stride; };  // band row r
+  const auto make_rows = [&](int top, int new_top, int kept_end, int new_end) {
+    int r = kept_end;
+    if (kept_end > new_top) {
+      std::memmove(band, row(new_top - top),
+                   static_cast<std::size_t>(kept_end - new_top) * static_cast<std::size_t>(stride) *
+                       sizeof(std::uint32_t));
+    } else {
+      std::fill(band, band + stride, 0u);
+      ++r;
     }
-    blur_patch_rows(kernels, level.pixels,
-                    {band.row(kept_end - new_top), width, new_end - kept_end, band.stride},
-                    kept_end, new_end, points.data(), count, blur_columns_);
-    top = new_top;
-    end = new_end;
-  }
-  describe_up_to(count);
+    for (; r < new_end; ++r)
+      kernels.integral_image_row(level.pixels.row(r - 1), width, row(r - 1 - new_top),
+                                 row(r - new_top));
+  };
+  const auto describe = [&](int first, int last, int top) {
+    kernels.box_describe({band, width, height, stride, top}, box_points_.data() + first,
+                         angles_.data() + first, last - first, kBoxLevelScale,
+                         descriptors_.data() + static_cast<std::size_t>(first) * kDescriptorBytes);
+  };
+  static const int reach = box_reach(kBoxLevelScale);
+  describe_through_sliding_band(points_, count, reach, height + 1, integral_band_rows_, make_rows,
+                                describe);
 }
 
 }  // namespace aief

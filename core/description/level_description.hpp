@@ -2,8 +2,8 @@
 // Stage 4, second half, on one level: orientation (intensity centroid on the raw level) and
 // descriptor of chosen candidates, memoised per candidate, so a candidate chosen again (the
 // fallback, the sweep's thresholds) is described once. rBRIEF reads the blurred level, its rows
-// held as the number of selections asks; the box descriptor the level's integral image, made
-// whole on the first describe of a frame (core/kernels/box_describe.hpp).
+// held as the number of selections asks; the box descriptor the level's integral image
+// (core/kernels/box_describe.hpp), held the same way.
 #include <cstdint>
 #include <vector>
 
@@ -55,6 +55,7 @@ class LevelDescriptions {
   DescriptorKind descriptor_ = DescriptorKind::rbrief;
   std::size_t slot(std::int32_t i) const;
   void describe_through_band(const PyramidLevel& level, const KernelTable& kernels, int count);
+  void box_describe_through_band(const PyramidLevel& level, const KernelTable& kernels, int count);
 
   Selections selections_ = Selections::one;
   // Slot of each candidate (-1: not described yet) into dense arrays that hold only the
@@ -66,8 +67,11 @@ class LevelDescriptions {
   // band of rows [blurred_top_, blurred_end_) that slides down as points are described.
   GrayImage blurred_;
   int blurred_top_ = 0, blurred_end_ = 0;
-  // The box descriptor's integral image of the whole level (blurred_end_ > 0 once made).
+  // The box descriptor's integral image: of the whole level (Selections::many; blurred_end_ > 0
+  // once made), or a band of integral_band_rows_ rows sliding down it (Selections::one).
   IntegralImage integral_;
+  std::vector<std::uint32_t> integral_band_;
+  int integral_band_rows_ = 0;
   std::vector<BoxPoint> box_points_;
   // One describe() call's buffers.
   std::vector<PixelPoint> points_, band_points_;

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/kernels/kernel_evidence.hpp"
@@ -41,6 +42,20 @@ BoxSum box_sum(IntegralView integral, long cx, long cy, long r) {
 
 const BoxTest* box_table() { return kTable; }
 const char* box_table_name() { return kTableName; }
+
+// A box centre lies at lrint(y + d), |d| <= scale * |(px, py)| up to float rounding, so within
+// floor(scale * |(px, py)|) + 1 of y; its entries run from R above it to R + 1 below.
+int box_reach(float scale) {
+  long reach = 0;
+  for (const BoxTest& test : kTable) {
+    const long r = std::lrint(scale * static_cast<float>(test.radius));
+    for (const auto& [px, py] : {std::pair{test.x1, test.y1}, std::pair{test.x2, test.y2}}) {
+      const double distance = scale * std::hypot(static_cast<double>(px), static_cast<double>(py));
+      reach = std::max(reach, static_cast<long>(std::floor(distance)) + 1 + r + 1);
+    }
+  }
+  return static_cast<int>(reach);
+}
 
 void box_describe_scalar(IntegralView integral, const BoxPoint* points, const float* angle_deg,
                          int n, float scale, std::uint8_t* descriptors) {

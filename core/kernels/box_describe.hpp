@@ -53,8 +53,14 @@ struct BoxPoint {
   float y = 0;
 };
 
+// How far from a keypoint at integer (x, y) a describe at `scale` reads: every entry of every box
+// lies in rows (and columns) [y - reach, y + reach] of the integral image, clipped to it.
+int box_reach(float scale);
+
 // Writes 32 bytes per point to descriptors (n * 32), as the contract above says. Any position
-// (boxes are clipped to the image); the image is at least 1 x 1; 0 < scale <= 4.
+// (boxes are clipped to the image); the image is at least 1 x 1; 0 < scale <= 4. A band of the
+// integral's rows (IntegralView::first_row) serves points at integer positions whose reach it
+// holds.
 void box_describe_scalar(IntegralView integral, const BoxPoint* points, const float* angle_deg,
                          int n, float scale, std::uint8_t* descriptors);
 

@@ -14,14 +14,18 @@ namespace aief {
 
 struct KernelTable;
 
-// Read-only view of an integral image: entry (y, x) at data[y * stride + x], y in [0, height],
-// x in [0, width] (width and height are the image's).
+// Read-only view of an integral image, or of a band of its rows: entry (y, x) at
+// data[(y - first_row) * stride + x], x in [0, width], y in [first_row, first_row + the rows held]
+// within [0, height] (width and height are the image's). A band may be taken from any origin row
+// above it (its first row need not be zero): a box's sum is a difference of entries in the same
+// columns, so a constant per column cancels, and every box inside the band sums alike.
 struct IntegralView {
   const std::uint32_t* data = nullptr;
   int width = 0;              // of the image: width + 1 entries a row
   int height = 0;             // of the image: height + 1 rows
   std::ptrdiff_t stride = 0;  // entries between the starts of two rows, >= width + 1
-  const std::uint32_t* row(int y) const { return data + y * stride; }
+  int first_row = 0;          // the integral row held at data
+  const std::uint32_t* row(int y) const { return data + (y - first_row) * stride; }
 };
 
 // An integral image that owns its entries and reuses them for images of a size it has held.
