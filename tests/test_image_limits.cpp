@@ -1,155 +1,29 @@
-// Image reading (conversions, clear errors) and result files (JSON, OpenCV YAML read back).
-#include <chrono>
-#include <cstring>
+// Image reading within limits: each format's header read before decoding (io/image_header.hpp),
+// and what would take too much memory or time refused before the decoder runs: too many pixels or
+// decoded bytes, a JPEG of too many scans, a TIFF tile too large, a file read no further than its
+// format needs.
 #include <filesystem>
 #include <fstream>
-#include <future>
+#include <optional>
 
 #include <gtest/gtest.h>
-#include <sys/stat.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "io/feature_formats.hpp"
 #include "io/image_header.hpp"
 #include "io/image_io.hpp"
-#include "io/npz_writer.hpp"
-#include "tests/odd_names.hpp"
+#include "tests/io_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
 namespace {
 
 using TempDir = test::TempFolder;
-
-std::string error_of(const std::string& path) {
-  try {
-    io::read_gray_image(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-TEST(ImageIo, ReadsGrayAndConvertsColourDepthAndAlpha) {
-  TempDir dir;
-  cv::Mat colour(20, 30, CV_8UC3);
-  cv::randu(colour, 0, 255);
-  cv::imwrite(dir.file("c.png"), colour);
-  cv::Mat expected;
-  cv::cvtColor(colour, expected, cv::COLOR_BGR2GRAY);
-  GrayImage gray = io::read_gray_image(dir.file("c.png"));
-  ASSERT_EQ(gray.width(), 30);
-  ASSERT_EQ(gray.height(), 20);
-  EXPECT_EQ(0, std::memcmp(gray.data(), expected.data, 600));
-  // Not what the decoder's own gray conversion gives (docs/command_line.md, "Colour to gray"):
-  // libpng truncates.
-  const cv::Mat decoder_gray = cv::imread(dir.file("c.png"), cv::IMREAD_GRAYSCALE);
-  EXPECT_NE(0, std::memcmp(gray.data(), decoder_gray.data, 600));
-
-  cv::Mat rgba(10, 12, CV_8UC4, cv::Scalar(10, 20, 30, 0));
-  cv::imwrite(dir.file("a.png"), rgba);
-  EXPECT_EQ(io::read_gray_image(dir.file("a.png")).width(), 12);
-
-  cv::Mat real(8, 9, CV_32FC1, cv::Scalar(0.5));  // float images are refused with the depth named
-  cv::imwrite(dir.file("f.tiff"), real);
-  EXPECT_NE(
-      error_of(dir.file("f.tiff")).find("its pixels are 32-bit float, not 8- or 16-bit unsigned"),
-      std::string::npos)
-      << error_of(dir.file("f.tiff"));
-  // Formats of float pixels only: refused by name, before decoding, never listed as readable.
-  cv::Mat radiance(8, 9, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
-  cv::imwrite(dir.file("r.hdr"), radiance);
-  EXPECT_NE(error_of(dir.file("r.hdr")).find("a Radiance HDR file holds floating-point pixels"),
-            std::string::npos)
-      << error_of(dir.file("r.hdr"));
-  std::ofstream(dir.file("p.pfm"), std::ios::binary) << "Pf\n9 8\n-1.0\n"
-                                                     << std::string(9 * 8 * 4, '\0');
-  EXPECT_NE(error_of(dir.file("p.pfm")).find("a PFM file holds floating-point pixels"),
-            std::string::npos)
-      << error_of(dir.file("p.pfm"));
-  std::ofstream(dir.file("unknown.png")) << "GIF89a";
-  EXPECT_EQ(error_of(dir.file("unknown.png")).find("HDR"), std::string::npos)
-      << "listed as readable";
-  EXPECT_EQ(error_of(dir.file("unknown.png")).find("PFM"), std::string::npos)
-      << "listed as readable";
-
-  cv::Mat deep(8, 9, CV_16UC1, cv::Scalar(51200));  // 200 * 256
-  cv::imwrite(dir.file("d.png"), deep);
-  const GrayImage eight = io::read_gray_image(dir.file("d.png"));
-  EXPECT_EQ(eight.data()[0], 200);
-}
-
-TEST(ImageIo, AFifoIsRefusedWithoutOpeningIt) {
-  TempDir dir;
-  const std::string fifo = dir.file("fifo.png");
-  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  // Opening it would wait for a writer: if the read has not answered in a minute, a writer ends
-  // the wait so that the test fails instead of hanging.
-  std::future<std::string> refusal = std::async(std::launch::async, [&] { return error_of(fifo); });
-  if (refusal.wait_for(std::chrono::seconds(60)) != std::future_status::ready) {
-    ADD_FAILURE() << "reading a FIFO blocked";
-    std::ofstream(fifo) << "x";
-  }
-  EXPECT_NE(refusal.get().find("not a regular file (a FIFO), not opened"), std::string::npos);
-}
-
-TEST(ImageIo, ClearErrorsForBadFiles) {
-  TempDir dir;
-  EXPECT_NE(error_of(dir.file("missing.png")).find("no such file"), std::string::npos);
-  EXPECT_NE(error_of(dir.path().string()).find("directory"), std::string::npos);
-  std::ofstream(dir.file("text.png")) << "this is not an image";
-  EXPECT_NE(error_of(dir.file("text.png")).find("cannot read image"), std::string::npos);
-  // Truncated PNG and JPEG: the first part of a valid file.
-  for (const char* ext : {".png", ".jpg"}) {
-    std::vector<std::uint8_t> bytes;
-    cv::imencode(ext, test::random_image(64, 64, 3), bytes);
-    std::ofstream out(dir.file(std::string("cut") + ext), std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()),
-              static_cast<std::streamsize>(bytes.size() / 3));
-    out.close();
-    std::string message;
-    try {
-      const GrayImage image = io::read_gray_image(dir.file(std::string("cut") + ext));
-      message = "decoded " +
-                std::to_string(image.width());  // libjpeg pads a cut file: an image, no crash
-    } catch (const Error& e) {
-      message = e.what();
-    }
-    EXPECT_FALSE(message.empty()) << ext;
-  }
-}
-
-std::vector<std::uint8_t> bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)),
-                                   std::istreambuf_iterator<char>());
-}
-
-// OpenCV hands bytes carrying DICOM's signature ("DICM" at offset 128) to GDCM before its JPEG 2000
-// decoders, and GDCM aborts the process on a damaged file (the fuzzer's finding, kept in
-// fuzz/corpus/image_bytes/regression_dicom_signature): such bytes are refused before decoding.
-TEST(ImageIo, BytesOpenCvWouldHandToItsDicomDecoderAreRefused) {
-  std::vector<std::uint8_t> jpeg2000;
-  ASSERT_TRUE(cv::imencode(".jp2", test::random_image(64, 64, 1), jpeg2000));
-  ASSERT_GT(jpeg2000.size(), 132u);
-  EXPECT_EQ(io::decode_gray_image(jpeg2000, "plain.jp2").width(), 64);
-  std::memcpy(jpeg2000.data() + 128, "DICM", 4);
-  try {
-    io::decode_gray_image(jpeg2000, "dicom_signature.jp2");
-    ADD_FAILURE() << "decoded";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("not an image aief can read"), std::string::npos)
-        << e.what();
-  }
-  const std::string finding =
-      std::string(AIEF_DATA_DIR) + "/../fuzz/corpus/image_bytes/regression_dicom_signature";
-  EXPECT_THROW(io::decode_gray_image(bytes_of(finding), finding), Error);
-}
-
+using test::bytes_of;
+using test::error_of;
 
 TEST(ImageHeader, ReadsTheSizeEveryFormatDeclaresAndSurvivesEveryCut) {
   // OpenCV's encoders are the oracle: what they write at 37 x 33, the parser reads back.
@@ -421,130 +295,6 @@ TEST(ImageIo, AFileIsReadNoFurtherThanItsFormatNeeds) {
   before = bytes_read_so_far();
   EXPECT_NE(error_of(bomb_path).find("refused before decoding"), std::string::npos);
   EXPECT_LT(bytes_read_so_far() - before, 1 << 20);
-}
-
-TEST(ImageIo, AJpegCutShortIsDecodedWithAWarning) {
-  TempDir dir;
-  const cv::Mat colour = cv::imread(test::sample_path("boat", "img1.png"));
-  std::vector<std::string> warnings;
-  for (const int progressive : {0, 1}) {  // whole files, several scans or one: no warning
-    std::vector<std::uint8_t> bytes;
-    cv::imencode(".jpg", colour, bytes, {cv::IMWRITE_JPEG_PROGRESSIVE, progressive});
-    io::decode_gray_image(bytes, "whole.jpg", ExtractorOptions{}.max_image_pixels, &warnings);
-  }
-  EXPECT_TRUE(warnings.empty());
-  // Cut in half: libjpeg still gives an image (OpenCV refuses a cut progressive one outright).
-  std::vector<std::uint8_t> bytes;
-  cv::imencode(".jpg", colour, bytes);
-  bytes.resize(bytes.size() / 2);
-  std::ofstream(dir.file("cut.jpg"), std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
-  const GrayImage image =
-      io::read_gray_image(dir.file("cut.jpg"), ExtractorOptions{}.max_image_pixels, &warnings);
-  EXPECT_EQ(image.width(), colour.cols);
-  ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("cut short"), std::string::npos) << warnings[0];
-  EXPECT_NE(warnings[0].find("cut.jpg"), std::string::npos) << warnings[0];
-}
-
-TEST(FeatureFiles, JsonAndYamlCarryEveryKeypointAndDescriptor) {
-  TempDir dir;
-  const cv::Mat gray = test::load_sample_gray("boat", "img1.png");
-  ExtractorOptions options;
-  options.n_features = 200;
-  const Features features = extract(view_of(gray), options);
-  ASSERT_GT(features.keypoints.size(), 100u);
-
-  io::write_features(dir.file("f.json"), "boat.png", features, options);
-  std::ifstream in(dir.file("f.json"));
-  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_NE(json.find("\"image\":\"boat.png\""), std::string::npos);
-  EXPECT_NE(json.find("\"width\":850"), std::string::npos);
-  EXPECT_NE(json.find("\"n_features\":200"), std::string::npos);
-  std::size_t hex_strings = 0, keypoints = 0;
-  for (std::size_t at = json.find("\"octave\""); at != std::string::npos;
-       at = json.find("\"octave\"", at + 1))
-    ++keypoints;
-  const std::size_t list = json.find("\"descriptors_hex\"");
-  for (std::size_t at = json.find('"', list + 18); at != std::string::npos;
-       at = json.find('"', at + 66)) {
-    ASSERT_EQ(json[at + 65], '"') << "descriptor string of 64 hex characters";
-    ++hex_strings;
-  }
-  EXPECT_EQ(keypoints, features.keypoints.size());
-  EXPECT_EQ(hex_strings, features.descriptors.size());
-  EXPECT_FALSE(std::filesystem::exists(dir.file("f.json.tmp")));
-
-  io::write_features(dir.file("f.yml"), "boat.png", features, options);
-  cv::FileStorage fs(dir.file("f.yml"), cv::FileStorage::READ);
-  ASSERT_TRUE(fs.isOpened());
-  std::vector<cv::KeyPoint> keypoints_back;
-  cv::read(fs["keypoints"], keypoints_back);
-  cv::Mat descriptors;
-  fs["descriptors"] >> descriptors;
-  ASSERT_EQ(keypoints_back.size(), features.keypoints.size());
-  ASSERT_EQ(descriptors.rows, static_cast<int>(features.descriptors.size()));
-  ASSERT_EQ(descriptors.cols, 32);
-  ASSERT_EQ(descriptors.type(), CV_8U);
-  for (std::size_t i = 0; i < keypoints_back.size(); ++i) {
-    EXPECT_EQ(keypoints_back[i].pt.x, features.keypoints[i].x);
-    EXPECT_EQ(keypoints_back[i].octave, features.keypoints[i].octave);
-    EXPECT_EQ(
-        0, std::memcmp(descriptors.ptr(static_cast<int>(i)), features.descriptors[i].data(), 32));
-  }
-  EXPECT_THROW(io::write_features(dir.file("f.txt"), "x", features, options), Error);
-}
-
-TEST(FeatureFiles, YamlRoundTripsEveryOddNameAndRefusesControlCharactersClearly) {
-  TempDir dir;
-  const GrayImage image = io::read_gray_image(test::sample_path("boat", "img1.png"));
-  ExtractorOptions options;
-  options.n_features = 50;
-  const Features features = extract(image.view(), options);
-  int file = 0;
-  for (const std::string& name : test::odd_image_names()) {
-    io::SourceRecord source{name, 1234, 5678, {}};
-    for (const char* extension : {".yml", ".json", ".npz"}) {
-      const std::string path = dir.file(std::to_string(file++) + extension);
-      ASSERT_NO_THROW(io::write_features(path, name, features, options, source)) << name;
-      EXPECT_TRUE(io::features_file_belongs_to(path, source))
-          << extension << " '" << name << "' read back as another name";
-      source.bytes += 1;
-      EXPECT_FALSE(io::features_file_belongs_to(path, source)) << name;
-      source.bytes -= 1;
-      if (std::string(extension) != ".yml") continue;
-      cv::FileStorage fs(path, cv::FileStorage::READ);
-      ASSERT_TRUE(fs.isOpened()) << name;
-      EXPECT_EQ(static_cast<std::string>(fs["image"]), name);
-      EXPECT_EQ(static_cast<std::string>(fs["source_name"]), name);
-      cv::Mat descriptors;
-      fs["descriptors"] >> descriptors;
-      EXPECT_EQ(descriptors.rows, static_cast<int>(features.descriptors.size())) << name;
-    }
-  }
-  for (const std::string& name : test::control_character_names()) {
-    const io::SourceRecord source{name, 1, 2, {}};
-    try {
-      io::write_features(dir.file("control.yml"), name, features, options, source);
-      ADD_FAILURE() << "YAML accepted a name it cannot read back";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("YAML cannot hold the image name"), std::string::npos)
-          << e.what();
-      // The formats that can, from the registry's rows (io/feature_formats.cpp).
-      EXPECT_NE(std::string(e.what()).find("(write .json or .npz for such names)"),
-                std::string::npos)
-          << e.what();
-    }
-    EXPECT_FALSE(std::filesystem::exists(dir.file("control.yml")));
-    io::write_features(dir.file("control.json"), name, features, options, source);
-    EXPECT_TRUE(io::features_file_belongs_to(dir.file("control.json"), source));
-  }
-  // Longer than OpenCV's YAML strings (4094 bytes), escapes counted: refused, not cut.
-  const std::string long_name = std::string(2100, 'a') + std::string(1000, '"') + ".png";
-  EXPECT_THROW(io::write_features(dir.file("long.yml"), long_name, features, options,
-                                  io::SourceRecord{long_name, 1, 2, {}}),
-               Error);
 }
 
 }  // namespace
