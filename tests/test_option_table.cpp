@@ -116,13 +116,16 @@ TEST(OptionTable, EveryRowHasEveryFrontEndOnce) {
       EXPECT_EQ(row.cli_flag, flag);
       EXPECT_EQ(row.python_keyword, row.key);
     }
-    if (!row.old_cli_flag.empty())
+    if (!row.old_cli_flag.empty()) {
       EXPECT_TRUE(row.old_cli_flag.starts_with("--") && flags.insert(row.old_cli_flag).second);
-    if (!row.old_python_keyword.empty())
+    }
+    if (!row.old_python_keyword.empty()) {
       EXPECT_TRUE(keywords.insert(row.old_python_keyword).second);
-    if (!row.old_yaml_key.empty())
+    }
+    if (!row.old_yaml_key.empty()) {
       EXPECT_TRUE(row.old_yaml_key.starts_with("ORBextractor.") &&
                   yaml_keys.insert(row.old_yaml_key).second);
+    }
   }
   EXPECT_EQ(positions.size(), 7u);
 }
