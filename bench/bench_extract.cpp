@@ -98,14 +98,6 @@ void register_extract_benchmarks() {
       options.threads = 1;
       register_extract(name, gray, options);
     }
-    // The quality mode with the box descriptor: one thread, AVX2 (docs/speed.md).
-    {
-      ExtractorOptions options = options_for_mode(Mode::quality);
-      options.descriptor = DescriptorKind::box;
-      options.kernels = KernelSet::avx2;
-      options.threads = 1;
-      register_extract("extract/quality+box/avx2/t1/" + image.name, gray, options);
-    }
     // AKAZE with OpenCV's defaults, detectAndCompute (the quality mode's speed target).
     benchmark::RegisterBenchmark(
         ("extract/opencv_akaze/" + image.name).c_str(),
