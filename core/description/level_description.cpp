@@ -21,6 +21,12 @@ namespace {
 constexpr int kBandKeypointRows = 96;
 constexpr int kBoxBandKeypointRows = 192;
 
+// Rows above and below a keypoint the box descriptor reads on its level (computed once).
+int box_level_reach() {
+  static const int reach = box_reach(kBoxLevelScale);
+  return reach;
+}
+
 // The points come in raster order, so the rows they read, [y - reach, y + reach] (clipped to
 // [0, rows)), form a window sliding down the level. A band of `capacity` rows holds rows [top,
 // end); when a point needs a row below it, the points before it are described
@@ -61,8 +67,7 @@ void LevelDescriptions::start(const LevelGeometry& geometry, Selections selectio
   }
   if (geometry.grid.count() > 0 && descriptor_ == DescriptorKind::box &&
       selections_ == Selections::one) {
-    static const int reach = box_reach(kBoxLevelScale);
-    integral_band_rows_ = std::min(h + 1, kBoxBandKeypointRows + 2 * reach + 1);
+    integral_band_rows_ = std::min(h + 1, kBoxBandKeypointRows + 2 * box_level_reach() + 1);
     integral_band_.resize(static_cast<std::size_t>(integral_band_rows_) *
                           (static_cast<std::size_t>(w) + 1));
   }
@@ -206,9 +211,8 @@ void LevelDescriptions::box_describe_through_band(const PyramidLevel& level,
                          angles_.data() + first, last - first, kBoxLevelScale,
                          descriptors_.data() + static_cast<std::size_t>(first) * kDescriptorBytes);
   };
-  static const int reach = box_reach(kBoxLevelScale);
-  describe_through_sliding_band(points_, count, reach, height + 1, integral_band_rows_, make_rows,
-                                describe);
+  describe_through_sliding_band(points_, count, box_level_reach(), height + 1, integral_band_rows_,
+                                make_rows, describe);
 }
 
 }  // namespace aief
