@@ -11,9 +11,8 @@
 #include <unistd.h>
 
 #include "aief/error.hpp"
-#include "aief/extractor.hpp"
-#include "io/image_io.hpp"
 #include "io/temporary_files.hpp"
+#include "tests/io_test_support.hpp"
 #include "tests/test_support.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_file.hpp"
@@ -137,11 +136,7 @@ TEST(TemporaryFiles, ALockedTemporaryNeverReplacesAnOutput) {
 }
 
 #ifdef AIEF_HAVE_HDF5
-Features sample_features(const char* sequence, int index) {
-  const GrayImage image =
-      io::read_gray_image(test::sample_path(sequence, "img" + std::to_string(index) + ".png"));
-  return extract(image.view());
-}
+using test::sample_features;
 
 // A merge removes a killed merge's temporary and leaves one another merge into the same output
 // holds (was: one shared temporary name per output, removed or overwritten by the other run).
