@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Where the correct matches per pair are lost: in the keypoints or in the descriptor?
 
-Swaps detectors and descriptors on the same image pairs (docs/evaluation.md, "Correct matches:
-keypoints, not descriptor") and counts, per pair img1 -> imgN of every sequence, the mutual
+Swaps detectors and descriptors on the same image pairs (docs/evaluation.md, "Correct matches: the
+keypoints, not the descriptor") and counts, per pair img1 -> imgN of every sequence, the mutual
 nearest neighbours that land within 3 px of the true homography (aief eval's "correct"), and
 their share (MMA@3px):
 
