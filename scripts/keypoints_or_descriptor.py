@@ -13,6 +13,11 @@ their share (MMA@3px):
   box on AKAZE xM         the same AKAZE keypoints described by aief's box descriptor, each on the
                           pyramid level whose patch is M x the keypoint's size
 
+A second table says where the correct matches a row misses are lost, per pair: its keypoints that
+have a copy (another of its keypoints within 2 px, as the same corner found on a neighbouring
+pyramid level), the nearest neighbours img1 -> imgN that are correct (one way, before the mutual
+check), those of them the mutual check keeps (the first table's count) and those it drops.
+
 Extraction and description are aief's (the Python module built in BUILD/python); SIFT and AKAZE
 are OpenCV's, used as baselines only.
 
@@ -29,6 +34,7 @@ import numpy as np
 
 FEATURES = 1000
 CORRECT_PX = 3.0
+COPY_PX = 2.0
 
 
 def mutual_matches(d1, d2, norm):
@@ -42,6 +48,25 @@ def correct_and_putative(matches, points1, points2, h):
     p2 = np.float32([points2[m.trainIdx] for m in matches])
     mapped = cv2.perspectiveTransform(p1, h).reshape(-1, 2)
     return int((np.linalg.norm(mapped - p2, axis=1) <= CORRECT_PX).sum()), len(matches)
+
+
+def nearest_neighbours_correct(d1, d2, norm, points1, points2, h):
+    """(correct one way, correct and mutual): img1's nearest neighbours in img2 within 3 px of
+    the homography, and those of them that are also img2's nearest neighbours back."""
+    forward = np.int64([m.trainIdx for m in cv2.BFMatcher(norm).match(d1, d2)])
+    backward = np.int64([m.trainIdx for m in cv2.BFMatcher(norm).match(d2, d1)])
+    mapped = cv2.perspectiveTransform(np.float32(points1).reshape(-1, 1, 2), h).reshape(-1, 2)
+    correct = np.linalg.norm(mapped - np.float32(points2)[forward], axis=1) <= CORRECT_PX
+    mutual = backward[forward] == np.arange(len(forward))
+    return int(correct.sum()), int((correct & mutual).sum())
+
+
+def with_a_copy(points, radius=COPY_PX):
+    """How many of the points have another point within radius px."""
+    points = np.float32(points)
+    distance = np.linalg.norm(points[:, None, :] - points[None, :, :], axis=2)
+    np.fill_diagonal(distance, np.inf)
+    return int((distance.min(axis=1) <= radius).sum())
 
 
 def strongest(keypoints, descriptors, n=FEATURES):
@@ -93,6 +118,7 @@ def main():
 
     methods = Methods(aief)
     totals = {}  # row -> [(correct, putative)]
+    losses = {}  # row -> [(keypoints with a copy, correct one way, correct and mutual)]
     for sequence in [s for s in args.sequences.split(",") if s]:
         folder = os.path.join(args.dataset, sequence)
         first = cv2.imread(os.path.join(folder, "img1.png"), cv2.IMREAD_GRAYSCALE)
@@ -112,12 +138,21 @@ def main():
                 p1, d1, _ = rows1[row]
                 totals.setdefault(row, []).append(
                     correct_and_putative(mutual_matches(d1, d2, norm), p1, p2, h))
+                losses.setdefault(row, []).append(
+                    (with_a_copy(p1), *nearest_neighbours_correct(d1, d2, norm, p1, p2, h)))
     print("| keypoints and descriptor | correct per pair | MMA@3px | pairs |")
     print("|---|---|---|---|")
     for row, pairs in totals.items():
         correct = np.array([c for c, _ in pairs], float)
         share = np.array([c / p if p else 0.0 for c, p in pairs])
         print(f"| {row} | {correct.mean():.0f} | {100 * share.mean():.1f} | {len(pairs)} |")
+    print()
+    print("| keypoints and descriptor | with a copy | correct one way | kept by the mutual check "
+          "| dropped by it |")
+    print("|---|---|---|---|---|")
+    for row, pairs in losses.items():
+        copies, one_way, mutual = np.float64(pairs).mean(axis=0)
+        print(f"| {row} | {copies:.0f} | {one_way:.0f} | {mutual:.0f} | {one_way - mutual:.0f} |")
 
 
 if __name__ == "__main__":
