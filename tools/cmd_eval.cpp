@@ -51,7 +51,10 @@ void print_help() {
       << flags_help<MatchOptions>()
       << "  --repeat N            interleaved timing rounds per pair, median (default 5)\n"
       << "  --methods LIST        comma-separated JSON keys of the rows to run (default all):\n"
-      << "                        " << method_keys_text() << "\n\n"
+      << "                        " << method_keys_text() << ";\n"
+      << "                        or any mode, F as the mode sets it (aief, quality), swept over "
+         "the\n"
+      << "                        pair (MODE_adaptive) or automatic (MODE_auto): quality_auto\n\n"
       << "extractor options of the AIEF rows (--mode aief; the other rows keep their mode's), as "
          "in\n"
       << "aief extract; each row sets its own mode, F and one thread:\n"

@@ -69,7 +69,8 @@ void print_help() {
       << "       aief extract --batch LIST|DIR -o FEATURES"
       << joined(Layout::one_file_per_batch, "|", false) << " --format " << per_batch
       << " [--shard i/n] [options]\n\n"
-      << "Keypoints and 256-bit rBRIEF descriptors of one image. Without -o, prints a summary.\n\n"
+      << "Keypoints and 256-bit descriptors (rBRIEF, or the box descriptor: --descriptor) of "
+         "one image.\nWithout -o, prints a summary.\n\n"
       << "  -o, --output FILE     features as " << described(Layout::file_per_image) << "\n"
       << "  --draw FILE           the keypoints drawn over the image, PNG\n"
       << "  --batch LIST|DIR      every image of a folder (recursively, symlinks followed) or of a "
@@ -80,9 +81,10 @@ void print_help() {
       << "                        OUTDIR/<name>.<format>, folders mirrored: sub/x.png -> "
          "OUTDIR/sub/x.png.json.\n"
       << "                        Resumable: an output recording this image's name, size and time "
-         "is\n"
-      << "                        kept, any other is redone; outputs appear atomically. A bad "
-         "image is\n"
+         "and\n"
+      << "                        these options is kept, any other is redone (the reason said); "
+         "outputs\n"
+      << "                        appear atomically. A bad image is\n"
       << "                        reported and skipped. Exit 1 if any failed.\n"
       << "  --format F            "
       << listed(Layout::file_per_image,

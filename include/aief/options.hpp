@@ -104,11 +104,12 @@ enum class ScaleSelection {
 
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
-  aief,              // AIEF with six measured departures (docs/design.md §11; the defaults below)
+  aief,              // AIEF with seven measured departures (docs/design.md §11; the defaults below)
   aief_paper,        // AIEF exactly as published: x * scale, no sub-pixel, no pool, frame guard
   orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
-  faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells and octree tie-breaks
+  faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells, octree tie-breaks and
+                     // orientation
   quality,           // aief with FAST on smoothed levels, a finer pyramid (1.1, 18 levels) and the
                      // box descriptor:
                      // for offline mapping, docs/evaluation.md "Hard families"
