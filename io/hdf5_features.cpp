@@ -71,6 +71,13 @@ void Hdf5File::check_image_name(const std::string& image) const {
   const std::string group = image_group(image);
   if (image.empty())
     throw Error("cannot write an image named '' to '" + path_ + "': an image needs a name");
+  // libhdf5 reads a last part '.' ("."; "x/."; "x/./") as the group it is in, which exists:
+  // the write would fail half done, so it is refused before anything is written.
+  const std::string_view trimmed(group.data(), group.find_last_not_of('/') + 1);
+  if (trimmed == "." || (trimmed.size() >= 2 && trimmed.substr(trimmed.size() - 2) == "/."))
+    throw Error("cannot write an image named '" + image + "' to '" + path_ +
+                "': HDF5 reads a name ending in '.' as the group that holds it, not a group of "
+                "its own; nothing was written for it");
   // The groups on its path: none may be an image's.
   for (std::size_t at = group.find('/', 1); at != std::string::npos; at = group.find('/', at + 1)) {
     const std::string folder = group.substr(0, at);

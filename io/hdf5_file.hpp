@@ -79,6 +79,9 @@ std::string image_of_group(const std::string& group);
 // The note a failed write's message ends with (Hdf5File::write_guarded): the file keeps what was
 // complete before it. A merge, whose file is a temporary it removes, leaves it out.
 inline constexpr const char* kCompleteBeforeIsKept = " (what was complete before is kept)";
+// Its form when writes since the last flush are lost with the failed one: this text, the count
+// flushed, then the count lost (io/hdf5_guarded_write.hpp).
+inline constexpr const char* kKeepsTheFlushedWrites = " (the file keeps the ";
 
 class Hdf5File {
  public:

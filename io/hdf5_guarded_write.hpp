@@ -2,6 +2,7 @@
 // Hdf5File::write_guarded, the one way a write reaches the file (io/hdf5_file.hpp: reserved
 // before, fenced on failure, flushed in batches): for the files that define Hdf5File's writes.
 #include <mutex>
+#include <string>
 
 #include "io/hdf5_file.hpp"
 #include "io/hdf5_objects.hpp"
@@ -38,10 +39,16 @@ void Hdf5File::write_guarded(std::uint64_t bytes, const std::string& what, Write
         (flush == Flush::batched && (++unflushed_writes_ >= kWritesPerFlush || !flushed_a_write_)))
       flush_now();
   } catch (const std::exception& e) {
+    // This write may be half done in memory, so nothing more is flushed: the file keeps what the
+    // last flush wrote, and the writes since then are lost with this one.
     failure_ = e.what();
     fence();
+    const int lost = written_groups_ - flushed_groups_;
     throw Error("cannot write " + what + " to '" + path_ + "': " + failure_ +
-                kCompleteBeforeIsKept);
+                (lost == 0 ? std::string(kCompleteBeforeIsKept)
+                           : kKeepsTheFlushedWrites + std::to_string(flushed_groups_) +
+                                 " writes flushed before it; the " + std::to_string(lost) +
+                                 " since the last flush are lost: write them again)"));
   }
 }
 

@@ -236,11 +236,11 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     throw Error("cannot merge into '" + output + "' (left as it was): " + e.code().message());
   } catch (const std::exception& e) {
     fs::remove(temporary, ec);
-    // The temporary's own "what was complete before is kept" is not the output's: the output
-    // is left as it was, the temporary removed.
+    // The temporary's own note on what it keeps is not the output's: the output is left as it
+    // was, the temporary removed. The note ends the message.
     std::string why = e.what();
-    if (const std::size_t note = why.rfind(kCompleteBeforeIsKept); note != std::string::npos)
-      why.erase(note, std::string_view(kCompleteBeforeIsKept).size());
+    for (const char* note : {kCompleteBeforeIsKept, kKeepsTheFlushedWrites})
+      if (const std::size_t at = why.rfind(note); at != std::string::npos) why.erase(at);
     throw Error("cannot merge into '" + output + "' (left as it was): " + why);
   }
   if (fs::rename(temporary, output, ec); ec) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -58,6 +60,12 @@ TEST(BlockEntropy, MatchesADirectDoubleComputation) {
 TEST(BlockEntropy, ValuesFixedByTheDefinition) {
   std::vector<std::uint8_t> flat(32 * 32, 77);
   EXPECT_EQ(histogram_entropy_bits(histogram_of(flat, 32, 32).data()), 0.0);
+  // Exactly 0 at any area, not only at powers of two (an edge block of 32 x 17; an image of
+  // 200 x 200, past the table): a mask at F = 0 keeps no block of one gray level.
+  for (const auto& [w, h] : {std::pair{32, 17}, std::pair{23, 31}, std::pair{200, 200}}) {
+    std::vector<std::uint8_t> one_level(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 9);
+    EXPECT_EQ(histogram_entropy_bits(histogram_of(one_level, w, h).data()), 0.0) << w << " x " << h;
+  }
   for (int repeats : {1, 4}) {  // 16x16 with each value once, 32x32 with each value 4 times
     std::vector<std::uint8_t> all(256 * static_cast<std::size_t>(repeats));
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<std::uint8_t>(i % 256);

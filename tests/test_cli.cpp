@@ -62,6 +62,7 @@ TEST(Cli, KernelsListedAndForcedByTheEnvironment) {
 
 TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
   const std::string image = aief::test::sample_path("graf", "img1.png");
+  const std::string second = aief::test::sample_path("graf", "img2.png");
   struct Case {
     std::string args, mention;
   };
@@ -121,6 +122,22 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract --batch x -o y --shard 1/0", "--shard expects i/n"},
       {"extract --batch x -o y --shard 1/4x", "--shard expects i/n"},
       {"extract --batch x -o y --shard 1", "--shard expects i/n"},
+      // Options that cannot act here are refused, not accepted for the same bytes.
+      {"extract " + image + " --detection-cells orbslam --candidate-ranking peak",
+       "--candidate-ranking"},
+      {"extract " + image + " --entropy-threshold carried",
+       "--entropy-threshold carried takes F from the frames of a video"},
+      {"match " + image + " " + second + " --entropy-threshold carried",
+       "match A B has no frame before its images"},
+      // A JSON output under another format's name; the matches of --pairs are HDF5.
+      {"match " + image + " " + second + " -o m.npz", "-o m.npz: this command writes JSON"},
+      {"adapt " + image + " " + second + " -o a.yml", "so the file's name must end in .json"},
+      {"match --pairs p.txt --features-file f.h5 -o m.json", "must end in .h5"},
+      // The sweep's commands name the flag that leaves them no entropy.
+      {"adapt " + image + " " + second + " --entropy off", "adapt sweeps the entropy threshold, "
+                                                          "and --entropy off measures no entropy"},
+      {"match " + image + " " + second + " --adaptive --mode orbslam2",
+       "--mode orbslam2 measures no entropy"},
   };
   for (const Case& c : cases) {
     const CliResult r = run(c.args);
@@ -261,6 +278,15 @@ TEST(Cli, InputErrorsExitOne) {
                                    " -o " + (dir / "f.txt").string());
   EXPECT_EQ(bad_output.status, 2)
       << "an unknown output format is a usage error, found before any work";
+  // validate on an image no extraction takes: refused, not "identical" untested.
+  std::ofstream((dir / "tiny.pgm").string(), std::ios::binary) << "P5\n7 3\n255\n"
+                                                                 << std::string(21, '\x40');
+  const CliResult tiny = run("validate " + (dir / "tiny.pgm").string());
+  EXPECT_EQ(tiny.status, 1) << tiny.output;
+  EXPECT_NE(tiny.output.find("cannot validate on '" + (dir / "tiny.pgm").string() +
+                             "': image 7x3 is smaller than"),
+            std::string::npos)
+      << tiny.output;
 }
 
 TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {

@@ -163,6 +163,33 @@ TEST(Hdf5Features, NamesSpelledWithExtraSlashesFindTheirGroupsAfterAReopen) {
   EXPECT_NO_THROW(matches.write_matches("/abs/a.png", "b/c.png", 3, {{0, 1, 2}}));
 }
 
+// A name libhdf5 reads as the group holding it ("."; "x/.") is refused before anything is written,
+// so it neither breaks the file for the writes after it nor loses those before it (it did: the
+// half-done group failed the whole object, and the writes since the last flush were lost).
+TEST(Hdf5Features, ANameEndingInDotIsRefusedAndTheWritesAroundItAreKept) {
+  OwnTempDir dir;
+  const Features a = sample_features("graf", 1);
+  {
+    io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read_write);
+    for (const char* name : {"a.png", "b.png", "x/c.png"}) file.write_features(name, a);
+    for (const char* name : {".", "./", "x/.", "x/./", "/."}) {
+      try {
+        file.write_features(name, a);
+        ADD_FAILURE() << "'" << name << "' was written";
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("nothing was written for it"), std::string::npos)
+            << e.what();
+      }
+    }
+    file.write_features("d.png", a);
+    file.write_features("y/", a);  // libhdf5 reads it as "y": a group of its own
+  }
+  const io::Hdf5File file(dir.file("f.h5"), io::Hdf5File::Mode::read);
+  EXPECT_EQ(file.feature_names(),
+            (std::vector<std::string>{"a.png", "b.png", "d.png", "x/c.png", "y"}));
+  expect_same(file.read_features("x/c.png"), a);
+}
+
 // "/data/q/x.png" and "data/q/x.png" are two files: two groups, as the JSON layout's two files
 // ("%2F/data/q/x.png.json"); a name of a leading '%' keeps its own group too. Other names are
 // their groups, byte for byte (hloc reads them).

@@ -208,6 +208,27 @@ std::vector<FlagSpec> extractor_flags_except(
   return flags_except<ExtractorOptions>(set_by_the_command);
 }
 
+void refuse_carried_threshold(const Args& args, const ExtractorOptions& options,
+                              const std::string& command) {
+  if (!options.carried_threshold) return;
+  throw UsageError(args.spelled("--entropy-threshold") +
+                   " carried takes F from the frames of a video before each one, and " + command +
+                   " has no frame before its images, so F would stay at its start: extract a "
+                   "video with extract --batch, or give F");
+}
+
+void require_entropy_to_sweep(const Args& args, const ExtractorOptions& options,
+                              const std::string& command) {
+  if (options.entropy != EntropyMeasure::off) return;
+  const auto mode = args.get("--mode");
+  const std::string how = args.has("--entropy") ? args.spelled("--entropy") + " off"
+                          : mode               ? args.spelled("--mode") + " " + *mode
+                                               : std::string("the options given");
+  throw UsageError(command + " sweeps the entropy threshold, and " + how +
+                   " measures no entropy: give an entropy mode (aief, aief-paper, "
+                   "quadtree-entropy or quality)");
+}
+
 ExtractorOptions extractor_options(const Args& args, option_table::Use use) {
   ExtractorOptions options;
   try {

@@ -70,6 +70,14 @@ std::vector<FlagSpec> extractor_flags();
 ExtractorOptions extractor_options(const Args& args,
                                    option_table::Use use = option_table::Use::extraction);
 std::string extractor_flags_help();
+// The carried F (`--entropy-threshold carried`) takes F from the frames before: a command on one
+// image or one pair (`command` names it) has none, so it is refused rather than left at its start.
+void refuse_carried_threshold(const Args& args, const ExtractorOptions& options,
+                              const std::string& command);
+// What sweeps entropy thresholds (`adapt`, `match --adaptive`, `bench --pair`: `command` names
+// it) needs an entropy measure: throws UsageError naming how the command line turned it off.
+void require_entropy_to_sweep(const Args& args, const ExtractorOptions& options,
+                              const std::string& command);
 // The same but the rows of `set_by_the_command` (record keys): a command that sets those options
 // itself (aief eval's rows: the mode, F, one thread) neither offers nor lists their flags.
 std::vector<FlagSpec> extractor_flags_except(

@@ -13,6 +13,7 @@
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
 #include "tools/outputs_not_inputs.hpp"
+#include "tools/output_extension.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
 
@@ -49,13 +50,13 @@ int run_adapt(const Arguments& arguments) {
     throw UsageError("adapt expects two images A B (aief adapt --help)");
   check_picture_flag(args, "--plot");
   const ExtractorOptions options = extractor_options(args, option_table::Use::sweep);
-  if (options.entropy == EntropyMeasure::off)
-    throw UsageError("adapt needs an entropy mode (aief or quadtree-entropy)");
+  require_entropy_to_sweep(args, options, "adapt");
   SweepOptions sweep = options_from_flags<SweepOptions>(args);
   sweep.match = options_from_flags<MatchOptions>(args);
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
   refuse_outputs_that_are_inputs(args, {"--output", "--plot"}, {path_a, path_b});
+  check_output_extension(args, "--output", ".json", "JSON");
   const GrayImage a = read_image_reporting(path_a, options.max_image_pixels),
                   b = read_image_reporting(path_b, options.max_image_pixels);
   const AdaptResult result = adapt(a.view(), b.view(), options, sweep);

@@ -217,8 +217,7 @@ int run_bench(const Arguments& arguments) {
   const std::string& path = args.positionals()[0];
   const GrayImage image = read_image_reporting(path, options.max_image_pixels);
   const std::optional<std::string> pair_path = args.get("--pair");
-  if (pair_path && options.entropy == EntropyMeasure::off)
-    throw UsageError("bench --pair needs an entropy mode (the sweep is over entropy thresholds)");
+  if (pair_path) require_entropy_to_sweep(args, options, "bench --pair");
   const GrayImage second =
       pair_path ? read_image_reporting(*pair_path, options.max_image_pixels) : GrayImage();
   const BenchMeasures measures = measure(options, image, pair_path ? &second : nullptr, repeat);

@@ -192,6 +192,7 @@ int run_extract(const Arguments& arguments) {
     io::check_features_file_can_hold(*output, args.positionals()[0], args.positionals()[0]);
   check_picture_flag(args, "--draw");
   const ExtractorOptions options = extractor_options(args);
+  refuse_carried_threshold(args, options, "extract IMAGE");
   const std::string& path = args.positionals()[0];
   refuse_outputs_that_are_inputs(args, {"--output", "--draw"}, {path});
 

@@ -19,6 +19,7 @@
 #include "tools/commands.hpp"
 #include "tools/match_pairs.hpp"
 #include "tools/outputs_not_inputs.hpp"
+#include "tools/output_extension.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
 
@@ -92,6 +93,7 @@ int run_pairs(const Args& args) {
   }
   if (!features_file || !args.get("--output"))
     throw UsageError("--pairs needs --features-file FEATURES.h5 and -o MATCHES.h5");
+  check_output_extension(args, "--output", ".h5", "the matches as HDF5 (hloc's layout)");
   return run_match_pairs(args, *features_file, options_from_flags<MatchOptions>(args));
 }
 
@@ -115,9 +117,11 @@ int run_match(const Arguments& arguments) {
   check_picture_flag(args, "--draw");
   const ExtractorOptions options = extractor_options(
       args, args.has("--adaptive") ? option_table::Use::sweep : option_table::Use::extraction);
+  refuse_carried_threshold(args, options, "match A B");
 
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
   refuse_outputs_that_are_inputs(args, {"--output", "--draw"}, {path_a, path_b});
+  check_output_extension(args, "--output", ".json", "JSON");
   const GrayImage a = read_image_reporting(path_a, options.max_image_pixels),
                   b = read_image_reporting(path_b, options.max_image_pixels);
 
@@ -129,8 +133,7 @@ int run_match(const Arguments& arguments) {
     SweepOptions sweep;
     sweep.match = match_options;
     ExtractorOptions sweep_options = options;
-    if (sweep_options.entropy == EntropyMeasure::off)
-      throw UsageError("--adaptive needs an entropy mode (not orbslam2)");
+    require_entropy_to_sweep(args, sweep_options, "match --adaptive");
     AdaptResult result = adapt(a.view(), b.view(), sweep_options, sweep);
     threshold = result.threshold;
     features_a = std::move(result.features_a);

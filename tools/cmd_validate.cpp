@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <iostream>
 
+#include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "core/level/image_checks.hpp"
 #include "io/image_io.hpp"
 #include "simd/kernel_validation.hpp"
 #include "simd/kernels.hpp"
@@ -23,7 +25,14 @@ int run_validate(const Arguments& arguments) {
     return 0;
   }
   std::vector<GrayImage> images;
-  for (const std::string& path : args.positionals()) images.push_back(io::read_gray_image(path));
+  for (const std::string& path : args.positionals()) {
+    images.push_back(io::read_gray_image(path));
+    try {  // an image no extraction takes would pass the extraction's check untested
+      check_image(images.back().view(), ExtractorOptions{});
+    } catch (const Error& e) {
+      throw Error("cannot validate on '" + path + "': " + e.what());
+    }
+  }
   if (images.empty()) images = validation_images();
 
   const std::vector<KernelSet> sets = available_kernel_sets();

@@ -67,6 +67,10 @@ double histogram_entropy_bits(const std::uint32_t* hist, std::uint64_t pixels) {
   } else {
     for (int k = 0; k < 256; ++k) sum += c_log2_c(hist[k], table);
   }
+  // One gray level: H = 0 exactly. The general form leaves the rounding of n log2 n in Q32, a
+  // few 1e-10 bits above 0 when n is not a power of two (an edge block's area), which a mask at
+  // F = 0 would keep.
+  if (sum == c_log2_c(pixels, table)) return 0.0;
   return entropy_from_sums(pixels, sum);
 }
 
