@@ -99,6 +99,8 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"eval --dataset . --mode orbslam2", "unknown option --mode"},
       {"eval --dataset . --threads 2", "unknown option --threads"},
       {"eval --dataset . --entropy off", "--entropy off leaves aief_adaptive"},
+      {"eval --dataset . --methods opencv_orb,orbslam2 --n-features 500",
+       "--n-features sets the options of the aief mode's rows"},
       // Flags a mode cannot honour are refused with the conflict named, never dropped.
       {"extract " + image + " --mode orbslam2 --threshold 7",
        "--threshold sets F of the entropy mask, which --mode orbslam2"},

@@ -165,6 +165,20 @@ EvalCommand command_of(const Args& args) {
   command.sequences = sequences_of(args, command.dataset);
   command.settings = settings_of(args);
   command.methods = methods_of(args);
+  // The extractor flags set the aief mode's own rows only (eval::Method): without one they would
+  // do nothing.
+  bool an_aief_row = false;
+  for (const eval::Method& method : command.methods)
+    an_aief_row = an_aief_row || (method.mode == Mode::aief && method.baseline == eval::Baseline::none);
+  if (!an_aief_row) {
+    std::string given;
+    for (const FlagSpec& flag : extractor_flags_except(kSetByEachRow))
+      if (args.has(flag.name)) given += (given.empty() ? "" : ", ") + args.spelled(flag.name);
+    if (!given.empty())
+      throw UsageError(given + " set" + (given.find(',') == std::string::npos ? "s" : "") +
+                       " the options of the aief mode's rows (aief, aief_adaptive, aief_auto), "
+                       "and --methods names none of them: the other rows keep their own");
+  }
   if (command.settings.aief.entropy == EntropyMeasure::off)
     for (const eval::Method& method : command.methods)
       if (method.mode == Mode::aief && method.baseline == eval::Baseline::none &&
