@@ -142,10 +142,11 @@ void bind_extractor(py::module_& m) {
           "(default 31), "
           "angle and response. The angle is recomputed (intensity centroid) unless keep_angles "
           "(then each is used as given, any finite number of degrees, as cv2.ORB.compute uses "
-          "it). Keypoints closer than 19 pixels to their level's "
+          "it; with an N x 2 array, keep_angles needs angle=). Keypoints closer than 19 pixels to "
+          "their level's "
           "edge are "
           "removed; kept: int32 indices of the kept keypoints in the given ones. An octave outside "
-          "[0, levels) raises aief.Error.")
+          "[0, levels), or not an integer, raises aief.Error.")
       .def_property_readonly(
           "options", [](const PyExtractor& e) { return options_dict(e.options()); },
           "every option in effect, as a dict (the mode's values filled in)")
