@@ -162,10 +162,12 @@ void bind_extractor(py::module_& m) {
       [](const py::object& path_given) {
         const std::string path = filesystem_path(path_given);
         GrayImage image;
+        std::vector<std::string> warnings;
         {
           py::gil_scoped_release no_gil;
-          image = io::read_gray_image(path);
+          image = io::read_gray_image(path, ExtractorOptions{}.max_image_pixels, &warnings);
         }
+        for (const std::string& warning : warnings) warn(warning);
         py::array_t<std::uint8_t> out(
             {static_cast<py::ssize_t>(image.height()), static_cast<py::ssize_t>(image.width())});
         std::copy(image.data(),
@@ -175,7 +177,7 @@ void bind_extractor(py::module_& m) {
       },
       py::arg("path"),
       "An image file as the aief CLI reads it: 2-D uint8 gray (colour by OpenCV's BGR2GRAY, 16-bit "
-      "divided by 256)");
+      "divided by 256); a UserWarning where the CLI warns (a JPEG cut short, its rest grey)");
   m.def(
       "option_changes",
       [](const std::optional<std::string>& record, const PyExtractor& extractor) {
