@@ -12,6 +12,7 @@
 #include "core/options/option_table.hpp"
 #include "io/image_io.hpp"
 #include "io/option_record.hpp"
+#include "parallel/scheduler.hpp"
 #include "python/bindings.hpp"
 #include "python/extraction_rendezvous.hpp"
 #include "python/option_keywords.hpp"
@@ -30,10 +31,13 @@ OptionCall extractor_call() {
   return call;
 }
 
-ExtractorOptions options_from(const py::args& args, const py::kwargs& kwargs) {
+std::unique_ptr<PyExtractor> extractor_from(const py::args& args, const py::kwargs& kwargs) {
   OptionCall call = extractor_call();
   call.read(args, kwargs);
-  return table::resolve_options(call.given<ExtractorOptions>(0));
+  ExtractorOptions options = table::resolve_options(call.given<ExtractorOptions>(0));
+  if (const std::string note = parallel::cap_threads(options.threads, "threads"); !note.empty())
+    warn(note);
+  return std::make_unique<PyExtractor>(options);
 }
 
 // The record of the options, as Python values ("inf" as float('inf')).
@@ -117,9 +121,7 @@ void bind_extractor(py::module_& m) {
 
   static const std::string doc = extractor_doc();
   py::class_<PyExtractor>(m, "Extractor", doc.c_str())
-      .def(py::init([](const py::args& args, const py::kwargs& kwargs) {
-        return std::make_unique<PyExtractor>(options_from(args, kwargs));
-      }))
+      .def(py::init(&extractor_from))
       .def("extract", &PyExtractor::extract, py::arg("image"), py::arg("mask") = py::none(),
            "Features of a 2-D uint8 gray image (any strides; not copied when its rows are "
            "contiguous) or an "
