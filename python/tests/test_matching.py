@@ -95,3 +95,18 @@ def test_features_say_their_descriptor_and_different_kinds_are_not_matched():
         aief.match(rbrief, box_b)
     # Arrays carry no kind: matched as given.
     assert aief.match(rbrief.descriptors, box_b.descriptors).shape[1] == 3
+
+
+# pybind11's "Unable to cast Python instance to C++ type" and "got 2 dimensions" said nothing of
+# what was wrong.
+def test_adapt_names_an_extractor_of_another_type():
+    gray = numpy.zeros((64, 64), numpy.uint8)
+    with pytest.raises(TypeError, match="extractor must be an aief.Extractor \\(or None\\), got str"):
+        aief.adapt(gray, gray, extractor="aief")
+
+
+def test_find_homography_names_the_shape_given():
+    with pytest.raises(aief.Error, match="src must be an N x 2 array of \\(x, y\\), got 10 x 3"):
+        aief.find_homography(numpy.ones((10, 3)), numpy.ones((10, 3)))
+    with pytest.raises(aief.Error, match="got 1 dimensions"):
+        aief.find_homography(numpy.ones(10), numpy.ones((10, 2)))
