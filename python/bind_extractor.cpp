@@ -34,10 +34,11 @@ OptionCall extractor_call() {
 std::unique_ptr<PyExtractor> extractor_from(const py::args& args, const py::kwargs& kwargs) {
   OptionCall call = extractor_call();
   call.read(args, kwargs);
-  ExtractorOptions options = table::resolve_options(call.given<ExtractorOptions>(0));
+  std::vector<table::GivenOption> given = call.given<ExtractorOptions>(0);
+  ExtractorOptions options = table::resolve_options(given);
   if (const std::string note = parallel::cap_threads(options.threads, "threads"); !note.empty())
     warn(note);
-  return std::make_unique<PyExtractor>(options);
+  return std::make_unique<PyExtractor>(options, std::move(given));
 }
 
 // The record of the options, as Python values ("inf" as float('inf')).

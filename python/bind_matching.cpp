@@ -192,8 +192,9 @@ void bind_matching(py::module_& m) {
           throw py::type_error("extractor must be an aief.Extractor (or None), got " +
                                py::type::of(extractor_object).attr("__name__").cast<std::string>());
         const ExtractorOptions options =
-            extractor_object.is_none() ? ExtractorOptions{}
-                                       : extractor_object.cast<const PyExtractor&>().options();
+            extractor_object.is_none()
+                ? ExtractorOptions{}
+                : extractor_object.cast<const PyExtractor&>().sweep_options();
         const ImageInput a(call.leading(0), options.max_image_pixels),
             b(call.leading(1), options.max_image_pixels);
         AdaptResult result;
