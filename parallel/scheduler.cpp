@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
@@ -10,6 +11,16 @@
 #include "parallel/tsan_handoff.hpp"
 
 namespace aief::parallel {
+
+std::string cap_threads(int& threads, const std::string& named) {
+  const int available = tbb::info::default_concurrency();
+  if (threads <= available) return "";
+  const std::string note =
+      named + " " + std::to_string(threads) + " is more than the " + std::to_string(available) +
+      " hardware threads this process may use; using " + std::to_string(available);
+  threads = available;
+  return note;
+}
 
 struct Scheduler::Arena {
   tbb::task_arena arena;

@@ -3,6 +3,7 @@
 // rows of a match). Work is handed out largest first from a shared counter, each piece writes
 // only its own slot, so the result never depends on which thread ran what (docs/design.md §12).
 #include <memory>
+#include <string>
 #include <type_traits>
 
 namespace aief::parallel {
@@ -20,6 +21,13 @@ class IndexWork {
   void* object_;
   void (*call_)(void*, int);
 };
+
+// More threads than this process may use (tbb::info::default_concurrency()) gain nothing (the
+// output never depends on the count) and make TBB print its own warning to stderr: lowers
+// `threads` to what there is and returns the note every front end gives, naming the option as it
+// does (`named`: "--threads" -> "--threads 3 is more than the 2 hardware threads this process may
+// use; using 2"); "" when `threads` is within.
+std::string cap_threads(int& threads, const std::string& named);
 
 class Scheduler {
  public:

@@ -12,6 +12,7 @@
 #include "core/options/option_table.hpp"
 #include "io/image_io.hpp"
 #include "io/option_record.hpp"
+#include "parallel/scheduler.hpp"
 #include "python/bindings.hpp"
 #include "python/extraction_rendezvous.hpp"
 #include "python/option_keywords.hpp"
@@ -30,10 +31,14 @@ OptionCall extractor_call() {
   return call;
 }
 
-ExtractorOptions options_from(const py::args& args, const py::kwargs& kwargs) {
+std::unique_ptr<PyExtractor> extractor_from(const py::args& args, const py::kwargs& kwargs) {
   OptionCall call = extractor_call();
   call.read(args, kwargs);
-  return table::resolve_options(call.given<ExtractorOptions>(0));
+  std::vector<table::GivenOption> given = call.given<ExtractorOptions>(0);
+  ExtractorOptions options = table::resolve_options(given);
+  if (const std::string note = parallel::cap_threads(options.threads, "threads"); !note.empty())
+    warn(note);
+  return std::make_unique<PyExtractor>(options, std::move(given));
 }
 
 // The record of the options, as Python values ("inf" as float('inf')).
@@ -117,9 +122,7 @@ void bind_extractor(py::module_& m) {
 
   static const std::string doc = extractor_doc();
   py::class_<PyExtractor>(m, "Extractor", doc.c_str())
-      .def(py::init([](const py::args& args, const py::kwargs& kwargs) {
-        return std::make_unique<PyExtractor>(options_from(args, kwargs));
-      }))
+      .def(py::init(&extractor_from))
       .def("extract", &PyExtractor::extract, py::arg("image"), py::arg("mask") = py::none(),
            "Features of a 2-D uint8 gray image (any strides; not copied when its rows are "
            "contiguous) or an "
@@ -142,10 +145,11 @@ void bind_extractor(py::module_& m) {
           "(default 31), "
           "angle and response. The angle is recomputed (intensity centroid) unless keep_angles "
           "(then each is used as given, any finite number of degrees, as cv2.ORB.compute uses "
-          "it). Keypoints closer than 19 pixels to their level's "
+          "it; with an N x 2 array, keep_angles needs angle=). Keypoints closer than 19 pixels to "
+          "their level's "
           "edge are "
           "removed; kept: int32 indices of the kept keypoints in the given ones. An octave outside "
-          "[0, levels) raises aief.Error.")
+          "[0, levels), or not an integer, raises aief.Error.")
       .def_property_readonly(
           "options", [](const PyExtractor& e) { return options_dict(e.options()); },
           "every option in effect, as a dict (the mode's values filled in)")
@@ -161,10 +165,12 @@ void bind_extractor(py::module_& m) {
       [](const py::object& path_given) {
         const std::string path = filesystem_path(path_given);
         GrayImage image;
+        std::vector<std::string> warnings;
         {
           py::gil_scoped_release no_gil;
-          image = io::read_gray_image(path);
+          image = io::read_gray_image(path, ExtractorOptions{}.max_image_pixels, &warnings);
         }
+        for (const std::string& warning : warnings) warn(warning);
         py::array_t<std::uint8_t> out(
             {static_cast<py::ssize_t>(image.height()), static_cast<py::ssize_t>(image.width())});
         std::copy(image.data(),
@@ -174,7 +180,7 @@ void bind_extractor(py::module_& m) {
       },
       py::arg("path"),
       "An image file as the aief CLI reads it: 2-D uint8 gray (colour by OpenCV's BGR2GRAY, 16-bit "
-      "divided by 256)");
+      "divided by 256); a UserWarning where the CLI warns (a JPEG cut short, its rest grey)");
   m.def(
       "option_changes",
       [](const std::optional<std::string>& record, const PyExtractor& extractor) {

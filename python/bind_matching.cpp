@@ -32,9 +32,13 @@ std::vector<Point2> points_from(const py::object& value, const char* name) {
   if (!py::isinstance<py::array>(value))
     throw Error(std::string(name) + " must be an N x 2 numpy array of points");
   const auto array = py::array_t<double, py::array::forcecast>::ensure(value);
-  if (!array || array.ndim() != 2 || array.shape(1) != 2)
+  if (!array || array.ndim() != 2 || array.shape(1) != 2) {
+    const auto given = py::reinterpret_borrow<py::array>(value);
     throw Error(std::string(name) + " must be an N x 2 array of (x, y), got " +
-                std::to_string(py::reinterpret_borrow<py::array>(value).ndim()) + " dimensions");
+                (given.ndim() == 2
+                     ? std::to_string(given.shape(0)) + " x " + std::to_string(given.shape(1))
+                     : std::to_string(given.ndim()) + " dimensions"));
+  }
   const auto rows = array.unchecked<2>();
   std::vector<Point2> points(static_cast<std::size_t>(array.shape(0)));
   for (py::ssize_t i = 0; i < array.shape(0); ++i)
@@ -184,9 +188,13 @@ void bind_matching(py::module_& m) {
         SweepOptions sweep = call.options<SweepOptions>(0);
         sweep.match = call.options<MatchOptions>(1);
         const py::object extractor_object = call.leading(2);
+        if (!extractor_object.is_none() && !py::isinstance<PyExtractor>(extractor_object))
+          throw py::type_error("extractor must be an aief.Extractor (or None), got " +
+                               py::type::of(extractor_object).attr("__name__").cast<std::string>());
         const ExtractorOptions options =
-            extractor_object.is_none() ? ExtractorOptions{}
-                                       : extractor_object.cast<const PyExtractor&>().options();
+            extractor_object.is_none()
+                ? ExtractorOptions{}
+                : extractor_object.cast<const PyExtractor&>().sweep_options();
         const ImageInput a(call.leading(0), options.max_image_pixels),
             b(call.leading(1), options.max_image_pixels);
         AdaptResult result;

@@ -81,6 +81,12 @@ py::list record_fields(const Record& record = {}) {
 // N x 32 uint8 rows of a numpy array (or of a PyFeatures) as engine descriptors.
 std::vector<Descriptor> descriptors_from(const py::object& value, const char* name);
 
+// A Python UserWarning saying `text`, where the CLI prints "aief: warning: <text>" (or a note):
+// the same sentence, from the same source. Raises when the warnings filter makes it an error.
+inline void warn(const std::string& text) {
+  if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 1) != 0) throw py::error_already_set();
+}
+
 // A file name given from Python (str, bytes or os.PathLike) as the bytes the system takes
 // (os.fsencode: a str's undecodable bytes, kept as surrogates, come back as they were).
 std::string filesystem_path(const py::handle& path);

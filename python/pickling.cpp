@@ -9,6 +9,7 @@
 #include "aief/adapt.hpp"
 #include "aief/error.hpp"
 #include "aief/version.hpp"
+#include "core/options/option_table.hpp"
 #include "python/bindings.hpp"
 #include "python/py_extractor.hpp"
 
@@ -195,13 +196,23 @@ void bind_pickling(py::module_& m) {
               "with one extractor");
         StateWriter out;
         out.put(e.options());
+        // The keywords it was made from, as given: aief.adapt resolves them again for the sweep.
+        out.put(static_cast<std::uint64_t>(e.given().size()));
+        for (const option_table::GivenOption& g : e.given())
+          out.fields(std::string(g.row->key), g.text, g.named);
         return out.bytes();
       },
       [](const py::bytes& state) {
         StateReader in(state, "Extractor");
         const auto options = in.get<ExtractorOptions>();
+        std::vector<option_table::GivenOption> given;
+        for (auto count = in.get<std::uint64_t>(); count > 0; --count) {
+          std::string key, text, named;
+          in.fields(key, text, named);
+          given.push_back({&option_table::row(key), text, named});
+        }
         in.expect_end();
-        return std::make_unique<PyExtractor>(options);  // validates the options
+        return std::make_unique<PyExtractor>(options, std::move(given));  // validates the options
       }));
   reduce_for_every_protocol(extractor);
 

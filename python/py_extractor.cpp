@@ -3,6 +3,7 @@
 #include <string>
 
 #include "aief/error.hpp"
+#include "core/frame/given_keypoints.hpp"
 #include "python/bindings.hpp"
 #include "python/extraction_rendezvous.hpp"
 #include "python/py_extractor.hpp"
@@ -38,6 +39,25 @@ std::vector<float> column(const py::object& values, py::ssize_t n, float fallbac
   if (!array || array.ndim() != 1 || array.shape(0) != n)
     throw Error(std::string(name) + " must be " + std::to_string(n) + " numbers, one per keypoint");
   std::copy(array.data(), array.data() + n, out.begin());
+  return out;
+}
+
+// The octave column: n levels of a pyramid of `n_levels`, each value checked as given (any
+// dtype), before it narrows to int (2**40 wrapped to 0, 1.7 was cut to 1, NaN became INT_MIN).
+std::vector<int> octave_column(const py::object& values, py::ssize_t n, int n_levels) {
+  std::vector<int> out(static_cast<std::size_t>(n), 0);
+  if (values.is_none()) return out;
+  const auto given = py::array::ensure(values);
+  const auto numbers =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
+  if (!given || !numbers || numbers.ndim() != 1 || numbers.shape(0) != n)
+    throw Error("octave must be " + std::to_string(n) + " integers, one per keypoint");
+  for (py::ssize_t i = 0; i < n; ++i) {
+    if (const std::string fault = octave_fault(numbers.at(i), n_levels); !fault.empty())
+      throw Error("octave[" + std::to_string(i) + "] is " +
+                  std::string(py::str(given[py::int_(i)])) + ", " + fault);
+    out[static_cast<std::size_t>(i)] = static_cast<int>(numbers.at(i));
+  }
   return out;
 }
 
@@ -85,16 +105,13 @@ py::tuple PyExtractor::describe(const py::object& image, const py::object& keypo
       throw Error("keypoints must be aief Features or an N x 2 array of (x, y) level-0 pixels");
     const py::ssize_t n = xy.shape(0);
     const std::vector<float> sizes = column(size, n, static_cast<float>(kPatchSize), "size");
+    if (keep_angles && angle.is_none())
+      throw Error(
+          "keep_angles=True keeps the given angles, but no angle= is given: pass angle= (degrees, "
+          "one per keypoint), or leave keep_angles False to compute them");
     const std::vector<float> angles = column(angle, n, 0.0f, "angle");
     const std::vector<float> responses = column(response, n, 0.0f, "response");
-    std::vector<int> octaves(static_cast<std::size_t>(n), 0);
-    if (!octave.is_none()) {
-      const auto o =
-          py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>::ensure(octave);
-      if (!o || o.ndim() != 1 || o.shape(0) != n)
-        throw Error("octave must be " + std::to_string(n) + " integers, one per keypoint");
-      std::copy(o.data(), o.data() + n, octaves.begin());
-    }
+    const std::vector<int> octaves = octave_column(octave, n, extractor_.options().n_levels);
     for (py::ssize_t i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
       given.push_back({xy.at(i, 0), xy.at(i, 1), sizes[k], angles[k], responses[k], octaves[k]});

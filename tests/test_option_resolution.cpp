@@ -207,6 +207,13 @@ TEST(OptionTable, AnOptionThatCannotActIsRefusedNamingWhatItNeeds) {
   EXPECT_NE(sweep_error("starvation_guard", "frame").find("does nothing in the adaptive sweep"),
             std::string::npos);
   EXPECT_EQ(sweep_error("mode", "aief-paper"), "");
+  // A mode's every value given (Extractor(**e.options)) is the mode: its frame-wide guard is no
+  // request to the sweep either.
+  std::vector<table::GivenOption> paper_record;
+  for (const auto& [key, value] : table::record_of(options_for_mode(Mode::aief_paper)))
+    paper_record.push_back(
+        {&table::row(key), table::text_of(table::row(key), value), std::string(key)});
+  EXPECT_NO_THROW(table::resolve_options(paper_record, table::Use::sweep));
   // aief eval turns the automatic F on per row: its options are taken without it.
   EXPECT_NO_THROW(table::resolve_options(
       {{&table::row("auto_requires_two_classes"), "off", "--auto-two-classes"}},

@@ -5,10 +5,9 @@
 #include <optional>
 #include <sstream>
 
-#include <tbb/info.h>
-
 #include "aief/error.hpp"
 #include "core/options/option_table.hpp"
+#include "parallel/scheduler.hpp"
 
 namespace aief::cli {
 
@@ -236,13 +235,8 @@ ExtractorOptions extractor_options(const Args& args, option_table::Use use) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  // More threads than the machine runs gains nothing (output never depends on the count) and
-  // makes TBB print its own warning: use what there is, and say so.
-  if (const int available = tbb::info::default_concurrency(); options.threads > available) {
-    std::cerr << "aief: note: --threads " << options.threads << " is more than the " << available
-              << " hardware threads this process may use; using " << available << "\n";
-    options.threads = available;
-  }
+  if (const std::string note = parallel::cap_threads(options.threads, "--threads"); !note.empty())
+    std::cerr << "aief: note: " << note << "\n";
   return options;
 }
 

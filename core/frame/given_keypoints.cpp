@@ -11,13 +11,20 @@
 
 namespace aief {
 
+std::string octave_fault(double octave, int n_levels) {
+  if (!(std::floor(octave) == octave)) return "not an integer level";  // NaN too
+  if (octave < 0 || octave >= n_levels)
+    return "beyond the pyramid's levels 0.." + std::to_string(n_levels - 1);
+  return "";
+}
+
 void check_given_keypoints(const std::vector<Keypoint>& keypoints, int n_levels,
                            GivenAngles angles) {
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
     const Keypoint& kp = keypoints[i];
-    if (kp.octave < 0 || kp.octave >= n_levels)
+    if (const std::string fault = octave_fault(kp.octave, n_levels); !fault.empty())
       throw Error("keypoint " + std::to_string(i) + " has octave " + std::to_string(kp.octave) +
-                  ", outside the extractor's levels 0.." + std::to_string(n_levels - 1));
+                  ", " + fault);
     if (angles == GivenAngles::keep && !std::isfinite(kp.angle_deg))
       throw Error("keypoint " + std::to_string(i) + " has angle " + std::to_string(kp.angle_deg) +
                   " (degrees): the given angles are kept, so each must be a number");

@@ -18,6 +18,7 @@
 //   descriptor   rBRIEF on the level blurred as for detected keypoints, or with
 //                DescriptorKind::box the box descriptor on the level's integral image
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "aief/extractor.hpp"
@@ -44,6 +45,11 @@ struct GivenKeypointScratch {
   IntegralImage integral;                    // one level's integral image (the box descriptor)
   std::vector<BoxPoint> box_points;          // points, as the box descriptor takes them
 };
+
+// Why `octave`, a number as the caller gave it (before it narrows to int: Python's floats and
+// 64-bit integers), names no level of a pyramid of `n_levels`: "not an integer level" or
+// "beyond the pyramid's levels 0..7"; "" when it names one.
+std::string octave_fault(double octave, int n_levels);
 
 // Throws aief::Error, naming the keypoint, when its octave is outside [0, n_levels) or, with
 // GivenAngles::keep, its angle is not finite.

@@ -109,19 +109,25 @@ void refuse_given_that_cannot_act(const std::vector<const GivenOption*>& changed
                                   Mode mode, Use use) {
   for (const GivenOption* g : changed) {
     const OptionRow& row = *g->row;
-    if (use == Use::sweep && !row.read_by_sweep)
+    const std::string value = text_in(row, options);
+    bool set_by_a_mode = false, set_by_a_mode_given_whole = false;
+    for (Mode m : reference) {
+      const bool sets = value == text_in(row, options_for_mode(m));
+      set_by_a_mode = set_by_a_mode || sets;
+      set_by_a_mode_given_whole = set_by_a_mode_given_whole || (sets && m != mode);
+    }
+    // A value of a mode given whole is no request in the sweep either (Extractor(**e.options) of
+    // an aief-paper extractor gives its frame-wide guard back). The resolved mode's own values
+    // are not asked: a given option that changed a value holds one of them only where its row
+    // writes more than its field (entropy_threshold auto leaves F at the mode's 4).
+    if (use == Use::sweep && !row.read_by_sweep && !set_by_a_mode_given_whole)
       throw Error(g->named + " " + g->text +
                   " does nothing in the adaptive sweep (aief adapt, match --adaptive), which tries "
                   "every F on the pair itself, without the threshold fallback: drop " +
                   g->named);
-    if (row.acts_with.empty()) continue;
+    if (row.acts_with.empty() || set_by_a_mode) continue;
     const UnmetCondition unmet = unmet_condition(row, options);
     if (!unmet.row || (use == Use::evaluation && unmet.row->key == "auto_threshold")) continue;
-    const std::string value = text_in(row, options);
-    bool set_by_a_mode = false;
-    for (Mode m : reference)
-      set_by_a_mode = set_by_a_mode || value == text_in(row, options_for_mode(m));
-    if (set_by_a_mode) continue;
     // What holds the other field where it is: an option given, the mode, or the default.
     std::string stops;
     bool mode_given = false;

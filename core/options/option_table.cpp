@@ -261,6 +261,36 @@ std::string text_of(const OptionDifference& difference) {
   return difference.key + " " + shown(difference.before) + " -> " + shown(difference.after);
 }
 
+namespace {
+
+// A given option that a later one in table order undoes (entropy_threshold 3.0, whose setter turns
+// the automatic F off, then auto_threshold on) would be dropped without a word: applied again to
+// the resolved options, it changes them. Throws naming both and the field they disagree on.
+void refuse_undone(const std::vector<const GivenOption*>& changed,
+                   const std::vector<GivenOption>& given, const ExtractorOptions& options) {
+  const auto resolved = record_of(options);
+  for (const GivenOption* g : changed) {
+    ExtractorOptions wanted = options;
+    g->row->field.set(wanted, parse_value(*g->row, g->text, g->named));
+    const auto wanted_record = record_of(wanted);
+    if (wanted_record == resolved) continue;
+    std::size_t field = 0;
+    while (wanted_record[field] == resolved[field]) ++field;
+    const OptionRow& differs = row(wanted_record[field].first);
+    for (const GivenOption& later : given) {
+      if (later.row == g->row || !later.row->is_field()) continue;
+      ExtractorOptions both = wanted;
+      later.row->field.set(both, parse_value(*later.row, later.text, later.named));
+      if (record_of(both) == resolved)
+        throw Error(g->named + " " + g->text + " means " + std::string(differs.key) + " " +
+                    text_of(differs, wanted_record[field].second) + ", so " + later.named + " " +
+                    later.text + " cannot apply: drop one of the two");
+    }
+  }
+}
+
+}  // namespace
+
 ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use) {
   Mode mode = Mode::aief;
   std::string mode_named = "mode";
@@ -297,6 +327,7 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use)
       if (!row.needs_mask.empty()) needing_mask.push_back(&g);
     }
   }
+  refuse_undone(changed, given, options);
   if (options.entropy == EntropyMeasure::off)
     for (const GivenOption* g : needing_mask)
       throw Error(g->named + " " + std::string(g->row->needs_mask) + ", which " +

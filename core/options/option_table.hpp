@@ -234,9 +234,10 @@ using GivenOption = Given<ExtractorOptions>;
 enum class Use { extraction, sweep, evaluation };
 
 // The extractor's resolution: the mode's values (aief unless given), then the given options in
-// table order, then validate(). Throws aief::Error for a bad value, a conflict with the mode, an
-// option that needs the entropy mask while it is off, or one that cannot act with the other
-// options (acts_with) or in the sweep (read_by_sweep), when it would change a value. Without a
+// table order, then validate(). Throws aief::Error for a bad value, a conflict with the mode or
+// between two given options (entropy_threshold 3 and auto_threshold on), an option that needs
+// the entropy mask while it is off, or one that cannot act with the other options (acts_with) or
+// in the sweep (read_by_sweep), when it would change a value. Without a
 // given mode, a mode whose every value is given (Extractor(**extractor.options)) is the mode
 // too: a value it sets is no request.
 ExtractorOptions resolve_options(const std::vector<GivenOption>& given,

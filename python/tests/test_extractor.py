@@ -3,6 +3,7 @@ import os
 import pathlib
 import shutil
 import subprocess
+import warnings
 
 import cv2
 import numpy
@@ -220,3 +221,23 @@ def test_read_image_refuses_a_tiff_tile_larger_than_allowed_before_decoding(tmp_
     path.write_bytes(data)
     with pytest.raises(aief.Error, match="is a TIFF of 16384x16384-pixel tiles"):
         aief.read_image(path)
+
+
+# A JPEG cut before its end-of-image marker decodes with its rest grey: the CLI warned, read_image
+# said nothing. The warning is the CLI's sentence, from io/image_io.cpp.
+def test_read_image_warns_of_a_jpeg_cut_short_as_the_cli_does(cli, tmp_path):
+    encoded = cv2.imencode(".jpg", read_unchanged(sample_path("graf")))[1].tobytes()
+    path = tmp_path / "truncated.jpg"
+    path.write_bytes(encoded[:len(encoded) // 2])
+    cli_warning = subprocess.run([cli, "extract", str(path), "-o", str(tmp_path / "out.json")],
+                                 capture_output=True, text=True).stderr.splitlines()[0]
+    assert cli_warning.startswith("aief: warning: ") and "end-of-image marker" in cli_warning
+    with pytest.warns(UserWarning) as caught:
+        image = aief.read_image(path)
+    assert [str(w.message) for w in caught] == [cli_warning[len("aief: warning: "):]]
+    assert image.shape == read_unchanged(sample_path("graf")).shape[:2]
+    whole = tmp_path / "whole.jpg"
+    whole.write_bytes(encoded)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        aief.read_image(whole)

@@ -1,5 +1,8 @@
 """aief.match, aief.find_homography, aief.adapt: the CLI's answers, and their errors."""
 import json
+import pickle
+import re
+import subprocess
 
 import numpy
 import pytest
@@ -95,3 +98,58 @@ def test_features_say_their_descriptor_and_different_kinds_are_not_matched():
         aief.match(rbrief, box_b)
     # Arrays carry no kind: matched as given.
     assert aief.match(rbrief.descriptors, box_b.descriptors).shape[1] == 3
+
+
+# pybind11's "Unable to cast Python instance to C++ type" and "got 2 dimensions" said nothing of
+# what was wrong.
+def test_adapt_names_an_extractor_of_another_type():
+    gray = numpy.zeros((64, 64), numpy.uint8)
+    with pytest.raises(TypeError, match="extractor must be an aief.Extractor \\(or None\\), got str"):
+        aief.adapt(gray, gray, extractor="aief")
+
+
+def test_find_homography_names_the_shape_given():
+    with pytest.raises(aief.Error, match="src must be an N x 2 array of \\(x, y\\), got 10 x 3"):
+        aief.find_homography(numpy.ones((10, 3)), numpy.ones((10, 3)))
+    with pytest.raises(aief.Error, match="got 1 dimensions"):
+        aief.find_homography(numpy.ones(10), numpy.ones((10, 2)))
+
+
+# The adaptive sweep chooses F itself and has no threshold fallback: an extractor asking for F, the
+# frame-wide guard or extrema scales ran the default sweep without a word, where aief adapt exits 2.
+SWEEP_IGNORES = [
+    (dict(entropy_threshold=3.0), ["--entropy-threshold", "3"], "entropy_threshold 3.0"),
+    (dict(entropy_threshold="auto"), ["--entropy-threshold", "auto"], "entropy_threshold auto"),
+    (dict(starvation_guard="frame"), ["--starvation-guard", "frame"], "starvation_guard frame"),
+    (dict(scale_selection="extrema"), ["--scale-selection", "extrema"], "scale_selection extrema"),
+]
+
+
+@pytest.mark.parametrize("kwargs, flags, named", SWEEP_IGNORES, ids=[n for _, _, n in SWEEP_IGNORES])
+def test_adapt_refuses_what_the_sweep_never_reads_as_the_cli_does(cli, kwargs, flags, named):
+    a, b = sample_path("graf", 1), sample_path("graf", 2)
+    run = subprocess.run([cli, "adapt", str(a), str(b), *flags], capture_output=True, text=True)
+    cli_says = run.stderr.strip()
+    assert run.returncode == 2 and cli_says.startswith("aief: error: " + " ".join(flags) + " does nothing"), cli_says
+    reason = cli_says[cli_says.index(" does nothing"):cli_says.index(": drop ")]
+    extractor = aief.Extractor(**kwargs)
+    with pytest.raises(aief.Error) as refused:
+        aief.adapt(read_unchanged(a), read_unchanged(b), extractor=extractor)
+    assert str(refused.value) == named + reason + ": drop " + next(iter(kwargs))
+    with pytest.raises(aief.Error, match=re.escape(named + " does nothing in the adaptive sweep")):
+        aief.adapt(read_unchanged(a), read_unchanged(b), extractor=pickle.loads(pickle.dumps(extractor)))
+
+
+def test_adapt_takes_the_values_a_mode_or_the_defaults_hold():
+    gray = read_unchanged(sample_path("graf", 1))
+    for extractor in (aief.Extractor(entropy_threshold=4.0), aief.Extractor(mode="aief-paper"),
+                      aief.Extractor(**aief.Extractor(mode="aief-paper").options)):
+        assert aief.adapt(gray, gray, extractor=extractor).found
+
+
+def test_adapt_refuses_the_automatic_f_of_a_rebuilt_extractor():
+    """Extractor(**e.options) gives auto_threshold=True by its record key: the sweep never reads it either."""
+    gray = read_unchanged(sample_path("graf", 1))
+    rebuilt = aief.Extractor(**aief.Extractor(entropy_threshold="auto").options)
+    with pytest.raises(aief.Error, match="auto_threshold on does nothing in the adaptive sweep"):
+        aief.adapt(gray, gray, extractor=rebuilt)

@@ -1,6 +1,9 @@
 """Extractor.detectAndCompute, detect, compute: cv2.Feature2D's methods; the mask fills the budget inside it."""
+import re
+
 import cv2
 import numpy
+import pytest
 
 import aief
 from conftest import read_unchanged, sample_path
@@ -74,9 +77,45 @@ def test_compute_keeps_class_ids_and_leaves_out_keypoints_near_the_edge():
     try:
         aief.Extractor().describe(image, numpy.float32([[100, 100]]), octave=[8])
     except aief.Error as e:
-        assert "octave 8" in str(e)
+        assert "octave[0] is 8, beyond the pyramid's levels 0..7" in str(e)
     else:
         raise AssertionError("no error")
+
+
+# Octaves narrowed to int32 before any check: 2**40 wrapped to level 0, 1.7 was cut to level 1
+# (both described without a word), NaN became -2147483648 in the message.
+@pytest.mark.parametrize("octave, says", [
+    (numpy.full(2, 2**40), "octave[0] is 1099511627776, beyond the pyramid's levels 0..7"),
+    (numpy.full(2, 1.7), "octave[0] is 1.7, not an integer level"),
+    (numpy.full(2, numpy.nan), "octave[0] is nan, not an integer level"),
+    (numpy.array([0, -1]), "octave[1] is -1, beyond the pyramid's levels 0..7"),
+    (numpy.array([0.0, numpy.inf]), "octave[1] is inf, beyond the pyramid's levels 0..7"),
+])
+def test_describe_refuses_an_octave_that_names_no_level(octave, says):
+    image = read_unchanged(sample_path("boat"))
+    with pytest.raises(aief.Error, match=re.escape(says)):
+        aief.Extractor().describe(image, numpy.float32([[100, 100], [300, 300]]), octave=octave)
+
+
+def test_describe_takes_integer_octaves_of_any_dtype():
+    image = read_unchanged(sample_path("boat"))
+    xy = numpy.float32([[100, 100], [300, 300]])
+    expected = aief.Extractor().describe(image, xy, octave=numpy.int32([0, 2]))[0]
+    for octave in (numpy.int64([0, 2]), numpy.uint8([0, 2]), numpy.float64([0.0, 2.0]), [0, 2]):
+        again = aief.Extractor().describe(image, xy, octave=octave)[0]
+        assert again.octave.tolist() == [0, 2]
+        numpy.testing.assert_array_equal(again.descriptors, expected.descriptors)
+
+
+def test_keep_angles_without_angles_is_refused():
+    """keep_angles=True with no angle= described every keypoint at 0 degrees."""
+    image = read_unchanged(sample_path("boat"))
+    xy = numpy.float32([[100, 100], [300, 300]])
+    with pytest.raises(aief.Error, match="keep_angles=True keeps the given angles, but no angle= is given"):
+        aief.Extractor().describe(image, xy, keep_angles=True)
+    assert len(aief.Extractor().describe(image, xy, angle=[10, 20], keep_angles=True)[0]) == 2
+    features = aief.Extractor().extract(image)  # Features carry their angles
+    assert len(aief.Extractor().describe(image, features, keep_angles=True)[0]) == len(features)
 
 
 def test_mask_of_another_shape_is_an_error():

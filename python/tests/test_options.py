@@ -67,6 +67,31 @@ def test_the_options_of_a_variant_rebuild_it():
     assert aief.Extractor(**extractor.options).options == extractor.options
 
 
+# entropy_threshold's setter writes auto_threshold and carried_threshold too, so the record keys
+# auto_threshold= and carried_threshold= set what it sets: a second value of one field, which table
+# order used to drop without a word (entropy_threshold=3.0, auto_threshold=True ran the automatic F).
+@pytest.mark.parametrize("kwargs, says", [
+    (dict(entropy_threshold=3.0, auto_threshold=True), "entropy_threshold 3.0 means auto_threshold off, so auto_threshold on"),
+    (dict(entropy_threshold="auto", auto_threshold=False), "entropy_threshold auto means auto_threshold on, so auto_threshold off"),
+    (dict(entropy_threshold="carried", carried_threshold=False),
+     "entropy_threshold carried means carried_threshold on, so carried_threshold off"),
+    (dict(entropy_threshold="auto", carried_threshold=True),
+     "entropy_threshold auto means carried_threshold off, so carried_threshold on"),
+])
+def test_two_keywords_that_set_one_field_differently_are_refused(kwargs, says):
+    with pytest.raises(aief.Error, match=says + " cannot apply: drop one of the two"):
+        aief.Extractor(**kwargs)
+
+
+def test_keywords_that_agree_on_the_threshold_are_taken():
+    assert aief.Extractor(entropy_threshold="auto", auto_threshold=True, carried_threshold=False).options["auto_threshold"]
+    assert aief.Extractor(entropy_threshold=3.0, auto_threshold=False).options["entropy_threshold"] == 3.0
+    automatic = aief.Extractor(entropy_threshold="auto")
+    assert aief.Extractor(**automatic.options).options == automatic.options  # F is the mode's: no request
+    carried = aief.Extractor(entropy_threshold="carried", carry_every=7)
+    assert aief.Extractor(**carried.options).options == carried.options
+
+
 OLD = [row for row in ROWS if row["old_keyword"]]
 
 

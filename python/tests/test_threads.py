@@ -60,3 +60,18 @@ def test_one_extractor_shared_by_threads_gives_the_serial_answers():
     assert len(results) == 4
     for result in results:
         assert_same_features(result, expected)
+
+
+# threads= above what the process may use let TBB print its raw "TBB Warning: ... request for N
+# workers is ignored" to stderr; the CLI notes it and uses what there is (parallel/scheduler.hpp).
+def test_more_threads_than_the_machine_runs_are_noted_and_capped(capfd):
+    with pytest.warns(UserWarning) as caught:
+        extractor = aief.Extractor(threads=256)
+    [note] = [str(w.message) for w in caught]
+    available = extractor.options["threads"]
+    assert note == f"threads 256 is more than the {available} hardware threads this process may use; using {available}"
+    assert 1 <= available < 256
+    capfd.readouterr()
+    assert_same_features(extractor.extract(read_unchanged(sample_path("graf", 1))),
+                         aief.Extractor(threads=1).extract(read_unchanged(sample_path("graf", 1))))
+    assert "TBB Warning" not in capfd.readouterr().err
