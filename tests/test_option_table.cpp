@@ -138,7 +138,7 @@ std::string record_json(const table::OptionRow& row, const std::string& text) {
   for (const auto& [key, value] : table::record_of(options))
     if (key == row.key) {
       if (const auto* name = std::get_if<std::string_view>(&value))
-        return "\"" + std::string(*name) + "\"";
+        return std::string("\"").append(*name).append("\"");  // appended: GCC 12's -Wrestrict
       if (const auto* flag = std::get_if<bool>(&value)) return *flag ? "true" : "false";
       if (const auto* integer = std::get_if<long long>(&value)) return std::to_string(*integer);
       char buffer[32];
@@ -183,12 +183,13 @@ TEST(OptionTable, EveryCliFlagReachesTheOutputRecord) {
     const std::string value = other_value(row), output = folder.file("f.json");
     std::string beside;
     for (const auto& [key, text] : companions(row))
-      beside += " " + std::string(table::row(key).cli_flag) + " " + text;
+      beside.append(" ").append(table::row(key).cli_flag).append(" ").append(text);
     // The carried F acts on a video only: its rows are extracted as a one-frame --batch.
     const bool video = beside.find(" carried") != std::string::npos;
     for (std::string_view flag : {row.cli_flag, row.old_cli_flag}) {  // the earlier one too
       if (flag.empty()) continue;
-      const std::string flags = " " + std::string(flag) + " " + value + beside;
+      std::string flags(" ");  // appended, not summed: GCC 12 warns falsely (-Wrestrict) on the sum
+      flags.append(flag).append(" ").append(value).append(beside);
       const CliResult r =
           video ? run_cli("extract --batch " + frames + flags + " -o " + folder.file("video"))
                 : run_cli("extract " + image + flags + " -o " + output);
@@ -196,7 +197,8 @@ TEST(OptionTable, EveryCliFlagReachesTheOutputRecord) {
       std::ifstream in(video ? folder.file("video/img1.png.json") : output);
       const std::string json((std::istreambuf_iterator<char>(in)),
                              std::istreambuf_iterator<char>());
-      const std::string expected = "\"" + std::string(row.key) + "\":" + record_json(row, value);
+      const std::string expected =
+          std::string("\"").append(row.key).append("\":").append(record_json(row, value));
       EXPECT_NE(json.find(expected), std::string::npos)
           << flag << " " << value << ": no " << expected;
     }
