@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "aief/error.hpp"
+#include "core/options/option_names.hpp"
 #include "core/options/option_table.hpp"
 #include "parallel/scheduler.hpp"
 
@@ -223,9 +224,12 @@ void require_entropy_to_sweep(const Args& args, const ExtractorOptions& options,
   const std::string how = args.has("--entropy") ? args.spelled("--entropy") + " off"
                           : mode               ? args.spelled("--mode") + " " + *mode
                                                : std::string("the options given");
+  std::string with_entropy;  // the modes that measure it, from their own options
+  for (const auto& mode : option_names::Table<Mode>::names)
+    if (options_for_mode(mode.value).entropy != EntropyMeasure::off)
+      with_entropy += (with_entropy.empty() ? "" : ", ") + std::string(mode.name);
   throw UsageError(command + " sweeps the entropy threshold, and " + how +
-                   " measures no entropy: give an entropy mode (aief, aief-paper, "
-                   "quadtree-entropy or quality)");
+                   " measures no entropy: give a mode that does (" + with_entropy + ")");
 }
 
 ExtractorOptions extractor_options(const Args& args, option_table::Use use) {
