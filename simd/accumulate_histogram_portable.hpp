@@ -1,5 +1,5 @@
 #pragma once
-// Block histograms: the contract of core/kernels/block_entropy.hpp. Counting is a scatter, which no
+// Block histograms: the contract of core/entropy/block_entropy.hpp. Counting is a scatter, which no
 // x86 vector set does faster than independent scalar banks; what vectorises is folding the
 // banks into the histogram.
 //

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "aief/image.hpp"
-#include "core/kernels/block_entropy.hpp"
+#include "core/entropy/block_entropy.hpp"
 #include "core/frame/frame_analysis.hpp"
 #include "simd/kernels.hpp"
 
@@ -63,7 +63,8 @@ TEST(BlockEntropy, ValuesFixedByTheDefinition) {
   // Exactly 0 at any area, not only at powers of two (an edge block of 32 x 17; an image of
   // 200 x 200, past the table): a mask at F = 0 keeps no block of one gray level.
   for (const auto& [w, h] : {std::pair{32, 17}, std::pair{23, 31}, std::pair{200, 200}}) {
-    std::vector<std::uint8_t> one_level(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 9);
+    std::vector<std::uint8_t> one_level(static_cast<std::size_t>(w) * static_cast<std::size_t>(h),
+                                        9);
     EXPECT_EQ(histogram_entropy_bits(histogram_of(one_level, w, h).data()), 0.0) << w << " x " << h;
   }
   for (int repeats : {1, 4}) {  // 16x16 with each value once, 32x32 with each value 4 times

@@ -1,4 +1,4 @@
-// Detection on a smoothed level (core/level/detection_smoothing.hpp,
+// Detection on a smoothed level (core/detection/detection_smoothing.hpp,
 // core/kernels/binomial5_row.hpp): the row kernel against a direct 5x5 oracle on random odd sizes,
 // the passes a sigma runs, that the option is off in every mode but quality and refused out of
 // range, that descriptors and angles stay the level's own, that it finds more correct matches
@@ -19,9 +19,9 @@
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
 #include "aief/match.hpp"
+#include "core/detection/detection_smoothing.hpp"
 #include "core/kernels/binomial5_row.hpp"
 #include "core/kernels/kernel_table.hpp"
-#include "core/level/detection_smoothing.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 
@@ -69,8 +69,8 @@ TEST(DetectionSmoothing, SigmaRunsItsSquareInPassesAtLeastOne) {
   EXPECT_EQ(detection_smoothing_passes(3), 9);
 }
 
-// Two passes run in bands of rows (core/level/detection_smoothing.cpp): heights around the band's
-// size and its multiples, every kernel set, against one pass run on one pass's whole image.
+// Two passes run in bands of rows (core/detection/detection_smoothing.cpp): heights around the
+// band's size and its multiples, every kernel set, against one pass run on one pass's whole image.
 TEST(DetectionSmoothing, TwoPassesAreOnePassOfOnePass) {
   const KernelTable& scalar = kernel_table(KernelSet::scalar);
   for (int height : {5, 35, 36, 37, 61, 64, 66, 67, 97, 131}) {

@@ -8,7 +8,7 @@
 
 #include "aief/extractor.hpp"
 #include "core/frame/frame_pipeline.hpp"
-#include "core/level/stage_times.hpp"
+#include "core/frame/stage_times.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {

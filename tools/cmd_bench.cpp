@@ -16,7 +16,7 @@
 #include "aief/extractor.hpp"
 #include "aief/match.hpp"
 #include "core/frame/frame_pipeline.hpp"
-#include "core/level/stage_times.hpp"
+#include "core/frame/stage_times.hpp"
 #include "io/json_writer.hpp"
 #include "simd/kernels.hpp"
 #include "tools/cli_args.hpp"

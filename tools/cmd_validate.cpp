@@ -5,7 +5,7 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "core/level/image_checks.hpp"
+#include "core/frame/image_checks.hpp"
 #include "io/image_io.hpp"
 #include "simd/kernel_validation.hpp"
 #include "simd/kernels.hpp"

@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "core/kernels/block_entropy.hpp"
+#include "core/entropy/block_entropy.hpp"
 
 namespace aief {
 

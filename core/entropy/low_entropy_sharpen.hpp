@@ -9,9 +9,9 @@
 // up), then along the pixel row: a0 + floor((a1 - a0) w / 64), the weight w = floor(64 d / D), d
 // the distance past centre 0 and D the distance between the centres (the edge blocks' own amount
 // beyond the outer centres). So the amount is continuous, with no step at a block border for
-// FAST to find. Each row is then core/kernels/unsharp_row.hpp's unsharp mask at those amounts. Integers
-// from the block entropies on (which every kernel set computes alike), so the bytes are the same
-// under every kernel set and thread count.
+// FAST to find. Each row is then core/kernels/unsharp_row.hpp's unsharp mask at those amounts.
+// Integers from the block entropies on (which every kernel set computes alike), so the bytes are
+// the same under every kernel set and thread count.
 #include <cstdint>
 #include <vector>
 

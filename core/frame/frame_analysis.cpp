@@ -4,10 +4,10 @@
 #include <string>
 
 #include "aief/error.hpp"
-#include "core/level/caller_mask.hpp"
-#include "core/level/image_checks.hpp"
-#include "core/level/keypoint_position.hpp"
 #include "core/entropy/level_entropy.hpp"
+#include "core/frame/image_checks.hpp"
+#include "core/level/caller_mask.hpp"
+#include "core/level/keypoint_position.hpp"
 
 namespace aief {
 

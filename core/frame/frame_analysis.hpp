@@ -8,24 +8,26 @@
 // The stages are separate functions per level so that the frame pipeline
 // (core/frame/frame_pipeline.hpp) can schedule them; each writes only into its own level, so the
 // result never depends on which thread ran what. Each stage's work is in a file of its own:
-// core/entropy/level_entropy.hpp, core/detection/level_detection.hpp (with core/detection/score_band.hpp),
-// core/frame/level_selection.hpp, core/distribution/raster_order.hpp, core/description/level_description.hpp.
+// core/entropy/level_entropy.hpp, core/detection/level_detection.hpp (with
+// core/detection/score_band.hpp), core/frame/level_selection.hpp,
+// core/distribution/raster_order.hpp, core/description/level_description.hpp.
 #include <cstdint>
 #include <vector>
 
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
-#include "core/kernels/kernel_table.hpp"
-#include "core/level/level_blocks.hpp"
 #include "core/description/level_description.hpp"
+#include "core/detection/detection_smoothing.hpp"
 #include "core/detection/level_detection.hpp"
 #include "core/detection/scale_selection.hpp"
-#include "core/frame/level_selection.hpp"
-#include "core/entropy/low_entropy_sharpen.hpp"
-#include "core/level/detection_smoothing.hpp"
-#include "core/level/pyramid_level.hpp"
 #include "core/distribution/raster_order.hpp"
+#include "core/entropy/block_mask.hpp"
+#include "core/entropy/low_entropy_sharpen.hpp"
+#include "core/frame/level_selection.hpp"
+#include "core/kernels/kernel_table.hpp"
+#include "core/level/level_blocks.hpp"
+#include "core/level/pyramid_level.hpp"
 
 namespace aief {
 
@@ -102,10 +104,10 @@ class FrameAnalysis {
     LevelDescriptions descriptions;
     RasterRanks raster_ranks;  // Selections::many
     DetectionScratch detection;
-    SharpenScratch sharpen;  // ExtractorOptions::low_entropy_sharpen
+    SharpenScratch sharpen;      // ExtractorOptions::low_entropy_sharpen
     SmoothingScratch smoothing;  // ExtractorOptions::detection_smoothing
     SelectionScratch selection;
-    ScaleIndex scale_index;               // ExtractorOptions::scale_selection
+    ScaleIndex scale_index;                // ExtractorOptions::scale_selection
     std::vector<std::uint8_t> scale_keep;  // the same
     std::vector<std::int32_t> selected;
   };

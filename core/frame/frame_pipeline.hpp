@@ -6,19 +6,19 @@
 // it is built, beside the levels still being built): pixels, block entropies, FAST candidates of
 // the blocks F keeps, selection (distribution, orientation, descriptors). The automatic F needs
 // every level's entropies first, so then detection and selection follow in a second parallel
-// region. The threshold fallback (core/entropy/threshold_fallback.hpp) decides each level's F and budget;
-// when its frame rules change them, the levels concerned select again. The stages themselves are
-// FrameAnalysis's (core/frame/frame_analysis.hpp).
+// region. The threshold fallback (core/entropy/threshold_fallback.hpp) decides each level's F and
+// budget; when its frame rules change them, the levels concerned select again. The stages
+// themselves are FrameAnalysis's (core/frame/frame_analysis.hpp).
 #include <cstdint>
 #include <vector>
 
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
-#include "core/frame/frame_analysis.hpp"
-#include "core/kernels/kernel_table.hpp"
-#include "core/level/stage_times.hpp"
 #include "core/entropy/threshold_fallback.hpp"
+#include "core/frame/frame_analysis.hpp"
+#include "core/frame/stage_times.hpp"
+#include "core/kernels/kernel_table.hpp"
 #include "parallel/scheduler.hpp"
 
 namespace aief {

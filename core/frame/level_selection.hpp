@@ -1,14 +1,15 @@
 #pragma once
 // Stage 4, first half, on one level: which of the candidates in the blocks a mask keeps a budget
 // chooses, by the options' distribution: proportional over the kept blocks (through the
-// candidate pool, core/distribution/candidate_pool.hpp, when there are more candidates than the pool holds),
-// or ORB-SLAM2's quadtree over all kept candidates as one set.
+// candidate pool, core/distribution/candidate_pool.hpp, when there are more candidates than the
+// pool holds), or ORB-SLAM2's quadtree over all kept candidates as one set.
 #include <cstdint>
 #include <vector>
 
 #include "aief/options.hpp"
 #include "core/distribution/candidate_pool.hpp"
 #include "core/distribution/distribution.hpp"
+#include "core/entropy/block_mask.hpp"
 #include "core/level/level_blocks.hpp"
 #include "core/level/pyramid_level.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 // The count of a block's gray levels, the primitive both entropy measures derive from
-// (core/kernels/block_entropy.hpp, docs/design.md §3).
+// (core/entropy/block_entropy.hpp, docs/design.md §3).
 #include <cstddef>
 #include <cstdint>
 

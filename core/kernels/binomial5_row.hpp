@@ -1,6 +1,6 @@
 #pragma once
 // One row of the 5x5 binomial blur, in integers (docs/design.md §5, "detection on a smoothed
-// level"; the kernel behind core/level/detection_smoothing.hpp):
+// level"; the kernel behind core/detection/detection_smoothing.hpp):
 //   column sums  v(x)  = s(x, y-2) + 4 s(x, y-1) + 6 s(x, y) + 4 s(x, y+1) + s(x, y+2)   <= 4080
 //   blur * 256   b(x)  = v(x-2) + 4 v(x-1) + 6 v(x) + 4 v(x+1) + v(x+2)                 <= 65280
 //   out(x)       = (b(x) + 128) >> 8

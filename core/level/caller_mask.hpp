@@ -4,9 +4,9 @@
 //
 // The caller's mask allows a pixel where it is non-zero. Level 0's mask is that, as 255 / 0.
 // Level n's is level n - 1's resized exactly as the pyramid resizes the pixels
-// (core/kernels/resize_bilinear_rows.hpp), keeping 255 only where the result is 255, i.e. where every source
-// pixel it interpolates is allowed, and 0 elsewhere: cv::ORB's rule (a bilinear resize of the
-// mask, then every value below 255 set to 0), with the pyramid's own resize.
+// (core/kernels/resize_bilinear_rows.hpp), keeping 255 only where the result is 255, i.e. where
+// every source pixel it interpolates is allowed, and 0 elsewhere: cv::ORB's rule (a bilinear resize
+// of the mask, then every value below 255 set to 0), with the pyramid's own resize.
 //
 // Detection takes a FAST candidate only at an allowed pixel of its level, after non-maximum
 // suppression (as cv::FAST with a mask drops keypoints after suppression) and before the
@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "aief/image.hpp"
-#include "core/level/level_geometry.hpp"
 #include "core/kernels/resize_bilinear_rows.hpp"
+#include "core/level/level_geometry.hpp"
 
 namespace aief {
 

@@ -1,8 +1,8 @@
 #pragma once
 // Where a level's candidate lands in level-0 pixels (docs/design.md §8).
 //
-// The pyramid resamples pixel-centre aligned (core/kernels/resize_bilinear_rows.hpp: level pixel x samples
-// level n - 1 at (x + 0.5) * W_{n-1} / W_n - 0.5), and those maps compose exactly, so level
+// The pyramid resamples pixel-centre aligned (core/kernels/resize_bilinear_rows.hpp: level pixel x
+// samples level n - 1 at (x + 0.5) * W_{n-1} / W_n - 0.5), and those maps compose exactly, so level
 // pixel x of level n sits at (x + 0.5) * (W_0 / W_n) - 0.5 in level 0, per axis with the
 // level's real size ratio. The paper and ORB-SLAM2 use x * scale_factor^n instead, which is off
 // by about (scale - 1) / 2 pixels plus the rounding of the level size: 3-8 px at levels 6-7.

@@ -1,7 +1,7 @@
 #pragma once
 // What stages 2 and 3 learn about one level's blocks: each block's entropy, whether it is
-// uniform, whether it was detected and which candidates it holds; and Eq. 9, the mask a
-// threshold F makes of them.
+// uniform, whether it was detected and which candidates it holds (Eq. 9, the mask a threshold F
+// makes of them, is core/entropy/block_mask.hpp).
 #include <cstdint>
 #include <vector>
 
@@ -20,8 +20,8 @@ struct LevelBlocks {
   // With a detection mask, per block: 1 when any of its pixels is allowed (made by detection on
   // first need; core/level/caller_mask.hpp). Empty otherwise.
   std::vector<std::uint8_t> allowed;
-  // DetectionCells::orbslam: the candidates in ORB-SLAM's order (core/detection/orbslam_cells.hpp), which
-  // its octree's tie-breaks read; `candidates` holds them grouped by block. Empty otherwise.
+  // DetectionCells::orbslam: the candidates in ORB-SLAM's order (core/detection/orbslam_cells.hpp),
+  // which its octree's tie-breaks read; `candidates` holds them grouped by block. Empty otherwise.
   std::vector<std::int32_t> orbslam_order;
 
   // A new frame: `blocks` blocks, none detected.
@@ -33,17 +33,6 @@ struct LevelBlocks {
     candidates.clear();
     allowed.clear();
     orbslam_order.clear();
-  }
-};
-
-// Eq. 9 on one level: block b is kept at F when its entropy is above F; with entropy off
-// (entropy_bits == nullptr) every block is kept.
-struct BlockMask {
-  const std::vector<double>* entropy_bits = nullptr;
-  double threshold = 0;
-
-  bool kept(int b) const {
-    return entropy_bits == nullptr || (*entropy_bits)[static_cast<std::size_t>(b)] > threshold;
   }
 };
 

@@ -1,9 +1,9 @@
 #pragma once
 // One pyramid level's pixels: its geometry, how it is made from the level above, and the pixels.
 #include "aief/image.hpp"
-#include "core/level/level_geometry.hpp"
 #include "core/kernels/resize_bilinear_rows.hpp"
 #include "core/kernels/resize_opencv_linear_rows.hpp"
+#include "core/level/level_geometry.hpp"
 
 namespace aief {
 
@@ -18,8 +18,8 @@ struct PyramidLevel {
   // a mask (core/level/caller_mask.hpp).
   GrayImage detection_mask;
   // What FAST reads: `pixels`, or with ExtractorOptions::low_entropy_sharpen `sharpened` once
-  // stage 2 made it (core/entropy/low_entropy_sharpen.hpp). Orientation and descriptors read `pixels`.
-  // With ExtractorOptions::detection_smoothing, `smoothed` (of `pixels` or `sharpened`).
+  // stage 2 made it (core/entropy/low_entropy_sharpen.hpp). Orientation and descriptors read
+  // `pixels`. With ExtractorOptions::detection_smoothing, `smoothed` (of `pixels` or `sharpened`).
   ImageView detection_pixels;
   GrayImage sharpened;
   GrayImage smoothed;

@@ -52,18 +52,22 @@ enum class CandidateRanking {
 // How a pyramid level is resampled from the level above (docs/design.md §2).
 enum class PyramidResampling {
   q8,      // the engine's Q8 bilinear, vector kernels (core/kernels/resize_bilinear_rows.hpp)
-  opencv,  // cv::resize INTER_LINEAR to the byte: ORB-SLAM's pixels (core/kernels/resize_opencv_linear_rows)
+  opencv,  // cv::resize INTER_LINEAR to the byte: ORB-SLAM's pixels
+           // (core/kernels/resize_opencv_linear_rows)
 };
 
 // Where detection's threshold retry and non-maximum suppression act (docs/design.md §5).
 enum class DetectionCells {
-  blocks,   // the engine's blocks, suppression over the whole level (core/detection/level_detection.hpp)
-  orbslam,  // ORB-SLAM3's 35-pixel cells, each suppressed as its own image (core/detection/orbslam_cells.hpp)
+  blocks,   // the engine's blocks, suppression over the whole level
+            // (core/detection/level_detection.hpp)
+  orbslam,  // ORB-SLAM3's 35-pixel cells, each suppressed as its own image
+            // (core/detection/orbslam_cells.hpp)
 };
 
 // How the quadtree breaks ties (docs/design.md §6).
 enum class QuadtreeTies {
-  full,     // a written tie-break for every ordering, exactly N per level (core/distribution/distribution.hpp)
+  full,     // a written tie-break for every ordering, exactly N per level
+            // (core/distribution/distribution.hpp)
   orbslam,  // ORB-SLAM's list order and overshoot of up to 3 (core/distribution/octree_orbslam.hpp)
 };
 
@@ -77,7 +81,8 @@ enum class FastThresholdFrom {
 // What weights the quadtree's splits (docs/design.md §6).
 enum class QuadtreeWeight {
   none,     // every node splits each round (distribute_quadtree / ORB-SLAM's octree)
-  entropy,  // the node of the largest block-entropy weight splits next (core/distribution/quadtree_weighted)
+  entropy,  // the node of the largest block-entropy weight splits next
+            // (core/distribution/quadtree_weighted)
 };
 
 // The angle of the intensity centroid (docs/design.md §7).
@@ -97,16 +102,16 @@ enum class DescriptorKind {
 // Which pyramid level keeps a corner that FAST finds on several (docs/design.md §5, "Scale
 // selection").
 enum class ScaleSelection {
-  off,     // every level keeps its own candidates, each level its budget N_n (ORB, ORB-SLAM)
-  extrema, // a candidate stays only where its strength is not beaten by a candidate of an
-           // adjacent level at the same place (core/detection/scale_selection.hpp)
+  off,      // every level keeps its own candidates, each level its budget N_n (ORB, ORB-SLAM)
+  extrema,  // a candidate stays only where its strength is not beaten by a candidate of an
+            // adjacent level at the same place (core/detection/scale_selection.hpp)
 };
 
 // Named presets over ExtractorOptions, the rows of the paper's tables.
 enum class Mode {
-  aief,              // AIEF with seven measured departures (docs/design.md §11; the defaults below)
-  aief_paper,        // AIEF exactly as published: x * scale, no sub-pixel, no pool, frame guard
-  orbslam2,          // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
+  aief,        // AIEF with seven measured departures (docs/design.md §11; the defaults below)
+  aief_paper,  // AIEF exactly as published: x * scale, no sub-pixel, no pool, frame guard
+  orbslam2,    // quadtree, no entropy, ORB-SLAM2's conventions (x * scale)
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
   faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells, octree tie-breaks and
                      // orientation
@@ -127,13 +132,13 @@ struct ExtractorOptions {
   // F of Eq. 9: a block is kept when its entropy is > F. 4.0 bits keeps textured blocks and
   // drops sky, walls and saturated areas on the Oxford images; `adapt` chooses F per scene.
   double entropy_threshold = 4.0;
-  // Pair-free automatic F (core/frame/auto_threshold.hpp) instead of entropy_threshold: Otsu's split
-  // of the frame's own block entropies. `aief extract --threshold auto`.
+  // Pair-free automatic F (core/frame/auto_threshold.hpp) instead of entropy_threshold: Otsu's
+  // split of the frame's own block entropies. `aief extract --entropy-threshold auto`.
   bool auto_threshold = false;
-  // F carried through a video (core/sweep/carried_threshold.hpp, docs/design.md §10): the extractor
-  // runs the adaptive sweep on the pair (previous frame, current frame) every carry_every frames,
-  // spread over the following frames, and applies the F it chooses from the frame after it ends;
-  // entropy_threshold until then. `aief extract --threshold carried`.
+  // F carried through a video (core/sweep/carried_threshold.hpp, docs/design.md §10): the
+  // extractor runs the adaptive sweep on the pair (previous frame, current frame) every
+  // carry_every frames, spread over the following frames, and applies the F it chooses from the
+  // frame after it ends; entropy_threshold until then. `aief extract --entropy-threshold carried`.
   bool carried_threshold = false;
   // Frames from the start of one carried sweep to the start of the next (at least the frames a
   // sweep takes: a sweep never starts while one runs). 30: a sweep takes 12 frames at most
@@ -164,8 +169,8 @@ struct ExtractorOptions {
   bool auto_skips_uniform_blocks = true;
   // Automatic F: Otsu's split only when the block entropies fall into two classes, i.e. when its
   // effectiveness (between-class over total variance) reaches kAutoMinEffectiveness
-  // (core/frame/auto_threshold.hpp); otherwise the frame has no low-information class and F = 0 keeps
-  // every block. false: always Otsu's split (capped to keep three quarters of the blocks).
+  // (core/frame/auto_threshold.hpp); otherwise the frame has no low-information class and F = 0
+  // keeps every block. false: always Otsu's split (capped to keep three quarters of the blocks).
   bool auto_requires_two_classes = true;
   // The choices of the faithful mode, each on its own for measurement: ORB-SLAM3's ORBextractor
   // to the keypoint (docs/design.md §2, §5, §6, §7). The octree ties act on the quadtree only;
@@ -184,16 +189,17 @@ struct ExtractorOptions {
   FastThresholdFrom fast_threshold_from = FastThresholdFrom::none;
   // Entropy-guided variant: FAST detects on a copy of each level whose low-entropy blocks are
   // sharpened (an unsharp mask whose amount falls with the block's entropy, blended between
-  // blocks; core/entropy/low_entropy_sharpen.hpp); orientation and descriptors read the level itself.
+  // blocks; core/entropy/low_entropy_sharpen.hpp); orientation and descriptors read the level
+  // itself.
   bool low_entropy_sharpen = false;
   // The descriptor. rbrief in every mode but quality (ORB-SLAM's vocabularies are trained on it);
   // box is the learned box descriptor (a vocabulary trained on rBRIEF needs retraining for it).
   DescriptorKind descriptor = DescriptorKind::rbrief;
-  // Detection on a smoothed level (core/level/detection_smoothing.hpp): FAST reads each level (its
-  // sharpened copy with low_entropy_sharpen) blurred to about this sigma, px, by passes of the 5x5
-  // binomial; orientation and descriptors read the level itself. 0: none (every mode but quality).
-  // Blur in one image of a pair moves FAST's corners and scores; smoothing both measures them on
-  // alike pixels (docs/evaluation.md, "Hard families").
+  // Detection on a smoothed level (core/detection/detection_smoothing.hpp): FAST reads each level
+  // (its sharpened copy with low_entropy_sharpen) blurred to about this sigma, px, by passes of the
+  // 5x5 binomial; orientation and descriptors read the level itself. 0: none (every mode but
+  // quality). Blur in one image of a pair moves FAST's corners and scores; smoothing both measures
+  // them on alike pixels (docs/evaluation.md, "Hard families").
   double detection_smoothing = 0;
   // Scale selection (core/detection/scale_selection.hpp): off in every mode (measured worse,
   // docs/evaluation.md "Scale selection").
@@ -244,7 +250,7 @@ constexpr int kPatchRadius = 15;  // half patch: orientation disc radius
 constexpr int kEdgeBorder = 19;   // keypoints lie at least this far from a level's edge
 constexpr int kDescriptorBytes = 32;
 // Upper bound of max_image_pixels (2^26, the default): the entropy sums in Q32 fixed point
-// (core/kernels/block_entropy.cpp, c log2 c * 2^32 per bin) stay exact below it for both measures.
+// (core/entropy/block_entropy.cpp, c log2 c * 2^32 per bin) stay exact below it for both measures.
 constexpr long long kLargestMaxImagePixels = 1LL << 26;
 
 }  // namespace aief

@@ -1,4 +1,4 @@
-#include "core/level/detection_smoothing.hpp"
+#include "core/detection/detection_smoothing.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -17,12 +17,12 @@ namespace {
 // Output rows a band of the two-pass smoothing makes at a time (docs/speed.md, "The quality mode").
 constexpr int kSmoothingBandRows = 32;
 
-// Two passes without a whole first-pass image: the first pass's rows that a band of kSmoothingBandRows
-// output rows reads (2 more above and below) are held in `between`, kSmoothingBandRows + 4 rows
-// that stay in cache, and the second pass reads them through a view of those rows. Inside the
-// image the view holds every row the 5x5 kernel reads; at the image's top and bottom its first
-// and last rows are the image's, so the kernel's clamping replicates the same rows as on the
-// whole image: the same bytes.
+// Two passes without a whole first-pass image: the first pass's rows that a band of
+// kSmoothingBandRows output rows reads (2 more above and below) are held in `between`,
+// kSmoothingBandRows + 4 rows that stay in cache, and the second pass reads them through a view of
+// those rows. Inside the image the view holds every row the 5x5 kernel reads; at the image's top
+// and bottom its first and last rows are the image's, so the kernel's clamping replicates the same
+// rows as on the whole image: the same bytes.
 void smooth_twice_in_bands(ImageView pixels, const KernelTable& kernels, SmoothingScratch& scratch,
                            GrayImage& out) {
   const int width = pixels.width, height = pixels.height;
@@ -35,8 +35,9 @@ void smooth_twice_in_bands(ImageView pixels, const KernelTable& kernels, Smoothi
     const int y1 = std::min(height, y0 + kSmoothingBandRows);
     const int need_top = std::max(0, y0 - 2), need_end = std::min(height, y1 + 2);
     if (need_top > top) {  // the rows still needed move up
-      std::memmove(held.row(0), held.row(need_top - top),
-                   static_cast<std::size_t>(end - need_top) * static_cast<std::size_t>(held.stride));
+      std::memmove(
+          held.row(0), held.row(need_top - top),
+          static_cast<std::size_t>(end - need_top) * static_cast<std::size_t>(held.stride));
       top = need_top;
     }
     for (int y = end; y < need_end; ++y) kernels.binomial5_row(pixels, y, sums, held.row(y - top));

@@ -1,7 +1,7 @@
 #pragma once
-// Where a frame's time goes, stage by stage: a sink the frame pipeline (core/frame/frame_pipeline.hpp)
-// adds to when it is given one (aief bench). Without a sink the pipeline reads no clock: the
-// cost is one null test per stage call.
+// Where a frame's time goes, stage by stage: a sink the frame pipeline
+// (core/frame/frame_pipeline.hpp) adds to when it is given one (aief bench). Without a sink the
+// pipeline reads no clock: the cost is one null test per stage call.
 #include <array>
 #include <cstddef>
 #include <vector>

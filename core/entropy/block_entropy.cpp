@@ -1,4 +1,4 @@
-#include "core/kernels/block_entropy.hpp"
+#include "core/entropy/block_entropy.hpp"
 
 #include <cassert>
 #include <cmath>

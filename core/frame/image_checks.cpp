@@ -1,4 +1,4 @@
-#include "core/level/image_checks.hpp"
+#include "core/frame/image_checks.hpp"
 
 #include <string>
 
