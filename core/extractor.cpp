@@ -2,10 +2,10 @@
 
 #include <optional>
 
-#include "core/sweep/carried_threshold.hpp"
 #include "core/frame/frame_pipeline.hpp"
 #include "core/frame/given_keypoints.hpp"
 #include "core/kernels/kernel_table.hpp"
+#include "core/sweep/carried_threshold.hpp"
 
 namespace aief {
 

@@ -45,8 +45,10 @@ void check_batch_outputs_do_not_nest(const std::vector<BatchInput>& inputs,
       for (std::size_t at = input.name.find('/', 1); at != std::string::npos;
            at = input.name.find('/', at + 1))
         if (names.count(input.name.substr(0, at)))
-          throw Error("batch input '" + input.path + "' would have its group inside the group of "
-                      "input '" + input.name.substr(0, at) + "' in '" + output_dir +
+          throw Error("batch input '" + input.path +
+                      "' would have its group inside the group of "
+                      "input '" +
+                      input.name.substr(0, at) + "' in '" + output_dir +
                       "' (one name is the folder of the other's); nothing was written");
     return;
   }

@@ -108,7 +108,7 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
       insert_descriptors(db, "INSERT INTO descriptors VALUES (?, ?, 32, ?)"),
       insert_matches(db, "INSERT INTO matches VALUES (?, ?, 2, ?)");
   using Images = std::unordered_map<std::string, std::pair<long long, int>>;
-  Images images;  // name -> (image id, keypoints)
+  Images images;           // name -> (image id, keypoints)
   std::string first_name;  // COLMAP matches every image's descriptors with every other's
   DescriptorKind first_descriptor = DescriptorKind::rbrief;
   for (const std::string& name : features.feature_names()) {
@@ -181,13 +181,13 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     const std::vector<Match>& matches = *found;
     // Matches of features the features file no longer holds (re-extracted since, with other
     // options or from a changed image): refused, as match --pairs redoes them on a rerun.
-    if (const std::optional<PairRecord> recorded =
-            swapped ? matches_file.pair_record(name1, name0) : matches_file.pair_record(name0, name1)) {
+    if (const std::optional<PairRecord> recorded = swapped
+                                                       ? matches_file.pair_record(name1, name0)
+                                                       : matches_file.pair_record(name0, name1)) {
       PairRecord now = swapped ? records.of(name1, name0) : records.of(name0, name1);
       now.matcher = recorded->matcher;  // only the features matter here
-      const std::vector<std::string> changes = swapped
-                                                   ? pair_changes(recorded, now, name1, name0)
-                                                   : pair_changes(recorded, now, name0, name1);
+      const std::vector<std::string> changes = swapped ? pair_changes(recorded, now, name1, name0)
+                                                       : pair_changes(recorded, now, name0, name1);
       if (!changes.empty()) {  // the pair and its first change, shortened to its first option
         std::string why = changes.front();
         if (const std::size_t more = why.find(", ", why.find(": ")); more != std::string::npos)
@@ -239,7 +239,8 @@ void write_database(Database& db, const Hdf5File& features, const Hdf5File& matc
     if (stale.size() > kNamed) named += "; and " + std::to_string(stale.size() - kNamed) + " more";
     throw Error(std::to_string(stale.size()) + " pair(s) of '" + matches_file.path() +
                 "' were matched from other features than '" + features.path() +
-                "' holds now (pair " + named + "): run aief match --pairs again with these "
+                "' holds now (pair " + named +
+                "): run aief match --pairs again with these "
                 "features (it matches those pairs again); no database was written");
   }
   db.exec("COMMIT");
@@ -271,7 +272,8 @@ ColmapExport export_colmap_database(const std::string& database, const std::stri
   }
   std::filesystem::remove(journal, ec);
   if (!temporary.rename_unless_output_exists())
-    throw Error("COLMAP database '" + database + "' was created by another run meanwhile (remove it first)");
+    throw Error("COLMAP database '" + database +
+                "' was created by another run meanwhile (remove it first)");
   return summary;
 }
 

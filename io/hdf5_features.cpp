@@ -63,8 +63,7 @@ void Hdf5File::remove_features(const std::string& image) {
   const std::string name = image_group(image);
   // Flushed at once: a file created by an older aief hands freed space out again.
   write_guarded(
-      0, "the removal of '" + name + "'", [&] { remove_group(file_, name); }, Flush::now,
-      false);
+      0, "the removal of '" + name + "'", [&] { remove_group(file_, name); }, Flush::now, false);
 }
 
 void Hdf5File::check_image_name(const std::string& image) const {
@@ -82,8 +81,8 @@ void Hdf5File::check_image_name(const std::string& image) const {
   for (std::size_t at = group.find('/', 1); at != std::string::npos; at = group.find('/', at + 1)) {
     const std::string folder = group.substr(0, at);
     if (may_hold(folder) && exists(file_, folder + "/image_size"))
-      throw Error("cannot write image '" + image + "' to '" + path_ + "': its group would go inside the group of image '" +
-                  image_of_group(folder) +
+      throw Error("cannot write image '" + image + "' to '" + path_ +
+                  "': its group would go inside the group of image '" + image_of_group(folder) +
                   "' (one image's name is the folder of another's); nothing was written for it");
   }
   // Its own group, when there, must be an image's, not a folder of other images' groups.
@@ -251,9 +250,12 @@ Hdf5File::Listing Hdf5File::listing() const {
       if (path.size() <= suffix.size() || !path.ends_with(suffix)) return std::nullopt;
       return image_of_group(std::string(path.substr(0, path.size() - suffix.size())));
     };
-    if (auto image = group_of("/image_size")) v.listing.names.push_back(std::move(*image));
-    else if (auto started = group_of("/keypoints")) v.with_keypoints.push_back(std::move(*started));
-    else if (path.ends_with("/matches0")) v.listing.holds_pairs = true;
+    if (auto image = group_of("/image_size"))
+      v.listing.names.push_back(std::move(*image));
+    else if (auto started = group_of("/keypoints"))
+      v.with_keypoints.push_back(std::move(*started));
+    else if (path.ends_with("/matches0"))
+      v.listing.holds_pairs = true;
     return 0;
   };
   // Only each object's type (H5O_INFO_BASIC): the full information reads every header's

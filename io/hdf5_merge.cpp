@@ -117,7 +117,8 @@ std::vector<std::string> merged_names(const Hdf5File& file, bool is_output,
   Hdf5File::Listing listing = file.listing();
   const std::string role = is_output ? "the output '" + file.path() + "'" : "'" + file.path() + "'";
   if (listing.holds_pairs)
-    throw Error(role + " holds matches (pair groups with matches0), not features: merge joins "
+    throw Error(role +
+                " holds matches (pair groups with matches0), not features: merge joins "
                 "the feature files of aief extract --batch --format h5; nothing was written");
   if (!listing.names.empty())
     if (const std::string other = file.foreign_descriptors(image_group(listing.names.front()));
@@ -260,8 +261,8 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     for (const std::string& one : kept_newer) named += (named.empty() ? "" : ", ") + one;
     notes->push_back(std::to_string(kept_newer_count) + " image(s) kept as '" + output +
                      "' holds them: their shard groups are of an older file of the image (an older "
-                     "shard?), never merged over a newer one: " + named +
-                     (kept_newer_count > kept_newer.size() ? ", ..." : ""));
+                     "shard?), never merged over a newer one: " +
+                     named + (kept_newer_count > kept_newer.size() ? ", ..." : ""));
   }
   return copied;
 }

@@ -3,10 +3,11 @@
 // allocated, so a 1 MB PNG declaring 30000 x 30000 pixels is refused before the decoder would
 // ask for gigabytes. OpenCV 4.6 has no header-only API (cv::imdecode allocates the full image),
 // hence this parser of the formats its imgcodecs reads here: PNG (IHDR), JPEG (SOFn), TIFF and
-// BigTIFF (first IFD's ImageWidth / ImageLength, and TileWidth / TileLength), WebP (VP8, VP8L, VP8X), BMP, PNM / PAM / PFM,
-// Sun raster, Radiance HDR, JPEG 2000 (JP2 ihdr box, J2K SIZ marker). Besides the size: the
-// decoded pixel layout where the header gives it (PNG, JPEG, TIFF, PNM, PAM, JPEG 2000), and a
-// JPEG's number of scans, so that what decoding would cost is known before it starts.
+// BigTIFF (first IFD's ImageWidth / ImageLength, and TileWidth / TileLength), WebP (VP8, VP8L,
+// VP8X), BMP, PNM / PAM / PFM, Sun raster, Radiance HDR, JPEG 2000 (JP2 ihdr box, J2K SIZ marker).
+// Besides the size: the decoded pixel layout where the header gives it (PNG, JPEG, TIFF, PNM, PAM,
+// JPEG 2000), and a JPEG's number of scans, so that what decoding would cost is known before it
+// starts.
 #include <cstddef>
 #include <cstdint>
 #include <optional>

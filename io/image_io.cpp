@@ -71,8 +71,8 @@ void check_header(const ImageHeader* header, const std::string& name, long long 
   // (522 KB of PNG decoded to 0.9 GB at the pixel limit). The bytes allowed are those of an
   // 8-bit BGRA image of max_image_pixels, so an 8-bit image is bounded by its pixels as above.
   // At least a byte: a malformed header may declare no channels (the decoder then refuses it).
-  const long long pixel_bytes = std::max<long long>(
-      1, static_cast<long long>(header->channels) * header->bytes_per_channel);
+  const long long pixel_bytes =
+      std::max<long long>(1, static_cast<long long>(header->channels) * header->bytes_per_channel);
   const long long max_bytes = max_pixels > LLONG_MAX / kMaxDecodedBytesPerPixel
                                   ? LLONG_MAX
                                   : max_pixels * kMaxDecodedBytesPerPixel;

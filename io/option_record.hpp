@@ -1,8 +1,8 @@
 #pragma once
 // The option record of an output file: every field of the effective ExtractorOptions (the mode's
-// values included), from the option table (core/options/option_table.hpp). JSON files hold it as their
-// "options" object; YAML, npz and HDF5 as the compact JSON text option_record_json writes (YAML:
-// the string "options"; npz: the bytes member "options"; HDF5: each image group's string
+// values included), from the option table (core/options/option_table.hpp). JSON files hold it as
+// their "options" object; YAML, npz and HDF5 as the compact JSON text option_record_json writes
+// (YAML: the string "options"; npz: the bytes member "options"; HDF5: each image group's string
 // attribute "options"). Batch resume and merge compare records with option_changes, through
 // the option table (only the fields that change the output count).
 #include <optional>

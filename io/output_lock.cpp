@@ -46,7 +46,7 @@ std::set<std::string>& held() {
 // Takes a write lock on the whole of `fd`: an open file description lock, or a POSIX record lock
 // where the kernel has none (EINVAL). Returns 0 or the errno.
 int lock(int fd, bool wait) {
-  struct flock whole{};
+  struct flock whole {};
   whole.l_type = F_WRLCK;
   whole.l_whence = SEEK_SET;
   for (;;) {
@@ -80,7 +80,8 @@ void record_holder(int fd) {
 // Whether `fd` is still the file named `path` (a holder that gave up its lock removed the file; a
 // lock on that removed file locks nothing).
 bool still_named(int fd, const std::string& path) {
-  struct stat open_file{}, named{};
+  struct stat open_file {
+  }, named{};
   return ::fstat(fd, &open_file) == 0 && ::stat(path.c_str(), &named) == 0 &&
          open_file.st_dev == named.st_dev && open_file.st_ino == named.st_ino;
 }
@@ -104,8 +105,7 @@ OutputLock::OutputLock(const std::string& output)
     for (bool noted = false;;) {
       descriptor_ = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
       const bool created = descriptor_ >= 0;
-      if (!created && errno == EEXIST)
-        descriptor_ = ::open(lock_path_.c_str(), O_RDWR | O_CLOEXEC);
+      if (!created && errno == EEXIST) descriptor_ = ::open(lock_path_.c_str(), O_RDWR | O_CLOEXEC);
       if (descriptor_ < 0) {
         const int code = errno;
         const fs::path folder = fs::path(output_).parent_path();
@@ -125,14 +125,16 @@ OutputLock::OutputLock(const std::string& output)
                     "' beside it: " + std::strerror(code) +
                     (no_new_file ? std::string()
                                  : " (a writer locks its output so that no other run writes it at "
-                                   "the same time; " + std::string(kSetting) +
+                                   "the same time; " +
+                                       std::string(kSetting) +
                                        "=FALSE writes without the lock when no other run can)"));
       }
       int code = lock(descriptor_, false);
       if (code == EAGAIN || code == EACCES) {
         if (!noted)
-          std::cerr << "aief: note: waiting for " << holder_of(descriptor_) << ", which is writing '"
-                    << output_ << "' (its lock file: '" << lock_path_ << "')\n";
+          std::cerr << "aief: note: waiting for " << holder_of(descriptor_)
+                    << ", which is writing '" << output_ << "' (its lock file: '" << lock_path_
+                    << "')\n";
         noted = true;
         code = lock(descriptor_, true);
       }

@@ -140,8 +140,7 @@ LockedTemporary::~LockedTemporary() {
 }
 
 bool LockedTemporary::rename_unless_output_exists() {
-  if (::renameat2(AT_FDCWD, temporary_.c_str(), AT_FDCWD, output_.c_str(), RENAME_NOREPLACE) ==
-      0) {
+  if (::renameat2(AT_FDCWD, temporary_.c_str(), AT_FDCWD, output_.c_str(), RENAME_NOREPLACE) == 0) {
     renamed_ = true;
     return true;
   }

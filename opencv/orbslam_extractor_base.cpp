@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "aief/error.hpp"
-#include "core/options/option_names.hpp"
 #include "core/options/nearest_name.hpp"
+#include "core/options/option_names.hpp"
 #include "core/options/option_table.hpp"
 #include "opencv/cv_conversions.hpp"
 
@@ -97,8 +97,7 @@ std::string text_of_node(const cv::FileNode& node, const option_table::OptionRow
 OrbSlamExtractorBase::OrbSlamExtractorBase(int nfeatures, float scaleFactor, int nlevels,
                                            int iniThFAST, int minThFAST, Mode mode)
     : OrbSlamExtractorBase(
-          orbslam_options(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, mode)) {
-}
+          orbslam_options(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, mode)) {}
 
 OrbSlamExtractorBase::OrbSlamExtractorBase(const ExtractorOptions& options)
     : extractor_(options),

@@ -191,10 +191,12 @@ void bind_features_file(py::module_& m) {
            })
       // An open file is no value to send to another process (and Python's default reduction
       // of a pybind11 object aborted the interpreter): refused by name.
-      .def("__reduce__", [](const py::object&) -> py::object {
-        throw Error("an aief.FeaturesFile (an open file) cannot be pickled or copied: send its "
-                    "path and open it where it is needed");
-      })
+      .def("__reduce__",
+           [](const py::object&) -> py::object {
+             throw Error(
+                 "an aief.FeaturesFile (an open file) cannot be pickled or copied: send its "
+                 "path and open it where it is needed");
+           })
       .def("__reduce_ex__", [](const py::object& self, int) { return self.attr("__reduce__")(); });
 }
 

@@ -106,10 +106,12 @@ void bind_testing(py::module_& m);
 // Their objects made by __new__ alone are refused, not read (python/constructed_only.hpp).
 namespace pybind11::detail {
 template <>
-class type_caster<aief::python::PyFeatures> : public aief::python::ConstructedOnlyCaster<aief::python::PyFeatures> {};
+class type_caster<aief::python::PyFeatures>
+    : public aief::python::ConstructedOnlyCaster<aief::python::PyFeatures> {};
 }  // namespace pybind11::detail
 
 namespace pybind11::detail {
 template <>
-class type_caster<aief::AdaptResult> : public aief::python::ConstructedOnlyCaster<aief::AdaptResult> {};
+class type_caster<aief::AdaptResult>
+    : public aief::python::ConstructedOnlyCaster<aief::AdaptResult> {};
 }  // namespace pybind11::detail

@@ -48,9 +48,8 @@ PyFeatures to_python(const Features& features) {
 }
 
 std::vector<Descriptor> descriptors_from(const py::object& value, const char* name) {
-  py::object source = py::isinstance<PyFeatures>(value)
-                          ? py::object(features_of(value).descriptors)
-                          : value;
+  py::object source =
+      py::isinstance<PyFeatures>(value) ? py::object(features_of(value).descriptors) : value;
   if (!py::isinstance<py::array>(source))
     throw Error(std::string(name) + " must be an N x 32 uint8 array or aief features, got " +
                 std::string(py::str(py::type::of(value).attr("__name__"))));

@@ -1,6 +1,6 @@
 #pragma once
-// A Python call's arguments read by the option tables (core/options/option_table.hpp): the function's
-// leading parameters (images, an extractor), then the options of one or more structs, by
+// A Python call's arguments read by the option tables (core/options/option_table.hpp): the
+// function's leading parameters (images, an extractor), then the options of one or more structs, by
 // position in the rows' python_position order (struct after struct) or by keyword. None means
 // not given. Extractor(), match(), find_homography() and adapt() take their options this way, so
 // a keyword, its position and its default are written only in the row.

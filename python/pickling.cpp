@@ -175,8 +175,9 @@ py::tuple reduction(const py::object& self) {
 
 template <class Class>
 void reduce_for_every_protocol(Class& cls) {
-  cls.def("__reduce_ex__", [](const py::object& self, int /*protocol*/) { return reduction(self); },
-          py::arg("protocol"));
+  cls.def(
+      "__reduce_ex__", [](const py::object& self, int /*protocol*/) { return reduction(self); },
+      py::arg("protocol"));
   cls.def("__reduce__", &reduction);
 }
 

@@ -50,5 +50,6 @@ class PyExtractor {
 
 namespace pybind11::detail {
 template <>
-class type_caster<aief::python::PyExtractor> : public aief::python::ConstructedOnlyCaster<aief::python::PyExtractor> {};
+class type_caster<aief::python::PyExtractor>
+    : public aief::python::ConstructedOnlyCaster<aief::python::PyExtractor> {};
 }  // namespace pybind11::detail

@@ -60,7 +60,8 @@ void binomial5_row(ImageView src, int y, std::uint16_t* column_sums, std::uint8_
   };
   const auto vertical = [&](int x) {
     return taps(load_widened<Arch>(r0 + x) + load_widened<Arch>(r4 + x),
-                load_widened<Arch>(r1 + x) + load_widened<Arch>(r3 + x), load_widened<Arch>(r2 + x));
+                load_widened<Arch>(r1 + x) + load_widened<Arch>(r3 + x),
+                load_widened<Arch>(r2 + x));
   };
   int x = 0;
   for (; x + 2 * kLanes <= width; x += 2 * kLanes) {

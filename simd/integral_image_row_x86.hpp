@@ -31,8 +31,7 @@ struct Steps128 {
     p = _mm_add_epi16(p, _mm_slli_si128(p, 8));
     const __m128i low = _mm_add_epi32(_mm_cvtepu16_epi32(p), carry);
     const __m128i high = _mm_add_epi32(_mm_cvtepu16_epi32(_mm_srli_si128(p, 8)), carry);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
-                     _mm_add_epi32(low, load16<Arch>(above)));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_add_epi32(low, load16<Arch>(above)));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4),
                      _mm_add_epi32(high, load16<Arch>(above + 4)));
     return _mm_shuffle_epi32(high, 0xFF);
@@ -69,7 +68,8 @@ struct Steps256 {
 };
 
 template <class Arch>
-using Steps = std::conditional_t<std::is_base_of_v<xsimd::avx2, Arch>, Steps256<Arch>, Steps128<Arch>>;
+using Steps =
+    std::conditional_t<std::is_base_of_v<xsimd::avx2, Arch>, Steps256<Arch>, Steps128<Arch>>;
 
 }  // namespace integral_detail
 

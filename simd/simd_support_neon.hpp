@@ -47,8 +47,8 @@ inline void store_narrowed(std::uint8_t* p, const xsimd::batch<std::uint16_t, Ar
 template <class Arch>
 inline void store_narrowed_pair(std::uint8_t* p, const xsimd::batch<std::uint16_t, Arch>& a,
                                 const xsimd::batch<std::uint16_t, Arch>& b) {
-  vst1q_u8(p, vcombine_u8(vmovn_u16(static_cast<uint16x8_t>(a)),
-                          vmovn_u16(static_cast<uint16x8_t>(b))));
+  vst1q_u8(
+      p, vcombine_u8(vmovn_u16(static_cast<uint16x8_t>(a)), vmovn_u16(static_cast<uint16x8_t>(b))));
 }
 
 AIEF_SIMD_NAMESPACE_END

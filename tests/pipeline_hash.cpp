@@ -23,9 +23,9 @@ int main(int argc, char** argv) {
     const aief::GrayImage image = aief::test::read_pgm(argv[1]);
     const aief::KernelSet set = aief::parse_kernel_set(argc == 3 ? argv[2] : "auto");
     std::fprintf(stderr, "kernels: %s\n", aief::kernel_table(set).name);
-    for (aief::Mode mode : {aief::Mode::aief, aief::Mode::aief_paper, aief::Mode::orbslam2,
-                            aief::Mode::quadtree_entropy, aief::Mode::faithful,
-                            aief::Mode::quality}) {
+    for (aief::Mode mode :
+         {aief::Mode::aief, aief::Mode::aief_paper, aief::Mode::orbslam2,
+          aief::Mode::quadtree_entropy, aief::Mode::faithful, aief::Mode::quality}) {
       for (int threads : {1, 2}) {
         aief::ExtractorOptions options = aief::options_for_mode(mode);
         options.kernels = set;

@@ -96,8 +96,8 @@ TEST(Batch, AnH5HoldingImagesOfNoInputSaysSo) {
   // Before: a deleted image's group stayed in the shard (and in the merged file) without a word.
   const aief::test::TempFolder temp("aief_batch");
   const fs::path video = numbered_frames(temp.path(), 3), h5 = temp.path() / "f.h5";
-  const std::vector<std::string> args = {"extract", "--batch", video.string(), "-o", h5.string(),
-                                         "--features", "200"};
+  const std::vector<std::string> args = {"extract",   "--batch",    video.string(), "-o",
+                                         h5.string(), "--features", "200"};
   ASSERT_EQ(aief::test::run_command(AIEF_CLI_PATH, args).status, 0);
   fs::remove(video / "frame_1.png");
   const aief::test::CommandRun again = aief::test::run_command(AIEF_CLI_PATH, args);

@@ -90,9 +90,9 @@ TEST(BatchInputs, FramesKeepTheListsOrderAndAFoldersNaturalOrder) {
   const fs::path list = temp.path() / "frames.txt";
   std::ofstream(list) << "video/frame_2.png\nvideo/frame_10.png\nvideo/frame_1.png\n"
                          "video/frame_2.png\n";
-  EXPECT_EQ(names_of(aief::io::list_batch_inputs(list.string(), InputOrder::frames)),
-            (std::vector<std::string>{"video/frame_2.png", "video/frame_10.png",
-                                      "video/frame_1.png"}));
+  EXPECT_EQ(
+      names_of(aief::io::list_batch_inputs(list.string(), InputOrder::frames)),
+      (std::vector<std::string>{"video/frame_2.png", "video/frame_10.png", "video/frame_1.png"}));
   EXPECT_NE(aief::io::frame_order_of(folder.string()).find("natural order"), std::string::npos);
   EXPECT_NE(aief::io::frame_order_of(list.string()).find("the list's order"), std::string::npos);
   using aief::io::natural_less;

@@ -223,7 +223,8 @@ TEST(BoxDescriptor, ABandFromAnyOriginRowDescribesAsTheWholeIntegral) {
   const auto band_from = [&](int origin, int end) {
     std::vector<std::uint32_t> band(static_cast<std::size_t>((end - origin) * stride), 0u);
     for (int r = origin + 1; r < end; ++r)
-      integral_image_row_scalar(image.view().row(r - 1), width, band.data() + (r - 1 - origin) * stride,
+      integral_image_row_scalar(image.view().row(r - 1), width,
+                                band.data() + (r - 1 - origin) * stride,
                                 band.data() + (r - origin) * stride);
     return band;
   };

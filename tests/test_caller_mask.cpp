@@ -1,6 +1,6 @@
-// The detection mask (Extractor::extract with a mask, core/level/caller_mask.hpp): applied before the
-// candidate pool and the distribution, so the budget is filled inside it; bit-exact across kernel
-// sets and threads; an all-allowing mask is no mask.
+// The detection mask (Extractor::extract with a mask, core/level/caller_mask.hpp): applied before
+// the candidate pool and the distribution, so the budget is filled inside it; bit-exact across
+// kernel sets and threads; an all-allowing mask is no mask.
 #include <cmath>
 #include <cstdio>
 #include <random>

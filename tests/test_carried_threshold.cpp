@@ -1,7 +1,7 @@
-// F carried through a video (core/sweep/carried_threshold.hpp): the sweep spread over the frames after a
-// pair (core/sweep/spread_sweep.hpp) gives one-shot adapt()'s F on that pair from the frame after it
-// completes, no frame's share above its budget, and the same bytes twice, with any thread count
-// and any kernel set.
+// F carried through a video (core/sweep/carried_threshold.hpp): the sweep spread over the frames
+// after a pair (core/sweep/spread_sweep.hpp) gives one-shot adapt()'s F on that pair from the frame
+// after it completes, no frame's share above its budget, and the same bytes twice, with any thread
+// count and any kernel set.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -11,8 +11,8 @@
 #include "aief/adapt.hpp"
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "core/sweep/carried_threshold.hpp"
 #include "core/options/option_table.hpp"
+#include "core/sweep/carried_threshold.hpp"
 #include "core/sweep/spread_sweep.hpp"
 #include "simd/kernels.hpp"
 #include "tests/features_hash.hpp"

@@ -90,7 +90,8 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --auto-two-classes yes", "--auto-two-classes"},
       {"eval --dataset . --ranking harris", "unknown candidate ranking"},
       {"eval --dataset . --methods orb", "unknown method"},
-      // eval's matcher flags are the match rows' (core/options/matching_option_rows.json), as in match.
+      // eval's matcher flags are the match rows' (core/options/matching_option_rows.json), as in
+      // match.
       {"eval --dataset . --matcher flann", "unknown matcher 'flann' for --matcher"},
       {"eval --dataset . --ratio 0.7", "--ratio applies to --matcher ratio only"},
       // eval's extractor flags are the extractor rows' but those each row sets itself.
@@ -136,8 +137,9 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"adapt " + image + " " + second + " -o a.yml", "so the file's name must end in .json"},
       {"match --pairs p.txt --features-file f.h5 -o m.json", "must end in .h5"},
       // The sweep's commands name the flag that leaves them no entropy.
-      {"adapt " + image + " " + second + " --entropy off", "adapt sweeps the entropy threshold, "
-                                                          "and --entropy off measures no entropy"},
+      {"adapt " + image + " " + second + " --entropy off",
+       "adapt sweeps the entropy threshold, "
+       "and --entropy off measures no entropy"},
       {"match " + image + " " + second + " --adaptive --mode orbslam2",
        "--mode orbslam2 measures no entropy"},
   };
@@ -228,10 +230,10 @@ TEST(Cli, MatchPairsRefusesPairsSharingAGroupAndSaysWhatItSkips) {
   std::filesystem::copy_file(aief::test::sample_path("graf", "img1.png"), images / "c.png");
   const std::string features = (folder.path() / "f.h5").string(),
                     matches = (folder.path() / "m.h5").string();
-  ASSERT_EQ(
-      run("extract --batch " + images.string() + " -o " + features + " --format h5 --n-features 300")
-          .status,
-      0);
+  ASSERT_EQ(run("extract --batch " + images.string() + " -o " + features +
+                " --format h5 --n-features 300")
+                .status,
+            0);
   const std::string pairs = (folder.path() / "pairs.txt").string();
   std::ofstream(pairs) << "a/b.png c.png\na-b.png c.png\n";
   const CliResult collide =
@@ -282,7 +284,7 @@ TEST(Cli, InputErrorsExitOne) {
       << "an unknown output format is a usage error, found before any work";
   // validate on an image no extraction takes: refused, not "identical" untested.
   std::ofstream((dir / "tiny.pgm").string(), std::ios::binary) << "P5\n7 3\n255\n"
-                                                                 << std::string(21, '\x40');
+                                                               << std::string(21, '\x40');
   const CliResult tiny = run("validate " + (dir / "tiny.pgm").string());
   EXPECT_EQ(tiny.status, 1) << tiny.output;
   EXPECT_NE(tiny.output.find("cannot validate on '" + (dir / "tiny.pgm").string() +
@@ -308,11 +310,14 @@ TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {
   std::filesystem::copy_file(good, dir / "eval/graf/img2.png");
   std::filesystem::copy_file(aief::test::sample_path("graf", "H1to2p"), dir / "eval/graf/H1to2p");
   const std::string commands[] = {
-      "extract " + bomb_path, "match " + bomb_path + " " + good, "adapt " + good + " " + bomb_path,
+      "extract " + bomb_path,
+      "match " + bomb_path + " " + good,
+      "adapt " + good + " " + bomb_path,
       "eval --dataset " + (dir / "eval").string() + " --sequences graf --pairs 1-2 -o " +
           (dir / "report.md").string(),
       "extract --batch " + (dir / "batch").string() + " -o " + (dir / "out").string(),
-      "bench " + bomb_path, "bench " + good + " --pair " + bomb_path};
+      "bench " + bomb_path,
+      "bench " + good + " --pair " + bomb_path};
   for (const std::string& command : commands) {
     const CliResult r = run(command);
     EXPECT_EQ(r.status, 1) << command << "\n" << r.output;

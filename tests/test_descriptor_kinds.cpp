@@ -151,8 +151,8 @@ class MixedFeaturesFile : public ::testing::Test {
 };
 
 TEST_F(MixedFeaturesFile, MatchPairsRefusesNamingBothImages) {
-  const test::CommandRun r = run("match --pairs " + pairs() + " --features-file " + features() + " -o " +
-                                 folder_.file("matches.h5"));
+  const test::CommandRun r = run("match --pairs " + pairs() + " --features-file " + features() +
+                                 " -o " + folder_.file("matches.h5"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("aief: error: 'a.png' holds rbrief descriptors, 'b.png' (both in '" +
                           features() + "') box descriptors: they cannot be matched"),

@@ -9,8 +9,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "aief/extractor.hpp"
-#include "core/entropy/entropy_fast_threshold.hpp"
 #include "core/distribution/quadtree_weighted.hpp"
+#include "core/entropy/entropy_fast_threshold.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {

@@ -256,8 +256,8 @@ namespace {
 TEST(LevelGeometry, LevelsTooSmallToUseGiveTheirShareToTheUsableLevels) {
   // Before, a level too small for a keypoint kept its budget: --levels 20 delivered 964 of 1000
   // keypoints on graf, --scale 3 963. Now the budgets of the usable levels add up to N, and what
-  // a usable level short of candidates leaves goes to the others (core/entropy/threshold_fallback.hpp): 991
-  // before that rule with 20 levels, 1000 with it.
+  // a usable level short of candidates leaves goes to the others
+  // (core/entropy/threshold_fallback.hpp): 991 before that rule with 20 levels, 1000 with it.
   const cv::Mat gray = load_sample_gray("graf", "img1.png");
   ExtractorOptions many_levels;
   many_levels.n_levels = 20;

@@ -1,10 +1,10 @@
 // The faithful mode's pixels against OpenCV itself, no ORB-SLAM code needed: the OpenCV resize
-// (core/kernels/resize_opencv_linear_rows.hpp) equals cv::resize(INTER_LINEAR) on random sizes, scale factors
-// and images, and under every kernel set the whole pyramid equals ORB-SLAM2/3's ComputePyramid
-// (each level cv::resize of the level above, to cvRound(cols / scale_n) x cvRound(rows / scale_n)
-// with the scales in float) on odd-sized random images and the bundled photos. The keypoints'
-// agreement with ORB-SLAM3's own ORBextractor is measured outside the repository (docs/slam.md,
-// "The faithful mode").
+// (core/kernels/resize_opencv_linear_rows.hpp) equals cv::resize(INTER_LINEAR) on random sizes,
+// scale factors and images, and under every kernel set the whole pyramid equals ORB-SLAM2/3's
+// ComputePyramid (each level cv::resize of the level above, to cvRound(cols / scale_n) x
+// cvRound(rows / scale_n) with the scales in float) on odd-sized random images and the bundled
+// photos. The keypoints' agreement with ORB-SLAM3's own ORBextractor is measured outside the
+// repository (docs/slam.md, "The faithful mode").
 #include <cstdio>
 #include <random>
 #include <string>
@@ -43,8 +43,9 @@ std::string first_difference(const cv::Mat& expected, const cv::Mat& actual) {
   return "";
 }
 
-// Every kernel set: the scalar reference and the vector kernels (simd/resize_opencv_linear_rows_*.hpp),
-// whose groups cover only some ratios and widths, the rest going to their scalar spans.
+// Every kernel set: the scalar reference and the vector kernels
+// (simd/resize_opencv_linear_rows_*.hpp), whose groups cover only some ratios and widths, the rest
+// going to their scalar spans.
 TEST(OpenCvResize, EqualsCvResizeOnRandomSizesScalesAndImagesUnderEveryKernelSet) {
   std::mt19937 rng(977);
   for (int trial = 0; trial < 300; ++trial) {

@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/features2d.hpp>
 
-#include "core/kernels/fast9_scores_row.hpp"
-#include "tests/fast9_whole_image.hpp"
 #include "core/frame/frame_analysis.hpp"
+#include "core/kernels/fast9_scores_row.hpp"
 #include "simd/kernels.hpp"
+#include "tests/fast9_whole_image.hpp"
 #include "tests/test_support.hpp"
 
 namespace aief {
@@ -19,7 +19,7 @@ std::vector<FastCorner> ours(const cv::Mat& gray, int threshold) {
   std::vector<std::uint64_t> maxima_bits;
   std::vector<FastCorner> corners;
   fast9_whole_image(view_of(gray), threshold, kernel_table(KernelSet::scalar), scores, maxima_bits,
-               corners);
+                    corners);
   return corners;
 }
 

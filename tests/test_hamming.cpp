@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/kernels/positions_within_bounds.hpp"
-#include "core/kernels/hamming_256_many.hpp"
 #include "core/kernels/hamming_256_blocked.hpp"
+#include "core/kernels/hamming_256_many.hpp"
+#include "core/kernels/positions_within_bounds.hpp"
 
 namespace aief {
 namespace {

@@ -122,8 +122,10 @@ TEST(Hdf5Features, MergeKeepsTheNewerGroupAndRefusesAMatchesFile) {
       .write_features("a.png", new_a, &newer, &options);
   int replaced = -1;
   std::vector<std::string> notes;
-  ASSERT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("new.h5")}, &replaced, &notes), 1);
-  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("old.h5")}, &replaced, &notes), 0);
+  ASSERT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("new.h5")}, &replaced, &notes),
+            1);
+  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("old.h5")}, &replaced, &notes),
+            0);
   EXPECT_EQ(replaced, 0);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("1 image(s) kept as '" + dir.file("all.h5") + "' holds them"),

@@ -1,6 +1,6 @@
-// Block grids (core/level/level_geometry.hpp): block_of's arithmetic equals the definition, the number
-// of inner edges at or before the pixel, for every pixel of many level sizes and block sizes, the
-// pixels around the grid's area included (they take the nearest block).
+// Block grids (core/level/level_geometry.hpp): block_of's arithmetic equals the definition, the
+// number of inner edges at or before the pixel, for every pixel of many level sizes and block
+// sizes, the pixels around the grid's area included (they take the nearest block).
 #include <algorithm>
 #include <string>
 

@@ -1,9 +1,9 @@
-// Sharpened low-entropy blocks (core/entropy/low_entropy_sharpen.hpp, core/kernels/unsharp_row.hpp): the row
-// kernel against a direct 5x5 oracle on random odd sizes, the amount rule, the amounts' continuity
-// across block borders (no seam for FAST), what the option does to a weak-texture half and that
-// descriptors stay the unsharpened level's, every kernel set and thread count on real and random
-// odd-size images, tiny and one-block images. The option across the whole option space is
-// tests/test_pipeline_differential.cpp.
+// Sharpened low-entropy blocks (core/entropy/low_entropy_sharpen.hpp,
+// core/kernels/unsharp_row.hpp): the row kernel against a direct 5x5 oracle on random odd sizes,
+// the amount rule, the amounts' continuity across block borders (no seam for FAST), what the option
+// does to a weak-texture half and that descriptors stay the unsharpened level's, every kernel set
+// and thread count on real and random odd-size images, tiny and one-block images. The option across
+// the whole option space is tests/test_pipeline_differential.cpp.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -21,8 +21,8 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
-#include "core/kernels/kernel_table.hpp"
 #include "core/entropy/low_entropy_sharpen.hpp"
+#include "core/kernels/kernel_table.hpp"
 #include "core/kernels/unsharp_row.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"

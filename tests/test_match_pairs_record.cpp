@@ -38,8 +38,8 @@ class MatchPairsRecord : public ::testing::Test {
     ASSERT_EQ(r.status, 0) << r.output;
   }
   test::CommandRun match(const std::string& output, const std::string& flags = "") {
-    return run("match --pairs " + pairs() + " --features-file " + features() + " -o " + output + " " +
-               flags);
+    return run("match --pairs " + pairs() + " --features-file " + features() + " -o " + output +
+               " " + flags);
   }
   // Both pairs of `output` hold what a fresh match into a new file gives.
   void expect_fresh(const std::string& output, const std::string& flags) {
@@ -114,8 +114,7 @@ TEST_F(MatchPairsRecord, APairGroupWithoutARecordIsMatchedAgain) {
   const test::CommandRun r = match(matches);
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("2 pairs matched"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("no record of its matcher and features"), std::string::npos)
-      << r.output;
+  EXPECT_NE(r.output.find("no record of its matcher and features"), std::string::npos) << r.output;
   expect_fresh(matches, "");
 }
 
@@ -127,9 +126,8 @@ TEST_F(MatchPairsRecord, ColmapRefusesMatchesOfFeaturesExtractedAgainNamingThePa
   extract("--features 300");
   const std::string matches = folder_.file("m.h5");
   ASSERT_EQ(match(matches).status, 0);
-  const test::CommandRun fresh =
-      run("colmap --features " + features() + " --matches " + matches + " --pairs " + pairs() +
-          " -o " + folder_.file("fresh.db"));
+  const test::CommandRun fresh = run("colmap --features " + features() + " --matches " + matches +
+                                     " --pairs " + pairs() + " -o " + folder_.file("fresh.db"));
   EXPECT_EQ(fresh.status, 0) << fresh.output;
 
   extract("--features 300 --mode orbslam2");
@@ -140,8 +138,7 @@ TEST_F(MatchPairsRecord, ColmapRefusesMatchesOfFeaturesExtractedAgainNamingThePa
   EXPECT_NE(stale.output.find("2 pair(s) of '" + matches + "' were matched from other features"),
             std::string::npos)
       << stale.output;
-  EXPECT_NE(stale.output.find("(pair 'a.png b.png': the features of 'a.png': "),
-            std::string::npos)
+  EXPECT_NE(stale.output.find("(pair 'a.png b.png': the features of 'a.png': "), std::string::npos)
       << stale.output;
   EXPECT_NE(stale.output.find("'b.png c.png'"), std::string::npos) << stale.output;
   EXPECT_NE(stale.output.find("run aief match --pairs again"), std::string::npos) << stale.output;

@@ -1,6 +1,7 @@
-// The option tables of matching, the sweep and RANSAC (core/options/matching_option_rows.json): every field
-// is a row, every row with a flag reaches aief match / aief adapt and their --help, validate() is
-// made from the rows, the matcher's names are read from their one name table, and the ratio rule
+// The option tables of matching, the sweep and RANSAC (core/options/matching_option_rows.json):
+// every field is a row, every row with a flag reaches aief match / aief adapt and their --help,
+// validate() is made from the rows, the matcher's names are read from their one name table, and the
+// ratio rule
 // (--ratio with --matcher ratio only) holds. Before, these options were a second, hand-made
 // system: MatcherKind's names written three times, the sweep's ranges twice, flags by hand.
 #include <filesystem>

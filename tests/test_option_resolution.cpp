@@ -237,8 +237,8 @@ TEST(OptionTable, AnOptionThatCannotActIsRefusedNamingWhatItNeeds) {
 // A record holds numbers at 17 digits; a difference shows them by their shortest text (was:
 // "ratio 0.69999999999999996 -> 0.80000000000000004").
 TEST(OptionTable, DifferencesShowNumbersByTheirShortestText) {
-  EXPECT_EQ(table::text_of(table::OptionDifference{"ratio", "0.69999999999999996",
-                                                   "0.80000000000000004"}),
+  EXPECT_EQ(table::text_of(
+                table::OptionDifference{"ratio", "0.69999999999999996", "0.80000000000000004"}),
             "ratio 0.7 -> 0.8");
   EXPECT_EQ(table::text_of(table::OptionDifference{"n_features", "500", "3000"}),
             "n_features 500 -> 3000");

@@ -223,8 +223,10 @@ TEST(OptionTable, EverySettingsKeyReachesTheOptions) {
     std::string aief_mode = "%YAML:1.0\n";
     std::string mode = "aief";
     for (const auto& [key, text] : companions(row)) {
-      if (key == "mode") mode = text;
-      else aief_mode += std::string(table::row(key).yaml_key) + ": \"" + text + "\"\n";
+      if (key == "mode")
+        mode = text;
+      else
+        aief_mode += std::string(table::row(key).yaml_key) + ": \"" + text + "\"\n";
     }
     aief_mode += "ORBextractor.mode: \"" + mode + "\"\n";
     for (std::string_view key : {row.yaml_key, row.old_yaml_key}) {  // the earlier key is read too

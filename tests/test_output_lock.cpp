@@ -99,15 +99,14 @@ TEST(OutputLock, TwoBatchesIntoOneH5AtOnceWithoutLibhdf5sLockLeaveAWholeFile) {
   // file never opened again ("unknown message with 'fail if unknown' flag found").
   const TempFolder temp("aief_output_lock");
   const fs::path images = image_folder(temp.path(), "f", 24), h5 = temp.path() / "two.h5";
-  const std::vector<std::string> args = {"extract", "--batch", images.string(), "-o",
-                                         h5.string(), "--format", "h5", "--threads", "1"};
+  const std::vector<std::string> args = {"extract",  "--batch", images.string(), "-o", h5.string(),
+                                         "--format", "h5",      "--threads",     "1"};
   const pid_t a = start(args, temp.path() / "a.log"), b = start(args, temp.path() / "b.log");
   EXPECT_EQ(wait_for(a), 0) << text_of(temp.path() / "a.log.err");
   EXPECT_EQ(wait_for(b), 0) << text_of(temp.path() / "b.log.err");
   EXPECT_EQ(names_in(h5).size(), 24u);
   ASSERT_EQ(run(args, temp.path() / "c.log"), 0) << text_of(temp.path() / "c.log.err");
-  EXPECT_NE(text_of(temp.path() / "c.log").find("0 extracted, 24 already done"),
-            std::string::npos)
+  EXPECT_NE(text_of(temp.path() / "c.log").find("0 extracted, 24 already done"), std::string::npos)
       << text_of(temp.path() / "c.log");
   EXPECT_FALSE(fs::exists(aief::io::lock_path_of(h5.string())));
 }
@@ -145,7 +144,7 @@ struct Writer {
 };
 
 std::vector<std::string> batch_command(const fs::path& root, const fs::path& output) {
-  return {"extract", "--batch", image_folder(root, "i", 3).string(), "-o", output.string(),
+  return {"extract",  "--batch", image_folder(root, "i", 3).string(), "-o", output.string(),
           "--format", "h5"};
 }
 
@@ -161,8 +160,8 @@ std::vector<std::string> match_command(const fs::path& root, const fs::path& out
   run({"extract", "--batch", image_folder(root, "p", 3).string(), "-o", features, "--format", "h5"},
       root / "f.log");
   std::ofstream(root / "pairs.txt") << "p0.png p1.png\np1.png p2.png\n";
-  return {"match", "--pairs", (root / "pairs.txt").string(), "--features", features, "-o",
-          output.string()};
+  return {"match", "--pairs",      (root / "pairs.txt").string(), "--features", features,
+          "-o",    output.string()};
 }
 
 void PrintTo(const Writer& writer, std::ostream* out) { *out << writer.name; }

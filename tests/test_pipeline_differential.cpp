@@ -52,8 +52,9 @@ const cv::Mat& sample_image(int index) {
 }
 
 // Case `index` of the seeded sequence: every case depends only on the seed and its index.
-constexpr Mode kEveryMode[] = {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy, Mode::quality,
-                               Mode::faithful};
+constexpr Mode kEveryMode[] = {Mode::aief,     Mode::aief_paper,
+                               Mode::orbslam2, Mode::quadtree_entropy,
+                               Mode::quality,  Mode::faithful};
 
 Case make_case(int index) {
   std::mt19937 rng(kSeed + static_cast<std::uint32_t>(index) * 7919u);
@@ -90,8 +91,7 @@ Case make_case(int index) {
   // Each where it acts (validate() refuses it elsewhere: core/options/acts_with.hpp).
   if (uniform_int(variant_rng, 0, 3) == 0 && c.options.distribution == Distribution::quadtree)
     c.options.quadtree_weight = QuadtreeWeight::entropy;
-  if (uniform_int(variant_rng, 0, 3) == 0 &&
-      c.options.detection_cells == DetectionCells::blocks)
+  if (uniform_int(variant_rng, 0, 3) == 0 && c.options.detection_cells == DetectionCells::blocks)
     c.options.fast_threshold_from = FastThresholdFrom::entropy;
   // The sharpened low-entropy blocks, a quarter of the cases, their own draws (the earlier cases'
   // options stay as they were).
@@ -103,7 +103,8 @@ Case make_case(int index) {
   // Detection on a smoothed level, a third of the cases at 1 to 4 passes, its own draws likewise.
   std::mt19937 smoothing_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 67867967u));
   if (uniform_int(smoothing_rng, 0, 2) == 0)
-    c.options.detection_smoothing = std::sqrt(static_cast<double>(uniform_int(smoothing_rng, 1, 4)));
+    c.options.detection_smoothing =
+        std::sqrt(static_cast<double>(uniform_int(smoothing_rng, 1, 4)));
   // Scale selection, a quarter of the cases where it acts (the engine's blocks), its own draws.
   std::mt19937 scale_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 86028121u));
   if (uniform_int(scale_rng, 0, 3) == 0 && c.options.detection_cells == DetectionCells::blocks)

@@ -154,8 +154,8 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
             {widest, std::abs(cvRound(fx * a - fy * b)), std::abs(cvRound(fx * b + fy * a))});
       }
   }
-  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_describe_portable.hpp) stores each sample as
-  // an unsigned offset from the patch corner 18 rows and columns up-left of the point.
+  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_describe_portable.hpp) stores each
+  // sample as an unsigned offset from the patch corner 18 rows and columns up-left of the point.
   EXPECT_LT(widest, kEdgeBorder);
   EXPECT_LE(widest, 18);
   // Whatever the angle: no pattern point is farther than 18.5 from the centre, so no rotated
@@ -168,9 +168,9 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
   EXPECT_LT(radius, kEdgeBorder - 0.5);
 }
 
-// The disc core/description/patch_blur.cpp blurs: every rotated sample whose |dy| rounds to d has |dx| <=
-// kSampleHalfWidth[d], at 36000 angles (a hundredth of a degree apart, in the kernel's own float
-// formula), and the table equals its derivation from the pattern's largest radius.
+// The disc core/description/patch_blur.cpp blurs: every rotated sample whose |dy| rounds to d has
+// |dx| <= kSampleHalfWidth[d], at 36000 angles (a hundredth of a degree apart, in the kernel's own
+// float formula), and the table equals its derivation from the pattern's largest radius.
 TEST(Rbrief, RotatedSamplesStayInsideTheirDisc) {
   const auto pattern = orb_pattern_31();
   int widest[kSampleReach + 1] = {};

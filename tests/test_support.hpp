@@ -35,8 +35,8 @@ std::vector<std::uint8_t> png_declaring(std::uint32_t width, std::uint32_t heigh
 // The first pixel where two 8-bit images differ by more than `tolerance`, or "" when none does.
 std::string first_pixel_difference(const cv::Mat& a, const cv::Mat& b, int tolerance);
 
-// The engine's 7x7 Gaussian of a whole image (its scalar reference, core/kernels/gaussian7_rows.hpp), and
-// cv::GaussianBlur's with the same kernel and border.
+// The engine's 7x7 Gaussian of a whole image (its scalar reference,
+// core/kernels/gaussian7_rows.hpp), and cv::GaussianBlur's with the same kernel and border.
 cv::Mat gaussian7_ours(const cv::Mat& src);
 cv::Mat gaussian7_opencv(const cv::Mat& src);
 

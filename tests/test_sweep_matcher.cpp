@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "aief/match.hpp"
-#include "core/sweep/adaptive_sweep.hpp"
 #include "core/kernels/kernel_table.hpp"
 #include "core/match/matcher.hpp"
+#include "core/sweep/adaptive_sweep.hpp"
 #include "core/sweep/sweep_matcher.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"

@@ -1,5 +1,6 @@
-// The threshold fallback policy (core/entropy/threshold_fallback.hpp) on a table of block entropies, no
-// image: which F each level ends at, which budgets the shortfall raises, what it detects.
+// The threshold fallback policy (core/entropy/threshold_fallback.hpp) on a table of block
+// entropies, no image: which F each level ends at, which budgets the shortfall raises, what it
+// detects.
 #include <cstdint>
 #include <utility>
 #include <vector>

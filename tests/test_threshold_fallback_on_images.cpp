@@ -1,7 +1,8 @@
-// The threshold fallback policy (core/entropy/threshold_fallback.hpp) on an image, through the extractor:
-// in the aief mode, the budget a level short of candidates leaves undelivered goes to the levels
-// with candidates to spare, so the frame delivers min(N, candidates in the kept blocks) at every
-// kernel set and thread count. The policy on a table, no image: tests/test_threshold_fallback.cpp.
+// The threshold fallback policy (core/entropy/threshold_fallback.hpp) on an image, through the
+// extractor: in the aief mode, the budget a level short of candidates leaves undelivered goes to
+// the levels with candidates to spare, so the frame delivers min(N, candidates in the kept blocks)
+// at every kernel set and thread count. The policy on a table, no image:
+// tests/test_threshold_fallback.cpp.
 #include <vector>
 
 #include <gtest/gtest.h>

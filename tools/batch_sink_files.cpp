@@ -2,8 +2,8 @@
 
 #include "io/batch_output_names.hpp"
 #include "io/feature_formats.hpp"
-#include "io/temporary_files.hpp"
 #include "io/option_record.hpp"
+#include "io/temporary_files.hpp"
 #include "tools/batch_sink.hpp"
 
 namespace aief::cli {

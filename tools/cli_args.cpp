@@ -222,8 +222,8 @@ void require_entropy_to_sweep(const Args& args, const ExtractorOptions& options,
   if (options.entropy != EntropyMeasure::off) return;
   const auto mode = args.get("--mode");
   const std::string how = args.has("--entropy") ? args.spelled("--entropy") + " off"
-                          : mode               ? args.spelled("--mode") + " " + *mode
-                                               : std::string("the options given");
+                          : mode                ? args.spelled("--mode") + " " + *mode
+                                                : std::string("the options given");
   std::string with_entropy;  // the modes that measure it, from their own options
   for (const auto& mode : option_names::Table<Mode>::names)
     if (options_for_mode(mode.value).entropy != EntropyMeasure::off)

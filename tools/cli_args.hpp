@@ -42,7 +42,7 @@ class Args {
 
  private:
   std::vector<std::pair<std::string, std::string>> values_;  // flag name, value ("" for switches)
-  std::vector<std::string> spellings_;                        // as given, beside values_
+  std::vector<std::string> spellings_;                       // as given, beside values_
   std::vector<std::string> positionals_;
 };
 

@@ -12,8 +12,8 @@
 #include "io/temporary_files.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
-#include "tools/outputs_not_inputs.hpp"
 #include "tools/output_extension.hpp"
+#include "tools/outputs_not_inputs.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
 

@@ -169,7 +169,8 @@ EvalCommand command_of(const Args& args) {
   // do nothing.
   bool an_aief_row = false;
   for (const eval::Method& method : command.methods)
-    an_aief_row = an_aief_row || (method.mode == Mode::aief && method.baseline == eval::Baseline::none);
+    an_aief_row =
+        an_aief_row || (method.mode == Mode::aief && method.baseline == eval::Baseline::none);
   if (!an_aief_row) {
     std::string given;
     for (const FlagSpec& flag : extractor_flags_except(kSetByEachRow))

@@ -119,7 +119,8 @@ int run_extract_batch(const Args& args) {
   // Without --format, an output named as one file per batch (d.h5) is that format: before, d.h5
   // became a folder of JSON files.
   const io::FeatureFormat* named_as = io::feature_format_of_path(settings.output_dir);
-  const bool one_file = named_as && named_as->layout == io::FeatureFormat::Layout::one_file_per_batch;
+  const bool one_file =
+      named_as && named_as->layout == io::FeatureFormat::Layout::one_file_per_batch;
   settings.format = args.get("--format").value_or(one_file ? named_as->name : default_format());
   if (!io::feature_format_named(settings.format))
     throw UsageError("--format expects " + io::feature_format_names() + ", got '" +
@@ -150,12 +151,13 @@ int run_extract_batch(const Args& args) {
   for (const std::string& failure : summary.failures)
     std::printf("  failed: %s\n", failure.c_str());
   if (!summary.of_no_input.empty())
-    std::fprintf(stderr,
-                 "aief: note: '%s' holds %zu image(s) that are none of this run's inputs (deleted or "
-                 "moved since an earlier run wrote them? the first: '%s'): kept, and merge carries "
-                 "them on\n",
-                 settings.output_dir.c_str(), summary.of_no_input.size(),
-                 summary.of_no_input.front().c_str());
+    std::fprintf(
+        stderr,
+        "aief: note: '%s' holds %zu image(s) that are none of this run's inputs (deleted or "
+        "moved since an earlier run wrote them? the first: '%s'): kept, and merge carries "
+        "them on\n",
+        settings.output_dir.c_str(), summary.of_no_input.size(),
+        summary.of_no_input.front().c_str());
   if (!summary.stopped.empty())
     throw Error(summary.stopped +
                 "\nbatch stopped: " + std::to_string(summary.on_disk + summary.skipped) + " of " +

@@ -6,8 +6,8 @@
 #include <cassert>
 #include <cstring>
 
-#include "core/kernels/ic_moments.hpp"
 #include "core/description/patch_blur.hpp"
+#include "core/kernels/ic_moments.hpp"
 
 namespace aief {
 
@@ -161,8 +161,9 @@ void LevelDescriptions::describe_through_band(const PyramidLevel& level, const K
   shifted.resize(static_cast<std::size_t>(count));
   const auto make_rows = [&](int top, int new_top, int kept_end, int new_end) {
     if (kept_end > new_top)
-      std::memmove(band.data, band.row(new_top - top),
-                   static_cast<std::size_t>(kept_end - new_top) * static_cast<std::size_t>(band.stride));
+      std::memmove(
+          band.data, band.row(new_top - top),
+          static_cast<std::size_t>(kept_end - new_top) * static_cast<std::size_t>(band.stride));
     blur_patch_rows(kernels, level.pixels,
                     {band.row(kept_end - new_top), width, new_end - kept_end, band.stride},
                     kept_end, new_end, points_.data(), count, blur_columns_);

@@ -1,9 +1,9 @@
 #pragma once
 // Blurs only what rBRIEF reads. Every sample of a keypoint's rotated pattern lies in a disc
-// around it (kSampleHalfWidth, core/kernels/rbrief_describe.hpp), so a blurred row y is read only at the columns
-// [x - h, x + h] of the points with |y - point.y| = d <= kSampleReach, h = kSampleHalfWidth[d]:
-// on graf the union of those patches is 55-58% of the pyramid's pixels, where a blur of whole rows
-// covers nearly all of them.
+// around it (kSampleHalfWidth, core/kernels/rbrief_describe.hpp), so a blurred row y is read only
+// at the columns [x - h, x + h] of the points with |y - point.y| = d <= kSampleReach, h =
+// kSampleHalfWidth[d]: on graf the union of those patches is 55-58% of the pyramid's pixels, where
+// a blur of whole rows covers nearly all of them.
 #include <cstdint>
 #include <vector>
 

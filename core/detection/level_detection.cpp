@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <bit>
 
-#include "core/level/caller_mask.hpp"
-#include "core/entropy/entropy_fast_threshold.hpp"
-#include "core/kernels/fast9_scores_row.hpp"
 #include "core/detection/orbslam_cells.hpp"
 #include "core/detection/score_band.hpp"
+#include "core/entropy/entropy_fast_threshold.hpp"
+#include "core/kernels/fast9_scores_row.hpp"
+#include "core/level/caller_mask.hpp"
 
 namespace aief {
 
@@ -118,9 +118,9 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options,
   const MutableImageView scores = scratch.score_band.mutable_view();
   const bool per_block_threshold = options.fast_threshold_from == FastThresholdFrom::entropy;
 
-  // Local maxima of the score map (threshold-free, see core/kernels/fast9_scores_row.hpp) over the whole run, one
-  // bit row per level row, and the strong ones (score >= fast_threshold) likewise, also OR-ed
-  // over the rows, which is what the retry rule asks.
+  // Local maxima of the score map (threshold-free, see core/kernels/fast9_scores_row.hpp) over the
+  // whole run, one bit row per level row, and the strong ones (score >= fast_threshold) likewise,
+  // also OR-ed over the rows, which is what the retry rule asks.
   const int words = fast9_maxima_words(x_end - x_begin);
   std::vector<std::uint64_t>& bits = scratch.maxima_bits;
   bits.resize(static_cast<std::size_t>(words) * static_cast<std::size_t>(2 * (y1 - y0) + 1));
@@ -165,9 +165,9 @@ void detect_run(const PyramidLevel& level, const ExtractorOptions& options,
     for (int k = range.k_first; k <= range.k_last; ++k)
       any_strong = any_strong || range.word(strong_any, k) != 0;
     const std::uint64_t* taken_rows = any_strong ? strong_rows : maxima_rows;
-    // FastThresholdFrom::entropy (core/entropy/entropy_fast_threshold.hpp): a block with a strong maximum
-    // whose entropy lowers its threshold takes its maxima scoring at least that (a superset of
-    // the strong ones); without a strong one it retries at fast_min_threshold as before.
+    // FastThresholdFrom::entropy (core/entropy/entropy_fast_threshold.hpp): a block with a strong
+    // maximum whose entropy lowers its threshold takes its maxima scoring at least that (a superset
+    // of the strong ones); without a strong one it retries at fast_min_threshold as before.
     int lowest_score = 0;
     if (per_block_threshold && any_strong) {
       const int threshold =

@@ -12,7 +12,8 @@ void index_candidates(const std::vector<Candidate>& candidates, int width, int h
   index.height = height;
   index.cols = (width + kScaleBucket - 1) / kScaleBucket;
   index.rows = (height + kScaleBucket - 1) / kScaleBucket;
-  const std::size_t buckets = static_cast<std::size_t>(index.cols) * static_cast<std::size_t>(index.rows);
+  const std::size_t buckets =
+      static_cast<std::size_t>(index.cols) * static_cast<std::size_t>(index.rows);
   index.starts.assign(buckets + 1, 0);
   const auto bucket_of = [&](const Candidate& c) {
     return static_cast<std::size_t>(c.y / kScaleBucket) * static_cast<std::size_t>(index.cols) +

@@ -29,8 +29,8 @@ inline constexpr int kScaleWindow = 1;
 
 // A level's candidates in buckets of kScaleBucket x kScaleBucket level pixels (counting sort).
 struct ScaleIndex {
-  int width = 0, height = 0;  // the level's size
-  int cols = 0, rows = 0;     // buckets
+  int width = 0, height = 0;         // the level's size
+  int cols = 0, rows = 0;            // buckets
   std::vector<std::int32_t> starts;  // cols * rows + 1
   std::vector<std::int32_t> order;   // candidate indices, bucket by bucket
 };

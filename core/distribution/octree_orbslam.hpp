@@ -1,8 +1,9 @@
 #pragma once
 // ORB-SLAM2/3's DistributeOctTree, step for step (the faithful mode's distribution,
-// docs/design.md §6, "ORB-SLAM's own tie-breaks"). distribute_quadtree (core/distribution/distribution.hpp)
-// gives every ordering a full tie-break and keeps exactly N; this one keeps what ORB-SLAM keeps
-// where ORB-SLAM is deterministic, which is everywhere given the candidates' order:
+// docs/design.md §6, "ORB-SLAM's own tie-breaks"). distribute_quadtree
+// (core/distribution/distribution.hpp) gives every ordering a full tie-break and keeps exactly N;
+// this one keeps what ORB-SLAM keeps where ORB-SLAM is deterministic, which is everywhere given the
+// candidates' order:
 //   - nodes live in a list; a divided node's non-empty children go to the list's front in the
 //     order UL, UR, BL, BR (so they sit reversed), and the node is erased;
 //   - the careful rounds sort (size, node) pairs with ORB-SLAM3's compareNodes (size, then the

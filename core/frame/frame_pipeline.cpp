@@ -102,18 +102,14 @@ void FramePipeline::extract(ImageView image, Features& out, StageTimes* times,
     // Every block of every level (whatever F keeps: a corner's scale does not depend on it), then
     // the extrema (core/detection/scale_selection.hpp); the levels select as with the automatic
     // F, each with its budget N_n, the threshold fallback and the shortfall as always.
-    scheduler_.for_each(levels, [&](int n) {
-      detect_level(n, -std::numeric_limits<double>::infinity());
-    });
-    scheduler_.for_each(levels, [&](int n) {
-      timed(Stage::detect, n, [&] { analysis_.index_scales(n); });
-    });
-    scheduler_.for_each(levels, [&](int n) {
-      timed(Stage::detect, n, [&] { analysis_.mark_scale_extrema(n); });
-    });
-    scheduler_.for_each(levels, [&](int n) {
-      timed(Stage::detect, n, [&] { analysis_.keep_scale_extrema(n); });
-    });
+    scheduler_.for_each(levels,
+                        [&](int n) { detect_level(n, -std::numeric_limits<double>::infinity()); });
+    scheduler_.for_each(
+        levels, [&](int n) { timed(Stage::detect, n, [&] { analysis_.index_scales(n); }); });
+    scheduler_.for_each(
+        levels, [&](int n) { timed(Stage::detect, n, [&] { analysis_.mark_scale_extrema(n); }); });
+    scheduler_.for_each(
+        levels, [&](int n) { timed(Stage::detect, n, [&] { analysis_.keep_scale_extrema(n); }); });
   }
   if (automatic || scales) scheduler_.for_each(levels, detect_and_select);
 

@@ -41,7 +41,8 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
   const int width0 = analysis.level(0).geometry.width, height0 = analysis.level(0).geometry.height;
   const std::size_t count = keypoints.size();
 
-  // Each keypoint to its level pixel; the border rule (core/frame/given_keypoints.hpp) removes some.
+  // Each keypoint to its level pixel; the border rule (core/frame/given_keypoints.hpp) removes
+  // some.
   scratch.level_members.resize(static_cast<std::size_t>(levels));
   for (std::vector<std::int32_t>& members : scratch.level_members) members.clear();
   scratch.level_pixel.resize(count);

@@ -1,8 +1,8 @@
 #include "core/frame/level_selection.hpp"
 
-#include "core/level/level_geometry.hpp"
 #include "core/distribution/octree_orbslam.hpp"
 #include "core/distribution/quadtree_weighted.hpp"
+#include "core/level/level_geometry.hpp"
 
 namespace aief {
 
@@ -24,8 +24,8 @@ void select_candidates(const PyramidLevel& level, const LevelBlocks& blocks, Blo
     if (pool_size < 0 || total <= pool_size) {
       distribute_proportional(blocks.candidates, kept, budget, selected, scratch.distribution);
     } else {
-      // The level's strongest candidates first (core/distribution/candidate_pool.hpp), then the same water
-      // level.
+      // The level's strongest candidates first (core/distribution/candidate_pool.hpp), then the
+      // same water level.
       pool_candidates(blocks.candidates, kept, pool_size, scratch.pooled, scratch.pooled_index,
                       scratch.pooled_blocks, scratch.pool);
       distribute_proportional(scratch.pooled, scratch.pooled_blocks, budget, selected,

@@ -36,7 +36,7 @@ void binomial5_row_scalar(ImageView src, int y, std::uint16_t* column_sums, std:
 }
 
 std::string check_binomial5_row(const KernelTable& scalar, const KernelTable& other,
-                               const GrayImage& src) {
+                                const GrayImage& src) {
   const std::size_t width = static_cast<std::size_t>(src.width());
   std::vector<std::uint16_t> sums_a(width + 4), sums_b(width + 4);
   std::vector<std::uint8_t> a(width), b(width);

@@ -1,9 +1,10 @@
 #pragma once
-// A row's field access made from a member pointer (core/options/option_table.hpp): access<&Options::x>
-// reads and writes the field as the table's OptionValue, its kind taken from the field's type
-// (int -> integer, double -> number, bool -> toggle, enum -> choice, with the enum's name table
-// of core/options/option_names.hpp). The tables' files (core/options/extractor_option_rows.cpp,
-// core/options/matching_option_rows.cpp) use it; nothing else needs it.
+// A row's field access made from a member pointer (core/options/option_table.hpp):
+// access<&Options::x> reads and writes the field as the table's OptionValue, its kind taken from
+// the field's type (int -> integer, double -> number, bool -> toggle, enum -> choice, with the
+// enum's name table of core/options/option_names.hpp). The tables' files
+// (core/options/extractor_option_rows.cpp, core/options/matching_option_rows.cpp) use it; nothing
+// else needs it.
 #include <type_traits>
 
 #include "core/options/option_names.hpp"

@@ -96,16 +96,16 @@ struct Row {
   // Earlier spellings, still accepted (CHANGELOG.md): the CLI flag, the Python keyword, the
   // settings key the option had before it took its record key's name; empty: none.
   std::string_view old_cli_flag = {}, old_python_keyword = {}, old_yaml_key = {};
-  std::string_view help = {};      // one line; --help adds the default
-  double low = 0, high = 0;        // integer and number rows: the range [low, high]
-  bool low_is_open = false;        // (low, high]
-  bool high_is_open = false;       // [low, high)
+  std::string_view help = {};  // one line; --help adds the default
+  double low = 0, high = 0;    // integer and number rows: the range [low, high]
+  bool low_is_open = false;    // (low, high]
+  bool high_is_open = false;   // [low, high)
   std::string_view words =
       {};  // toggle: "on|off" (true first); number: words taken instead ("inf|off")
   // The value each mode sets, in Mode order (aief, aief-paper, orbslam2, quadtree-entropy,
-  // faithful, quality), as a front end would write it: "" leaves the option as it was, "default" takes
-  // ExtractorOptions{}'s value, and a leading '=' marks the mode's definition: a different given
-  // value is refused.
+  // faithful, quality), as a front end would write it: "" leaves the option as it was, "default"
+  // takes ExtractorOptions{}'s value, and a leading '=' marks the mode's definition: a different
+  // given value is refused.
   std::array<std::string_view, 6> per_mode = {};
   bool changes_output = true;  // false: kernels, threads, limits (the bytes never depend on them)
   std::string_view needs_mask = {};  // non-empty: refused with the entropy mask off when it changes
@@ -240,8 +240,7 @@ enum class Use { extraction, sweep, evaluation };
 // in the sweep (read_by_sweep), when it would change a value. Without a
 // given mode, a mode whose every value is given (Extractor(**extractor.options)) is the mode
 // too: a value it sets is no request.
-ExtractorOptions resolve_options(const std::vector<GivenOption>& given,
-                                 Use use = Use::extraction);
+ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use = Use::extraction);
 
 // The same for a struct without modes (MatchOptions, SweepOptions, RansacOptions): `options` (the
 // defaults unless given), the given options in table order, the applies_with rule, validate().

@@ -58,10 +58,10 @@ class SweepPipeline {
   const SweepFeatures& features(ImageView a, ImageView b, Repeats repeats);
 
   // The same sweep in steps, each on the caller's thread, for a caller that spreads one sweep
-  // over several calls (core/sweep/carried_threshold.hpp); the answer is run()'s, bit for bit. In order:
-  // analyse(0, a), analyse(1, b) (the images must stay valid until the last step), then
-  // C = begin_thresholds(Repeats::referenced), then for c = 0 .. C-1 in turn
-  // select_threshold(0, c), select_threshold(1, c), evaluate_in_order(c); then choose(out).
+  // over several calls (core/sweep/carried_threshold.hpp); the answer is run()'s, bit for bit. In
+  // order: analyse(0, a), analyse(1, b) (the images must stay valid until the last step), then C =
+  // begin_thresholds(Repeats::referenced), then for c = 0 .. C-1 in turn select_threshold(0, c),
+  // select_threshold(1, c), evaluate_in_order(c); then choose(out).
   void analyse(int image, ImageView view);  // image 0 is A, 1 is B
   int begin_thresholds(Repeats repeats);    // returns C, the number of thresholds
   void select_threshold(int image, int c);  // the image's features at F_0 + c S_p
@@ -69,10 +69,9 @@ class SweepPipeline {
   void choose(AdaptResult& out) const;      // the curve and the choice, after every threshold
 
   // Each of those steps in smaller pieces, for a caller that spreads one sweep over frames with a
-  // bound on each frame's work (core/sweep/spread_sweep.hpp); the steps above are made of them, so the
-  // answer is the same.
-  // analyse(image, view) = start_analysis(image, view), then level_entropies(image, n) and
-  // detect_level(image, n) for each n in turn.
+  // bound on each frame's work (core/sweep/spread_sweep.hpp); the steps above are made of them, so
+  // the answer is the same. analyse(image, view) = start_analysis(image, view), then
+  // level_entropies(image, n) and detect_level(image, n) for each n in turn.
   void start_analysis(int image, ImageView view) { frame(image).start_analysis(view); }
   int level_count(int image) { return frame(image).analysis().level_count(); }
   void level_entropies(int image, int n) { frame(image).level_entropies(n); }

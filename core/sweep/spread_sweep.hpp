@@ -1,7 +1,7 @@
 #pragma once
 // The adaptive sweep of a pair (docs/design.md §10) spread over frames with a bound on each
-// frame's share of it (docs/design.md §10, "F carried through a video"; core/sweep/carried_threshold.hpp
-// calls it once after each frame's extraction).
+// frame's share of it (docs/design.md §10, "F carried through a video";
+// core/sweep/carried_threshold.hpp calls it once after each frame's extraction).
 //
 // The sweep is cut into pieces no larger than they must be: each image's analysis a pyramid level
 // at a time, each threshold's selection a level at a time (distribution, the whole-level blur the
@@ -11,15 +11,15 @@
 // matches), in units of about one AVX2 instruction; advance() runs pieces in order while their
 // estimates fit the budget, and always at least one. The estimates depend only on the images, never
 // on a clock or a kernel set, so the frame at which the sweep ends, and every output, is a function
-// of the frames alone. The pieces are SweepPipeline's (core/sweep/adaptive_sweep.hpp), the ones its run()
-// is made of: the answer is adapt()'s on the pair, bit for bit.
+// of the frames alone. The pieces are SweepPipeline's (core/sweep/adaptive_sweep.hpp), the ones its
+// run() is made of: the answer is adapt()'s on the pair, bit for bit.
 #include <cstddef>
 
 #include "aief/adapt.hpp"
 #include "aief/image.hpp"
 #include "aief/options.hpp"
-#include "core/sweep/adaptive_sweep.hpp"
 #include "core/kernels/kernel_table.hpp"
+#include "core/sweep/adaptive_sweep.hpp"
 
 namespace aief {
 

@@ -179,7 +179,8 @@ void SweepMatcher::offer_new_row(std::int32_t row) {
     offer_row(b_, j, a_, static_cast<int>(a.size()));
     return;
   }
-  constexpr std::uint16_t kExcluded = 0x7fff;  // above every bound (core/kernels/positions_within_bounds.hpp)
+  constexpr std::uint16_t kExcluded =
+      0x7fff;  // above every bound (core/kernels/positions_within_bounds.hpp)
   const std::int32_t i = -1 - row;
   kernels_->hamming_256_blocked(a[static_cast<std::size_t>(i)].data(), b_.blocked.data(),
                                 hamming_block_count(static_cast<int>(b.size())), row_.data());

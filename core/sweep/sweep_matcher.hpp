@@ -94,8 +94,9 @@ class SweepMatcher {
                            const std::vector<std::int32_t>& ids_b);
 
   // match() in pieces, for a caller that spreads one threshold's matching over frames
-  // (core/sweep/spread_sweep.hpp): begin(a, ids_a, b, ids_b), then offer_rows() until rows_left() is 0,
-  // then finish(). The descriptors must stay in place until finish(). The same answer as match().
+  // (core/sweep/spread_sweep.hpp): begin(a, ids_a, b, ids_b), then offer_rows() until rows_left()
+  // is 0, then finish(). The descriptors must stay in place until finish(). The same answer as
+  // match().
   void begin(const std::vector<Descriptor>& a, const std::vector<std::int32_t>& ids_a,
              const std::vector<Descriptor>& b, const std::vector<std::int32_t>& ids_b);
   // Rows of new distances left to offer, and the distances of the next one.
@@ -117,8 +118,9 @@ class SweepMatcher {
     std::vector<std::int32_t> ids;
     std::vector<std::int32_t> index_of_id;  // index in the current set, -1 when absent
     std::vector<NeighbourList> lists;
-    std::vector<std::int16_t> bounds;    // lists[i].bound(), or -1 where no list is kept
-    std::vector<std::uint32_t> blocked;  // this call's descriptors (core/kernels/hamming_256_blocked.hpp)
+    std::vector<std::int16_t> bounds;  // lists[i].bound(), or -1 where no list is kept
+    std::vector<std::uint32_t>
+        blocked;  // this call's descriptors (core/kernels/hamming_256_blocked.hpp)
     std::vector<std::int32_t> new_index_of_old;  // this call: where each previous element went
     std::vector<std::uint8_t> is_new;            // this call: per element, new to the set
     std::vector<std::int32_t> new_elements;      // this call: their indices, ascending

@@ -1,8 +1,9 @@
 #pragma once
 // How the adaptive sweep cuts its distinct thresholds into runs, one per thread (core/
 // adaptive_sweep.cpp). A run matches its first threshold in full and each later one only for the
-// features new to it (core/sweep/sweep_matcher.hpp), so equal numbers of thresholds per run can be far
-// from equal work: the cut is placed on estimated costs instead. The answers never depend on it.
+// features new to it (core/sweep/sweep_matcher.hpp), so equal numbers of thresholds per run can be
+// far from equal work: the cut is placed on estimated costs instead. The answers never depend on
+// it.
 #include <vector>
 
 namespace aief {

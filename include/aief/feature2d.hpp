@@ -51,10 +51,10 @@ class Feature2D : public cv::Feature2D {
   bool empty() const override { return false; }
   cv::String getDefaultName() const override { return "Feature2D.AIEF"; }
 
-  // The options, one key per option as the output files record them (core/options/option_table.hpp);
-  // read() takes any subset of the keys (the others keep their value) and throws aief::Error for
-  // a bad value or a key it does not read (a typo, cv::ORB's `nfeatures`: named, with aief's key
-  // where there is one), leaving the detector as it was.
+  // The options, one key per option as the output files record them
+  // (core/options/option_table.hpp); read() takes any subset of the keys (the others keep their
+  // value) and throws aief::Error for a bad value or a key it does not read (a typo, cv::ORB's
+  // `nfeatures`: named, with aief's key where there is one), leaving the detector as it was.
   void write(cv::FileStorage& storage) const override;
   void read(const cv::FileNode& node) override;
   using cv::Feature2D::read;

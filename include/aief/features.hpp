@@ -31,8 +31,9 @@ struct ExtractionInfo {
   double image_entropy_bits = 0;           // entropy of level 0 (Eq. 7), same measure
   int blocks_total = 0;                    // blocks over all levels
   int blocks_kept = 0;                     // blocks with entropy > F used
-  // --entropy-threshold auto: Otsu's effectiveness eta of the frame's block entropies, in [0, 1] (how
-  // well one F splits them into two classes; below 0.75 the aief mode takes F = 0). 0 otherwise.
+  // --entropy-threshold auto: Otsu's effectiveness eta of the frame's block entropies, in [0, 1]
+  // (how well one F splits them into two classes; below 0.75 the aief mode takes F = 0). 0
+  // otherwise.
   double auto_threshold_effectiveness = 0;
 };
 

@@ -12,8 +12,8 @@
 
 namespace aief {
 
-// Its mode unless the settings name one (kDefaultMode): orbslam2, ORB-SLAM's choices on aief's kernels
-// (docs/slam.md, "Which choice costs what"). Not faithful: that mode reproduces ORB-SLAM3's
+// Its mode unless the settings name one (kDefaultMode): orbslam2, ORB-SLAM's choices on aief's
+// kernels (docs/slam.md, "Which choice costs what"). Not faithful: that mode reproduces ORB-SLAM3's
 // extractor, whose cells (35 pixels) are not ORB-SLAM2's (30).
 class ORBextractor : public OrbSlamExtractorWithDefault<Mode::orbslam2> {
  public:

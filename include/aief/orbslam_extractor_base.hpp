@@ -24,15 +24,17 @@ class OrbSlamExtractorBase {
   // The options from a settings file as ORB-SLAM2 and ORB-SLAM3 read it: ORBextractor.nFeatures,
   // .scaleFactor, .nLevels, .iniThFAST, .minThFAST, and ours: every extractor option has a key
   // (ORBextractor.mode, .entropyThreshold (a number or "auto"), .blockSize, .threads, ...; the
-  // list is the option table's, core/options/extractor_option_rows.json, and `aief extract --help` explains each).
-  // The mode is `default_mode` (each drop-in's own) unless ORBextractor.mode names another (the AIEF keys, such as
-  // .entropyThreshold, need ORBextractor.mode: "aief"). Keypoints sit at ORB-SLAM's integer level
-  // pixels when the settings describe a stereo rig or a depth camera (Camera.bf, Stereo.b,
-  // Camera2.fx, RGBD.DepthMapFactor, ...: Frame::ComputeStereoMatches needs them), else at the
-  // engine's pixel-centre, sub-pixel positions (docs/orbslam2.md, "Differences to know"). Missing keys keep the mode's values; a
-  // wrong value throws aief::Error naming the key and what it accepts; a mode's conflicts are refused as in the CLI. scaleFactor is rounded to float, as
-  // both versions' Tracking reads it, so settings and the five-number constructor give the same
-  // extractor. Also the way to change nFeatures for the monocular initialiser.
+  // list is the option table's, core/options/extractor_option_rows.json, and `aief extract --help`
+  // explains each). The mode is `default_mode` (each drop-in's own) unless ORBextractor.mode names
+  // another (the AIEF keys, such as .entropyThreshold, need ORBextractor.mode: "aief"). Keypoints
+  // sit at ORB-SLAM's integer level pixels when the settings describe a stereo rig or a depth
+  // camera (Camera.bf, Stereo.b, Camera2.fx, RGBD.DepthMapFactor, ...: Frame::ComputeStereoMatches
+  // needs them), else at the engine's pixel-centre, sub-pixel positions (docs/orbslam2.md,
+  // "Differences to know"). Missing keys keep the mode's values; a wrong value throws aief::Error
+  // naming the key and what it accepts; a mode's conflicts are refused as in the CLI. scaleFactor
+  // is rounded to float, as both versions' Tracking reads it, so settings and the five-number
+  // constructor give the same extractor. Also the way to change nFeatures for the monocular
+  // initialiser.
   static ExtractorOptions options_from_settings(const cv::FileStorage& settings,
                                                 Mode default_mode = Mode::orbslam2);
 
@@ -80,9 +82,11 @@ class OrbSlamExtractorWithDefault : public OrbSlamExtractorBase {
   static constexpr Mode kDefaultMode = DefaultMode;
 
   // As ORB-SLAM, the other options kDefaultMode's.
-  OrbSlamExtractorWithDefault(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
+  OrbSlamExtractorWithDefault(int nfeatures, float scaleFactor, int nlevels, int iniThFAST,
+                              int minThFAST)
       : OrbSlamExtractorBase(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, kDefaultMode) {}
-  explicit OrbSlamExtractorWithDefault(const ExtractorOptions& options) : OrbSlamExtractorBase(options) {}
+  explicit OrbSlamExtractorWithDefault(const ExtractorOptions& options)
+      : OrbSlamExtractorBase(options) {}
 
   // The options from a settings file as ORB-SLAM reads it, plus our keys
   // (OrbSlamExtractorBase::options_from_settings, with kDefaultMode).

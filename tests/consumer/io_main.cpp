@@ -22,8 +22,10 @@ int main(int argc, char** argv) {
   std::vector<unsigned char> bgr(static_cast<std::size_t>(width) * height * 3);
   std::mt19937 rng(1);
   for (std::size_t i = 0; i < bgr.size(); ++i)
-    bgr[i] = static_cast<unsigned char>((((i / 3) % width / 8 + (i / 3) / width / 8) % 2) * 200 + rng() % 40);
-  const aief::GrayImage gray = aief::io::gray_from_pixels(bgr.data(), width, height, 3, width * 3, "synthetic");
+    bgr[i] = static_cast<unsigned char>((((i / 3) % width / 8 + (i / 3) / width / 8) % 2) * 200 +
+                                        rng() % 40);
+  const aief::GrayImage gray =
+      aief::io::gray_from_pixels(bgr.data(), width, height, 3, width * 3, "synthetic");
   aief::ExtractorOptions options;
   options.n_features = 300;
   const aief::Features features = aief::extract(gray.view(), options);
@@ -35,8 +37,11 @@ int main(int argc, char** argv) {
     file.write_features("synthetic.png", features);
     file.close();
   }
-  read_back = aief::io::Hdf5File(path, aief::io::Hdf5File::Mode::read).read_features("synthetic.png").keypoints.size();
-  std::printf("aief::io: %zu keypoints, %zu read back from %s\n", features.keypoints.size(), read_back, path.c_str());
+  read_back = aief::io::Hdf5File(path, aief::io::Hdf5File::Mode::read)
+                  .read_features("synthetic.png")
+                  .keypoints.size();
+  std::printf("aief::io: %zu keypoints, %zu read back from %s\n", features.keypoints.size(),
+              read_back, path.c_str());
 #else
   std::printf("aief::io: %zu keypoints (no HDF5 in this build)\n", features.keypoints.size());
 #endif

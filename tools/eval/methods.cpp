@@ -142,9 +142,8 @@ cv::Ptr<cv::Feature2D> opencv_detector(Baseline baseline) {
 
 // Keypoints and descriptors of one image as the baseline gives them; AKAZE and BRISK, which take
 // no count, keep their kBaselineFeatures strongest before describing.
-void opencv_features(Baseline baseline, const cv::Ptr<cv::Feature2D>& detector,
-                     const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints,
-                     cv::Mat& descriptors) {
+void opencv_features(Baseline baseline, const cv::Ptr<cv::Feature2D>& detector, const cv::Mat& gray,
+                     std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) {
   if (baseline == Baseline::opencv_akaze || baseline == Baseline::opencv_brisk) {
     detector->detect(gray, keypoints);
     cv::KeyPointsFilter::retainBest(keypoints, kBaselineFeatures);
