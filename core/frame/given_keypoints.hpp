@@ -22,7 +22,6 @@
 #include <string>
 #include <vector>
 
-#include "aief/extractor.hpp"
 #include "aief/features.hpp"
 #include "aief/image.hpp"
 #include "core/description/keypoint_angles.hpp"
