@@ -84,9 +84,7 @@ class FrameAnalysis {
   BlockMask mask(int n, double threshold) const;
   // Whether block b of level n is kept at threshold F.
   bool block_kept(int n, int b, double threshold) const { return mask(n, threshold).kept(b); }
-  // Candidates in the blocks kept at F, over all levels (after detect at F).
-  std::int64_t candidate_count(double threshold) const;
-  // The same for level n alone.
+  // Candidates in the blocks of level n kept at F (after detect at F).
   std::int64_t level_candidate_count(int n, double threshold) const;
   int blocks_total() const;
   int blocks_kept(double threshold) const;
