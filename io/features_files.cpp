@@ -11,7 +11,6 @@
 
 #include "aief/error.hpp"
 #include "io/json_writer.hpp"
-#include "io/npz_writer.hpp"
 #include "io/option_record.hpp"
 #include "io/record_fields.hpp"
 #include "io/temporary_files.hpp"

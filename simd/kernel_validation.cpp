@@ -5,9 +5,11 @@
 #include <random>
 #include <sstream>
 #include <utility>
+#include <vector>
 
 #include "aief/extractor.hpp"
 #include "core/kernels/kernel_evidence.hpp"
+#include "core/options/option_names.hpp"
 #include "simd/kernels.hpp"
 
 namespace aief {
@@ -35,12 +37,13 @@ GrayImage random_gray(int width, int height, std::uint32_t seed, bool smooth) {
 
 std::string check_extract(KernelSet set, const GrayImage& src) {
   if (src.width() < 2 * kEdgeBorder + 1 || src.height() < 2 * kEdgeBorder + 1) return "";
-  // The default mode (sub-pixel, pool, per-level guard, automatic F) with each descriptor, and
-  // the paper's conventions.
-  const std::pair<Mode, DescriptorKind> runs[] = {{Mode::aief, DescriptorKind::rbrief},
-                                                  {Mode::aief, DescriptorKind::box},
-                                                  {Mode::aief_paper, DescriptorKind::rbrief},
-                                                  {Mode::orbslam2, DescriptorKind::rbrief}};
+  // The default mode (sub-pixel, pool, per-level guard, automatic F) with each descriptor (every
+  // one the name table holds, core/options/option_names.hpp), and the paper's conventions.
+  std::vector<std::pair<Mode, DescriptorKind>> runs;
+  for (const auto& descriptor : option_names::Table<DescriptorKind>::names)
+    runs.emplace_back(Mode::aief, descriptor.value);
+  runs.emplace_back(Mode::aief_paper, DescriptorKind::rbrief);
+  runs.emplace_back(Mode::orbslam2, DescriptorKind::rbrief);
   for (const auto& [mode, descriptor] : runs) {
     ExtractorOptions reference_options = options_for_mode(mode);
     reference_options.auto_threshold = mode == Mode::aief;

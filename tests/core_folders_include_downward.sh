@@ -7,7 +7,7 @@ core=${1:?usage: core_folders_include_downward.sh CORE_DIR}
 floors=(
   "options kernels distribution"  # the option rows; the kernel list and scalar references; the spread
   "level match"                   # a level's geometry and data; pair matching and RANSAC
-  "entropy description"           # block entropies and F; orientation and rBRIEF per level
+  "entropy description"           # block entropies and F; orientation and the descriptor per level
   "detection"                     # FAST per block at F
   "frame"                         # one image's stages in order
   "sweep"                         # the adaptive sweep over thresholds, and F carried over a video

@@ -207,7 +207,7 @@ TEST(BoxDescriptor, FlatImageGivesEachTestTheSignOfItsThreshold) {
 }
 
 // A band of integral rows from its own origin row (zeros there, not the image's top), as the
-// extractor holds it (core/description/level_description.cpp), describes every point whose reach
+// extractor holds it (core/description/box_on_integral_band.cpp), describes every point whose reach
 // it holds as the whole integral image does, under every kernel set (the band is exactly the
 // rows box_reach names, so a read outside it is one the sanitizer build reports).
 TEST(BoxDescriptor, ABandFromAnyOriginRowDescribesAsTheWholeIntegral) {

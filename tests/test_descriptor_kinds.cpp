@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
@@ -12,6 +14,8 @@
 #include "aief/extractor.hpp"
 #include "aief/feature2d.hpp"
 #include "aief/match.hpp"
+#include "core/description/level_descriptor.hpp"
+#include "core/options/option_names.hpp"
 #include "io/feature_formats.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/option_record.hpp"
@@ -58,6 +62,44 @@ TEST(DescriptorKinds, BoxDescriptorsDifferFromRbriefOnTheSameKeypoints) {
   for (std::size_t i = 0; i < rbrief.keypoints.size(); ++i)
     EXPECT_EQ(rbrief.keypoints[i].x, box.keypoints[i].x);
   EXPECT_NE(rbrief.descriptors, box.descriptors);
+}
+
+// Every descriptor a name table holds (core/options/option_names.hpp), so a new one is tested here
+// without a line of its own.
+std::vector<DescriptorKind> every_kind() {
+  std::vector<DescriptorKind> kinds;
+  for (const auto& name : option_names::Table<DescriptorKind>::names) kinds.push_back(name.value);
+  return kinds;
+}
+
+// Every kind has its strategy, the row of core/description/level_descriptor.hpp that describes
+// it in extraction and in Extractor::describe alike.
+TEST(DescriptorKinds, EveryKindHasItsDescriptorRow) {
+  ASSERT_GE(every_kind().size(), 2u);  // rbrief, box, ...
+  for (DescriptorKind kind : every_kind())
+    EXPECT_EQ(kind_of(level_descriptor_of(kind)), kind) << to_string(kind);
+}
+
+// Given keypoints in any order (the descriptor's band walks a level in raster order, so describe
+// sorts each level's keypoints first) get the descriptors extract gave them, in their given order.
+TEST(DescriptorKinds, DescribingKeypointsInAnyOrderGivesExtractsBytes) {
+  const cv::Mat image = test::load_sample_gray("graf", "img1.png");
+  for (DescriptorKind kind : every_kind()) {
+    SCOPED_TRACE(to_string(kind));
+    Extractor extractor(with_descriptor(kind));
+    const Features extracted = extractor.extract(view_of(image));
+    std::vector<std::size_t> order(extracted.keypoints.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), std::mt19937(7));
+    std::vector<Keypoint> shuffled;
+    for (std::size_t i : order) shuffled.push_back(extracted.keypoints[i]);
+    shuffled.push_back(shuffled.front());  // a keypoint given twice is described twice
+    order.push_back(order.front());
+    const Features described = extractor.describe(view_of(image), shuffled);
+    ASSERT_EQ(described.keypoints.size(), shuffled.size());
+    for (std::size_t k = 0; k < order.size(); ++k)
+      EXPECT_EQ(described.descriptors[k], extracted.descriptors[order[k]]) << "keypoint " << k;
+  }
 }
 
 TEST(DescriptorKinds, Feature2DTakesTheOption) {

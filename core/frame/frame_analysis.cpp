@@ -207,12 +207,6 @@ std::int64_t FrameAnalysis::level_candidate_count(int n, double threshold) const
   return total;
 }
 
-std::int64_t FrameAnalysis::candidate_count(double threshold) const {
-  std::int64_t total = 0;
-  for (int n = 0; n < level_count(); ++n) total += level_candidate_count(n, threshold);
-  return total;
-}
-
 int FrameAnalysis::level_blocks_kept(int n, double threshold) const {
   const BlockMask kept = mask(n, threshold);
   int count = 0;

@@ -72,18 +72,19 @@ class FrameAnalysis {
   // `indices` of level n not described yet (any subset, in any pieces: the same descriptors).
   void choose(int n, double threshold, int budget, std::vector<std::int32_t>& chosen);
   void describe(int n, const std::vector<std::int32_t>& indices);
-  // Selections::many: level n's whole blurred level (describe() makes it when missing).
-  bool level_blurred(int n) const { return at(n).descriptions.level_blurred(); }
-  void blur_level(int n) { at(n).descriptions.blur_level(at(n).pyramid, *kernels_); }
+  // Selections::many: what level n's descriptor reads over the whole level, the blurred level or
+  // the integral image (describe() makes it when missing).
+  bool descriptor_input_ready(int n) const { return at(n).descriptions.descriptor_input_ready(); }
+  void prepare_descriptor_input(int n) {
+    at(n).descriptions.prepare_descriptor_input(at(n).pyramid, *kernels_);
+  }
   bool described(int n, std::int32_t i) const { return at(n).descriptions.described(i); }
 
   // Eq. 9 on level n at F (every block kept with entropy off).
   BlockMask mask(int n, double threshold) const;
   // Whether block b of level n is kept at threshold F.
   bool block_kept(int n, int b, double threshold) const { return mask(n, threshold).kept(b); }
-  // Candidates in the blocks kept at F, over all levels (after detect at F).
-  std::int64_t candidate_count(double threshold) const;
-  // The same for level n alone.
+  // Candidates in the blocks of level n kept at F (after detect at F).
   std::int64_t level_candidate_count(int n, double threshold) const;
   int blocks_total() const;
   int blocks_kept(double threshold) const;

@@ -53,7 +53,7 @@ class FramePipeline final : private CandidateSource {
   // Its two parts (FrameAnalysis::choose and describe), with budget N_n.
   void choose(int n, double threshold, std::vector<std::int32_t>& chosen);
   void describe(int n, const std::vector<std::int32_t>& indices) { analysis_.describe(n, indices); }
-  void blur_level(int n) { analysis_.blur_level(n); }
+  void prepare_descriptor_input(int n) { analysis_.prepare_descriptor_input(n); }
 
   const FrameAnalysis& analysis() const { return analysis_; }
   // The fixed F the next extract() requests (the carried F changes it between frames).

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "aief/error.hpp"
-#include "core/kernels/fast_atan2.hpp"
 #include "core/level/keypoint_position.hpp"
 
 namespace aief {
@@ -67,34 +66,29 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
   scratch.angle_deg.resize(count);
   scratch.descriptor_row.assign(count, -1);
   scratch.descriptors.clear();
+  if (kind_of(scratch.descriptor) != options.descriptor)
+    scratch.descriptor = level_descriptor_of(options.descriptor);
   for (int n = 0; n <= deepest; ++n) {
-    const std::vector<std::int32_t>& members = scratch.level_members[static_cast<std::size_t>(n)];
+    std::vector<std::int32_t>& members = scratch.level_members[static_cast<std::size_t>(n)];
     if (members.empty()) continue;
     const PyramidLevel& level = analysis.level(n);
-    const int w = level.geometry.width, h = level.geometry.height;
     const int m = static_cast<int>(members.size());
+    // Raster order, as the descriptor's band walks down the level (select() describes so too).
+    const auto raster_before = [&](std::int32_t a, std::int32_t b) {
+      const PixelPoint pa = scratch.level_pixel[static_cast<std::size_t>(a)];
+      const PixelPoint pb = scratch.level_pixel[static_cast<std::size_t>(b)];
+      return pa.y != pb.y ? pa.y < pb.y : pa.x < pb.x;
+    };
+    std::stable_sort(members.begin(), members.end(), raster_before);
     scratch.points.clear();
-    int x_min = w, x_max = -1, y_min = h, y_max = -1;
-    for (std::int32_t i : members) {
-      const PixelPoint p = scratch.level_pixel[static_cast<std::size_t>(i)];
-      scratch.points.push_back(p);
-      x_min = std::min(x_min, p.x);
-      x_max = std::max(x_max, p.x);
-      y_min = std::min(y_min, p.y);
-      y_max = std::max(y_max, p.y);
-    }
-    // Orientation on the raw level, descriptors on the blurred one, as select() does.
+    for (std::int32_t i : members)
+      scratch.points.push_back(scratch.level_pixel[static_cast<std::size_t>(i)]);
+    // Orientation on the raw level, descriptors on what the descriptor prepares, as select() does.
     std::vector<float>& angles = scratch.level_angle_deg;
     angles.resize(members.size());
     if (given_angles == GivenAngles::recompute) {
-      scratch.m10.resize(members.size());
-      scratch.m01.resize(members.size());
-      kernels.ic_moments(level.pixels, scratch.points.data(), m, scratch.m10.data(),
-                         scratch.m01.data());
-      const auto angle =
-          options.orientation == Orientation::opencv_fast ? orbslam_ic_angle_deg : ic_angle_deg;
-      for (std::size_t k = 0; k < members.size(); ++k)
-        angles[k] = angle(scratch.m10[k], scratch.m01[k]);
+      scratch.keypoint_angles.compute(kernels, level.pixels, scratch.points.data(), m,
+                                      options.orientation, angles.data());
     } else {
       for (std::size_t k = 0; k < members.size(); ++k)
         angles[k] = keypoints[static_cast<std::size_t>(members[k])].angle_deg;
@@ -107,24 +101,12 @@ void describe_given_keypoints(FrameAnalysis& analysis, const KernelTable& kernel
     for (std::size_t k = 0; k < members.size(); ++k)
       scratch.descriptor_row[static_cast<std::size_t>(members[k])] =
           static_cast<std::int32_t>(first_row + k);
-    if (options.descriptor == DescriptorKind::box) {  // as select() does: the level's integral
-      scratch.integral.compute(level.pixels, kernels);
-      scratch.box_points.clear();
-      for (const PixelPoint& p : scratch.points)
-        scratch.box_points.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
-      kernels.box_describe(scratch.integral.view(), scratch.box_points.data(), angles.data(), m,
-                           kBoxLevelScale, descriptors);
-      continue;
-    }
-    // The blur is the same pixel for pixel whatever region is blurred, so only the rectangle the
-    // patterns read is: every sample lies within kEdgeBorder of its point.
-    scratch.blurred.resize(w, h);
-    const int y_begin = y_min - kEdgeBorder, y_end = y_max + kEdgeBorder + 1;
-    const MutableImageView whole = scratch.blurred.mutable_view();
-    kernels.gaussian7_rows(level.pixels, {whole.row(y_begin), w, y_end - y_begin, whole.stride},
-                           y_begin, y_end, x_min - kEdgeBorder, x_max + kEdgeBorder + 1);
-    kernels.rbrief_describe(scratch.blurred.view(), scratch.points.data(), angles.data(), m,
-                            descriptors);
+    std::visit(
+        [&](auto& descriptor) {
+          descriptor.start(level.geometry, Selections::one);
+          descriptor.describe(level, kernels, scratch.points.data(), angles.data(), m, descriptors);
+        },
+        scratch.descriptor);
   }
 
   out.image_width = width0;

@@ -15,17 +15,18 @@
 //                as for detected keypoints, replaces the given angle. GivenAngles::keep: the given
 //                angle is used as it is, as cv::ORB::compute does: any finite number of degrees
 //                (OpenCV's "no angle", -1, too: the pattern is rotated by cos and sin of it).
-//   descriptor   rBRIEF on the level blurred as for detected keypoints, or with
-//                DescriptorKind::box the box descriptor on the level's integral image
+//   descriptor   the one ExtractorOptions::descriptor names, by the strategy detected keypoints
+//                are described with (core/description/level_descriptor.hpp), on the level's
+//                keypoints in raster order
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "aief/extractor.hpp"
 #include "aief/features.hpp"
 #include "aief/image.hpp"
+#include "core/description/keypoint_angles.hpp"
+#include "core/description/level_descriptor.hpp"
 #include "core/frame/frame_analysis.hpp"
-#include "core/kernels/integral_image.hpp"
 #include "core/kernels/kernel_table.hpp"
 #include "core/kernels/pixel_point.hpp"
 
@@ -33,17 +34,16 @@ namespace aief {
 
 // Storage reused from call to call.
 struct GivenKeypointScratch {
-  std::vector<std::vector<std::int32_t>> level_members;  // per level: indices of its kept keypoints
-  std::vector<PixelPoint> level_pixel;                   // per keypoint
-  std::vector<PixelPoint> points;                        // one level's, in level_members order
-  std::vector<std::int32_t> m10, m01;
+  // Per level: indices of its kept keypoints, in raster order of their level pixels.
+  std::vector<std::vector<std::int32_t>> level_members;
+  std::vector<PixelPoint> level_pixel;       // per keypoint
+  std::vector<PixelPoint> points;            // one level's, in level_members order
+  KeypointAngles keypoint_angles;            // GivenAngles::recompute
   std::vector<float> level_angle_deg;        // one level's
   std::vector<float> angle_deg;              // per keypoint
   std::vector<std::int32_t> descriptor_row;  // per keypoint: its row (-1: removed)
   std::vector<std::uint8_t> descriptors;     // 32 bytes a row, level by level
-  GrayImage blurred;                         // one level's blurred rows
-  IntegralImage integral;                    // one level's integral image (the box descriptor)
-  std::vector<BoxPoint> box_points;          // points, as the box descriptor takes them
+  LevelDescriptors descriptor;               // the options' (its input's band)
 };
 
 // Why `octave`, a number as the caller gave it (before it narrows to int: Python's floats and

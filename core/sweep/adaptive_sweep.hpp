@@ -78,16 +78,18 @@ class SweepPipeline {
   void detect_level(int image, int n) { frame(image).detect_at(n, sweep_.first_threshold); }
   // select_threshold(image, c) = the repeat of c - 1 when selects_like_previous(image, c), else
   // choose_level(image, c, n) and the descriptions of level n for each n, then
-  // finish_threshold(image, c). The descriptions: blur_level(image, n) unless level_blurred,
-  // then describe_next(image, n, k) until undescribed(image, n) is 0.
+  // finish_threshold(image, c). The descriptions: prepare_descriptor_input(image, n) unless
+  // descriptor_input_ready, then describe_next(image, n, k) until undescribed(image, n) is 0.
   bool selects_like_previous(int image, int c) const;
   void repeat_previous(int image, int c);
   void choose_level(int image, int c, int n);
   // Candidates level n's chosen list holds (the distribution read that many), and of those the
   // ones not described yet.
   int candidates_considered(int image, int c, int n);
-  bool level_blurred(int image, int n) { return frame(image).analysis().level_blurred(n); }
-  void blur_level(int image, int n) { frame(image).blur_level(n); }
+  bool descriptor_input_ready(int image, int n) {
+    return frame(image).analysis().descriptor_input_ready(n);
+  }
+  void prepare_descriptor_input(int image, int n) { frame(image).prepare_descriptor_input(n); }
   int undescribed(int image, int n);
   void describe_next(int image, int n, int count);
   void finish_threshold(int image, int c);

@@ -17,7 +17,9 @@ constexpr double kDetectPerPixel = 8.5;     // FAST-9 over every non-flat block
 // Distribution: the quadtree costs 2.5x the proportional distribution (28 M against 11.5 M).
 constexpr double kChoosePerCandidate[] = {57, 140};
 constexpr double kChoosePerLevel[] = {12000, 30000};
-constexpr double kBlurPerPixel = 4;              // the whole-level 7x7 blur rBRIEF reads
+// The descriptor's input made over a level: the whole-level 7x7 blur rBRIEF reads (the box
+// descriptor's integral image, a running sum, costs less).
+constexpr double kDescriptorInputPerPixel = 4;
 constexpr double kDescribePerKeypoint = 4000;    // orientation and rBRIEF
 constexpr double kAssemblePerFeature = 120;      // a threshold's features put together
 constexpr double kBeginMatchingPerFeature = 50;  // lists carried, descriptors blocked
@@ -155,14 +157,15 @@ double SpreadSweep::run_piece(double room, bool must, AdaptResult& out) {
       if (!fits(work)) return -1;
       sweep_.choose_level(image_, c_, level_);
       if (sweep_.undescribed(image_, level_) > 0)
-        phase_ = sweep_.level_blurred(image_, level_) ? Phase::describe : Phase::blur;
+        phase_ = sweep_.descriptor_input_ready(image_, level_) ? Phase::describe
+                                                               : Phase::descriptor_input;
       else
         next_level_or(Phase::finish_threshold);
       return work;
     }
-    case Phase::blur:
-      return level_piece(kBlurPerPixel, [&] {
-        sweep_.blur_level(image_, level_);
+    case Phase::descriptor_input:
+      return level_piece(kDescriptorInputPerPixel, [&] {
+        sweep_.prepare_descriptor_input(image_, level_);
         phase_ = Phase::describe;
       });
     case Phase::describe: {

@@ -4,7 +4,7 @@
 // core/sweep/carried_threshold.hpp calls it once after each frame's extraction).
 //
 // The sweep is cut into pieces no larger than they must be: each image's analysis a pyramid level
-// at a time, each threshold's selection a level at a time (distribution, the whole-level blur the
+// at a time, each threshold's selection a level at a time (distribution, the whole-level input the
 // descriptors read, then the descriptions in runs of any length), each threshold's matching a
 // row of new distances at a time (core/sweep/sweep_matcher.hpp), then RANSAC. Each piece's work is
 // estimated beforehand from what it will read (pixels, candidates, descriptors, distances,
@@ -50,7 +50,7 @@ class SpreadSweep {
     begin_thresholds,  //
     select,            // image_ at c_: a repeat of c_ - 1, or its levels from level_ 0
     choose,            // image_, level_
-    blur,              // image_, level_
+    descriptor_input,  // image_, level_: the blurred level or integral image descriptors read
     describe,          // image_, level_
     finish_threshold,  // image_
     begin_evaluation,  // c_

@@ -14,12 +14,6 @@
 
 namespace aief {
 
-// Where the angle of a given keypoint comes from (Extractor::describe).
-enum class GivenAngles {
-  recompute,  // the intensity centroid, as for detected keypoints (describe gives extract's bytes)
-  keep,       // the given angle (any finite number of degrees), as cv::ORB::compute keeps it
-};
-
 class Extractor {
  public:
   // Validates the options (throws aief::Error) and picks the kernel table.

@@ -21,6 +21,12 @@ struct Keypoint {
   int octave = 0;       // pyramid level
 };
 
+// Where the angle of a given keypoint comes from (Extractor::describe, aief/extractor.hpp).
+enum class GivenAngles {
+  recompute,  // the intensity centroid, as for detected keypoints (describe gives extract's bytes)
+  keep,       // the given angle (any finite number of degrees), as cv::ORB::compute keeps it
+};
+
 using Descriptor = std::array<std::uint8_t, kDescriptorBytes>;
 
 // How the entropy mask went for this image.
