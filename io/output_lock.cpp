@@ -173,8 +173,9 @@ OutputLock::OutputLock(const std::string& output)
   {
     const std::lock_guard<std::mutex> guard(held_mutex);
     if (read().count(lock_path_))
-      throw Error("cannot write '" + output_ +
-                  "': this process is reading it (close the reader of it first)");
+      throw Error("cannot open '" + output_ +
+                  "' for writing: another handle holds it open (a reader of it in this process: "
+                  "close that one first); the file itself is whole and was left as it was");
     if (!written().insert(lock_path_).second)
       throw Error("cannot write '" + output_ +
                   "': this process has it open for writing already (close the other "
@@ -231,15 +232,24 @@ ReadLock::ReadLock(const std::string& file) {
     const std::lock_guard<std::mutex> guard(held_mutex);
     if (written().count(lock_path_)) return;  // this process writes it: its reads are its own
   }
-  // A few tries: a lock file removed by its writer as this reader locked it is looked up again.
+  // A few tries: a lock file removed by its holder as this reader locked it is looked up again.
   constexpr int kTries = 8;
   for (int attempt = 0; attempt < kTries; ++attempt) {
+    // Made when missing, so that a writer that comes while this reads waits; a folder that takes
+    // no new file takes no writer either, and is read without a lock.
     Found found;
-    const int fd = lock_file::open_lock_file(lock_path_, file, false, true, found);
-    if (fd < 0) return;  // none: no writer at work (or not ours to read: nothing to honour)
+    bool writable = true;
+    int fd = lock_file::open_lock_file(lock_path_, file, true, false, found);
+    if (fd < 0 && found == Found::existing && errno == EACCES) {  // another user's, 0644
+      writable = false;
+      fd = lock_file::open_lock_file(lock_path_, file, false, true, found);
+    }
+    if (fd < 0 && found == Found::missing && attempt + 1 < kTries) continue;
+    if (fd < 0) return;
     const int code = lock_file::take(fd, F_RDLCK, false);
     if (code == 0 && lock_file::still_named(fd, lock_path_)) {
       descriptor_ = fd;
+      removable_ = writable;
       const std::lock_guard<std::mutex> guard(held_mutex);
       ++read()[lock_path_];
       return;
@@ -252,6 +262,7 @@ ReadLock::ReadLock(const std::string& file) {
                   "'; another aief still writing it? wait until that run ends, then run this "
                   "again)");
     }
+    if (code != 0 && found == Found::created) ::unlink(lock_path_.c_str());
     ::close(fd);
     if (code != 0) return;  // the file system gives no locks: no writer holds one either
   }
@@ -259,6 +270,11 @@ ReadLock::ReadLock(const std::string& file) {
 
 ReadLock::~ReadLock() {
   if (descriptor_ < 0) return;
+  // The last reader removes the lock file, as a writer does: only while no other process holds
+  // a lock on it (its own turned into a writer's), so a waiting writer then locks a new one.
+  if (removable_ && lock_file::take(descriptor_, F_WRLCK, false) == 0 &&
+      lock_file::still_named(descriptor_, lock_path_))
+    ::unlink(lock_path_.c_str());
   ::close(descriptor_);
   const std::lock_guard<std::mutex> guard(held_mutex);
   if (--read()[lock_path_] == 0) read().erase(lock_path_);

@@ -24,8 +24,9 @@
 // lock when the user knows that no other run writes the file.
 //
 // A reader (ReadLock: merge's inputs, colmap, match --pairs' features) takes a shared lock on the
-// lock file when there is one: a file a writer holds is refused, as libhdf5's own lock refuses it,
-// and a writer that comes while it reads waits. Where there is no lock file, no writer is at work.
+// lock file (made when missing, where the folder allows, and removed by the last reader): a file a
+// writer holds is refused, as libhdf5's own lock refuses it, and a writer that comes while it
+// reads waits ("waiting while another process reads").
 #include <string>
 
 namespace aief::io {
@@ -47,9 +48,9 @@ class OutputLock {
 
 class ReadLock {
  public:
-  // Takes a shared lock on the lock file of `file`, when it has one. Throws aief::Error when a
-  // writer holds it, naming the writer. Takes none, silently, where the file system gives no
-  // locks, AIEF_FILE_LOCKING=FALSE is set, or this process writes the file itself.
+  // Takes a shared lock on the lock file of `file`. Throws aief::Error when a writer holds it,
+  // naming the writer. Takes none, silently, where the folder takes no lock file, the file system
+  // gives no locks, AIEF_FILE_LOCKING=FALSE is set, or this process writes the file itself.
   explicit ReadLock(const std::string& file);
   ~ReadLock();
   ReadLock(const ReadLock&) = delete;
@@ -57,7 +58,8 @@ class ReadLock {
 
  private:
   std::string lock_path_;
-  int descriptor_ = -1;  // -1: no lock file, or no lock taken
+  int descriptor_ = -1;     // -1: no lock file, or no lock taken
+  bool removable_ = false;  // opened for writing: the last reader removes the lock file
 };
 
 }  // namespace aief::io

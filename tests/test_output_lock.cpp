@@ -215,6 +215,32 @@ TEST(OutputLock, EveryReaderRefusesAFileItsWriterHoldsWithLibhdf5sLockOff) {
   EXPECT_EQ(names_in(temp.file("m.h5")).size(), 3u);
 }
 
+TEST(OutputLock, AWriterWaitsWhileAReaderReadsWithLibhdf5sLockOff) {
+  // Before: a batch into a file merge was reading wrote at once, under the reader's feet.
+  const TempFolder temp("aief_output_lock");
+  const fs::path images = image_folder(temp.path(), "w", 2), h5 = temp.path() / "f.h5";
+  const fs::path log = temp.path() / "w.log";
+  ASSERT_EQ(run(batch_into(images, h5), log), 0) << text_of(log.string() + ".err");
+  fs::copy_file(images / "w0.png", images / "w9.png");  // something to write
+  pid_t writer = -1;
+  {
+    const aief::io::Hdf5File reading(h5.string(), aief::io::Hdf5File::Mode::read);
+    writer = start(batch_into(images, h5), log);
+    bool ended = false;
+    while (!ended && text_of(log.string() + ".err").find("waiting while another process reads") ==
+                         std::string::npos) {
+      int status = 0;
+      ended = waitpid(writer, &status, WNOHANG) == writer;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_FALSE(ended) << "the writer did not wait: " << text_of(log.string() + ".err");
+    EXPECT_EQ(reading.feature_names().size(), 2u);
+  }
+  EXPECT_EQ(wait_for(writer), 0) << text_of(log.string() + ".err");
+  EXPECT_EQ(names_in(h5).size(), 3u);
+  EXPECT_FALSE(fs::exists(aief::io::lock_path_of(h5.string())));
+}
+
 TEST(OutputLock, WithoutLocksAReaderSaysSoAndNamesLibhdf5sSettingNeverDamaged) {
   // NFS without its lock daemon answers ENOLCK: libhdf5's own lock fails. Before: "it is damaged
   // or cut short (libhdf5: No locks available); ... move it away and run that command again,
