@@ -40,7 +40,8 @@ constexpr const char* kLockedByAWriter =
 // says why). A disk already full is found here, before libhdf5, whose failed create keeps its
 // file structures allocated.
 std::string first_block_does_not_fit(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  // The umask's mode, as libhdf5 gives: a group folder's members with umask 002 share the file.
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0666);
   if (fd < 0) return {};
   const char block[4096] = {};
   const ssize_t wrote = ::write(fd, block, sizeof block);
@@ -63,9 +64,20 @@ std::string open_failure(const std::string& path, bool creating, const std::stri
   if (hdf5_said.find("unable to lock file") != std::string::npos ||
       hdf5_said == "Resource temporarily unavailable")
     return "cannot open '" + path + "': " + kLockedByAWriter;
+  // libhdf5's own lock (flock) on a file system that gives none (NFS without its lock daemon:
+  // ENOLCK; Lustre without -o flock: ENOSYS): nothing is wrong with the file.
+  if (hdf5_said == std::strerror(ENOLCK) || hdf5_said == std::strerror(ENOSYS)) {
+    std::string said(creating ? "cannot create '" : "cannot open '");
+    said.append(path).append("': libhdf5 can have no lock on it (").append(hdf5_said);
+    said.append(
+        "): the file system gives no locks. Set HDF5_USE_FILE_LOCKING=FALSE to open it without "
+        "libhdf5's lock (aief's own lock file still keeps two aief runs from writing it at "
+        "once), or mount the file system with locks");
+    return said.append(creating ? "" : "; the file itself was not touched");
+  }
   if (!creating && H5Fis_hdf5(path.c_str()) == 0)
     return "cannot open '" + path + "': it is not an HDF5 file";
-  const int fd = ::open(path.c_str(), creating ? O_RDWR | O_CREAT | O_EXCL : O_RDONLY, 0644);
+  const int fd = ::open(path.c_str(), creating ? O_RDWR | O_CREAT | O_EXCL : O_RDONLY, 0666);
   if (fd < 0)
     return std::string("cannot ") + (creating ? "create '" : "open '") + path +
            "': " + std::strerror(errno);
@@ -136,6 +148,7 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
     lock_ = std::make_unique<OutputLock>(path);
   if (!writing) {
     if (!std::filesystem::exists(path, ec)) throw Error("cannot open '" + path + "': no such file");
+    read_lock_ = std::make_unique<ReadLock>(path);  // refuses a file a writer holds
     const std::size_t cache_bytes =
         mode == Mode::read_in_name_order ? kInNameOrderCacheBytes : kReadCacheBytes;
     const Handle access = read_access(cache_bytes);
@@ -150,8 +163,11 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
     creating = true;
     // A temporary of its own (another run may be creating the same file): a killed run's are
     // unlocked and removed; libhdf5 holds a lock on each it has open.
-    remove_stale_temporaries_of(path);
-    creating_as_ = unique_temporary_path_of(path);
+    // Beside the file a link names, and renamed onto it: a write through a link never replaces
+    // the link (io/temporary_files.hpp: resolved_path).
+    creating_at_ = resolved_path(path);
+    remove_stale_temporaries_of(creating_at_);
+    creating_as_ = unique_temporary_path_of(creating_at_);
     const std::string no_room = first_block_does_not_fit(creating_as_);
     if (!no_room.empty()) throw Error("cannot create '" + path + "': " + no_room);
     const Handle creation = file_creation();
@@ -200,9 +216,9 @@ void Hdf5File::flush_created_file() {
     flush_now();
     flushed_a_write_ = false;
     // Never over a file another run created meanwhile.
-    if (::renameat2(AT_FDCWD, creating_as_.c_str(), AT_FDCWD, path_.c_str(), RENAME_NOREPLACE) !=
-            0 &&
-        (errno != EINVAL || ::rename(creating_as_.c_str(), path_.c_str()) != 0))
+    if (::renameat2(AT_FDCWD, creating_as_.c_str(), AT_FDCWD, creating_at_.c_str(),
+                    RENAME_NOREPLACE) != 0 &&
+        (errno != EINVAL || ::rename(creating_as_.c_str(), creating_at_.c_str()) != 0))
       throw Error(errno == EEXIST ? "another run created it at the same moment (this run wrote "
                                     "nothing to it): run this command again, which adds to "
                                     "that file"

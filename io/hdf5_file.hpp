@@ -204,9 +204,11 @@ class Hdf5File {
   void write_guarded(std::uint64_t bytes, const std::string& what, Write&& write,
                      Flush flush = Flush::batched, bool adds_a_group = true);
 
-  std::unique_ptr<OutputLock> lock_;  // read_write: held from before opening until destroyed
+  std::unique_ptr<OutputLock> lock_;     // read_write: held from before opening until destroyed
+  std::unique_ptr<ReadLock> read_lock_;  // read modes: a writer's lock refuses the file
   std::string path_;
   std::string creating_as_;  // the temporary a new file is created as, until its first flush
+  std::string creating_at_;  // where it is renamed to: the file path_ names (a link followed)
   long long file_ = -1;      // hid_t
   int descriptor_ = -1;      // libhdf5's POSIX descriptor of the file (sec2 driver), when writing
   std::uint64_t reserved_until_ = 0;

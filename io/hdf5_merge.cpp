@@ -62,7 +62,7 @@ std::uint64_t group_storage_bytes(hid_t file, const std::string& name) {
 void copy_file(const std::string& from, const std::string& to) {
   const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
   if (in < 0) throw Error("cannot read '" + from + "': " + std::strerror(errno));
-  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (out < 0) {
     const int code = errno;
     ::close(in);
@@ -171,10 +171,6 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     }
   }
   std::unordered_set<std::string_view> kept, stale;  // of previous_names
-  // Of `kept`: those whose shard group is of an older file of the image than the output's (an
-  // older shard given): the newer is kept, never replaced by the older.
-  std::vector<std::string> kept_newer;
-  std::size_t kept_newer_count = 0;
   std::vector<std::unique_ptr<Hdf5File>> shards;
   std::vector<std::vector<std::string>> names;  // each shard's, kept for the copy
   names.reserve(inputs.size());
@@ -194,13 +190,17 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
         kept.insert(found->first);
         continue;
       }
+      // A group of an older file of that name than the output's: another image of the same name
+      // (or an older shard), refused as an image in two of the files merged is: merged over the
+      // newer, it would lose it; kept, the output would not hold what the shard does.
       const std::optional<SourceRecord> source = shards.back()->recorded_source(name);
-      if (source && found->second.mtime_ns >= 0 && source->mtime_ns < found->second.mtime_ns) {
-        kept.insert(found->first);
-        if (kept_newer.size() < 3) kept_newer.push_back("'" + name + "' ('" + input + "')");
-        ++kept_newer_count;
-        continue;
-      }
+      if (source && found->second.mtime_ns >= 0 && source->mtime_ns < found->second.mtime_ns)
+        throw Error("image '" + name + "' of '" + input + "' is of another file than the one '" +
+                    output + "' holds (its image file is older: modified at " +
+                    std::to_string(source->mtime_ns) + " ns, the output's at " +
+                    std::to_string(found->second.mtime_ns) +
+                    " ns): two images of one name, or an older shard; merge it into another "
+                    "output, or extract that shard again; nothing was written");
       stale.insert(found->first);
     }
   }
@@ -219,8 +219,11 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
   // Then written to a temporary beside the output (a copy of it when extending), renamed over it
   // only when complete: a failed merge leaves the output as it was. The temporary is this
   // merge's own: two merges into one output each rename a whole file.
-  remove_stale_temporaries_of(output);
-  const std::string temporary = unique_temporary_path_of(output);
+  // Beside the file the output names and renamed onto it: an output that is a link is written
+  // through, never replaced by a file while its target keeps the old images.
+  const std::string target = resolved_path(output);
+  remove_stale_temporaries_of(target);
+  const std::string temporary = unique_temporary_path_of(target);
   int copied = 0;
   try {
     if (extending) copy_file(output, temporary);
@@ -244,7 +247,7 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
       if (const std::size_t at = why.rfind(note); at != std::string::npos) why.erase(at);
     throw Error("cannot merge into '" + output + "' (left as it was): " + why);
   }
-  if (fs::rename(temporary, output, ec); ec) {
+  if (fs::rename(temporary, target, ec); ec) {
     // The rename's own error (a later call would overwrite it: "Success"); a temporary gone
     // missing was removed by another program meanwhile (a cleaner of old files?).
     const std::string why = ec == std::errc::no_such_file_or_directory
@@ -256,14 +259,6 @@ int merge_feature_files(const std::string& output, const std::vector<std::string
     throw Error("cannot merge into '" + output + "' (left as it was): " + why);
   }
   if (replaced) *replaced = static_cast<int>(stale.size());
-  if (kept_newer_count > 0 && notes) {
-    std::string named;
-    for (const std::string& one : kept_newer) named += (named.empty() ? "" : ", ") + one;
-    notes->push_back(std::to_string(kept_newer_count) + " image(s) kept as '" + output +
-                     "' holds them: their shard groups are of an older file of the image (an older "
-                     "shard?), never merged over a newer one: " +
-                     named + (kept_newer_count > kept_newer.size() ? ", ..." : ""));
-  }
   return copied;
 }
 

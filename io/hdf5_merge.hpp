@@ -15,9 +15,10 @@ namespace aief::io {
 // and renamed over `output`, so a failed merge (a bad input, a full disk) leaves `output` as it was
 // (or absent). Linear in the images (hash sets). Returns the images copied, replaced ones included.
 // Refused before anything is written: a matches file or another tool's features (SuperPoint) as
-// an input or as the output. Said in `notes`: incomplete groups (a killed write's) left out, and
-// images kept as the output holds them because their shard group is of an older file of the
-// image (an older shard never replaces a newer group).
+// an input or as the output, and an image whose shard group is of an older file of that name
+// than the output's (another image of the same name, or an older shard: an older group never
+// replaces a newer one). Said in `notes`: incomplete groups (a killed write's) left out. An output
+// that is a symbolic link is written through (its target replaced, the link kept).
 int merge_feature_files(const std::string& output, const std::vector<std::string>& inputs,
                         int* replaced = nullptr, std::vector<std::string>* notes = nullptr);
 

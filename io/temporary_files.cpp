@@ -71,6 +71,21 @@ std::string lock_path_of(const std::string& path) {
   return (file.parent_path() / ("." + hash_of_name(file) + ".lock")).string();
 }
 
+std::string resolved_path(const std::string& path) {
+  constexpr int kMostLinks = 40;  // the kernel's own bound (ELOOP)
+  std::error_code ec;
+  fs::path file = fs::absolute(fs::path(path), ec);
+  for (int links = 0; fs::is_symlink(fs::symlink_status(file, ec)); ++links) {
+    if (links == kMostLinks)
+      throw Error("cannot open '" + path + "': too many levels of symbolic links");
+    const fs::path target = fs::read_symlink(file, ec);
+    if (ec) break;
+    file = target.is_absolute() ? target : file.parent_path() / target;
+  }
+  const fs::path folder = fs::weakly_canonical(file.parent_path(), ec);
+  return ((ec ? file.parent_path() : folder) / file.filename()).string();
+}
+
 std::string unique_temporary_path_of(const std::string& path) {
   static thread_local std::mt19937_64 random{std::random_device{}() ^
                                              (static_cast<std::uint64_t>(::getpid()) << 32)};
@@ -124,7 +139,7 @@ LockedTemporary::LockedTemporary(const std::string& path) : output_(path) {
   constexpr int kAttempts = 4;  // a name another writer drew at the same instant: draw again
   for (int attempt = 1;; ++attempt) {
     temporary_ = unique_temporary_path_of(path);
-    descriptor_ = ::open(temporary_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    descriptor_ = ::open(temporary_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (descriptor_ >= 0) break;
     const int code = errno;
     if (code == EEXIST && attempt < kAttempts) continue;
@@ -168,7 +183,7 @@ void write_file_atomically(const std::string& path, const std::string& content) 
       throw WriteError("cannot write '" + path + "': " + what + std::strerror(code),
                        is_disk_failure(code));
     };
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0) {
       const int code = errno;
       if (code == EEXIST && attempt < kAttempts) continue;

@@ -30,8 +30,15 @@ int remove_stale_temporaries_of(const std::string& path);
 std::string temporary_path_of(const std::string& path);
 
 // The lock file of `path` (io/output_lock.hpp): "." + the 16 hex digits of a hash of the file
-// name + ".lock", beside it.
+// name + ".lock", beside it. OutputLock takes it of resolved_path(path).
 std::string lock_path_of(const std::string& path);
+
+// The file `path` names: symbolic links of its last component followed (a missing target too:
+// the file a write through the link creates), its folder made absolute and canonical. Two names
+// of one file (a link and its target, "./x.h5" and "x.h5") give one path, so one lock and one
+// place where a write renames its temporary (never over the link). Throws aief::Error for a
+// loop of links.
+std::string resolved_path(const std::string& path);
 
 // A unique temporary beside `path`, created exclusively and locked for as long as this object
 // lives (for writers that reopen the file by name, as SQLite does: its fcntl locks are not

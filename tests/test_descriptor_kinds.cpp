@@ -234,5 +234,30 @@ TEST(DescriptorKinds, MergeRefusesShardsOfDifferentDescriptors) {
   EXPECT_NE(r.output.find("descriptor rbrief -> box"), std::string::npos) << r.output;
 }
 
+// Before: `extract --batch imgs -o rbrief.h5 --descriptor box --shard 0/2` into a file of rBRIEF
+// features exited 0, the file then held both, and a note called the other shard's images
+// "deleted or moved?".
+TEST(DescriptorKinds, AShardedBatchOfAnotherDescriptorIntoAFileIsRefused) {
+  test::TempFolder folder("aief_descriptor_kinds_shard");
+  std::filesystem::create_directories(folder.file("imgs"));
+  std::filesystem::copy_file(test::sample_path("graf", "img1.png"), folder.file("imgs/a.png"));
+  std::filesystem::copy_file(test::sample_path("graf", "img2.png"), folder.file("imgs/b.png"));
+  const std::string batch = "extract --batch " + folder.file("imgs") +
+                            " --n-features 100 --format h5 -o " + folder.file("rbrief.h5");
+  ASSERT_EQ(run(batch).status, 0);
+  const test::CommandRun r = run(batch + " --descriptor box --shard 0/2");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("holds rbrief descriptors (image 'b.png'"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("this run extracts box descriptors"), std::string::npos) << r.output;
+  {
+    const io::Hdf5File file(folder.file("rbrief.h5"), io::Hdf5File::Mode::read);
+    for (const std::string& name : file.feature_names())
+      EXPECT_EQ(io::recorded_descriptor(file.option_record(name)), DescriptorKind::rbrief) << name;
+  }
+  // The whole folder again with the box descriptor replaces every image: nothing is mixed.
+  EXPECT_EQ(run(batch + " --descriptor box").status, 0);
+}
+
 }  // namespace
 }  // namespace aief

@@ -105,9 +105,11 @@ TEST(Hdf5Features, MergeRerunReplacesGroupsWhoseShardImageOrOptionsChanged) {
   EXPECT_THROW(io::merge_feature_files(dir.file("all.h5"), {dir.file("s1.h5")}), Error);
 }
 
-// An older shard (its groups of an older file of the image) never replaces the newer group the
-// output holds, and says so; a matches file is no shard (before: an empty output, exit 0).
-TEST(Hdf5Features, MergeKeepsTheNewerGroupAndRefusesAMatchesFile) {
+// An image of an older file of its name than the output holds (another image of the same name, or
+// an older shard) is refused naming both, as an image in two of the files merged is (before: kept
+// with a note, "an older file of the image (an older shard?)", exit 0); a matches file is no shard
+// (before: an empty output, exit 0).
+TEST(Hdf5Features, MergeRefusesAnOlderImageOfTheSameNameAndAMatchesFile) {
   OwnTempDir dir;
   const Features old_a = sample_features("boat", 1), new_a = sample_features("graf", 1);
   io::SourceRecord older, newer;
@@ -124,14 +126,18 @@ TEST(Hdf5Features, MergeKeepsTheNewerGroupAndRefusesAMatchesFile) {
   std::vector<std::string> notes;
   ASSERT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("new.h5")}, &replaced, &notes),
             1);
-  EXPECT_EQ(io::merge_feature_files(dir.file("all.h5"), {dir.file("old.h5")}, &replaced, &notes),
-            0);
-  EXPECT_EQ(replaced, 0);
-  ASSERT_EQ(notes.size(), 1u);
-  EXPECT_NE(notes[0].find("1 image(s) kept as '" + dir.file("all.h5") + "' holds them"),
-            std::string::npos)
-      << notes[0];
-  EXPECT_NE(notes[0].find("'a.png' ('" + dir.file("old.h5") + "')"), std::string::npos) << notes[0];
+  try {
+    io::merge_feature_files(dir.file("all.h5"), {dir.file("old.h5")}, &replaced, &notes);
+    ADD_FAILURE() << "an older image of the same name merged";
+  } catch (const Error& e) {
+    const std::string said = e.what();
+    EXPECT_NE(said.find("image 'a.png' of '" + dir.file("old.h5") + "' is of another file than "),
+              std::string::npos)
+        << said;
+    EXPECT_NE(said.find("'" + dir.file("all.h5") + "' holds"), std::string::npos) << said;
+    EXPECT_NE(said.find("nothing was written"), std::string::npos) << said;
+  }
+  EXPECT_TRUE(notes.empty());
   expect_same(io::Hdf5File(dir.file("all.h5"), io::Hdf5File::Mode::read).read_features("a.png"),
               new_a);
   // The newer shard still replaces an older group.
@@ -154,6 +160,23 @@ TEST(Hdf5Features, MergeKeepsTheNewerGroupAndRefusesAMatchesFile) {
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("mm.h5")));
   EXPECT_THROW(io::merge_feature_files(dir.file("m.h5"), {dir.file("new.h5")}), Error);
+}
+
+// An output that is a symbolic link is written through: the link kept, its target holding the
+// merge (before: the link replaced by a new file, its target left with the old images).
+TEST(Hdf5Features, MergeOntoALinkWritesItsTarget) {
+  OwnTempDir dir;
+  const ExtractorOptions options;
+  io::Hdf5File(dir.file("a.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("a.png", sample_features("boat", 1), nullptr, &options);
+  io::Hdf5File(dir.file("b.h5"), io::Hdf5File::Mode::read_write)
+      .write_features("b.png", sample_features("graf", 1), nullptr, &options);
+  ASSERT_EQ(io::merge_feature_files(dir.file("real.h5"), {dir.file("a.h5")}), 1);
+  std::filesystem::create_symlink("real.h5", dir.file("link.h5"));
+  ASSERT_EQ(io::merge_feature_files(dir.file("link.h5"), {dir.file("b.h5")}), 1);
+  EXPECT_TRUE(std::filesystem::is_symlink(dir.file("link.h5")));
+  EXPECT_EQ(io::Hdf5File(dir.file("real.h5"), io::Hdf5File::Mode::read).feature_names(),
+            (std::vector<std::string>{"a.png", "b.png"}));
 }
 
 TEST(Hdf5Features, MergeCopiesShardsAndRefusesAnImageTwice) {

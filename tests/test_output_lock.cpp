@@ -4,7 +4,6 @@
 // says who holds it; where no lock can be had (a file system without fcntl locks:
 // tests/no_locks_shim.cpp) the write is refused, naming the file and the setting.
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,70 +22,16 @@
 #include "io/output_lock.hpp"
 #include "io/temporary_files.hpp"
 #endif
+#include "tests/lock_run.hpp"
 #include "tests/test_support.hpp"
 
 #ifdef AIEF_HAVE_HDF5
-
-extern char** environ;
 
 namespace {
 
 namespace fs = std::filesystem;
 using aief::test::TempFolder;
-
-std::string text_of(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-// Starts the CLI with `arguments`, stdout to `log` and stderr to `log`.err, its environment this
-// process's with `extra` ("NAME=value") added: libhdf5's lock is always off here, as on a cluster
-// file system.
-pid_t start(const std::vector<std::string>& arguments, const fs::path& log,
-            std::vector<std::string> extra = {}) {
-  std::vector<std::string> copies = {AIEF_CLI_PATH};
-  copies.insert(copies.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& a : copies) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  extra.push_back("HDF5_USE_FILE_LOCKING=FALSE");
-  std::vector<char*> env;
-  for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("HDF5_USE_FILE_LOCKING=", 0) != 0) env.push_back(*e);
-  for (std::string& e : extra) env.push_back(e.data());
-  env.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const std::string errors = log.string() + ".err";
-  posix_spawn_file_actions_addopen(&actions, 2, errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), env.data());
-  posix_spawn_file_actions_destroy(&actions);
-  return pid;
-}
-
-int wait_for(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-int run(const std::vector<std::string>& arguments, const fs::path& log,
-        const std::vector<std::string>& extra = {}) {
-  return wait_for(start(arguments, log, extra));
-}
-
-// A folder of `count` images named prefix0.png ... (the bundled images under several names).
-fs::path image_folder(const fs::path& root, const std::string& prefix, int count) {
-  const fs::path folder = root / prefix;
-  fs::create_directories(folder);
-  const char* const sequences[] = {"graf", "boat", "leuven"};
-  for (int i = 0; i < count; ++i)
-    fs::copy_file(aief::test::sample_path(sequences[i % 3], i % 2 ? "img2.png" : "img1.png"),
-                  folder / (prefix + std::to_string(i) + ".png"));
-  return folder;
-}
+using namespace aief::test::lock;  // start, run, wait_for, text_of, image_folder, How
 
 std::set<std::string> names_in(const fs::path& h5) {
   const aief::io::Hdf5File file(h5.string(), aief::io::Hdf5File::Mode::read);
@@ -202,15 +147,16 @@ TEST_P(EveryWriter, WithoutLocksOnTheFileSystemIsRefusedNamingTheFileAndTheSetti
   const fs::path output = temp.path() / "out.h5", log = temp.path() / "w.log";
   const std::vector<std::string> command = GetParam().command(temp.path(), output);
   const std::string shim = std::string("LD_PRELOAD=") + AIEF_NO_LOCKS_SHIM;
-  EXPECT_EQ(run(command, log, {shim}), 1);
+  EXPECT_EQ(run(command, log, How{{shim}}), 1);
   const std::string said = text_of(log.string() + ".err");
   EXPECT_NE(said.find("no lock can be had"), std::string::npos) << said;
-  EXPECT_NE(said.find("'" + output.string() + "'"), std::string::npos) << said;
+  const std::string quoted = std::string("'").append(output.string()).append("'");
+  EXPECT_NE(said.find(quoted), std::string::npos) << said;
   EXPECT_NE(said.find("AIEF_FILE_LOCKING=FALSE"), std::string::npos) << said;
   EXPECT_NE(said.find("HDF5_USE_FILE_LOCKING"), std::string::npos) << said;
   EXPECT_FALSE(fs::exists(output));
   // The setting writes without the lock (the user knows no other run writes the file).
-  EXPECT_EQ(run(command, log, {shim, "AIEF_FILE_LOCKING=FALSE"}), 0)
+  EXPECT_EQ(run(command, log, How{{shim, "AIEF_FILE_LOCKING=FALSE"}}), 0)
       << text_of(log.string() + ".err");
   EXPECT_TRUE(fs::exists(output));
 }
@@ -220,6 +166,113 @@ INSTANTIATE_TEST_SUITE_P(OutputLock, EveryWriter,
                                            Writer{"merge", merge_command},
                                            Writer{"match_pairs", match_command}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// A features file, a matches file of it and their pairs, written before a writer takes the lock.
+struct ReadInputs {
+  fs::path features, matches, pairs;
+};
+ReadInputs read_inputs(const fs::path& root) {
+  ReadInputs inputs{root / "f.h5", root / "mt.h5", root / "pairs.txt"};
+  const fs::path log = root / "made.log";
+  EXPECT_EQ(run(batch_into(image_folder(root, "r", 3), inputs.features), log), 0)
+      << text_of(log.string() + ".err");
+  std::ofstream(inputs.pairs) << "r0.png r1.png\n";
+  EXPECT_EQ(run({"match", "--pairs", inputs.pairs.string(), "--features-file",
+                 inputs.features.string(), "-o", inputs.matches.string()},
+                log),
+            0)
+      << text_of(log.string() + ".err");
+  return inputs;
+}
+
+TEST(OutputLock, EveryReaderRefusesAFileItsWriterHoldsWithLibhdf5sLockOff) {
+  // Before, with HDF5_USE_FILE_LOCKING=FALSE: `merge -o m.h5 rw.h5` during a batch into rw.h5
+  // said "65 images merged" and colmap "65 images", both exit 0, as if the file were whole.
+  const TempFolder temp("aief_output_lock");
+  const ReadInputs in = read_inputs(temp.path());
+  const fs::path log = temp.path() / "r.log";
+  const std::vector<std::vector<std::string>> readers = {
+      {"merge", "-o", temp.file("m.h5"), in.features.string()},
+      {"colmap", "--features-file", in.features.string(), "--matches", in.matches.string(),
+       "--pairs", in.pairs.string(), "-o", temp.file("c.db")},
+      {"match", "--pairs", in.pairs.string(), "--features-file", in.features.string(), "-o",
+       temp.file("m2.h5")}};
+  {
+    const aief::io::OutputLock writer(in.features.string());  // a writer at work, here
+    for (const std::vector<std::string>& reader : readers) {
+      EXPECT_EQ(run(reader, log), 1) << reader[0] << ": " << text_of(log.string() + ".err");
+      const std::string said = text_of(log.string() + ".err");
+      EXPECT_NE(said.find("cannot open '" + in.features.string() + "': it is locked by a writer"),
+                std::string::npos)
+          << said;
+      EXPECT_NE(said.find("process " + std::to_string(getpid())), std::string::npos) << said;
+    }
+    EXPECT_FALSE(fs::exists(temp.file("m.h5")));
+    EXPECT_FALSE(fs::exists(temp.file("m2.h5")));
+  }
+  for (const std::vector<std::string>& reader : readers)
+    EXPECT_EQ(run(reader, log), 0) << reader[0] << ": " << text_of(log.string() + ".err");
+  EXPECT_EQ(names_in(temp.file("m.h5")).size(), 3u);
+}
+
+TEST(OutputLock, AWriterWaitsWhileAReaderReadsWithLibhdf5sLockOff) {
+  // Before: a batch into a file merge was reading wrote at once, under the reader's feet.
+  const TempFolder temp("aief_output_lock");
+  const fs::path images = image_folder(temp.path(), "w", 2), h5 = temp.path() / "f.h5";
+  const fs::path log = temp.path() / "w.log";
+  ASSERT_EQ(run(batch_into(images, h5), log), 0) << text_of(log.string() + ".err");
+  fs::copy_file(images / "w0.png", images / "w9.png");  // something to write
+  pid_t writer = -1;
+  {
+    const aief::io::Hdf5File reading(h5.string(), aief::io::Hdf5File::Mode::read);
+    writer = start(batch_into(images, h5), log);
+    bool ended = false;
+    while (!ended && text_of(log.string() + ".err").find("waiting while another process reads") ==
+                         std::string::npos) {
+      int status = 0;
+      ended = waitpid(writer, &status, WNOHANG) == writer;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_FALSE(ended) << "the writer did not wait: " << text_of(log.string() + ".err");
+    EXPECT_EQ(reading.feature_names().size(), 2u);
+  }
+  EXPECT_EQ(wait_for(writer), 0) << text_of(log.string() + ".err");
+  EXPECT_EQ(names_in(h5).size(), 3u);
+  EXPECT_FALSE(fs::exists(aief::io::lock_path_of(h5.string())));
+}
+
+TEST(OutputLock, WithoutLocksAReaderSaysSoAndNamesLibhdf5sSettingNeverDamaged) {
+  // NFS without its lock daemon answers ENOLCK: libhdf5's own lock fails. Before: "it is damaged
+  // or cut short (libhdf5: No locks available); ... move it away and run that command again,
+  // which writes it anew", of a good file; the writer named only AIEF_FILE_LOCKING=FALSE, which
+  // then failed "cannot create 'w.h5': No locks available".
+  const TempFolder temp("aief_output_lock");
+  const ReadInputs in = read_inputs(temp.path());
+  const fs::path log = temp.path() / "r.log";
+  const std::string shim = std::string("LD_PRELOAD=") + AIEF_NO_LOCKS_SHIM;
+  How without_locks{{shim, "AIEF_NO_LOCKS_ERRNO=ENOLCK"}, true};
+  const std::vector<std::string> merge = {"merge", "-o", temp.file("m.h5"), in.features.string()};
+  EXPECT_EQ(run(merge, log, without_locks), 1);
+  std::string said = text_of(log.string() + ".err");
+  EXPECT_EQ(said.find("damaged"), std::string::npos) << said;
+  EXPECT_NE(said.find("no lock"), std::string::npos) << said;
+  EXPECT_NE(said.find("AIEF_FILE_LOCKING=FALSE and HDF5_USE_FILE_LOCKING=FALSE"), std::string::npos)
+      << said;
+  // Following that advice in part, aief's lock off: libhdf5's own lock on the file read fails.
+  without_locks.extra.push_back("AIEF_FILE_LOCKING=FALSE");
+  const std::vector<std::string> match = {
+      "match", "--pairs",         in.pairs.string(), "--features-file", in.features.string(),
+      "-o",    temp.file("m2.h5")};
+  EXPECT_EQ(run(match, log, without_locks), 1);
+  said = text_of(log.string() + ".err");
+  EXPECT_EQ(said.find("damaged"), std::string::npos) << said;
+  EXPECT_NE(said.find("libhdf5 can have no lock on it"), std::string::npos) << said;
+  EXPECT_NE(said.find("Set HDF5_USE_FILE_LOCKING=FALSE"), std::string::npos) << said;
+  // The whole advice, followed, works.
+  without_locks.extra.push_back("HDF5_USE_FILE_LOCKING=FALSE");
+  EXPECT_EQ(run(match, log, without_locks), 0) << text_of(log.string() + ".err");
+  EXPECT_EQ(run(merge, log, without_locks), 0) << text_of(log.string() + ".err");
+}
 
 TEST(OutputLock, OneProcessOpeningAFileTwiceForWritingIsRefusedNotDeadlocked) {
   const TempFolder temp("aief_output_lock");

@@ -160,6 +160,7 @@ std::vector<BatchInput> batch_inputs(const BatchSettings& settings) {
 BatchSummary run_batch(const BatchSettings& settings) {
   const std::vector<BatchInput> inputs = batch_inputs(settings);
   const std::unique_ptr<BatchSink> sink = make_batch_sink(settings);
+  sink->refuse_mixed_descriptors(inputs);
 
   BatchSummary summary;
   summary.images = static_cast<int>(inputs.size());

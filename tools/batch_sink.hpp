@@ -54,6 +54,11 @@ class BatchSink {
     (void)inputs;
     return {};
   }
+  // Throws aief::Error, before anything is written, when the output holds entries this run keeps
+  // (none of `inputs`: another shard's images, or images gone from the folder) whose descriptor
+  // is not this run's: one file would then hold descriptors that never match each other, which
+  // merge, match and colmap refuse.
+  virtual void refuse_mixed_descriptors(const std::vector<BatchInput>& inputs) { (void)inputs; }
   // Of `written` outputs written, how many the disk holds (a file that batches its writes loses
   // those after its last flush when the disk fills at a flush).
   virtual int written_on_disk(int written) const { return written; }

@@ -3,6 +3,7 @@
 #include <string_view>
 #include <unordered_set>
 
+#include "aief/options.hpp"
 #include "io/feature_formats.hpp"
 #include "io/option_record.hpp"
 #include "tools/batch_sink.hpp"
@@ -17,7 +18,9 @@ namespace {
 class CollectionSink : public BatchSink {
  public:
   CollectionSink(const BatchSettings& settings, const io::FeatureFormat& format)
-      : options_(settings.options), file_(format.open(settings.output_dir)) {}
+      : options_(settings.options),
+        output_(settings.output_dir),
+        file_(format.open(settings.output_dir)) {}
 
   Existing existing(const BatchInput& input, const io::SourceRecord& source) override {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -59,6 +62,25 @@ class CollectionSink : public BatchSink {
     return others;
   }
 
+  void refuse_mixed_descriptors(const std::vector<BatchInput>& inputs) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::unordered_set<std::string_view> taken;
+    for (const BatchInput& input : inputs) taken.insert(input.name);
+    for (const std::string& name : file_->names()) {
+      if (taken.count(name)) continue;  // written again by this run, with its descriptor
+      const DescriptorKind kept = io::recorded_descriptor(file_->option_record(name));
+      if (kept == options_.descriptor) continue;
+      throw Error("'" + output_ + "' holds " + std::string(to_string(kept)) +
+                  " descriptors (image '" + name +
+                  "', none of this run's images: another shard's, or gone from the folder) and "
+                  "this run extracts " +
+                  std::string(to_string(options_.descriptor)) +
+                  " descriptors: one file would hold both, which never match each other (merge "
+                  "refuses such files); write to another file, or extract with --descriptor " +
+                  std::string(to_string(kept)) + "; nothing was written");
+    }
+  }
+
   int written_on_disk(int) const override {
     const std::lock_guard<std::mutex> lock(mutex_);
     return file_->writes_on_disk();
@@ -77,6 +99,7 @@ class CollectionSink : public BatchSink {
  private:
   mutable std::mutex mutex_;
   ExtractorOptions options_;
+  std::string output_;
   std::unique_ptr<io::FeatureCollectionFile> file_;
 };
 

@@ -1,4 +1,5 @@
 """The CLI's feature files read back by independent readers: h5py (hloc layout), numpy (npz)."""
+import os
 import shutil
 import subprocess
 
@@ -161,3 +162,21 @@ def test_file_errors_name_the_file(cli, error_case_files, args, message):
     result = subprocess.run([cli, *[a.format(tmp=error_case_files) for a in args]], capture_output=True, text=True)
     assert result.returncode == 1, result.stderr
     assert message in result.stderr
+
+
+def test_a_features_file_open_in_python_is_refused_by_readers_with_libhdf5s_lock_off(cli, tmp_path, image_folder):
+    """aief.FeaturesFile holds aief's own lock while open: `aief merge` reading that file with
+    libhdf5's lock off (HDF5_USE_FILE_LOCKING=FALSE, as on Lustre) refuses it, naming the writer,
+    and reads it once it is closed. Before: merged whatever the writer had flushed, exit 0."""
+    path = tmp_path / "f.h5"
+    env = dict(os.environ, HDF5_USE_FILE_LOCKING="FALSE")
+    merge = [cli, "merge", "-o", str(tmp_path / "m.h5"), str(path)]
+    subprocess.run([cli, "extract", "--batch", str(image_folder), "-o", str(path), "--format", "h5"],
+                   check=True, env=env, capture_output=True)
+    with aief.FeaturesFile(path):
+        refused = subprocess.run(merge, env=env, capture_output=True, text=True)
+        assert refused.returncode == 1, refused.stderr
+        assert f"cannot open '{path}': it is locked by a writer, process {os.getpid()}" in refused.stderr
+        assert not (tmp_path / "m.h5").exists()
+    merged = subprocess.run(merge, env=env, capture_output=True, text=True)
+    assert merged.returncode == 0, merged.stderr
