@@ -32,6 +32,7 @@ Args::Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& 
     for (const FlagSpec& flag : spec)
       if (flag.name == name || (!flag.alias.empty() && flag.alias == name)) match = &flag;
     if (!match) throw UsageError("unknown option " + name);
+    refuse_a_second_time(match->name, name);
     spellings_.push_back(name);
     if (!match->takes_value) {
       if (has_inline) throw UsageError(name + " takes no value");
@@ -44,6 +45,16 @@ Args::Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& 
       if (i + 1 >= tokens.size()) throw UsageError(name + " expects a value");
       values_.emplace_back(match->name, tokens[++i]);
     }
+  }
+}
+
+void Args::refuse_a_second_time(const std::string& flag, const std::string& spelling) const {
+  for (std::size_t i = 0; i < values_.size(); ++i) {
+    if (values_[i].first != flag) continue;
+    const std::string& before = spellings_[i];
+    if (before == spelling) throw UsageError(spelling + " is given twice: give it once");
+    throw UsageError(before + " and " + spelling +
+                     " are two spellings of one option, both given: give it once");
   }
 }
 
@@ -67,10 +78,9 @@ std::string Args::spelled(const std::string& name) const {
 }
 
 std::optional<std::string> Args::get(const std::string& name) const {
-  std::optional<std::string> result;
   for (const auto& [flag, value] : values_)
-    if (flag == name) result = value;  // the last one wins
-  return result;
+    if (flag == name) return value;  // given once at most (refuse_a_second_time)
+  return std::nullopt;
 }
 
 int Args::get_int(const std::string& name, int fallback, int min, int max) const {

@@ -26,7 +26,8 @@ struct FlagSpec {
 
 class Args {
  public:
-  // Throws UsageError for an unknown flag or a flag missing its value.
+  // Throws UsageError for an unknown flag, a flag missing its value, or a flag given twice (by
+  // one spelling or by its name and its alias), naming both: the last is not silently taken.
   Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& spec);
 
   bool has(const std::string& name) const;
@@ -34,13 +35,16 @@ class Args {
   const std::vector<std::string>& positionals() const { return positionals_; }
   // The flags given, by their names (aliases as their flag), in command-line order.
   std::vector<std::string> flags_given() const;
-  // How the command line spelled the flag `name` the last time it gave it (its name or its
-  // alias): what messages call it. `name` itself when not given.
+  // How the command line spelled the flag `name` (its name or its alias): what messages call it.
+  // `name` itself when not given.
   std::string spelled(const std::string& name) const;
 
   int get_int(const std::string& name, int fallback, int min, int max) const;
 
  private:
+  // Throws UsageError when `flag` (a spec's name) was given before, naming both spellings.
+  void refuse_a_second_time(const std::string& flag, const std::string& spelling) const;
+
   std::vector<std::pair<std::string, std::string>> values_;  // flag name, value ("" for switches)
   std::vector<std::string> spellings_;                       // as given, beside values_
   std::vector<std::string> positionals_;
