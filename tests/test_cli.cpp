@@ -153,6 +153,10 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"merge -o m.h5 --output n.h5 s.h5", "-o and --output are two spellings"},
       {"colmap --features f.h5 --features-file g.h5 --matches m.h5 -o c.db",
        "--features and --features-file are two spellings"},
+      // A smoothing that runs another value's passes (the same bytes, another record).
+      {"extract " + image + " --detection-smoothing 0.5",
+       "detection_smoothing 0.5 runs 1 pass of the 5x5 binomial, as 1 does"},
+      {"extract " + image + " --detection-smoothing 1e-320", "as 1 does"},
   };
   for (const Case& c : cases) {
     const CliResult r = run(c.args);

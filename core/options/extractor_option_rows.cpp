@@ -290,8 +290,9 @@ constexpr OptionRow kRows[] = {
     {AIEF_OPTION_ROW(detection_smoothing), .cli_flag = "--detection-smoothing",
      .cli_value = "SIGMA", .python_keyword = "detection_smoothing",
      .yaml_key = "ORBextractor.detectionSmoothing",
-     .help = "FAST detects on each level blurred to about SIGMA px (max(1, "
-             "round(SIGMA^2)) passes of the 5x5 binomial, sigma 1 each); "
+     .help = "FAST detects on each level blurred by round(SIGMA^2) passes of the 5x5 binomial "
+             "(sigma 1 each): SIGMA 1, 1.5, 1.8, 2, 2.3, 2.5, 2.7, 2.9 or 3, "
+             "one value for each number of passes; "
              "orientation and descriptors read the level as it is; 0: off",
      .low = 0, .high = 3,
      .per_mode = {.aief = "default",

@@ -13,6 +13,7 @@
 
 #include "aief/error.hpp"
 #include "core/options/acts_with.hpp"
+#include "core/options/detection_smoothing_values.hpp"
 #include "core/options/option_access.hpp"
 #include "core/options/option_names.hpp"
 
@@ -345,6 +346,28 @@ ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use)
 namespace aief {
 
 // Generated from the table: each row's range and names; the rules that span fields follow.
+namespace {
+
+// Each pass count of the smoothing has one value (core/options/detection_smoothing_values.hpp):
+// another sigma running the same passes would record another option for the same bytes.
+void check_detection_smoothing(double sigma) {
+  const int passes = detection_smoothing_passes(sigma);
+  if (passes == 0 || sigma == detection_smoothing_of_passes(passes)) return;
+  std::string accepted;
+  const double highest = option_table::row("detection_smoothing").high;
+  for (int p = 1; detection_smoothing_of_passes(p) <= highest; ++p)
+    accepted += (p > 1 ? ", " : "") + option_table::number_text(detection_smoothing_of_passes(p));
+  throw Error("detection_smoothing " + option_table::number_text(sigma) + " runs " +
+              std::to_string(passes) + (passes == 1 ? " pass" : " passes") +
+              " of the 5x5 binomial, as " +
+              option_table::number_text(detection_smoothing_of_passes(passes)) +
+              " does: give that (one value for each number of passes, so that equal option "
+              "records mean equal outputs); the values are 0 (none), " +
+              accepted);
+}
+
+}  // namespace
+
 void ExtractorOptions::validate() const {
   option_table::check_fields(*this);
   // The pyramid computes in float (ORB-SLAM2's arithmetic, core/level/level_geometry.cpp): check
@@ -361,6 +384,7 @@ void ExtractorOptions::validate() const {
   if (fast_min_threshold > fast_threshold)
     throw Error("fast_min_threshold must be in [1, " + std::to_string(fast_threshold) +
                 "] (at most fast_threshold), got " + std::to_string(fast_min_threshold));
+  check_detection_smoothing(detection_smoothing);
 }
 
 // Each row's value for the mode, in table order, over `base`.
