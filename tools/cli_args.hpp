@@ -18,11 +18,21 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A flag of a command, and its line in the command's --help: the one place a command's own flag
+// is written (the option rows' flags come from their rows: flags_of, extractor_flags).
 struct FlagSpec {
-  std::string name;   // "--features"
+  std::string name;   // "--output"
   std::string alias;  // "-o", an earlier spelling ("--threshold"), or empty
   bool takes_value = true;
+  std::string value = {};  // --help's placeholder: "FILE"
+  // --help's text: '\n' starts a line, a line starting with two spaces is never broken; empty:
+  // --help lists the flag elsewhere.
+  std::string help = {};
 };
+
+// --help's lines of the flags with help, in order: "  -o, --output FILE     text", the text
+// wrapped at 100 columns from column 24, as the option rows' lines are.
+std::string help_of(const std::vector<FlagSpec>& flags);
 
 class Args {
  public:
