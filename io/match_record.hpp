@@ -1,6 +1,6 @@
 #pragma once
 // The record of a pair group in matches.h5 (aief match --pairs): the matcher options it was
-// matched with (their option record, core/options/matching_option_rows.json) and what it matched,
+// matched with (their option record, core/options/matching_option_rows.cpp) and what it matched,
 // each image's features as the features file records them (the group's option record and source,
 // io/hdf5_file.hpp). A resumed run keeps a pair only when both are the same, and redoes it
 // otherwise, as extract --batch redoes an image whose options or file changed: matches of

@@ -23,12 +23,11 @@ void bind_batch(py::module_& m) {
         return out;
       },
       py::arg("folder_or_list"),
-      "The images `aief extract --batch FOLDER_OR_LIST` takes, as (path, name) pairs sorted by "
-      "name: a folder's "
-      "image files recursively (folder symlinks followed, cycles not; broken links and other "
-      "non-files listed so "
-      "that reading them reports them), or a list file's lines. The name is the group / output "
-      "key.");
+      "The images `aief extract --batch FOLDER_OR_LIST` takes, "
+      "as (path, name) pairs sorted by name: "
+      "a folder's image files recursively (folder symlinks followed, cycles not; "
+      "broken links and other non-files listed so that reading them reports them), "
+      "or a list file's lines. The name is the group / output key.");
 }
 
 }  // namespace aief::python

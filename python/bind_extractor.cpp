@@ -73,11 +73,13 @@ std::string extractor_doc() {
   const OptionCall call = extractor_call();
   keep_signature(call);
   return call.signature() +
-         "\n\nORB features with the AIEF entropy mask: a mode sets its options first, the keywords "
-         "given override them, and a keyword the mode cannot honour is refused (as aief's CLI "
-         "does). None keeps the mode's value. The keys of Extractor.options are keywords too, so "
-         "Extractor(**extractor.options) makes the same extractor. A wrong type raises TypeError, "
-         "a wrong value aief.Error.\n\nKeywords:\n" +
+         "\n\nORB features with the AIEF entropy mask: "
+         "a mode sets its options first, the keywords given override them, "
+         "and a keyword the mode cannot honour is refused (as aief's CLI does). "
+         "None keeps the mode's value. "
+         "The keys of Extractor.options are keywords too, "
+         "so Extractor(**extractor.options) makes the same extractor. "
+         "A wrong type raises TypeError, a wrong value aief.Error.\n\nKeywords:\n" +
          keywords_doc<ExtractorOptions>();
 }
 
@@ -97,8 +99,9 @@ void bind_extractor(py::module_& m) {
                              "N x 32 uint8, 256-bit descriptors of the kind `descriptor` names")
       .def_property_readonly(
           "descriptor", [](const PyFeatures& f) { return std::string(to_string(f.descriptor)); },
-          "which descriptor `descriptors` holds: 'rbrief' or 'box' (the extractor's descriptor "
-          "option); aief.match refuses two Features of different kinds")
+          "which descriptor `descriptors` holds: "
+          "'rbrief' or 'box' (the extractor's descriptor option); "
+          "aief.match refuses two Features of different kinds")
       .def_property_readonly("info", field<&PyFeatures::info>,
                              "how the entropy mask went (threshold used, blocks kept)")
       .def_property_readonly("image_width", field<&PyFeatures::image_width>,
@@ -124,42 +127,41 @@ void bind_extractor(py::module_& m) {
   py::class_<PyExtractor>(m, "Extractor", doc.c_str())
       .def(py::init(&extractor_from))
       .def("extract", &PyExtractor::extract, py::arg("image"), py::arg("mask") = py::none(),
-           "Features of a 2-D uint8 gray image (any strides; not copied when its rows are "
-           "contiguous) or an "
-           "H x W x 3 BGR / H x W x 4 BGRA uint8 image (converted to gray as the aief CLI converts "
-           "files). "
-           "mask: None, or a 2-D uint8 / bool array of the image's height and width, non-zero "
-           "where keypoints "
-           "may be; it acts before the distribution, so the n_features budget is filled inside it "
-           "(docs/opencv.md). The GIL is released meanwhile.")
-      .def(
-          "describe", &PyExtractor::describe, py::arg("image"), py::arg("keypoints"),
-          py::arg("octave") = py::none(), py::arg("size") = py::none(),
-          py::arg("angle") = py::none(), py::arg("response") = py::none(),
-          py::arg("keep_angles") = false,
-          "Descriptors of given keypoints, computed as for detected ones: (features, kept). "
-          "keypoints: aief "
-          "Features (e.g. from extract(); describing them gives back their bytes) or an N x 2 "
-          "array of (x, y) "
-          "level-0 pixels, with optional per-keypoint octave (pyramid level, default 0), size "
-          "(default 31), "
-          "angle and response. The angle is recomputed (intensity centroid) unless keep_angles "
-          "(then each is used as given, any finite number of degrees, as cv2.ORB.compute uses "
-          "it; with an N x 2 array, keep_angles needs angle=). Keypoints closer than 19 pixels to "
-          "their level's "
-          "edge are "
-          "removed; kept: int32 indices of the kept keypoints in the given ones. An octave outside "
-          "[0, levels), or not an integer, raises aief.Error.")
+           "Features of a 2-D uint8 gray image "
+           "(any strides; not copied when its rows are contiguous) "
+           "or an H x W x 3 BGR / H x W x 4 BGRA uint8 image "
+           "(converted to gray as the aief CLI converts files). "
+           "mask: None, or a 2-D uint8 / bool array of the image's height and width, "
+           "non-zero where keypoints may be; "
+           "it acts before the distribution, "
+           "so the n_features budget is filled inside it (docs/opencv.md). "
+           "The GIL is released meanwhile.")
+      .def("describe", &PyExtractor::describe, py::arg("image"), py::arg("keypoints"),
+           py::arg("octave") = py::none(), py::arg("size") = py::none(),
+           py::arg("angle") = py::none(), py::arg("response") = py::none(),
+           py::arg("keep_angles") = false,
+           "Descriptors of given keypoints, computed as for detected ones: (features, kept). "
+           "keypoints: aief Features "
+           "(e.g. from extract(); describing them gives back their bytes) "
+           "or an N x 2 array of (x, y) level-0 pixels, "
+           "with optional per-keypoint octave (pyramid level, default 0), size (default 31), "
+           "angle and response. "
+           "The angle is recomputed (intensity centroid) unless keep_angles "
+           "(then each is used as given, any finite number of degrees, "
+           "as cv2.ORB.compute uses it; with an N x 2 array, keep_angles needs angle=). "
+           "Keypoints closer than 19 pixels to their level's edge are removed; "
+           "kept: int32 indices of the kept keypoints in the given ones. "
+           "An octave outside [0, levels), or not an integer, raises aief.Error.")
       .def_property_readonly(
           "options", [](const PyExtractor& e) { return options_dict(e.options()); },
           "every option in effect, as a dict (the mode's values filled in)")
       .def_property_readonly(
           "option_record", [](const PyExtractor& e) { return io::option_record_json(e.options()); },
-          "the options as aief's output files record them (every field, one line of JSON): what "
-          "the Dask recipe writes into its HDF5 groups")
+          "the options as aief's output files record them (every field, one line of JSON): "
+          "what the Dask recipe writes into its HDF5 groups")
       .def_property_readonly("kernel_name", &PyExtractor::kernel_name,
-                             "the SIMD kernel set this extractor runs (e.g. avx2), picked for this "
-                             "CPU or by `kernels`");
+                             "the SIMD kernel set this extractor runs (e.g. avx2), "
+                             "picked for this CPU or by `kernels`");
   m.def(
       "read_image",
       [](const py::object& path_given) {
@@ -179,16 +181,18 @@ void bind_extractor(py::module_& m) {
         return out;
       },
       py::arg("path"),
-      "An image file as the aief CLI reads it: 2-D uint8 gray (colour by OpenCV's BGR2GRAY, 16-bit "
-      "divided by 256); a UserWarning where the CLI warns (a JPEG cut short, its rest grey)");
+      "An image file as the aief CLI reads it: "
+      "2-D uint8 gray (colour by OpenCV's BGR2GRAY, 16-bit divided by 256); "
+      "a UserWarning where the CLI warns (a JPEG cut short, its rest grey)");
   m.def(
       "option_changes",
       [](const std::optional<std::string>& record, const PyExtractor& extractor) {
         return io::option_changes(record, extractor.options());
       },
       py::arg("record"), py::arg("extractor"),
-      "What an output whose option record is `record` (None: it has none) does not share with "
-      "`extractor`'s options, as aief extract --batch reports it ('n_features 500 -> 3000'); "
+      "What an output whose option record is `record` (None: it has none) "
+      "does not share with `extractor`'s options, "
+      "as aief extract --batch reports it ('n_features 500 -> 3000'); "
       "empty when the extractor would write the same output, so a resume keeps it");
   m.def(
       "default_options", [] { return options_dict(ExtractorOptions{}); },
@@ -241,12 +245,12 @@ void bind_testing(py::module_& m) {
         out["SweepPoint"] = record_fields<SweepPoint>();
         return out;
       },
-      "Test hook: each result record's keys and types, from its one field list (for the stub "
-      "test)");
+      "Test hook: each result record's keys and types, "
+      "from its one field list (for the stub test)");
   m.def("_arm_extraction_rendezvous", &arm_extraction_rendezvous, py::arg("parties"),
         py::arg("timeout_s"),
-        "Test hook: every extraction waits, GIL released, until `parties` are inside at once (0 "
-        "disarms)");
+        "Test hook: every extraction waits, GIL released, "
+        "until `parties` are inside at once (0 disarms)");
   m.def(
       "_image_data_address",
       [](const py::object& image) {
@@ -254,8 +258,8 @@ void bind_testing(py::module_& m) {
         GrayImage buffer;
         return reinterpret_cast<std::uintptr_t>(input.gray(buffer).data);
       },
-      "Test hook: the address of the gray pixels extract() would read (the array's own when not "
-      "copied)");
+      "Test hook: the address of the gray pixels extract() would read "
+      "(the array's own when not copied)");
 }
 
 }  // namespace aief::python

@@ -154,27 +154,30 @@ namespace aief::python {
 void bind_features_file(py::module_& m) {
   py::class_<FeaturesFile>(
       m, "FeaturesFile",
-      "An hloc features file (HDF5) written by the engine's writer, as aief extract --batch "
-      "--format h5 writes it: opened for reading and writing (created when missing). A failed "
-      "write (a full disk) raises aief.Error and keeps every group complete before it; use it "
-      "as a context manager, or call close() to know that the writes are on disk")
+      "An hloc features file (HDF5) written by the engine's writer, "
+      "as aief extract --batch --format h5 writes it: "
+      "opened for reading and writing (created when missing). "
+      "A failed write (a full disk) raises aief.Error and keeps every group complete before it; "
+      "use it as a context manager, or call close() to know that the writes are on disk")
       .def(py::init<const py::object&>(), py::arg("path"))
       .def("is_current", &FeaturesFile::is_current, py::arg("name"), py::arg("source"),
            py::arg("extractor"),
            "Whether `name` is a complete group written from the image file `source` describes "
-           "((size in bytes, modification time in ns)) with options that give what `extractor` "
-           "would (the resume rule of aief extract --batch)")
+           "((size in bytes, modification time in ns)) "
+           "with options that give what `extractor` would "
+           "(the resume rule of aief extract --batch)")
       .def("write", &FeaturesFile::write, py::arg("name"), py::arg("features"), py::arg("source"),
            py::arg("extractor"),
-           "Writes the group `name` (replacing one of that name) with the features, the source "
-           "record and `extractor`'s option record")
+           "Writes the group `name` (replacing one of that name) with the features, "
+           "the source record and `extractor`'s option record")
       .def("remove", &FeaturesFile::remove, py::arg("name"),
            "Removes the group `name`, if there is one")
       .def_property_readonly(
           "writes_on_disk", &FeaturesFile::writes_on_disk,
-          "How many of this object's writes the file on disk holds: after a failed write, those "
-          "before it that reached the disk (the writes since the last flush are lost when the "
-          "disk fills at a flush, as on a file system without fallocate)")
+          "How many of this object's writes the file on disk holds: "
+          "after a failed write, those before it that reached the disk "
+          "(the writes since the last flush are lost when the disk fills at a flush, "
+          "as on a file system without fallocate)")
       .def("close", &FeaturesFile::close,
            "Closes the file, raising aief.Error when its last writes could not be stored")
       .def("__enter__", [](py::object self) { return self; })
@@ -194,8 +197,8 @@ void bind_features_file(py::module_& m) {
       .def("__reduce__",
            [](const py::object&) -> py::object {
              throw Error(
-                 "an aief.FeaturesFile (an open file) cannot be pickled or copied: send its "
-                 "path and open it where it is needed");
+                 "an aief.FeaturesFile (an open file) cannot be pickled or copied: "
+                 "send its path and open it where it is needed");
            })
       .def("__reduce_ex__", [](const py::object& self, int) { return self.attr("__reduce__")(); });
 }

@@ -94,12 +94,12 @@ std::string documented(const OptionCall& call, const std::string& text,
 void bind_matching(py::module_& m) {
   py::options signatures_from_the_rows;  // pybind11's own would say (*args, **kwargs)
   signatures_from_the_rows.disable_function_signatures();
-  static const std::string match_doc = documented(
-      match_call(),
-      "Hamming matches of descriptors a (N x 32 uint8, or Features) into b: an M x 3 int32 array "
-      "of (query, train, distance), sorted by query; ratio goes with matcher='ratio' only, as "
-      "aief match --ratio.",
-      keywords_doc<MatchOptions>());
+  static const std::string match_doc =
+      documented(match_call(),
+                 "Hamming matches of descriptors a (N x 32 uint8, or Features) into b: "
+                 "an M x 3 int32 array of (query, train, distance), sorted by query; "
+                 "ratio goes with matcher='ratio' only, as aief match --ratio.",
+                 keywords_doc<MatchOptions>());
   m.def(
       "match",
       [](const py::args& args, const py::kwargs& kwargs) {
@@ -121,11 +121,12 @@ void bind_matching(py::module_& m) {
       },
       match_doc.c_str());
 
-  static const std::string find_homography_doc = documented(
-      find_homography_call(),
-      "RANSAC homography src -> dst (N x 2 points each): (H 3 x 3 float64, or None when there is "
-      "no model, N uint8 inlier mask). Fixed seed: the same input, the same answer.",
-      keywords_doc<RansacOptions>());
+  static const std::string find_homography_doc =
+      documented(find_homography_call(),
+                 "RANSAC homography src -> dst (N x 2 points each): "
+                 "(H 3 x 3 float64, or None when there is no model, N uint8 inlier mask). "
+                 "Fixed seed: the same input, the same answer.",
+                 keywords_doc<RansacOptions>());
   m.def(
       "find_homography",
       [](const py::args& args, const py::kwargs& kwargs) {
@@ -157,8 +158,9 @@ void bind_matching(py::module_& m) {
             for (const SweepPoint& p : r.curve) rows.append(record_dict(p));
             return rows;
           },
-          "one dict per threshold tried: threshold, kept_blocks (a), kept_blocks_b, keypoints_a, "
-          "keypoints_b, putative, inliers, cmr (inliers / putative), eligible")
+          "one dict per threshold tried: "
+          "threshold, kept_blocks (a), kept_blocks_b, keypoints_a, keypoints_b, putative, "
+          "inliers, cmr (inliers / putative), eligible")
       .def_property_readonly(
           "features_a", [](const AdaptResult& r) { return to_python(r.features_a); },
           "Features of image_a at the chosen threshold")
@@ -171,15 +173,15 @@ void bind_matching(py::module_& m) {
       .def_property_readonly(
           "homography",
           [](const AdaptResult& r) { return homography_tuple(r.homography, r.matches.size()); },
-          "(H 3 x 3 float64 or None, M uint8 inlier mask over matches), as find_homography() "
-          "returns");
+          "(H 3 x 3 float64 or None, M uint8 inlier mask over matches), "
+          "as find_homography() returns");
 
-  static const std::string adapt_doc = documented(
-      adapt_call(),
-      "The paper's sweep of F over a pair (images as for Extractor.extract), with the extractor's "
-      "options (default options when None): the chosen threshold, the curve, features and "
-      "matches at it.",
-      keywords_doc<SweepOptions>() + keywords_doc<MatchOptions>());
+  static const std::string adapt_doc =
+      documented(adapt_call(),
+                 "The paper's sweep of F over a pair (images as for Extractor.extract), "
+                 "with the extractor's options (default options when None): "
+                 "the chosen threshold, the curve, features and matches at it.",
+                 keywords_doc<SweepOptions>() + keywords_doc<MatchOptions>());
   m.def(
       "adapt",
       [](const py::args& args, const py::kwargs& kwargs) {

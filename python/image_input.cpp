@@ -31,9 +31,9 @@ ImageInput::ImageInput(const py::object& image, long long max_pixels) {
   if (PyObject_IsInstance(image.ptr(), masked_array) == 1 &&
       py::module_::import("numpy.ma").attr("is_masked")(image).cast<bool>())
     throw Error(
-        "image is a numpy.ma.MaskedArray with masked pixels, which extract would read as they are: "
-        "pass "
-        "image.data to use them, or image.filled(value) to replace them");
+        "image is a numpy.ma.MaskedArray with masked pixels, "
+        "which extract would read as they are: "
+        "pass image.data to use them, or image.filled(value) to replace them");
   array_ = py::reinterpret_borrow<py::array>(image);
   const py::dtype dtype = array_.dtype();
   if (dtype.kind() != 'u' || dtype.itemsize() != 1)

@@ -8,8 +8,8 @@
 PYBIND11_MODULE(_aief, m) {
   namespace py = pybind11;
   m.doc() =
-      "AIEF ORB features (adaptive information entropy): extraction, matching, RANSAC, adaptive "
-      "threshold";
+      "AIEF ORB features (adaptive information entropy): "
+      "extraction, matching, RANSAC, adaptive threshold";
   py::register_exception<aief::Error>(m, "Error", PyExc_ValueError).attr("__doc__") =
       "Bad input or options (a ValueError): the engine's message says what and where";
   aief::python::bind_extractor(m);

@@ -30,8 +30,7 @@ struct Keyword {
 py::object python_default(const table::OptionValue& value, bool depends_on_others);
 template <class Options>
 py::object python_default(const table::Row<Options>& row) {
-  bool depends = !row.applies_with_key.empty();
-  for (std::string_view set_by_mode : row.per_mode) depends = depends || !set_by_mode.empty();
+  const bool depends = !row.applies_with_key.empty() || row.per_mode.any();
   if (!row.is_field()) return py::str(table::defaults_text(row));  // the mode: its default name
   return python_default(row.field.get(Options{}), depends);
 }

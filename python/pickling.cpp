@@ -191,10 +191,11 @@ void bind_pickling(py::module_& m) {
         // again (before, it silently did).
         if (e.options().carried_threshold && e.frames() > 0)
           throw Error(
-              "cannot pickle or copy an aief.Extractor(threshold='carried') after its first frame: "
-              "the F it carries and its sweep in progress depend on the frames it has seen, which "
-              "a copy would not have; copy it before its first frame, or extract the whole video "
-              "with one extractor");
+              "cannot pickle or copy an aief.Extractor(threshold='carried') "
+              "after its first frame: "
+              "the F it carries and its sweep in progress depend on the frames it has seen, "
+              "which a copy would not have; "
+              "copy it before its first frame, or extract the whole video with one extractor");
         StateWriter out;
         out.put(e.options());
         // The keywords it was made from, as given: aief.adapt resolves them again for the sweep.

@@ -90,7 +90,7 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --auto-two-classes yes", "--auto-two-classes"},
       {"eval --dataset . --ranking harris", "unknown candidate ranking"},
       {"eval --dataset . --methods orb", "unknown method"},
-      // eval's matcher flags are the match rows' (core/options/matching_option_rows.json), as in
+      // eval's matcher flags are the match rows' (core/options/matching_option_rows.cpp), as in
       // match.
       {"eval --dataset . --matcher flann", "unknown matcher 'flann' for --matcher"},
       {"eval --dataset . --ratio 0.7", "--ratio applies to --matcher ratio only"},
@@ -142,6 +142,21 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
        "and --entropy off measures no entropy"},
       {"match " + image + " " + second + " --adaptive --mode orbslam2",
        "--mode orbslam2 measures no entropy"},
+      // A flag given twice, by one spelling or by two, is refused naming both: never the last.
+      {"extract " + image + " --n-features 500 --n-features 800",
+       "--n-features is given twice: give it once"},
+      {"extract " + image + " --features 500 --n-features=800",
+       "--features and --n-features are two spellings of one option, both given"},
+      {"extract " + image + " -o a.json --output b.json",
+       "-o and --output are two spellings of one option"},
+      {"match " + image + " " + second + " --adaptive --adaptive", "--adaptive is given twice"},
+      {"merge -o m.h5 --output n.h5 s.h5", "-o and --output are two spellings"},
+      {"colmap --features f.h5 --features-file g.h5 --matches m.h5 -o c.db",
+       "--features and --features-file are two spellings"},
+      // A smoothing that runs another value's passes (the same bytes, another record).
+      {"extract " + image + " --detection-smoothing 0.5",
+       "detection_smoothing 0.5 runs 1 pass of the 5x5 binomial, as 1 does"},
+      {"extract " + image + " --detection-smoothing 1e-320", "as 1 does"},
   };
   for (const Case& c : cases) {
     const CliResult r = run(c.args);

@@ -69,6 +69,47 @@ TEST(DetectionSmoothing, SigmaRunsItsSquareInPassesAtLeastOne) {
   EXPECT_EQ(detection_smoothing_passes(3), 9);
 }
 
+// Each pass count has one value (core/options/detection_smoothing_values.hpp): another sigma that
+// runs the same passes is refused, naming the value that does, so two option records that differ
+// never hold the same bytes (before: 1e-320, 0.01, 0.5 and 1.2 ran 1.0's one pass but recorded
+// themselves, and reruns and merges took them for other options).
+TEST(DetectionSmoothing, EachPassCountHasOneValueAndAnotherSigmaIsRefused) {
+  const double values[] = {1, 1.5, 1.8, 2, 2.3, 2.5, 2.7, 2.9, 3};
+  for (int passes = 1; passes <= 9; ++passes) {
+    const double value = detection_smoothing_of_passes(passes);
+    EXPECT_EQ(value, values[passes - 1]) << passes;
+    EXPECT_EQ(detection_smoothing_passes(value), passes) << value;
+    ExtractorOptions options;
+    options.detection_smoothing = value;
+    EXPECT_NO_THROW(options.validate()) << value;
+  }
+  EXPECT_NO_THROW(ExtractorOptions{}.validate());  // 0: none
+  EXPECT_NO_THROW(options_for_mode(Mode::quality).validate());
+  const struct {
+    double sigma;
+    std::string named;
+  } refused[] = {{1e-320, "runs 1 pass of the 5x5 binomial, as 1 does"},
+                 {0.01, "as 1 does"},
+                 {0.5, "as 1 does"},
+                 {1.2, "as 1 does"},
+                 {std::sqrt(2.0), "runs 2 passes of the 5x5 binomial, as 1.5 does"},
+                 {1.3, "as 1.5 does"},
+                 {2.1, "as 2 does"}};
+  for (const auto& r : refused) {
+    ExtractorOptions options;
+    options.detection_smoothing = r.sigma;
+    try {
+      options.validate();
+      ADD_FAILURE() << r.sigma << " accepted";
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(r.named), std::string::npos) << message;
+      EXPECT_NE(message.find("0 (none), 1, 1.5, 1.8, 2, 2.3, 2.5, 2.7, 2.9, 3"), std::string::npos)
+          << message;
+    }
+  }
+}
+
 // Two passes run in bands of rows (core/detection/detection_smoothing.cpp): heights around the
 // band's size and its multiples, every kernel set, against one pass run on one pass's whole image.
 TEST(DetectionSmoothing, TwoPassesAreOnePassOfOnePass) {

@@ -1,4 +1,4 @@
-// The option tables of matching, the sweep and RANSAC (core/options/matching_option_rows.json):
+// The option tables of matching, the sweep and RANSAC (core/options/matching_option_rows.cpp):
 // every field is a row, every row with a flag reaches aief match / aief adapt and their --help,
 // validate() is made from the rows, the matcher's names are read from their one name table, and the
 // ratio rule

@@ -21,6 +21,7 @@
 #include <opencv2/core.hpp>
 
 #include "aief/extractor.hpp"
+#include "core/options/detection_smoothing_values.hpp"
 #include "simd/kernels.hpp"
 #include "tests/test_support.hpp"
 
@@ -103,8 +104,7 @@ Case make_case(int index) {
   // Detection on a smoothed level, a third of the cases at 1 to 4 passes, its own draws likewise.
   std::mt19937 smoothing_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 67867967u));
   if (uniform_int(smoothing_rng, 0, 2) == 0)
-    c.options.detection_smoothing =
-        std::sqrt(static_cast<double>(uniform_int(smoothing_rng, 1, 4)));
+    c.options.detection_smoothing = detection_smoothing_of_passes(uniform_int(smoothing_rng, 1, 4));
   // Scale selection, a quarter of the cases where it acts (the engine's blocks), its own draws.
   std::mt19937 scale_rng(kSeed ^ (static_cast<std::uint32_t>(index) * 86028121u));
   if (uniform_int(scale_rng, 0, 3) == 0 && c.options.detection_cells == DetectionCells::blocks)

@@ -32,6 +32,7 @@ Args::Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& 
     for (const FlagSpec& flag : spec)
       if (flag.name == name || (!flag.alias.empty() && flag.alias == name)) match = &flag;
     if (!match) throw UsageError("unknown option " + name);
+    refuse_a_second_time(match->name, name);
     spellings_.push_back(name);
     if (!match->takes_value) {
       if (has_inline) throw UsageError(name + " takes no value");
@@ -44,6 +45,16 @@ Args::Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& 
       if (i + 1 >= tokens.size()) throw UsageError(name + " expects a value");
       values_.emplace_back(match->name, tokens[++i]);
     }
+  }
+}
+
+void Args::refuse_a_second_time(const std::string& flag, const std::string& spelling) const {
+  for (std::size_t i = 0; i < values_.size(); ++i) {
+    if (values_[i].first != flag) continue;
+    const std::string& before = spellings_[i];
+    if (before == spelling) throw UsageError(spelling + " is given twice: give it once");
+    throw UsageError(before + " and " + spelling +
+                     " are two spellings of one option, both given: give it once");
   }
 }
 
@@ -67,10 +78,9 @@ std::string Args::spelled(const std::string& name) const {
 }
 
 std::optional<std::string> Args::get(const std::string& name) const {
-  std::optional<std::string> result;
   for (const auto& [flag, value] : values_)
-    if (flag == name) result = value;  // the last one wins
-  return result;
+    if (flag == name) return value;  // given once at most (refuse_a_second_time)
+  return std::nullopt;
 }
 
 int Args::get_int(const std::string& name, int fallback, int min, int max) const {
@@ -104,33 +114,51 @@ bool is_among(const option_table::Row<Options>& row, const std::vector<std::stri
   return false;
 }
 
-template <class Options>
-std::string help_of_rows(const std::vector<std::string_view>& except = {}) {
-  constexpr std::size_t kColumn = 24, kWidth = 100;
-  std::ostringstream out;
-  for (const option_table::Row<Options>& row : option_table::rows_of<Options>()) {
-    if (row.cli_flag.empty() || is_among(row, except)) continue;
-    std::string line = "  " + std::string(row.cli_flag) + " " + std::string(row.cli_value);
-    line += line.size() + 1 < kColumn ? std::string(kColumn - line.size(), ' ')
-                                      : "\n" + std::string(kColumn, ' ');
-    std::string text = std::string(row.help) + " (";
-    if (row.kind() == option_table::ValueKind::choice)
-      text += option_table::expected_values(row) + "; ";
-    text += "default " + option_table::defaults_text(row) + ")";
-    std::istringstream words(text);
-    std::size_t used = kColumn;
+constexpr std::size_t kHelpColumn = 24, kHelpWidth = 100;
+
+// One flag's --help line: `label` ("  --flag VALUE"), then `text` from column 24 wrapped at 100
+// columns (on the next line when the label reaches column 24); a '\n' in `text` starts a line,
+// and a line that starts with two spaces (a command to copy) is written whole.
+std::string help_line(const std::string& label, const std::string& text) {
+  std::string line = label;
+  line += line.size() + 1 < kHelpColumn ? std::string(kHelpColumn - line.size(), ' ')
+                                        : "\n" + std::string(kHelpColumn, ' ');
+  std::istringstream paragraphs(text);
+  bool first = true;
+  for (std::string paragraph; std::getline(paragraphs, paragraph); first = false) {
+    if (!first) line += "\n" + std::string(kHelpColumn, ' ');
+    if (paragraph.rfind("  ", 0) == 0) {  // a command to copy whole: never broken
+      line += paragraph.substr(2);
+      continue;
+    }
+    std::istringstream words(paragraph);
+    std::size_t used = kHelpColumn;
     for (std::string word; words >> word;) {
-      if (used + 1 + word.size() > kWidth && used > kColumn) {
-        line += "\n" + std::string(kColumn, ' ');
-        used = kColumn;
-      } else if (used > kColumn && line.back() != ' ') {
+      if (used + 1 + word.size() > kHelpWidth && used > kHelpColumn) {
+        line += "\n" + std::string(kHelpColumn, ' ');
+        used = kHelpColumn;
+      } else if (used > kHelpColumn && line.back() != ' ') {
         line += ' ';
         ++used;
       }
       line += word;
       used += word.size();
     }
-    out << line << "\n";
+  }
+  return line + "\n";
+}
+
+template <class Options>
+std::string help_of_rows(const std::vector<std::string_view>& except = {}) {
+  constexpr std::size_t kWidth = kHelpWidth;
+  std::ostringstream out;
+  for (const option_table::Row<Options>& row : option_table::rows_of<Options>()) {
+    if (row.cli_flag.empty() || is_among(row, except)) continue;
+    std::string text = std::string(row.help) + " (";
+    if (row.kind() == option_table::ValueKind::choice)
+      text += option_table::expected_values(row) + "; ";
+    text += "default " + option_table::defaults_text(row) + ")";
+    out << help_line("  " + std::string(row.cli_flag) + " " + std::string(row.cli_value), text);
   }
   // The earlier spellings, on lines of their own (not option rows: docs/command_line.md lists
   // them in its changelog note, not in its synopsis).
@@ -173,6 +201,18 @@ std::vector<FlagSpec> flags_except(const std::vector<std::string_view>& except) 
 }
 
 }  // namespace
+
+std::string help_of(const std::vector<FlagSpec>& flags) {
+  std::string out;
+  for (const FlagSpec& flag : flags) {
+    if (flag.help.empty()) continue;
+    const bool short_alias = flag.alias.size() == 2 && flag.alias[0] == '-';
+    std::string label = "  " + (short_alias ? flag.alias + ", " : "") + flag.name;
+    if (flag.takes_value) label += " " + flag.value;
+    out += help_line(label, flag.help);
+  }
+  return out;
+}
 
 template <class Options>
 std::vector<FlagSpec> flags_of() {

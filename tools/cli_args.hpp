@@ -18,15 +18,26 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A flag of a command, and its line in the command's --help: the one place a command's own flag
+// is written (the option rows' flags come from their rows: flags_of, extractor_flags).
 struct FlagSpec {
-  std::string name;   // "--features"
+  std::string name;   // "--output"
   std::string alias;  // "-o", an earlier spelling ("--threshold"), or empty
   bool takes_value = true;
+  std::string value = {};  // --help's placeholder: "FILE"
+  // --help's text: '\n' starts a line, a line starting with two spaces is never broken; empty:
+  // --help lists the flag elsewhere.
+  std::string help = {};
 };
+
+// --help's lines of the flags with help, in order: "  -o, --output FILE     text", the text
+// wrapped at 100 columns from column 24, as the option rows' lines are.
+std::string help_of(const std::vector<FlagSpec>& flags);
 
 class Args {
  public:
-  // Throws UsageError for an unknown flag or a flag missing its value.
+  // Throws UsageError for an unknown flag, a flag missing its value, or a flag given twice (by
+  // one spelling or by its name and its alias), naming both: the last is not silently taken.
   Args(const std::vector<std::string>& tokens, const std::vector<FlagSpec>& spec);
 
   bool has(const std::string& name) const;
@@ -34,13 +45,16 @@ class Args {
   const std::vector<std::string>& positionals() const { return positionals_; }
   // The flags given, by their names (aliases as their flag), in command-line order.
   std::vector<std::string> flags_given() const;
-  // How the command line spelled the flag `name` the last time it gave it (its name or its
-  // alias): what messages call it. `name` itself when not given.
+  // How the command line spelled the flag `name` (its name or its alias): what messages call it.
+  // `name` itself when not given.
   std::string spelled(const std::string& name) const;
 
   int get_int(const std::string& name, int fallback, int min, int max) const;
 
  private:
+  // Throws UsageError when `flag` (a spec's name) was given before, naming both spellings.
+  void refuse_a_second_time(const std::string& flag, const std::string& spelling) const;
+
   std::vector<std::pair<std::string, std::string>> values_;  // flag name, value ("" for switches)
   std::vector<std::string> spellings_;                       // as given, beside values_
   std::vector<std::string> positionals_;

@@ -21,19 +21,22 @@ namespace aief::cli {
 
 namespace {
 
+// adapt's own flags, each with its --help text.
+const std::vector<FlagSpec> kOwnFlags = {
+    {"--output", "-o", true, "FILE",
+     "{\"threshold\", \"curve\": [{threshold, kept_blocks, keypoints_a, keypoints_b, putative, "
+     "inliers, cmr}, ...]} as JSON"},
+    {"--plot", "", true, "FILE", "CMR, inliers and keypoints against F, chosen F marked, PNG"}};
+
 void print_help() {
   const SweepOptions d;
-  std::cout
-      << "usage: aief adapt A B [-o OUT.json] [--plot OUT.png] [options]\n\n"
-      << "Sweeps the entropy threshold F = 0, " << d.step
-      << ", ... up to the entropy of A (docs/design.md section 10)\n"
-      << "and keeps the F with the highest correct matching rate among those with at least\n"
-      << "--min-inliers RANSAC inliers.\n\n"
-      << "  -o, --output FILE     {\"threshold\", \"curve\": [{threshold, kept_blocks, "
-         "keypoints_a, keypoints_b,\n"
-      << "                        putative, inliers, cmr}, ...]} as JSON\n"
-      << "  --plot FILE           CMR, inliers and keypoints against F, chosen F marked, PNG\n"
-      << flags_help<SweepOptions>() << flags_help<MatchOptions>() << extractor_flags_help();
+  std::cout << "usage: aief adapt A B [-o OUT.json] [--plot OUT.png] [options]\n\n"
+            << "Sweeps the entropy threshold F = 0, " << d.step
+            << ", ... up to the entropy of A (docs/design.md section 10)\n"
+            << "and keeps the F with the highest correct matching rate among those with at least\n"
+            << "--min-inliers RANSAC inliers.\n\n"
+            << help_of(kOwnFlags) << flags_help<SweepOptions>() << flags_help<MatchOptions>()
+            << extractor_flags_help();
 }
 
 }  // namespace
@@ -42,7 +45,7 @@ int run_adapt(const Arguments& arguments) {
   std::vector<FlagSpec> spec = extractor_flags();
   for (const auto& flags : {flags_of<SweepOptions>(), flags_of<MatchOptions>()})
     spec.insert(spec.end(), flags.begin(), flags.end());
-  spec.insert(spec.end(), {{"--output", "-o", true}, {"--plot", "", true}});
+  spec.insert(spec.end(), kOwnFlags.begin(), kOwnFlags.end());
   const std::optional<Args> parsed = command_args(arguments, spec, print_help);
   if (!parsed) return 0;
   const Args& args = *parsed;

@@ -39,6 +39,11 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+// bench's own flags, each with its --help text.
+const std::vector<FlagSpec> kOwnFlags = {
+    {"--repeat", "", true, "N", "runs per measurement (default 21)"},
+    {"--pair", "", true, "IMAGE2", "also time the adaptive sweep on the pair"}};
+
 void print_help() {
   std::cout
       << "usage: aief bench IMAGE [--pair IMAGE2] [--repeat N] [--threads T] [--kernels K] "
@@ -53,9 +58,7 @@ void print_help() {
       << "cv::ORB runs on one OpenCV thread, as in bench/RESULTS.md.\n"
       << "With --pair: sweep_ms (the adaptive sweep on IMAGE, IMAGE2), pair_ms (extract both\n"
       << "and one match) and sweep_ratio = sweep_ms / pair_ms.\n\n"
-      << "  --repeat N            runs per measurement (default 21)\n"
-      << "  --pair IMAGE2         also time the adaptive sweep on the pair\n"
-      << extractor_flags_help();
+      << help_of(kOwnFlags) << extractor_flags_help();
 }
 
 // The whole extract, as a user calls it: milliseconds of each run (`features`: the last
@@ -205,8 +208,7 @@ std::string bench_json(const std::string& path, const GrayImage& image,
 
 int run_bench(const Arguments& arguments) {
   std::vector<FlagSpec> spec = extractor_flags();
-  spec.push_back({"--repeat", "", true});
-  spec.push_back({"--pair", "", true});
+  spec.insert(spec.end(), kOwnFlags.begin(), kOwnFlags.end());
   const std::optional<Args> parsed = command_args(arguments, spec, print_help);
   if (!parsed) return 0;
   const Args& args = *parsed;

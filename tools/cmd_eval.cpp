@@ -29,7 +29,7 @@ namespace {
 const std::vector<std::string_view> kSetByEachRow = {"mode", "entropy_threshold", "carry_every",
                                                      "threads"};
 
-std::string method_keys_text();
+std::vector<FlagSpec> own_flags();
 
 void print_help() {
   std::cout
@@ -44,17 +44,7 @@ void print_help() {
       << "correct matches, accuracy and homography success under the ground truth. Writes "
          "REPORT.md,\n"
       << "REPORT.json and one plot per sequence in REPORT_plots/.\n\n"
-      << "  --dataset DIR         the Oxford sequences\n"
-      << "  --sequences LIST      comma-separated (default all eight present)\n"
-      << "  --pairs P             1-2 or all (1 -> 2..6; default all)\n"
-      << "  -o, --output FILE     the markdown report (default evaluation.md)\n"
-      << flags_help<MatchOptions>()
-      << "  --repeat N            interleaved timing rounds per pair, median (default 5)\n"
-      << "  --methods LIST        comma-separated JSON keys of the rows to run (default all):\n"
-      << "                        " << method_keys_text() << ";\n"
-      << "                        or any mode, F as the mode sets it (aief, quality), swept over "
-         "the\n"
-      << "                        pair (MODE_adaptive) or automatic (MODE_auto): quality_auto\n\n"
+      << help_of(own_flags()) << flags_help<MatchOptions>() << "\n"
       << "extractor options of the AIEF rows (--mode aief; the other rows keep their mode's), as "
          "in\n"
       << "aief extract; each row sets its own mode, F and one thread:\n"
@@ -69,27 +59,27 @@ std::vector<std::string> split(const std::string& text) {
   return out;
 }
 
-// The JSON keys of every row, comma-separated, wrapped under --methods' help.
+// The JSON keys of every row, comma-separated.
 std::string method_keys_text() {
   std::string text;
-  std::size_t line = 0;
-  for (const eval::Method& method : eval::kAllMethods) {
-    const std::string key = eval::method_key(method);
-    if (!text.empty()) {
-      text += ",";
-      ++line;
-      if (line + 1 + key.size() > 74) {
-        text += "\n" + std::string(24, ' ');
-        line = 0;
-      } else {
-        text += " ";
-        ++line;
-      }
-    }
-    text += key;
-    line += key.size();
-  }
+  for (const eval::Method& method : eval::kAllMethods)
+    text += (text.empty() ? "" : ", ") + eval::method_key(method);
   return text;
+}
+
+// eval's own flags, each with its --help text.
+std::vector<FlagSpec> own_flags() {
+  return {
+      {"--dataset", "", true, "DIR", "the Oxford sequences"},
+      {"--sequences", "", true, "LIST", "comma-separated (default all eight present)"},
+      {"--pairs", "", true, "P", "1-2 or all (1 -> 2..6; default all)"},
+      {"--output", "-o", true, "FILE", "the markdown report (default evaluation.md)"},
+      {"--repeat", "", true, "N", "interleaved timing rounds per pair, median (default 5)"},
+      {"--methods", "", true, "LIST",
+       "comma-separated JSON keys of the rows to run (default all):\n" + method_keys_text() +
+           ";\nor any mode, F as the mode sets it (aief, quality), "
+           "swept over the pair (MODE_adaptive) or automatic (MODE_auto): quality_auto"},
+  };
 }
 
 cv::Mat as_mat(const GrayImage& image) {
@@ -98,12 +88,8 @@ cv::Mat as_mat(const GrayImage& image) {
 
 std::vector<FlagSpec> flags_of_eval() {
   std::vector<FlagSpec> spec = flags_of<MatchOptions>();
-  spec.insert(spec.end(), {{"--dataset", "", true},
-                           {"--sequences", "", true},
-                           {"--pairs", "", true},
-                           {"--output", "-o", true},
-                           {"--repeat", "", true},
-                           {"--methods", "", true}});
+  const std::vector<FlagSpec> own = own_flags();
+  spec.insert(spec.end(), own.begin(), own.end());
   const std::vector<FlagSpec> extractor = extractor_flags_except(kSetByEachRow);
   spec.insert(spec.end(), extractor.begin(), extractor.end());
   return spec;

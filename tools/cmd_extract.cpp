@@ -58,54 +58,52 @@ const char* default_format() {
   return io::feature_formats_of(Layout::file_per_image).front()->name;
 }
 
+// extract's own flags, each with its --help text.
+std::vector<FlagSpec> own_flags() {
+  const std::string per_batch = joined(Layout::one_file_per_batch, "|", true);
+  return {
+      {"--output", "-o", true, "FILE", "features as " + described(Layout::file_per_image)},
+      {"--draw", "", true, "FILE", "the keypoints drawn over the image, PNG"},
+      {"--batch", "", true, "LIST|DIR",
+       "every image of a folder (recursively, symlinks followed) or of a list file "
+       "(one path per line). "
+       "Each image's name is its path below DIR as listed (or its line), never the symlink "
+       "target; its output is OUTDIR/<name>.<format>, folders mirrored: "
+       "sub/x.png -> OUTDIR/sub/x.png.json. "
+       "Resumable: an output recording this image's name, size and time and these options is "
+       "kept, any other is redone (the reason said); outputs appear atomically. "
+       "A bad image is reported and skipped. Exit 1 if any failed."},
+      {"--format", "", true, "F",
+       listed(Layout::file_per_image,
+              [](const io::FeatureFormat& format, std::size_t i) {
+                return std::string(format.name) + (i == 0 ? " (default)" : "");
+              }) +
+           ": a file per image in OUTDIR;\n" + per_batch + ": one file, " +
+           described(Layout::one_file_per_batch) +
+           ", a group per image named by its path below DIR "
+           "(resumes at the first image not complete in it; one file per shard, then aief "
+           "merge); without --format, an -o ending in its extension is that format"},
+      {"--shard", "", true, "i/n",
+       "this run takes images i, i+n, i+2n ... of the list sorted by name,\n"
+       "0 <= i < n: machines split a collection, no coordinator. Slurm:\n"
+       "  --shard $((SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT\n"
+       "(right for 0- and 1-based arrays alike)"},
+  };
+}
+
 void print_help() {
   const std::string per_image = joined(Layout::file_per_image, "|", true);
   const std::string per_batch = joined(Layout::one_file_per_batch, "|", true);
-  std::cout
-      << "usage: aief extract IMAGE [-o " << joined(Layout::file_per_image, "|", false, "OUT")
-      << "] [--draw OUT.png] [options]\n"
-      << "       aief extract --batch LIST|DIR -o OUTDIR [--format " << per_image
-      << "] [--shard i/n] [options]\n"
-      << "       aief extract --batch LIST|DIR -o FEATURES"
-      << joined(Layout::one_file_per_batch, "|", false) << " --format " << per_batch
-      << " [--shard i/n] [options]\n\n"
-      << "Keypoints and 256-bit descriptors (rBRIEF, or the box descriptor: --descriptor) of "
-         "one image.\nWithout -o, prints a summary.\n\n"
-      << "  -o, --output FILE     features as " << described(Layout::file_per_image) << "\n"
-      << "  --draw FILE           the keypoints drawn over the image, PNG\n"
-      << "  --batch LIST|DIR      every image of a folder (recursively, symlinks followed) or of a "
-         "list\n"
-      << "                        file (one path per line). Each image's name is its path below "
-         "DIR as\n"
-      << "                        listed (or its line), never the symlink target; its output is\n"
-      << "                        OUTDIR/<name>.<format>, folders mirrored: sub/x.png -> "
-         "OUTDIR/sub/x.png.json.\n"
-      << "                        Resumable: an output recording this image's name, size and time "
-         "and\n"
-      << "                        these options is kept, any other is redone (the reason said); "
-         "outputs\n"
-      << "                        appear atomically. A bad image is\n"
-      << "                        reported and skipped. Exit 1 if any failed.\n"
-      << "  --format F            "
-      << listed(Layout::file_per_image,
-                [](const io::FeatureFormat& format, std::size_t i) {
-                  return std::string(format.name) + (i == 0 ? " (default)" : "");
-                })
-      << ": a file per image in OUTDIR;\n"
-      << "                        " << per_batch << ": one file, "
-      << described(Layout::one_file_per_batch) << ", a group per image named by\n"
-      << "                        its path below DIR (resumes at the first image not complete in "
-         "it; one\n"
-      << "                        file per shard, then aief merge); without --format, an -o "
-         "ending in its\n"
-      << "                        extension is that format\n"
-      << "  --shard i/n           this run takes images i, i+n, i+2n ... of the list sorted by "
-         "name,\n"
-      << "                        0 <= i < n: machines split a collection, no coordinator. Slurm:\n"
-      << "                        --shard $((SLURM_ARRAY_TASK_ID - "
-         "SLURM_ARRAY_TASK_MIN))/$SLURM_ARRAY_TASK_COUNT\n"
-      << "                        (right for 0- and 1-based arrays alike)\n"
-      << extractor_flags_help();
+  std::cout << "usage: aief extract IMAGE [-o " << joined(Layout::file_per_image, "|", false, "OUT")
+            << "] [--draw OUT.png] [options]\n"
+            << "       aief extract --batch LIST|DIR -o OUTDIR [--format " << per_image
+            << "] [--shard i/n] [options]\n"
+            << "       aief extract --batch LIST|DIR -o FEATURES"
+            << joined(Layout::one_file_per_batch, "|", false) << " --format " << per_batch
+            << " [--shard i/n] [options]\n\n"
+            << "Keypoints and 256-bit descriptors (rBRIEF, or the box descriptor: --descriptor) of "
+               "one image.\nWithout -o, prints a summary.\n\n"
+            << help_of(own_flags()) << extractor_flags_help();
 }
 
 int run_extract_batch(const Args& args) {
@@ -170,11 +168,7 @@ int run_extract_batch(const Args& args) {
 
 int run_extract(const Arguments& arguments) {
   std::vector<FlagSpec> spec = extractor_flags();
-  spec.push_back({"--output", "-o", true});
-  spec.push_back({"--draw", "", true});
-  spec.push_back({"--batch", "", true});
-  spec.push_back({"--format", "", true});
-  spec.push_back({"--shard", "", true});
+  for (const FlagSpec& flag : own_flags()) spec.push_back(flag);
   const std::optional<Args> parsed = command_args(arguments, spec, print_help);
   if (!parsed) return 0;
   const Args& args = *parsed;

@@ -29,32 +29,30 @@ namespace {
 
 // The flags of a pair of images beside the matcher's and the extractor's; --pairs matches the
 // features of a file, so only the matcher's flags and these apply to it.
+// Each with its --help text (-o once: the pair's).
 const std::vector<FlagSpec> kImagePairFlags = {
-    {"--adaptive", "", false}, {"--output", "-o", true}, {"--draw", "", true}};
+    {"--adaptive", "", false, "",
+     "choose the entropy threshold F by the sweep over this pair (aief adapt)"},
+    {"--output", "-o", true, "FILE", "matches, inliers and homography as JSON"},
+    {"--draw", "", true, "FILE", "both images side by side, inliers green, outliers red, PNG"}};
 const std::vector<FlagSpec> kPairsFlags = {
-    {"--pairs", "", true}, {"--features-file", "", true}, {"--output", "-o", true}};
+    {"--pairs", "", true, "FILE",
+     "hloc pairs (\"name0 name1\" per line) matched from --features-file "
+     "(aief extract --format h5) into -o MATCHES.h5, hloc's matches0 / matching_scores0 layout; "
+     "only the matcher's flags apply (the features are as extracted)"},
+    {"--features-file", "", true, "FILE",
+     "with --pairs: the HDF5 features file (its earlier spelling,\n"
+     "--features, is still accepted with --pairs)"},
+    {"--output", "-o", true}};
 
 void print_help() {
-  std::cout
-      << "usage: aief match A B [--adaptive] [--matcher K] [-o OUT.json] [--draw OUT.png]\n"
-      << "       aief match --pairs PAIRS.txt --features-file FEATURES.h5 -o MATCHES.h5 "
-         "[--matcher K]\n\n"
-      << "Extracts both images, matches them, estimates the homography A -> B with RANSAC (3 "
-         "px).\n\n"
-      << flags_help<MatchOptions>()
-      << "  --adaptive            choose the entropy threshold F by the sweep over this pair (aief "
-         "adapt)\n"
-      << "  -o, --output FILE     matches, inliers and homography as JSON\n"
-      << "  --draw FILE           both images side by side, inliers green, outliers red, PNG\n"
-      << "  --pairs FILE          hloc pairs (\"name0 name1\" per line) matched from "
-         "--features-file (aief\n"
-      << "                        extract --format h5) into -o MATCHES.h5, hloc's matches0 / "
-         "matching_scores0\n"
-      << "                        layout; only the matcher's flags apply (the features are as "
-         "extracted)\n"
-      << "  --features-file FILE  with --pairs: the HDF5 features file (its earlier spelling,\n"
-      << "                        --features, is still accepted with --pairs)\n"
-      << extractor_flags_help();
+  std::cout << "usage: aief match A B [--adaptive] [--matcher K] [-o OUT.json] [--draw OUT.png]\n"
+            << "       aief match --pairs PAIRS.txt --features-file FEATURES.h5 -o MATCHES.h5 "
+               "[--matcher K]\n\n"
+            << "Extracts both images, matches them, estimates the homography A -> B with RANSAC (3 "
+               "px).\n\n"
+            << flags_help<MatchOptions>() << help_of(kImagePairFlags) << help_of(kPairsFlags)
+            << extractor_flags_help();
 }
 
 std::vector<Point2> points_of(const Features& features, const std::vector<Match>& matches,

@@ -2,15 +2,9 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cmath>
 #include <cstring>
 
 namespace aief {
-
-int detection_smoothing_passes(double sigma) {
-  if (!(sigma > 0)) return 0;
-  return std::max(1, static_cast<int>(std::lround(sigma * sigma)));
-}
 
 namespace {
 

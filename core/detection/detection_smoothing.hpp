@@ -4,18 +4,17 @@
 // binomial (core/kernels/binomial5_row.hpp, sigma 1 a pass), so a corner blurred in one image and
 // sharp in the other is measured on alike pixels; orientation and descriptors read the level
 // itself. A sigma s > 0 runs max(1, round(s^2)) passes (variances add: sigma sqrt(passes)), so
-// 1 -> 1 pass, 1.5 -> 2 (sigma 1.41), 2 -> 4. Integers throughout: the same bytes under every
+// 1 -> 1 pass, 1.5 -> 2 (sigma 1.41), 2 -> 4; the sigmas accepted, one per pass count, are
+// core/options/detection_smoothing_values.hpp's. Integers throughout: the same bytes under every
 // kernel set and thread count.
 #include <cstdint>
 #include <vector>
 
 #include "aief/image.hpp"
 #include "core/kernels/kernel_table.hpp"
+#include "core/options/detection_smoothing_values.hpp"
 
 namespace aief {
-
-// Passes of the binomial blur for a smoothing sigma (0: none).
-int detection_smoothing_passes(double sigma);
 
 // Reused buffers of one level's smoothing.
 struct SmoothingScratch {

@@ -90,7 +90,7 @@ std::vector<Mode> modes_given_whole(const std::vector<GivenOption>& given) {
     const ExtractorOptions preset = options_for_mode(mode.value);
     bool every_value_given = true, sets_any = false;
     for (const OptionRow& row : rows()) {
-      if (!row.is_field() || row.per_mode[static_cast<std::size_t>(mode.value)].empty()) continue;
+      if (!row.is_field() || row.per_mode[mode.value].empty()) continue;
       sets_any = true;
       bool found = false;
       for (const GivenOption& g : given)
@@ -136,7 +136,7 @@ void refuse_given_that_cannot_act(const std::vector<const GivenOption*>& changed
       mode_given = mode_given || other.row->key == "mode";
     }
     const bool mode_sets =
-        !unmet.row->per_mode[static_cast<std::size_t>(mode)].empty() ||
+        !unmet.row->per_mode[mode].empty() ||
         text_in(*unmet.row, options_for_mode(mode)) != text_in(*unmet.row, ExtractorOptions{});
     if (stops.empty() && mode_sets && (mode_given || mode != Mode::aief))
       stops = ", and " + mode_named + " " + std::string(option_names::name_of(mode)) +

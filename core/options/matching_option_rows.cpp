@@ -1,13 +1,16 @@
 // The option tables of matching (MatchOptions), the adaptive sweep (SweepOptions) and RANSAC
-// (RansacOptions), and their validate(), made from the rows (core/options/option_table.hpp): the
-// data is core/options/matching_option_rows.json (made into C++ by
-// cmake/generate_option_rows.cmake). The CLI's flags of aief match and aief adapt, the keywords of
-// aief.match, aief.adapt and aief.find_homography, and the record of a matches file come from here.
+// (RansacOptions), one row per option in record order (core/options/option_table.hpp), and their
+// validate(), made from the rows. Adding one: CONTRIBUTING.md, "Adding an option". The CLI's
+// flags of aief match and aief adapt, the keywords of aief.match, aief.adapt and
+// aief.find_homography, and the record of a matches file come from here.
+#include <iterator>
 #include <limits>
+#include <vector>
 
 #include "aief/adapt.hpp"
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
+#include "core/options/malformed_row.hpp"
 #include "core/options/option_access.hpp"
 #include "core/options/option_table.hpp"
 
@@ -17,30 +20,87 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// The rows of each struct, each table with its struct as O (AIEF_OPTION_ROW's).
+template <class Options>
+struct Rows;
+
+template <>
+struct Rows<MatchOptions> {
+  using O = MatchOptions;
+  static constexpr Row<O> list[] = {
+      {AIEF_OPTION_ROW(kind), .cli_flag = "--matcher", .cli_value = "K",
+       .python_keyword = "matcher", .python_position = 1,
+       .help = "which nearest neighbours are matches: "
+               "mutual = nearest both ways, ratio = Lowe's ratio test, "
+               "paper = distance <= max(2 x the smallest, 30)"},
+      {AIEF_OPTION_ROW(ratio), .cli_flag = "--ratio", .cli_value = "R", .python_keyword = "ratio",
+       .python_position = 2,
+       .help = "Lowe's ratio test: a match is kept when its distance < this x the second nearest's",
+       .low = 0, .high = 1, .low_is_open = true, .applies_with_key = "kind",
+       .applies_with_value = "ratio"},
+      {AIEF_OPTION_ROW(max_distance), .python_keyword = "max_distance", .python_position = 3,
+       .help = "matches farther than this many bits are dropped (256: none)", .low = 0,
+       .high = 256},
+  };
+};
+AIEF_CHECK_OPTION_ROWS(Rows<MatchOptions>::list);
+
+template <>
+struct Rows<SweepOptions> {
+  using O = SweepOptions;
+  static constexpr Row<O> list[] = {
+      {AIEF_OPTION_ROW(first_threshold), .python_keyword = "first_threshold", .python_position = 1,
+       .help = "F_0, the first threshold swept, bits (docs/design.md section 10)", .low = 0,
+       .high = kInfinity},
+      {AIEF_OPTION_ROW(step), .cli_flag = "--step", .cli_value = "S", .python_keyword = "step",
+       .python_position = 2, .help = "sweep step S_p in bits", .low = 0.01, .high = 8},
+      {AIEF_OPTION_ROW(min_inliers), .cli_flag = "--min-inliers", .cli_value = "N",
+       .python_keyword = "min_inliers", .python_position = 3,
+       .help = "inliers a threshold needs to be chosen", .low = 4, .high = 1000000},
+  };
+};
+AIEF_CHECK_OPTION_ROWS(Rows<SweepOptions>::list);
+
+template <>
+struct Rows<RansacOptions> {
+  using O = RansacOptions;
+  static constexpr Row<O> list[] = {
+      {AIEF_OPTION_ROW(threshold_px), .python_keyword = "threshold_px", .python_position = 1,
+       .help = "a match is an inlier when its reprojection error is at most this, pixels", .low = 0,
+       .high = kInfinity, .low_is_open = true},
+      {AIEF_OPTION_ROW(confidence), .python_keyword = "confidence", .python_position = 2,
+       .help = "stop when an all-inlier sample has been drawn this surely", .low = 0, .high = 1,
+       .low_is_open = true, .high_is_open = true},
+      {AIEF_OPTION_ROW(max_iterations), .python_keyword = "max_iterations", .python_position = 3,
+       .help = "samples drawn at most", .low = 1,
+       .high = static_cast<double>(std::numeric_limits<int>::max())},
+      // Seeds are read as signed 64-bit integers: [0, 2^63).
+      {AIEF_OPTION_ROW(seed), .python_keyword = "seed", .python_position = 4,
+       .help = "the sampler's seed: the same seed, the same answer", .low = 0, .high = kInfinity},
+  };
+};
+AIEF_CHECK_OPTION_ROWS(Rows<RansacOptions>::list);
+
 }  // namespace
+
+template <class Options>
+const std::vector<Row<Options>>& table_of() {
+  static const std::vector<Row<Options>> table(std::begin(Rows<Options>::list),
+                                               std::end(Rows<Options>::list));
+  return table;
+}
 
 template <>
 const std::vector<Row<MatchOptions>>& rows_of<MatchOptions>() {
-  static const std::vector<Row<MatchOptions>> table = {
-#include "MatchOptions_rows.inc"
-  };
-  return table;
+  return table_of<MatchOptions>();
 }
-
 template <>
 const std::vector<Row<SweepOptions>>& rows_of<SweepOptions>() {
-  static const std::vector<Row<SweepOptions>> table = {
-#include "SweepOptions_rows.inc"
-  };
-  return table;
+  return table_of<SweepOptions>();
 }
-
 template <>
 const std::vector<Row<RansacOptions>>& rows_of<RansacOptions>() {
-  static const std::vector<Row<RansacOptions>> table = {
-#include "RansacOptions_rows.inc"
-  };
-  return table;
+  return table_of<RansacOptions>();
 }
 
 }  // namespace aief::option_table

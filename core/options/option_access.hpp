@@ -2,9 +2,9 @@
 // A row's field access made from a member pointer (core/options/option_table.hpp):
 // access<&Options::x> reads and writes the field as the table's OptionValue, its kind taken from
 // the field's type (int -> integer, double -> number, bool -> toggle, enum -> choice, with the
-// enum's name table of core/options/option_names.hpp). The tables' files
-// (core/options/extractor_option_rows.cpp, core/options/matching_option_rows.cpp) use it; nothing
-// else needs it.
+// enum's name table of core/options/option_names.hpp), and AIEF_OPTION_ROW writes a row's key and
+// access from the field's name. The tables' files (core/options/extractor_option_rows.cpp,
+// core/options/matching_option_rows.cpp) use it; nothing else needs it.
 #include <type_traits>
 
 #include "core/options/option_names.hpp"
@@ -85,3 +85,11 @@ constexpr FieldAccess<typename MemberOf<decltype(Member)>::Options> access = [] 
 }();
 
 }  // namespace aief::option_table
+
+// A row's key and field access from the member's name, in a table whose options struct is `O` (a
+// `using O = ...;` before the table): the name written once, as AIEF_RECORD_FIELD writes a record
+// field's (io/record_fields.hpp). The _WITH_SET form gives the field a setter of its own (F's
+// words, P's "inf").
+#define AIEF_OPTION_ROW(member) .key = #member, .field = ::aief::option_table::access<&O::member>
+#define AIEF_OPTION_ROW_WITH_SET(member, setter) \
+  .key = #member, .field = ::aief::option_table::access<&O::member>.with_set(setter)

@@ -8,15 +8,9 @@
 // checks that every option reaches every front end, python/tests/test_stub.py that the type stub
 // says what the rows say.
 //
-// How to add an option:
-//   1. a field with its default and one comment in its struct (include/aief/options.hpp, match.hpp,
-//      adapt.hpp, homography.hpp); an enum gets its name table in core/options/option_names.hpp;
-//   2. one row in its table (core/options/extractor_option_rows.json for the extractor,
-//      core/options/matching_option_rows.json for the others; cmake/generate_option_rows.cmake
-//      makes them C++): record key, CLI flag, Python keyword, help, kind and range (the
-//      extractor's: settings key, the value each mode sets), whether it changes the output;
-//   3. its parameter in python/aief/_aief.pyi, where the stub test says.
-// Nothing else: every front end, --help, validate() and the records pick the row up.
+// How to add an option, and which tests hold each place: CONTRIBUTING.md, "Adding an option".
+// The rows are plain C++ (core/options/extractor_option_rows.cpp, matching_option_rows.cpp),
+// checked as they compile (core/options/malformed_row.hpp).
 //
 // Rules every front end shares (resolve_options): the mode sets its values first, the options
 // given override them, and a given option the mode cannot honour is refused, naming both. Numbers
@@ -80,6 +74,47 @@ struct FieldAccess {
   }
 };
 
+// The word of a PerMode member a row left out: a malformed row (malformed_row).
+inline constexpr std::string_view kModeValueMissing = "(no value given for this mode)";
+
+// The value each mode sets (Row::per_mode), one member per Mode, as a front end would write it:
+// "" leaves the option as it was, "default" (kDefault) takes ExtractorOptions{}'s value, and a
+// leading '=' marks the mode's definition: a different given value is refused. A row that names
+// per_mode names every mode.
+struct PerMode {
+  std::string_view aief = kModeValueMissing;
+  std::string_view aief_paper = kModeValueMissing;
+  std::string_view orbslam2 = kModeValueMissing;
+  std::string_view quadtree_entropy = kModeValueMissing;
+  std::string_view faithful = kModeValueMissing;
+  std::string_view quality = kModeValueMissing;
+
+  constexpr std::string_view operator[](Mode mode) const {
+    switch (mode) {
+      case Mode::aief: return aief;
+      case Mode::aief_paper: return aief_paper;
+      case Mode::orbslam2: return orbslam2;
+      case Mode::quadtree_entropy: return quadtree_entropy;
+      case Mode::faithful: return faithful;
+      case Mode::quality: return quality;
+    }
+    return kModeValueMissing;
+  }
+  // Every member, in Mode order.
+  constexpr std::array<std::string_view, 6> all() const {
+    return {aief, aief_paper, orbslam2, quadtree_entropy, faithful, quality};
+  }
+  // Whether some mode sets the option.
+  constexpr bool any() const {
+    for (std::string_view value : all())
+      if (!value.empty()) return true;
+    return false;
+  }
+};
+
+// A row without per_mode: no mode sets the option.
+inline constexpr PerMode kNoModeSetsIt = {"", "", "", "", "", ""};
+
 // One option of one options struct (ExtractorOptions, MatchOptions, SweepOptions, RansacOptions):
 // the only place it is described. yaml_key, per_mode and needs_mask are the extractor's (its
 // settings files, its modes, its entropy mask); applies_with_* the matcher's ratio rule; the
@@ -102,11 +137,7 @@ struct Row {
   bool high_is_open = false;   // [low, high)
   std::string_view words =
       {};  // toggle: "on|off" (true first); number: words taken instead ("inf|off")
-  // The value each mode sets, in Mode order (aief, aief-paper, orbslam2, quadtree-entropy,
-  // faithful, quality), as a front end would write it: "" leaves the option as it was, "default"
-  // takes ExtractorOptions{}'s value, and a leading '=' marks the mode's definition: a different
-  // given value is refused.
-  std::array<std::string_view, 6> per_mode = {};
+  PerMode per_mode = kNoModeSetsIt;  // the value each mode sets
   bool changes_output = true;  // false: kernels, threads, limits (the bytes never depend on them)
   std::string_view needs_mask = {};  // non-empty: refused with the entropy mask off when it changes
                                      // a value; says what it does
@@ -122,10 +153,10 @@ struct Row {
   // itself, without the threshold fallback); given to the sweep, it is refused.
   bool read_by_sweep = true;
 
-  ValueKind kind() const { return field.kind; }
-  bool is_field() const { return field.get != nullptr; }
-  bool has_front_ends() const { return !cli_flag.empty(); }
-  ValueSpec spec() const {
+  constexpr ValueKind kind() const { return field.kind; }
+  constexpr bool is_field() const { return field.get != nullptr; }
+  constexpr bool has_front_ends() const { return !cli_flag.empty(); }
+  constexpr ValueSpec spec() const {
     return {field.kind, field.choices, low, high, low_is_open, high_is_open, words};
   }
 };
@@ -138,8 +169,8 @@ using OptionRow = Row<ExtractorOptions>;
 inline constexpr std::string_view kDefault = "default";
 
 // The rows of each options struct, in record order. ExtractorOptions' are in
-// core/options/extractor_option_rows.json, the matcher's, sweep's and RANSAC's in
-// core/options/matching_option_rows.json.
+// core/options/extractor_option_rows.cpp, the matcher's, sweep's and RANSAC's in
+// core/options/matching_option_rows.cpp.
 template <class Options>
 const std::vector<Row<Options>>& rows_of();
 template <>

@@ -1,5 +1,5 @@
 // The names of the option enums (one table per enum: core/options/option_names.hpp). validate() and
-// options_for_mode() are made from the option table (core/options/extractor_option_rows.json).
+// options_for_mode() are made from the option table (core/options/extractor_option_rows.cpp).
 #include "aief/options.hpp"
 
 #include "core/options/option_names.hpp"

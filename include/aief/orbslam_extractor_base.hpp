@@ -24,7 +24,7 @@ class OrbSlamExtractorBase {
   // The options from a settings file as ORB-SLAM2 and ORB-SLAM3 read it: ORBextractor.nFeatures,
   // .scaleFactor, .nLevels, .iniThFAST, .minThFAST, and ours: every extractor option has a key
   // (ORBextractor.mode, .entropyThreshold (a number or "auto"), .blockSize, .threads, ...; the
-  // list is the option table's, core/options/extractor_option_rows.json, and `aief extract --help`
+  // list is the option table's, core/options/extractor_option_rows.cpp, and `aief extract --help`
   // explains each). The mode is `default_mode` (each drop-in's own) unless ORBextractor.mode names
   // another (the AIEF keys, such as .entropyThreshold, need ORBextractor.mode: "aief"). Keypoints
   // sit at ORB-SLAM's integer level pixels when the settings describe a stereo rig or a depth

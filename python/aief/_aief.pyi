@@ -73,7 +73,7 @@ class Features:
 
 class Extractor:
     """ORB features with the AIEF entropy mask; invalid options raise aief.Error."""
-    # Parameters, their order and defaults: the option table's rows (core/options/extractor_option_rows.json);
+    # Parameters, their order and defaults: the option table's rows (core/options/extractor_option_rows.cpp);
     # python/tests/test_stub.py holds them to it. The keys of Extractor.options are keywords too.
     def __init__(
         self,
@@ -162,7 +162,7 @@ class AdaptResult:
     @property
     def homography(self) -> tuple[Optional[numpy.ndarray], numpy.ndarray]: ...
 
-# The options of match, find_homography and adapt: the rows of core/options/matching_option_rows.json
+# The options of match, find_homography and adapt: the rows of core/options/matching_option_rows.cpp
 # (python/tests/test_stub.py holds them to it).
 def match(
     a: Union[numpy.typing.ArrayLike, Features],

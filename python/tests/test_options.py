@@ -62,6 +62,15 @@ def test_an_option_that_cannot_act_is_refused(kwargs, says):
         aief.Extractor(**kwargs)
 
 
+# A smoothing sigma that runs another value's passes (0.5 runs 1's one pass) was accepted and
+# recorded as itself: the same bytes under another option record. Refused, naming the value.
+@pytest.mark.parametrize("sigma, named", [(1e-320, "1"), (0.5, "1"), (1.2, "1"), (1.3, "1.5")])
+def test_a_smoothing_that_runs_another_values_passes_is_refused(sigma, named):
+    with pytest.raises(aief.Error, match=f"as {named} does: give that"):
+        aief.Extractor(detection_smoothing=sigma)
+    assert aief.Extractor(detection_smoothing=float(named)).options["detection_smoothing"] == float(named)
+
+
 def test_the_options_of_a_variant_rebuild_it():
     extractor = aief.Extractor(mode="faithful", quadtree_weight="entropy")
     assert aief.Extractor(**extractor.options).options == extractor.options
