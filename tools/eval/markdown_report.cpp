@@ -210,7 +210,9 @@ void write_correct_matches_table(std::ostringstream& md, const EvalRun& run,
 
 void write_summary_table(std::ostringstream& md, const EvalRun& run) {
   md << "\n### Summary over every pair\n\n"
-     << "Correct: sum over img1 -> img2..4. Accuracy: mean over every pair. Homography accuracy as "
+     << "Correct: sum over img1 -> img2..4. MMA@1px, @2px, @3px (mean matching accuracy): the "
+        "share of putative matches within 1, 2 and 3 px under the true homography, mean over "
+        "every pair (MMA@3px is the accuracy of the other tables). Homography accuracy as "
         "in HPatches: share of"
      << " pairs whose estimated homography has a mean corner error below 1, 3 and 5 px. "
         "Repeatability: keypoints of img1"
