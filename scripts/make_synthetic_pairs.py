@@ -24,6 +24,9 @@ families"):
   zoom16       scale 1.6 about the centre, rotation 0, 10, 20, 30, 45 deg
   persp20      the camera turned 20 deg about an axis in the image plane at 0, 45, 90, 135, 22.5
                deg (focal length = the image width), the centre kept
+  dark_noise   rotation 0-20 deg, scale 0.9-1.1     + brightness x0.3, gamma 1.5 (darker
+               shadows), Gaussian noise sigma 2-4 gray levels (fixed seed)
+  rotation     rotation 60, 90, 120, 150, 180 deg about the centre, scale 1
 
 Usage: make_synthetic_pairs.py --families OUT IMAGE...
 """
@@ -91,6 +94,15 @@ def unchanged(image):
     return image
 
 
+def dark_noisy(noise_sigma, seed):
+    """A dim, noisy exposure: brightness x0.3, gamma 1.5 (shadows darker still), then noise."""
+    def expose(image):
+        dim = 255.0 * (image * 0.3 / 255.0) ** 1.5
+        noise = np.random.default_rng(seed).normal(0.0, noise_sigma, image.shape)
+        return np.clip(dim + noise + 0.5, 0, 255).astype(np.uint8)
+    return expose
+
+
 def family_pairs(family, w, h):
     """The five (homography, photometric change) of a family, for img2..6."""
     mild = [(0, 1.0), (5, 0.9), (10, 1.1), (15, 0.95), (20, 1.05)]  # rotation deg, scale
@@ -106,10 +118,15 @@ def family_pairs(family, w, h):
         return [(about_centre(w, h, r, 1.6), unchanged) for r in [0, 10, 20, 30, 45]]
     if family == "persp20":
         return [(camera_turn(w, h, 20, axis), unchanged) for axis in [0, 45, 90, 135, 22.5]]
+    if family == "dark_noise":
+        return [(about_centre(w, h, r, s), dark_noisy(sigma, seed))
+                for seed, ((r, s), sigma) in enumerate(zip(mild, [2.0, 2.5, 3.0, 3.5, 4.0]))]
+    if family == "rotation":
+        return [(about_centre(w, h, r, 1.0), unchanged) for r in [60, 90, 120, 150, 180]]
     raise ValueError(family)
 
 
-FAMILIES = ["heavy_blur", "light_blur", "jpeg15", "zoom16", "persp20"]
+FAMILIES = ["heavy_blur", "light_blur", "jpeg15", "zoom16", "persp20", "dark_noise", "rotation"]
 
 
 def write_families(out, paths):

@@ -140,6 +140,9 @@ TEST(DetectionSmoothing, OffInEveryModeButQualityAndRefusedOutOfRange) {
   EXPECT_EQ(quality.scale_factor, 1.1);
   EXPECT_EQ(quality.n_levels, 18);
   EXPECT_EQ(quality.descriptor, DescriptorKind::box);
+  // No entropy mask: it kept ~95% of the hard families' blocks and changed no match
+  // (docs/design.md §11, docs/evaluation.md "Precision").
+  EXPECT_EQ(quality.entropy, EntropyMeasure::off);
   ExtractorOptions options;
   options.detection_smoothing = 3.5;
   EXPECT_THROW(options.validate(), Error);

@@ -80,8 +80,14 @@ TEST(EvalReport, MarkdownJsonAndPlotsOfTheBundledPairsArePinned) {
   ASSERT_EQ(run.methods.size(), 10u);
   const std::string markdown = markdown_report(run, "evaluation_plots");
   EXPECT_EQ(markdown.find("# aief evaluation"), 0u);
-  EXPECT_EQ(hash_of(markdown), 15019944897818532957ull) << markdown;
-  EXPECT_EQ(hash_of(json_report(run)), 18293800664407377ull) << json_report(run);
+  EXPECT_NE(markdown.find("| MMA@1px | MMA@2px | MMA@3px |"), std::string::npos);
+  for (const std::vector<PairResult>& row : run.results)
+    for (const PairResult& r : row) {  // the shares within 1, 2 and 3 px, each within the next
+      EXPECT_LE(r.accuracy_1px, r.accuracy_2px);
+      EXPECT_LE(r.accuracy_2px, r.accuracy);
+    }
+  EXPECT_EQ(hash_of(markdown), 5283372749901025846ull) << markdown;
+  EXPECT_EQ(hash_of(json_report(run)), 3281205350881467455ull) << json_report(run);
   const test::TempFolder folder("aief_eval_report");
   const std::vector<std::string> plots = write_plots(run, folder.file("plots"));
   ASSERT_EQ(plots.size(), 3u);
@@ -92,9 +98,9 @@ TEST(EvalReport, MarkdownJsonAndPlotsOfTheBundledPairsArePinned) {
   // Without the automatic, the adaptive paper and cv::ORB rows (no F table, no targets); and
   // without the swept row (the targets, no F table), no plots folder.
   const std::string fewer = markdown_report(with_rows(run, {0, 1, 4, 7}), "");
-  EXPECT_EQ(hash_of(fewer), 9262577821685538527ull) << fewer;
+  EXPECT_EQ(hash_of(fewer), 9286336670702349261ull) << fewer;
   const std::string no_sweep = markdown_report(with_rows(run, {0, 3, 5, 6}), "plots");
-  EXPECT_EQ(hash_of(no_sweep), 4373943680349144513ull) << no_sweep;
+  EXPECT_EQ(hash_of(no_sweep), 1347553882039833632ull) << no_sweep;
 }
 
 // One row on one pair, measured by hand: what write_reports and the record tests need.
@@ -110,6 +116,29 @@ EvalRun one_row_run() {
   r.accuracy = 0.75;
   run.results = {{r}};
   return run;
+}
+
+// The family tables give MMA at 1, 2 and 3 px: the mean over a family's pairs of each share.
+TEST(EvalReport, FamilyTablesGiveMmaAtOneTwoAndThreePixels) {
+  EvalRun run;
+  run.pairs = {{"blur-a", 2, "", "", "", {1, 0, 0, 0, 1, 0, 0, 0, 1}},
+               {"blur-a", 3, "", "", "", {1, 0, 0, 0, 1, 0, 0, 0, 1}}};
+  run.methods = {kAllMethods.front()};
+  PairResult first, second;
+  first.accuracy_1px = 0.25, first.accuracy_2px = 0.5, first.accuracy = 0.75;
+  second.accuracy_1px = 0.35, second.accuracy_2px = 0.6, second.accuracy = 0.85;
+  run.results = {{first}, {second}};
+  const std::string tables = family_tables(run);
+  const auto row_after = [&](const std::string& title) {
+    const std::size_t at = tables.find("### " + title);
+    EXPECT_NE(at, std::string::npos) << tables;
+    const std::size_t row = tables.find("| " + method_name(run.methods[0]) + " |", at);
+    return tables.substr(row, tables.find('\n', row) - row);
+  };
+  const std::string name = "| " + method_name(run.methods[0]) + " |";
+  EXPECT_EQ(row_after("MMA@1px (%)"), name + " 30.0 | 30.0 |");
+  EXPECT_EQ(row_after("MMA@2px (%)"), name + " 55.0 | 55.0 |");
+  EXPECT_EQ(row_after("MMA@3px (%)"), name + " 80.0 | 80.0 | 0.00 |");
 }
 
 TEST(EvalReport, TheJsonRowIsPairResultsFieldListEveryFieldInOrder) {

@@ -99,7 +99,7 @@ constexpr OptionRow kRows[] = {
                   .orbslam2 = "=off",
                   .quadtree_entropy = "",
                   .faithful = "=off",
-                  .quality = ""}},
+                  .quality = "off"}},
     {AIEF_OPTION_ROW_WITH_SET(entropy_threshold, set_threshold), .cli_flag = "--entropy-threshold",
      .cli_value = "F|auto|carried", .python_keyword = "entropy_threshold", .python_position = 3,
      .yaml_key = "ORBextractor.entropyThreshold", .old_cli_flag = "--threshold",

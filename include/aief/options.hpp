@@ -115,8 +115,8 @@ enum class Mode {
   quadtree_entropy,  // quadtree + entropy mask, the paper's conventions
   faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells, octree tie-breaks and
                      // orientation
-  quality,           // aief with FAST on smoothed levels, a finer pyramid (1.1, 18 levels) and the
-                     // box descriptor:
+  quality,           // aief with FAST on smoothed levels, a finer pyramid (1.1, 18 levels), the
+                     // box descriptor and no entropy mask:
                      // for offline mapping, docs/evaluation.md "Hard families"
 };
 

@@ -26,7 +26,7 @@ std::string fixed(const char* format, double value) {
 // One method's sums over a family's pairs.
 struct FamilyFigures {
   int pairs = 0, homographies = 0, correct = 0;
-  double accuracy = 0, time_ms = 0;
+  double accuracy = 0, accuracy_1px = 0, accuracy_2px = 0, time_ms = 0;
 };
 
 }  // namespace
@@ -54,14 +54,17 @@ std::string family_tables(const EvalRun& run) {
         sum->homographies += r.homography_ok ? 1 : 0;
         sum->correct += r.correct;
         sum->accuracy += r.accuracy;
+        sum->accuracy_1px += r.accuracy_1px;
+        sum->accuracy_2px += r.accuracy_2px;
         sum->time_ms += r.extract_ms;
       }
     }
   }
   std::ostringstream md;
   md << "\n## Hard families\n\nSequences FAMILY-IMAGE (scripts/make_synthetic_pairs.py "
-        "--families), img1 -> img2..6 of each, grouped by family. MMA@3px: the mean over the "
-        "pairs of correct / putative matches (correct: within 3 px under the true homography); "
+        "--families), img1 -> img2..6 of each, grouped by family. MMA@1px, @2px, @3px: the mean "
+        "over the pairs of correct / putative matches (correct: within 1, 2, 3 px under the true "
+        "homography); "
         "homography success: mean corner error of our RANSAC model below 5 px; correct matches "
         "per pair; time: extraction + description of img1, one thread, CPU ms (mean of the "
         "per-pair medians).\n";
@@ -79,6 +82,16 @@ std::string family_tables(const EvalRun& run) {
       md << '\n';
     }
   };
+  const auto mma = [&](const char* title, double FamilyFigures::*share, bool with_time) {
+    table(
+        title,
+        [share](const FamilyFigures& s) {
+          return fixed("%.1f", s.pairs ? 100 * (s.*share) / s.pairs : 0.0);
+        },
+        with_time);
+  };
+  mma("MMA@1px (%)", &FamilyFigures::accuracy_1px, false);
+  mma("MMA@2px (%)", &FamilyFigures::accuracy_2px, false);
   table(
       "MMA@3px (%)",
       [](const FamilyFigures& s) {

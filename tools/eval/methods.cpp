@@ -80,11 +80,20 @@ void measure(const std::vector<Point2>& pa, const std::vector<Point2>& pb, const
   r.inliers = model.found ? model.inliers : 0;
   r.cmr = r.putative > 0 ? static_cast<double>(r.inliers) / r.putative : 0.0;
   r.correct = 0;
+  int within_1px = 0, within_2px = 0;
   for (std::size_t i = 0; i < pa.size(); ++i) {
     const Point2 p = apply_homography(truth, pa[i]);
-    if (std::hypot(p.x - pb[i].x, p.y - pb[i].y) <= 3.0) ++r.correct;
+    const double error = std::hypot(p.x - pb[i].x, p.y - pb[i].y);
+    r.correct += error <= 3.0 ? 1 : 0;
+    within_2px += error <= 2.0 ? 1 : 0;
+    within_1px += error <= 1.0 ? 1 : 0;
   }
-  r.accuracy = r.putative > 0 ? static_cast<double>(r.correct) / r.putative : 0.0;
+  const auto share = [&](int count) {
+    return r.putative > 0 ? static_cast<double>(count) / r.putative : 0.0;
+  };
+  r.accuracy = share(r.correct);
+  r.accuracy_2px = share(within_2px);
+  r.accuracy_1px = share(within_1px);
   if (model.found) {
     r.corner_error = mean_corner_error(model.H, truth, width, height);
     r.homography_ok = r.corner_error < 5.0;

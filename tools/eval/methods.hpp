@@ -65,7 +65,8 @@ struct PairResult {
   int inliers = 0;      // RANSAC inliers of our final model (m of the paper)
   double cmr = 0;       // m / n (Eq. 10)
   int correct = 0;      // putative matches within 3 px under the true homography
-  double accuracy = 0;  // correct / putative
+  double accuracy = 0;  // correct / putative (MMA@3px)
+  double accuracy_1px = 0, accuracy_2px = 0;  // the share within 1 and 2 px (MMA@1px, MMA@2px)
   double corner_error =
       -1;  // mean corner error of the RANSAC homography vs the truth, px (-1: none)
   bool homography_ok = false;  // corner_error < 5 px
@@ -92,6 +93,8 @@ struct aief::io::RecordFields<aief::eval::PairResult> {
                                           AIEF_RECORD_FIELD(cmr),
                                           AIEF_RECORD_FIELD(correct),
                                           AIEF_RECORD_FIELD(accuracy),
+                                          AIEF_RECORD_FIELD(accuracy_1px),
+                                          AIEF_RECORD_FIELD(accuracy_2px),
                                           AIEF_RECORD_FIELD(corner_error),
                                           AIEF_RECORD_FIELD(homography_ok),
                                           AIEF_RECORD_FIELD(extract_ms),

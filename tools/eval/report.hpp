@@ -34,9 +34,9 @@ inline constexpr const char* kHandWrittenMarker =
 // The hand-written section of a previous report, from its marker to the end ("" without one).
 std::string hand_written_section(const std::string& previous_report);
 std::string json_report(const EvalRun& run);
-// The hard families' tables (tools/eval/family_report.cpp): MMA@3px, homography success and
-// correct matches per pair by family and method, when every sequence is named FAMILY-IMAGE; ""
-// otherwise.
+// The hard families' tables (tools/eval/family_report.cpp): MMA at 1, 2 and 3 px, homography
+// success and correct matches per pair by family and method, when every sequence is named
+// FAMILY-IMAGE; "" otherwise.
 std::string family_tables(const EvalRun& run);
 // One PNG per sequence in `folder`: correct matches and accuracy against the pair index.
 std::vector<std::string> write_plots(const EvalRun& run, const std::string& folder);
