@@ -214,4 +214,20 @@ TEST(CliBadInputs, AFolderBatchTakesEveryTypeSingleExtractReads) {
       << batch.output;
 }
 
+// The pyramid's pixels are bounded as the decoder's image is (6 x --max-image-pixels over the
+// levels): a deep pyramid of tiny steps is refused with its figure before it is built.
+TEST(CliBadInputs, APyramidOfTooManyPixelsIsRefusedWithItsFigure) {
+  const aief::test::TempFolder folder("aief_cli_pyramid");
+  const std::string image = aief::test::sample_path("graf", "img1_center_320x240.pgm");
+  const std::string out = (folder.path() / "out.json").string();
+  const CliResult deep = run("extract " + image + " --scale-factor 1.001 --n-levels 32 " +
+                             "--max-image-pixels 76800 -o " + out);
+  EXPECT_EQ(deep.status, 1) << deep.output;
+  EXPECT_TRUE(says(deep, "makes a pyramid of") && says(deep, "more than the 460800 allowed"))
+      << deep.output;
+  EXPECT_FALSE(fs::exists(out));
+  const CliResult usual = run("extract " + image + " --max-image-pixels 76800 -o " + out);
+  EXPECT_EQ(usual.status, 0) << usual.output;
+}
+
 }  // namespace
