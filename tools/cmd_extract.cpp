@@ -137,8 +137,9 @@ int run_extract_batch(const Args& args) {
   settings.options = extractor_options(args);
   if (settings.options.carried_threshold && settings.shard_count > 1)
     throw UsageError(
-        "--shard splits a collection between runs, but --threshold carried carries F from frame "
-        "to frame of one video (each frame's F depends on the frames before it): extract each "
+        "--shard splits a collection between runs, but --entropy-threshold carried carries F from "
+        "frame to frame of one video (each frame's F depends on the frames before it): extract "
+        "each "
         "video in one run, and split by video instead");
   const BatchSummary summary = run_batch(settings);
   std::printf("batch: %d images in this shard: %d extracted", summary.images, summary.extracted);
