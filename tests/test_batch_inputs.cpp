@@ -72,8 +72,8 @@ TEST(BatchInputs, AListGivesItsLinesAsNamesSortedOnceEach) {
             "a/../b.png");  // ".." stays: the output names escape it
 }
 
-// The frames of one video (--entropy-threshold carried): before, frame_10.png came before frame_2.png in
-// a folder, and a list written in frame order was sorted the same way.
+// The frames of one video (--entropy-threshold carried): before, frame_10.png came before
+// frame_2.png in a folder, and a list written in frame order was sorted the same way.
 TEST(BatchInputs, FramesKeepTheListsOrderAndAFoldersNaturalOrder) {
   const aief::test::TempFolder temp("aief_batch_inputs");
   const fs::path folder = temp.path() / "video";
@@ -190,6 +190,23 @@ TEST(TextList, AFolderABinaryFileAndEndlessLinesAreRefusedNamingTheReason) {
   EXPECT_EQ(aief::io::read_text_list(temp.file("pairs.txt"), "pairs file", 2).size(), 1u);
   // The batch and the pairs reader go through it.
   EXPECT_THROW(aief::io::list_batch_inputs(temp.file("image.png")), aief::Error);
+}
+
+// `colmap --pairs /dev/null` wrote a database of no pairs and exited 0 without a word; `match
+// --pairs` "matched" 0 pairs. A pairs file of no line but blank ones is refused; one whose lines
+// were all skipped says so in its notes.
+TEST(PairsFile, AnEmptyFileIsRefused) {
+  const aief::test::TempFolder folder("aief_pairs_none");
+  std::ofstream(folder.path() / "empty.txt") << "\n  \n";
+  std::string message;
+  try {
+    aief::io::read_pairs(folder.file("empty.txt"));
+  } catch (const aief::Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("names no pair (2 line(s), all blank)"), std::string::npos) << message;
+  std::ofstream(folder.path() / "selves.txt") << "a.png a.png\n";
+  EXPECT_EQ(aief::io::read_pairs(folder.file("selves.txt")).notes.size(), 1u);
 }
 
 // A list or pairs file saved with a UTF-8 byte order mark (Windows editors): the mark is skipped,

@@ -13,6 +13,7 @@
 #include "tools/batch.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/output_extension.hpp"
 #include "tools/outputs_not_inputs.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
@@ -125,6 +126,11 @@ int run_extract_batch(const Args& args) {
   if (!io::feature_format_named(settings.format))
     throw UsageError("--format expects " + io::feature_format_names() + ", got '" +
                      settings.format + "'");
+  // An output named as another format (`--format json -o oo.h5`) made a folder oo.h5 of JSON.
+  if (named_as && named_as->name != settings.format)
+    throw UsageError("-o " + settings.output_dir + " names " + std::string(named_as->name) +
+                     " by its extension, but --format " + settings.format +
+                     " was asked: " + "drop --format, or name the output otherwise");
   if (const auto shard = args.get("--shard")) {
     try {
       const Shard parsed = parse_shard(*shard);
@@ -191,6 +197,7 @@ int run_extract(const Arguments& arguments) {
   if (const auto output = args.get("--output"); output && !io::is_features_file_name(*output))
     throw UsageError("-o " + *output + ": the output must end in " +
                      io::feature_format_extensions(io::FeatureFormat::Layout::file_per_image));
+  check_output_folder(args, "--output");
   if (const auto output = args.get("--output"))
     io::check_features_file_can_hold(*output, args.positionals()[0], args.positionals()[0]);
   check_picture_flag(args, "--draw");
