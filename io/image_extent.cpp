@@ -221,8 +221,10 @@ std::uint64_t tiff_length(const Bytes& b) {
     }
     if (*tag == 273 || *tag == 324) offsets = {*count, values, value_size};
     if (*tag == 279 || *tag == 325) byte_counts = {*count, values, value_size};
+    if (*tag == 513) return b.size();  // old-style JPEG: its stream lies where this tag says
   }
-  if (offsets.count == 0 || byte_counts.count == 0) return std::min(end, b.size());
+  // Without byte counts libtiff guesses the strips' ends: the file whole.
+  if (offsets.count == 0 || byte_counts.count == 0) return b.size();
   for (std::uint64_t i = 0; i < std::min(offsets.count, byte_counts.count); ++i) {
     const std::optional<std::uint64_t> offset = read(offsets.at + i * offsets.value_size,
                                                      offsets.value_size),
