@@ -1,4 +1,5 @@
-// libFuzzer: arbitrary bytes as an image file -> decode and gray conversion (io) -> extract.
+// libFuzzer: arbitrary bytes as an image file -> the extent its header declares, decode and gray
+// conversion (io) -> extract.
 // Anything but aief::Error escaping, or any sanitizer report, is a finding.
 #include <cstdint>
 #include <cstdlib>
@@ -6,6 +7,8 @@
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
+#include "io/image_extent.hpp"
+#include "io/image_header.hpp"
 #include "io/image_io.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -21,6 +24,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.threads = 1;
     return aief::Extractor(options);
   }();
+  try {
+    if (const auto header = aief::io::read_image_header(data, size))
+      if (aief::io::encoded_image_length(*header, aief::io::EncodedBytes(data, size),
+                                         "fuzz input") > size)
+        std::abort();
+  } catch (const aief::Error&) {
+  }
   try {
     const aief::GrayImage image =
         aief::io::decode_gray_image(std::vector<std::uint8_t>(data, data + size), "fuzz input");

@@ -57,24 +57,61 @@ std::string name_of_listed_path(const std::string& line) {
   return name;
 }
 
+namespace {
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// The end of the decimal fraction after a run of digits ending at `at` ("." and digits), or `at`
+// when none follows.
+std::size_t fraction_end(const std::string& text, std::size_t at) {
+  if (at + 1 >= text.size() || text[at] != '.' || !is_digit(text[at + 1])) return at;
+  std::size_t end = at + 1;
+  while (end < text.size() && is_digit(text[end])) ++end;
+  return end;
+}
+
+// Fractions' digits (after the '.') by value: the shorter padded with zeros (.05 < .1 = .10).
+int compare_fractions(const std::string& a, std::size_t a_begin, std::size_t a_end,
+                      const std::string& b, std::size_t b_begin, std::size_t b_end) {
+  const std::size_t length = std::max(a_end - a_begin, b_end - b_begin);
+  for (std::size_t k = 0; k < length; ++k) {
+    const char x = a_begin + k < a_end ? a[a_begin + k] : '0';
+    const char y = b_begin + k < b_end ? b[b_begin + k] : '0';
+    if (x != y) return x < y ? -1 : 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
 bool natural_less(const std::string& a, const std::string& b) {
-  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
   std::size_t i = 0, j = 0;
-  int zeros = 0;  // leading zeros of a's numbers minus b's, the first that differ: the tie-break
+  // The first difference in how a number of equal value is written (leading zeros, then the
+  // fraction's digits: a's minus b's), the tie-break: "2" before "02", "0.1" before "0.10".
+  int spelling = 0;
   while (i < a.size() && j < b.size()) {
-    if (digit(a[i]) && digit(b[j])) {
+    if (is_digit(a[i]) && is_digit(b[j])) {
       std::size_t zi = i, zj = j;
       while (zi < a.size() && a[zi] == '0') ++zi;
       while (zj < b.size() && b[zj] == '0') ++zj;
       std::size_t ei = zi, ej = zj;
-      while (ei < a.size() && digit(a[ei])) ++ei;
-      while (ej < b.size() && digit(b[ej])) ++ej;
+      while (ei < a.size() && is_digit(a[ei])) ++ei;
+      while (ej < b.size() && is_digit(b[ej])) ++ej;
       if (ei - zi != ej - zj) return ei - zi < ej - zj;  // more significant digits: larger
       const int order = a.compare(zi, ei - zi, b, zj, ej - zj);
       if (order != 0) return order < 0;
-      if (zeros == 0) zeros = static_cast<int>(zi - i) - static_cast<int>(zj - j);
-      i = ei;
-      j = ej;
+      if (spelling == 0) spelling = static_cast<int>(zi - i) - static_cast<int>(zj - j);
+      // A decimal fraction right after the number (seconds: 0.033333 before 0.1) by its value;
+      // a number without one counts as .0.
+      const std::size_t fi = fraction_end(a, ei), fj = fraction_end(b, ej);
+      if (fi != ei || fj != ej) {
+        const std::size_t ai = fi != ei ? ei + 1 : ei, bj = fj != ej ? ej + 1 : ej;
+        const int fraction = compare_fractions(a, ai, fi, b, bj, fj);
+        if (fraction != 0) return fraction < 0;
+        if (spelling == 0) spelling = static_cast<int>(fi - ei) - static_cast<int>(fj - ej);
+      }
+      i = fi;
+      j = fj;
     } else {
       if (a[i] != b[j]) return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]);
       ++i;
@@ -82,13 +119,14 @@ bool natural_less(const std::string& a, const std::string& b) {
     }
   }
   if (a.size() - i != b.size() - j) return a.size() - i < b.size() - j;
-  return zeros != 0 ? zeros < 0 : false;
+  return spelling != 0 ? spelling < 0 : false;
 }
 
 std::string frame_order_of(const std::string& folder_or_list) {
   std::error_code ec;
   return fs::is_directory(folder_or_list, ec)
-             ? "in natural order of their names (numbers as numbers: frame_2 before frame_10)"
+             ? "in natural order of their names (numbers by value, decimal fractions too: "
+               "frame_2 before frame_10, 0.05 before 0.1)"
              : "in the list's order";
 }
 

@@ -17,10 +17,11 @@
 // Names: an input's name is its key (hloc's and COLMAP's convention): its path below the folder
 // as listed, or its list line with "." parts and doubled '/' dropped (name_of_listed_path).
 // Inputs are sorted by name (byte order: the order shards split); a name listed twice is taken
-// once. The frames of one video (--threshold carried, where each frame's F depends on the frames
-// before it) are taken in frame order instead: a list file's lines as listed, a folder's names in
-// natural order, numbers as numbers (frame_2.png before frame_10.png, as ffmpeg's frame_%d.png
-// are numbered).
+// once. The frames of one video (--entropy-threshold carried, where each frame's F depends on the
+// frames before it) are taken in frame order instead: a list file's lines as listed, a folder's
+// names in natural order, numbers by value (frame_2.png before frame_10.png, as ffmpeg's
+// frame_%d.png are numbered), a decimal fraction after a number too (frames named by seconds:
+// 0.033333.png before 0.1.png, 1500000000.05.png before 1500000000.1.png).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -41,12 +42,14 @@ enum class InputOrder { by_name, frames };
 std::vector<BatchInput> list_batch_inputs(const std::string& folder_or_list,
                                           InputOrder order = InputOrder::by_name);
 
-// Whether `a` comes before `b` in natural order: runs of digits compared as numbers (then by
-// their number of leading zeros, fewer first), everything else byte by byte.
+// Whether `a` comes before `b` in natural order: runs of digits compared as numbers, with the
+// decimal fraction right after one ("." and digits) by its value (a number without one is .0;
+// so 1.10 comes before 1.9: names are read as seconds, not as versions); equal values by their
+// spelling (fewer leading zeros, then fewer fraction digits, first); everything else byte by byte.
 bool natural_less(const std::string& a, const std::string& b);
 
 // How list_batch_inputs ordered the frames of `folder_or_list`, for a note: "in the list's
-// order" or "in natural order of their names (numbers as numbers: frame_2 before frame_10)".
+// order" or "in natural order of their names (numbers by value, decimal fractions too: ...)".
 std::string frame_order_of(const std::string& folder_or_list);
 
 // Shard `index` of `count`: inputs index, index + count, index + 2 count, ... (0 <= index < count).

@@ -6,40 +6,13 @@
 #include <cstring>
 #include <string_view>
 
+#include "io/encoded_bytes.hpp"
+
 namespace aief::io {
 
 namespace {
 
-// Bounds-checked reads from the encoded bytes: a read past the end yields nullopt.
-class Bytes {
- public:
-  Bytes(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
-  std::size_t size() const { return size_; }
-  bool starts_with(std::string_view magic, std::size_t at = 0) const {
-    return at + magic.size() <= size_ && std::memcmp(data_ + at, magic.data(), magic.size()) == 0;
-  }
-  std::optional<std::uint64_t> big_endian(std::size_t at, int count) const {
-    if (at + static_cast<std::size_t>(count) > size_) return std::nullopt;
-    std::uint64_t value = 0;
-    for (int i = 0; i < count; ++i) value = (value << 8) | data_[at + static_cast<std::size_t>(i)];
-    return value;
-  }
-  std::optional<std::uint64_t> little_endian(std::size_t at, int count) const {
-    if (at + static_cast<std::size_t>(count) > size_) return std::nullopt;
-    std::uint64_t value = 0;
-    for (int i = count - 1; i >= 0; --i)
-      value = (value << 8) | data_[at + static_cast<std::size_t>(i)];
-    return value;
-  }
-  std::optional<std::uint8_t> at(std::size_t index) const {
-    if (index >= size_) return std::nullopt;
-    return data_[index];
-  }
-
- private:
-  const std::uint8_t* data_;
-  std::size_t size_;
-};
+using Bytes = EncodedBytes;
 
 std::optional<ImageHeader> make(const char* format, std::optional<std::uint64_t> width,
                                 std::optional<std::uint64_t> height) {
@@ -117,7 +90,9 @@ std::optional<ImageHeader> tiff_header(const Bytes& b) {
   const std::size_t first = *ifd + (big ? 8 : 2), entry_size = big ? 20 : 12,
                     value_at = big ? 12 : 8;
   std::optional<std::uint64_t> width, height, bits, samples, tile_width, tile_height;
-  for (std::uint64_t i = 0; i < *entries && first + i * entry_size + entry_size <= b.size(); ++i) {
+  // At most libtiff's 4096 entries (it refuses a directory of more): a bound on the walk.
+  const std::uint64_t walked = std::min<std::uint64_t>(*entries, 4096);
+  for (std::uint64_t i = 0; i < walked && first + i * entry_size + entry_size <= b.size(); ++i) {
     const std::size_t entry = first + static_cast<std::size_t>(i) * entry_size;
     const std::optional<std::uint64_t> tag = read(entry, 2), type = read(entry + 2, 2);
     // BitsPerSample (258: one SHORT per sample, held in the entry while they fit, else at the
@@ -326,7 +301,10 @@ std::optional<ImageHeader> jp2_header(const Bytes& b) {
 }  // namespace
 
 std::optional<ImageHeader> read_image_header(const std::uint8_t* bytes, std::size_t size) {
-  const Bytes b(bytes, size);
+  return read_image_header(EncodedBytes(bytes, size));
+}
+
+std::optional<ImageHeader> read_image_header(const EncodedBytes& b) {
   if (b.starts_with("\x89PNG\r\n\x1a\n")) return png_header(b);
   if (b.starts_with("\xFF\xD8")) return jpeg_header(b);
   if (b.starts_with(std::string_view("II*\0", 4)) || b.starts_with(std::string_view("MM\0*", 4)) ||

@@ -13,6 +13,8 @@
 #include <optional>
 #include <string>
 
+#include "io/encoded_bytes.hpp"
+
 namespace aief::io {
 
 struct ImageHeader {
@@ -34,5 +36,9 @@ struct ImageHeader {
 // The declared size, or nullopt when the bytes start with no format above or its header is cut
 // short or malformed (the caller refuses such a file: its size cannot be known before decoding).
 std::optional<ImageHeader> read_image_header(const std::uint8_t* bytes, std::size_t size);
+// The same through a file read a page at a time (a TIFF's first directory may lie anywhere in
+// the file). Its loops walk text a line at a time: give it only a TIFF's bytes, the other
+// formats' headers from the file's first 64 KB in memory.
+std::optional<ImageHeader> read_image_header(const EncodedBytes& bytes);
 
 }  // namespace aief::io

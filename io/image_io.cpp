@@ -11,6 +11,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "aief/error.hpp"
+#include "io/encoded_bytes.hpp"
+#include "io/image_extent.hpp"
 #include "io/image_formats.hpp"
 #include "io/image_header.hpp"
 
@@ -119,32 +121,17 @@ void check_header(const ImageHeader* header, const std::string& name, long long 
                 "tone-map it first)");
 }
 
+[[noreturn]] void throw_unreadable(const std::string& name) {
+  throw Error("cannot read image '" + name + "': not an image aief can read (" +
+              readable_image_format_names() + "; 8- or 16-bit), or its header is damaged");
+}
+
 // The same, and an unknown format, for the whole encoded file.
 void check_header_before_decoding(const std::vector<std::uint8_t>& bytes, const std::string& name,
                                   long long max_pixels) {
   const std::optional<ImageHeader> header = read_image_header(bytes.data(), bytes.size());
-  if (!header)
-    throw Error("cannot read image '" + name + "': not an image aief can read (" +
-                readable_image_format_names() + "; 8- or 16-bit), or its header is damaged");
+  if (!header) throw_unreadable(name);
   check_header(&*header, name, max_pixels);
-}
-
-// The bytes a PNG needs: its chunks up to and including IEND, walked by their lengths (8-byte
-// signature, then length, type, data, CRC per chunk). 0 when the walk does not end at an IEND
-// within `size` (a damaged or cut file: the decoder reads it whole and says what is wrong).
-std::uint64_t png_length(std::ifstream& in, std::uint64_t size) {
-  std::uint64_t at = 8;
-  while (at + 12 <= size) {
-    std::uint8_t chunk[8];
-    in.seekg(static_cast<std::streamoff>(at));
-    if (!in.read(reinterpret_cast<char*>(chunk), sizeof chunk)) return 0;
-    const std::uint64_t length = (std::uint64_t{chunk[0]} << 24) | (std::uint64_t{chunk[1]} << 16) |
-                                 (std::uint64_t{chunk[2]} << 8) | chunk[3];
-    if (length > 0x7FFFFFFFu) return 0;  // the PNG specification's largest chunk
-    at += 12 + length;
-    if (std::memcmp(chunk + 4, "IEND", 4) == 0) return at <= size ? at : 0;
-  }
-  return 0;
 }
 
 // A JPEG whose last scan (SOS, FF DA) is not followed by the end-of-image marker (FF D9) was cut
@@ -173,8 +160,7 @@ std::string kind_of(std::filesystem::file_type type) {
 
 }  // namespace
 
-GrayImage read_gray_image(const std::string& path, long long max_pixels,
-                          std::vector<std::string>* warnings) {
+std::vector<std::uint8_t> read_image_file(const std::string& path, long long max_pixels) {
   // Asked before opening: opening a FIFO blocks until a writer comes, maybe forever.
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -190,33 +176,38 @@ GrayImage read_gray_image(const std::string& path, long long max_pixels,
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw Error("cannot open image '" + path + "': permission denied");
   const std::uint64_t size = static_cast<std::uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
-  // The header first, from the file's start: a size above the limit is refused before the rest
-  // is read (a header the start does not hold, as a TIFF's directory at the end, is read with
-  // the whole file). Then no more than the format needs: a PNG up to its IEND chunk (a 320 x 240
-  // PNG padded to 1.5 GB was read whole: 25 s, 1.6 GB); other formats whole.
+  const ReadAt read_at = [&in](std::uint64_t offset, std::uint8_t* into, std::size_t count) {
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(offset));
+    in.read(reinterpret_cast<char*>(into), static_cast<std::streamsize>(count));
+    return static_cast<std::size_t>(in.gcount());
+  };
+  const EncodedBytes file(read_at, size);
+  // The header first, from the file's start (a TIFF's first directory from wherever it lies): a
+  // size above the limit, or a file of no format aief reads, is refused before the rest is read.
+  // Then no more than the image occupies by its header (io/image_extent.hpp), never the file
+  // whole first: a 320 x 240 image padded with zeros to 1.5 GB took 1.6 GB and 5-14 s.
   constexpr std::uint64_t kHeaderBytes = 1 << 16;
   std::vector<std::uint8_t> bytes(static_cast<std::size_t>(std::min(size, kHeaderBytes)));
-  in.seekg(0);
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!in) throw Error("cannot read image '" + path + "': read error");
-  std::uint64_t needed = size;
-  if (const std::optional<ImageHeader> header = read_image_header(bytes.data(), bytes.size())) {
-    check_header(&*header, path, max_pixels);
-    if (header->format == "PNG")
-      if (const std::uint64_t length = png_length(in, size); length > 0) needed = length;
-    in.clear();
-  }
-  if (needed > bytes.size()) {
-    const std::size_t start = bytes.size();
-    bytes.resize(static_cast<std::size_t>(needed));
-    in.seekg(static_cast<std::streamoff>(start));
-    in.read(reinterpret_cast<char*>(bytes.data() + start),
-            static_cast<std::streamsize>(needed - start));
-    if (!in) throw Error("cannot read image '" + path + "': read error");
-  } else {
-    bytes.resize(static_cast<std::size_t>(needed));
-  }
-  return decode_gray_image(bytes, path, max_pixels, warnings);
+  if (read_at(0, bytes.data(), bytes.size()) < bytes.size())
+    throw Error("cannot read image '" + path + "': read error");
+  std::optional<ImageHeader> header = read_image_header(bytes.data(), bytes.size());
+  const bool tiff = bytes.size() >= 2 && (std::memcmp(bytes.data(), "II", 2) == 0 ||
+                                          std::memcmp(bytes.data(), "MM", 2) == 0);
+  if (!header && tiff && size > bytes.size()) header = read_image_header(file);
+  if (!header) throw_unreadable(path);
+  check_header(&*header, path, max_pixels);
+  const std::uint64_t needed = encoded_image_length(*header, file, path);
+  const std::size_t start = std::min(bytes.size(), static_cast<std::size_t>(needed));
+  bytes.resize(static_cast<std::size_t>(needed));
+  if (needed > start && read_at(start, bytes.data() + start, needed - start) < needed - start)
+    throw Error("cannot read image '" + path + "': read error");
+  return bytes;
+}
+
+GrayImage read_gray_image(const std::string& path, long long max_pixels,
+                          std::vector<std::string>* warnings) {
+  return decode_gray_image(read_image_file(path, max_pixels), path, max_pixels, warnings);
 }
 
 GrayImage decode_gray_image(const std::vector<std::uint8_t>& bytes, const std::string& name,

@@ -21,6 +21,14 @@
 
 namespace aief::io {
 
+// The bytes of the image file at `path` that the decoder is handed: its header is read and
+// checked first (the checks above), then only what the image occupies by that header
+// (io/image_extent.hpp: a PNG to its IEND, a JPEG to its end-of-image marker, ...), never the
+// file whole first: padding after the image is not read. Throws aief::Error.
+std::vector<std::uint8_t> read_image_file(
+    const std::string& path, long long max_pixels = ExtractorOptions{}.max_image_pixels);
+
+// read_image_file's bytes, decoded.
 //
 // Warnings: a file the decoder still turns into an image but not the whole of it (a JPEG cut short
 // before its end-of-image marker: libjpeg fills the rest with grey) adds a sentence to `warnings`

@@ -96,6 +96,13 @@ PairsList read_pairs(const std::string& path) {
     }
     list.pairs.push_back(ids);
   });
+  // A file of no line at all is refused, not done in silence (`colmap --pairs /dev/null` wrote a
+  // database of no pairs and exited 0); lines all skipped are said by their notes.
+  if (list.pairs.empty() && list.notes.empty())
+    throw Error("pairs file '" + path + "' names no pair (" +
+                (number == 0 ? std::string("it is empty")
+                             : std::to_string(number) + " line(s), all blank") +
+                "): hloc's pairs files hold one 'name0 name1' line per pair");
   return list;
 }
 

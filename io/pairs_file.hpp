@@ -28,9 +28,10 @@ struct PairsList {
   ImagePair pair(std::size_t pair) const { return {name0(pair), name1(pair)}; }
 };
 
-// Throws aief::Error naming the file and the line that is not two names, or the two lines whose
+// Throws aief::Error naming the file and the line that is not two names, the two lines whose
 // pairs would share one group in a matches file (hloc_pair_name: "a/b.png c.png" and
-// "a-b.png c.png"), before any work. The file is read as a stream (io/text_list.hpp).
+// "a-b.png c.png"), or a file of no line but blank ones (/dev/null), before any work. The file is
+// read as a stream (io/text_list.hpp).
 PairsList read_pairs(const std::string& path);
 
 // hloc's names_to_pair(name0, name1), the matches file's group of a pair: each name with '/'

@@ -1,6 +1,7 @@
 #include "aief/orbslam_extractor_base.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -139,6 +140,18 @@ void refuse_unknown_orbextractor_keys(const cv::FileStorage& settings) {
     if (!row.old_yaml_key.empty()) earlier.push_back(row.old_yaml_key);
   }
   for (const std::string& key : root.keys()) {
+    // The prefix in another case (ORBExtractor., orbextractor.): ORB-SLAM reads none of them, and
+    // they were skipped as another section's keys, silently.
+    const bool prefixed_in_any_case =
+        key.size() > kPrefix.size() &&
+        std::equal(kPrefix.begin(), kPrefix.end(), key.begin(), [](char a, char b) {
+          return std::tolower(static_cast<unsigned char>(a)) ==
+                 std::tolower(static_cast<unsigned char>(b));
+        });
+    if (prefixed_in_any_case && key.compare(0, kPrefix.size(), kPrefix) != 0)
+      throw Error("unknown setting '" + key + "': ORB-SLAM's extractor keys begin with '" +
+                  std::string(kPrefix) + "', in this case exactly (did you mean " +
+                  std::string(kPrefix) + key.substr(kPrefix.size()) + "?)");
     if (key.compare(0, kPrefix.size(), kPrefix) != 0 ||
         std::find(known.begin(), known.end(), key) != known.end() ||
         std::find(earlier.begin(), earlier.end(), key) != earlier.end())

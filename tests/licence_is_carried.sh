@@ -14,6 +14,14 @@ for carried in data/orb_pattern_31.txt "modules/features2d/src/orb.cpp" \
                data/box_descriptor/teblid_256.txt opencv_contrib; do
   grep -q "$carried" "$src/NOTICE" || fail "NOTICE does not name $carried"
 done
+# TEBLID's source file carries no copyright line: the copyright is not credited to the paper's
+# authors (data/box_descriptor/README.md names the source as it is).
+! grep -q "Copyright.*Iago Suarez" "$src/NOTICE" "$src/cmake/debian_copyright" \
+  || fail "NOTICE or cmake/debian_copyright credits TEBLID's table to the paper's authors"
+grep -q "no copyright" "$src/NOTICE" || fail "NOTICE does not say TEBLID's file has no copyright line"
+# The sample images are the Oxford group's research images, not the project's Apache-2.0 files.
+grep -q "^Files: data/samples/\*" "$src/cmake/debian_copyright" \
+  || fail "cmake/debian_copyright: data/samples has no stanza of its own (Files: * says Apache-2.0)"
 grep -q '^license = { text = "Apache-2.0" }' "$src/pyproject.toml" || fail "pyproject.toml: no license"
 grep -q 'license-files = \["LICENSE", "NOTICE"\]' "$src/pyproject.toml" \
   || fail "pyproject.toml: LICENSE and NOTICE not in the wheel"

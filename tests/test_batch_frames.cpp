@@ -38,10 +38,10 @@ TEST(Batch, CarriedTakesAFoldersFramesInNaturalOrderAndAListAsListedAndSaysSo) {
   const fs::path video = numbered_frames(temp.path(), 12);
   const aief::test::CommandRun folder = aief::test::run_command(
       AIEF_CLI_PATH, {"extract", "--batch", video.string(), "-o", (temp.path() / "a.h5").string(),
-                      "--threshold", "carried", "--threads", "1", "--features", "200"});
+                      "--entropy-threshold", "carried", "--threads", "1", "--features", "200"});
   ASSERT_EQ(folder.status, 0) << folder.output;
-  EXPECT_NE(folder.output.find("takes the frames of '" + video.string() +
-                               "' in natural order of their names"),
+  EXPECT_NE(folder.output.find("--entropy-threshold carried takes the frames of '" +
+                               video.string() + "' in natural order of their names"),
             std::string::npos)
       << folder.output;
   const fs::path list = temp.path() / "frames.txt";
@@ -52,7 +52,7 @@ TEST(Batch, CarriedTakesAFoldersFramesInNaturalOrderAndAListAsListedAndSaysSo) {
   }
   const aief::test::CommandRun listed = aief::test::run_command(
       AIEF_CLI_PATH, {"extract", "--batch", list.string(), "-o", (temp.path() / "b.h5").string(),
-                      "--threshold", "carried", "--threads", "1", "--features", "200"});
+                      "--entropy-threshold", "carried", "--threads", "1", "--features", "200"});
   ASSERT_EQ(listed.status, 0) << listed.output;
   EXPECT_NE(listed.output.find("in the list's order"), std::string::npos) << listed.output;
   // Without carried, a batch stays sorted by name and says nothing of frames.
@@ -70,9 +70,10 @@ TEST(Batch, CarriedRefusesShards) {
   const fs::path video = numbered_frames(temp.path(), 2);
   const aief::test::CommandRun r = aief::test::run_command(
       AIEF_CLI_PATH, {"extract", "--batch", video.string(), "-o", (temp.path() / "a.h5").string(),
-                      "--threshold", "carried", "--shard", "0/2"});
+                      "--entropy-threshold", "carried", "--shard", "0/2"});
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("--threshold carried carries F from frame to frame"), std::string::npos)
+  EXPECT_NE(r.output.find("--entropy-threshold carried carries F from frame to frame"),
+            std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(temp.path() / "a.h5"));
 }

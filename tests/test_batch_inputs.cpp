@@ -72,8 +72,8 @@ TEST(BatchInputs, AListGivesItsLinesAsNamesSortedOnceEach) {
             "a/../b.png");  // ".." stays: the output names escape it
 }
 
-// The frames of one video (--threshold carried): before, frame_10.png came before frame_2.png in
-// a folder, and a list written in frame order was sorted the same way.
+// The frames of one video (--entropy-threshold carried): before, frame_10.png came before
+// frame_2.png in a folder, and a list written in frame order was sorted the same way.
 TEST(BatchInputs, FramesKeepTheListsOrderAndAFoldersNaturalOrder) {
   const aief::test::TempFolder temp("aief_batch_inputs");
   const fs::path folder = temp.path() / "video";
@@ -104,6 +104,33 @@ TEST(BatchInputs, FramesKeepTheListsOrderAndAFoldersNaturalOrder) {
   EXPECT_TRUE(natural_less("a", "a0"));
   EXPECT_TRUE(natural_less("b9/x", "b10/a"));
   EXPECT_TRUE(natural_less("x99999999999999999999998", "x99999999999999999999999"));
+}
+
+// Frames named by seconds ran as 0.0, 0.1, 0.2, 0.3, 0.033333, ...: natural order read the
+// fraction's digits as a whole number. A decimal fraction after a number is read by its value.
+TEST(BatchInputs, FramesNamedBySecondsRunInTheOrderOfTheirValues) {
+  const aief::test::TempFolder temp("aief_batch_seconds");
+  const fs::path folder = temp.path() / "video";
+  fs::create_directories(folder);
+  // 30 frames a second, named by their time in seconds.
+  const std::vector<std::string> expected = {
+      "0.0.png", "0.033333.png", "0.066667.png", "0.1.png", "0.133333.png", "0.166667.png",
+      "0.2.png", "0.233333.png", "0.266667.png", "0.3.png", "0.333333.png", "0.366667.png"};
+  for (const std::string& name : expected) touch(folder / name);
+  using aief::io::InputOrder;
+  EXPECT_EQ(names_of(aief::io::list_batch_inputs(folder.string(), InputOrder::frames)), expected);
+  EXPECT_NE(aief::io::frame_order_of(folder.string()).find("0.05 before 0.1"), std::string::npos);
+  using aief::io::natural_less;
+  EXPECT_TRUE(natural_less("1500000000.05.png", "1500000000.1.png"));
+  EXPECT_FALSE(natural_less("1500000000.1.png", "1500000000.05.png"));
+  EXPECT_TRUE(natural_less("0.0.png", "0.033333.png"));
+  EXPECT_TRUE(natural_less("0.033333.png", "0.1.png"));
+  EXPECT_TRUE(natural_less("0.3.png", "0.366667.png"));
+  EXPECT_TRUE(natural_less("1.png", "1.5.png"));     // no fraction: .0
+  EXPECT_TRUE(natural_less("0.1.png", "0.10.png"));  // equal values: fewer digits first
+  EXPECT_FALSE(natural_less("0.10.png", "0.1.png"));
+  EXPECT_TRUE(natural_less("t9.5.png", "t10.25.png"));
+  EXPECT_TRUE(natural_less("frame.2.png", "frame.10.png"));  // a '.' before a number: no fraction
 }
 
 TEST(BatchInputs, ShardsSplitTheSortedListExactly) {
@@ -163,6 +190,23 @@ TEST(TextList, AFolderABinaryFileAndEndlessLinesAreRefusedNamingTheReason) {
   EXPECT_EQ(aief::io::read_text_list(temp.file("pairs.txt"), "pairs file", 2).size(), 1u);
   // The batch and the pairs reader go through it.
   EXPECT_THROW(aief::io::list_batch_inputs(temp.file("image.png")), aief::Error);
+}
+
+// `colmap --pairs /dev/null` wrote a database of no pairs and exited 0 without a word; `match
+// --pairs` "matched" 0 pairs. A pairs file of no line but blank ones is refused; one whose lines
+// were all skipped says so in its notes.
+TEST(PairsFile, AnEmptyFileIsRefused) {
+  const aief::test::TempFolder folder("aief_pairs_none");
+  std::ofstream(folder.path() / "empty.txt") << "\n  \n";
+  std::string message;
+  try {
+    aief::io::read_pairs(folder.file("empty.txt"));
+  } catch (const aief::Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("names no pair (2 line(s), all blank)"), std::string::npos) << message;
+  std::ofstream(folder.path() / "selves.txt") << "a.png a.png\n";
+  EXPECT_EQ(aief::io::read_pairs(folder.file("selves.txt")).notes.size(), 1u);
 }
 
 // A list or pairs file saved with a UTF-8 byte order mark (Windows editors): the mark is skipped,

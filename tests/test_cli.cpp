@@ -306,6 +306,14 @@ TEST(Cli, InputErrorsExitOne) {
                              "': image 7x3 is smaller than"),
             std::string::npos)
       << tiny.output;
+  // validate on a uniform image: no keypoint, so the kernels of keypoints tested nothing while
+  // every row said "identical".
+  std::ofstream((dir / "flat.pgm").string(), std::ios::binary) << "P5\n64 64\n255\n"
+                                                               << std::string(64 * 64, '\x80');
+  const CliResult flat = run("validate " + (dir / "flat.pgm").string());
+  EXPECT_EQ(flat.status, 1) << flat.output;
+  EXPECT_NE(flat.output.find("no keypoint in it"), std::string::npos) << flat.output;
+  EXPECT_EQ(flat.output.find("identical"), std::string::npos) << flat.output;
 }
 
 TEST(Cli, EveryCommandRefusesADecompressionBombBeforeDecoding) {

@@ -214,4 +214,62 @@ TEST(CliBadInputs, AFolderBatchTakesEveryTypeSingleExtractReads) {
       << batch.output;
 }
 
+// The pyramid's pixels are bounded as the decoder's image is (6 x --max-image-pixels over the
+// levels): a deep pyramid of tiny steps is refused with its figure before it is built.
+TEST(CliBadInputs, APyramidOfTooManyPixelsIsRefusedWithItsFigure) {
+  const aief::test::TempFolder folder("aief_cli_pyramid");
+  const std::string image = aief::test::sample_path("graf", "img1_center_320x240.pgm");
+  const std::string out = (folder.path() / "out.json").string();
+  const CliResult deep = run("extract " + image + " --scale-factor 1.001 --n-levels 32 " +
+                             "--max-image-pixels 76800 -o " + out);
+  EXPECT_EQ(deep.status, 1) << deep.output;
+  EXPECT_TRUE(says(deep, "makes a pyramid of") && says(deep, "more than the 460800 allowed"))
+      << deep.output;
+  EXPECT_FALSE(fs::exists(out));
+  const CliResult usual = run("extract " + image + " --max-image-pixels 76800 -o " + out);
+  EXPECT_EQ(usual.status, 0) << usual.output;
+}
+
+// Outputs checked before any work: a missing folder (it failed after the work, naming a
+// temporary file), an extension of another format (`merge -o x.json`, `colmap -o x.h5`, `--format
+// json -o oo.h5` made a folder oo.h5), an input given as -o (`colmap ... -o f.h5` said "exists
+// already").
+TEST(CliBadInputs, OutputsAreCheckedBeforeAnyWork) {
+  const aief::test::TempFolder folder("aief_cli_outputs");
+  const fs::path& dir = folder.path();
+  const std::string a = aief::test::sample_path("graf", "img1.png"),
+                    b = aief::test::sample_path("graf", "img2.png");
+  const std::string missing = (dir / "nodir").string();
+  for (const std::string& command : {"extract " + a + " -o " + missing + "/x.json",
+                                     "match " + a + " " + b + " -o " + missing + "/m.json",
+                                     "adapt " + a + " " + b + " -o " + missing + "/a.json",
+                                     "merge -o " + missing + "/x.h5 " + (dir / "s.h5").string()}) {
+    const CliResult result = run(command);
+    EXPECT_EQ(result.status, 1) << command << "\n" << result.output;
+    EXPECT_TRUE(says(result, "the folder '" + missing + "' does not exist")) << result.output;
+    EXPECT_FALSE(says(result, ".tmp")) << result.output;
+  }
+  const CliResult json_as_h5 = run("extract --batch " + (dir / "none").string() +
+                                   " --format json -o " + (dir / "oo.h5").string());
+  EXPECT_EQ(json_as_h5.status, 2) << json_as_h5.output;
+  EXPECT_TRUE(says(json_as_h5, "names h5 by its extension, but --format json"))
+      << json_as_h5.output;
+  EXPECT_FALSE(fs::exists(dir / "oo.h5"));
+  const CliResult merge_json = run("merge -o " + (dir / "x.json").string() + " s.h5");
+  EXPECT_EQ(merge_json.status, 2) << merge_json.output;
+  EXPECT_TRUE(says(merge_json, "must end in .h5")) << merge_json.output;
+  for (const char* name : {"f.h5", "m.h5", "pairs.txt"}) std::ofstream(dir / name) << "x";
+  const std::string colmap = "colmap --features-file " + (dir / "f.h5").string() + " --matches " +
+                             (dir / "m.h5").string() + " --pairs " + (dir / "pairs.txt").string();
+  const CliResult database_as_h5 = run(colmap + " -o " + (dir / "x.h5").string());
+  EXPECT_EQ(database_as_h5.status, 2) << database_as_h5.output;
+  EXPECT_TRUE(says(database_as_h5, "must end in .db")) << database_as_h5.output;
+  const CliResult onto_features = run(colmap + " -o " + (dir / "f.h5").string());
+  EXPECT_EQ(onto_features.status, 1) << onto_features.output;
+  EXPECT_TRUE(says(onto_features,
+                   "-o '" + (dir / "f.h5").string() + "' is the features file (--features-file"))
+      << onto_features.output;
+  EXPECT_FALSE(says(onto_features, "exists already")) << onto_features.output;
+}
+
 }  // namespace

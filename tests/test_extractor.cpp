@@ -140,6 +140,37 @@ TEST(Extractor, BadImagesGetClearErrors) {
   EXPECT_THROW(Extractor(limited).extract(ImageView{big.data(), 100, 100, 100}), Error);
 }
 
+// The pyramid had no bound of its own: an 8K frame inside max_image_pixels with
+// --scale-factor 1.001 --n-levels 32 built 31 image areas of levels (4.8 GB). Its pixels over
+// all levels are bounded at 6 x max_image_pixels, which every mode's own pyramid stays within.
+TEST(Extractor, APyramidOfMoreThanSixImageAreasIsRefusedWithItsFigure) {
+  ExtractorOptions deep;
+  deep.max_image_pixels = 640 * 480;
+  deep.scale_factor = 1.001;
+  deep.n_levels = 32;
+  const cv::Mat image = test::random_textured_image(640, 480, 3);
+  std::string message;
+  try {
+    extract(view_of(image), deep);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("image 640x480 makes a pyramid of " +
+                         std::to_string(pyramid_pixels(640, 480, deep)) +
+                         " pixels (32 levels at scale factor 1.001), more than the " +
+                         std::to_string(6 * 640 * 480) + " allowed"),
+            std::string::npos)
+      << message;
+  // Every mode's own pyramid of an image at max_image_pixels is taken.
+  for (const Mode mode : {Mode::aief, Mode::aief_paper, Mode::orbslam2, Mode::quadtree_entropy,
+                          Mode::faithful, Mode::quality}) {
+    ExtractorOptions options = options_for_mode(mode);
+    options.max_image_pixels = 640 * 480;
+    EXPECT_LE(pyramid_pixels(640, 480, options), 6 * 640 * 480) << to_string(mode);
+    EXPECT_NO_THROW(extract(view_of(image), options)) << to_string(mode);
+  }
+}
+
 TEST(Extractor, SmallestImagesAndManyLevelsAnswer) {
   for (int size : {39, 40, 41, 57}) {
     const cv::Mat image =

@@ -94,7 +94,7 @@ TEST(OptionTable, EveryRowHasEveryFrontEndOnce) {
     EXPECT_FALSE(row.help.empty());
     if (!row.has_front_ends()) {
       // Record-only rows are set through another row: distribution by the mode, auto_threshold by
-      // --threshold auto, carried_threshold by --threshold carried.
+      // --entropy-threshold auto, carried_threshold by --entropy-threshold carried.
       EXPECT_TRUE(row.key == "distribution" || row.key == "auto_threshold" ||
                   row.key == "carried_threshold");
       continue;

@@ -284,6 +284,14 @@ TEST(OrbSlam3DropIn, MisspeltKeysAndSettingsThatCannotActAreRefused) {
   EXPECT_NE(
       settings_error("ORBextractor.nFeature: 300\n").find("(did you mean ORBextractor.nFeatures?)"),
       std::string::npos);
+  // The prefix in another case was skipped as another section's key: nFeatures 300 ran with 1000.
+  for (const std::string prefix : {"ORBExtractor.", "orbextractor."})
+    EXPECT_NE(settings_error(prefix + "nFeatures: 300\n")
+                  .find("unknown setting '" + prefix +
+                        "nFeatures': ORB-SLAM's extractor keys begin with 'ORBextractor.', in "
+                        "this case exactly (did you mean ORBextractor.nFeatures?)"),
+              std::string::npos)
+        << prefix;
   EXPECT_NE(settings_error("ORBextractor.fastThresholdFrom: \"entropy\"\n")
                 .find("ORBextractor.fastThresholdFrom entropy does nothing unless "
                       "ORBextractor.detectionCells blocks"),

@@ -151,8 +151,8 @@ std::vector<BatchInput> batch_inputs(const BatchSettings& settings) {
   const std::vector<BatchInput> all = io::list_batch_inputs(
       settings.input, frames ? io::InputOrder::frames : io::InputOrder::by_name);
   if (frames)
-    std::cerr << "aief: note: --threshold carried takes the frames of '" << settings.input << "' "
-              << io::frame_order_of(settings.input) << "\n";
+    std::cerr << "aief: note: --entropy-threshold carried takes the frames of '" << settings.input
+              << "' " << io::frame_order_of(settings.input) << "\n";
   io::check_batch_outputs_do_not_nest(all, settings.output_dir, settings.format);
   return io::shard_of(all, settings.shard_index, settings.shard_count);
 }

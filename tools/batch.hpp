@@ -20,8 +20,8 @@
 // removes the stale temporary a killed run left for each of its outputs.
 //
 // Shards. --shard i/n takes images i, i+n, i+2n ... of the list sorted by name, 0 <= i < n:
-// machines split a collection with no coordinator. Not with --threshold carried: the frames of one
-// video carry F from frame to frame, so a shard's F would differ from one run's (refused).
+// machines split a collection with no coordinator. Not with --entropy-threshold carried: the frames
+// of one video carry F from frame to frame, so a shard's F would differ from one run's (refused).
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,9 +68,9 @@ struct Shard {
 };
 Shard parse_shard(const std::string& text);
 
-// The images of a folder or list file, sorted by name (with --threshold carried, in frame order,
-// said in a note: io::InputOrder::frames), this shard's only. Throws aief::Error,
-// also when two inputs' outputs would clash (io::check_batch_outputs_do_not_nest).
+// The images of a folder or list file, sorted by name (with --entropy-threshold carried, in frame
+// order, said in a note: io::InputOrder::frames), this shard's only. Throws aief::Error, also when
+// two inputs' outputs would clash (io::check_batch_outputs_do_not_nest).
 std::vector<BatchInput> batch_inputs(const BatchSettings& settings);
 
 BatchSummary run_batch(const BatchSettings& settings);

@@ -60,6 +60,7 @@ int run_adapt(const Arguments& arguments) {
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
   refuse_outputs_that_are_inputs(args, {"--output", "--plot"}, {path_a, path_b});
   check_output_extension(args, "--output", ".json", "JSON");
+  check_output_folder(args, "--output");
   const GrayImage a = read_image_reporting(path_a, options.max_image_pixels),
                   b = read_image_reporting(path_b, options.max_image_pixels);
   const AdaptResult result = adapt(a.view(), b.view(), options, sweep);

@@ -1,11 +1,14 @@
 // aief colmap --features-file features.h5 --matches matches.h5 --pairs pairs.txt -o database.db
 // (io/colmap_database.hpp)
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <string>
 
 #include "aief/error.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/output_extension.hpp"
 #ifdef AIEF_HAVE_COLMAP_EXPORT
 #include "io/colmap_database.hpp"
 #include "io/utf8.hpp"
@@ -39,6 +42,22 @@ int run_colmap(const Arguments& arguments) {
     throw UsageError(
         "colmap expects --features-file FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt -o "
         "DATABASE.db");
+  // An input given as -o is named as such, as match --pairs does, before the extension is asked.
+  struct Input {
+    const char* flag;
+    const char* what;
+    const std::string& path;
+  };
+  for (const Input& input :
+       {Input{"--features-file", "features file", *features},
+        Input{"--matches", "matches file", *matches}, Input{"--pairs", "pairs file", *pairs}})
+    if (std::error_code ec; std::filesystem::equivalent(input.path, *output, ec))
+      throw Error("-o '" + *output + "' is the " + input.what + " (" + input.flag + " '" +
+                  input.path +
+                  "'): the COLMAP database goes to a file of its own (DATABASE.db); nothing was "
+                  "written");
+  check_output_extension(args, "--output", ".db", "a COLMAP database (SQLite)");
+  check_output_folder(args, "--output");
 #ifdef AIEF_HAVE_COLMAP_EXPORT
   const io::ColmapExport done = io::export_colmap_database(*output, *features, *matches, *pairs);
   for (const std::string& note : done.notes) std::cerr << "aief: note: " << note << "\n";

@@ -13,6 +13,7 @@
 #include "tools/batch.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/output_extension.hpp"
 #include "tools/outputs_not_inputs.hpp"
 #include "tools/picture_flags.hpp"
 #include "tools/read_image.hpp"
@@ -123,6 +124,11 @@ int run_extract_batch(const Args& args) {
   if (!io::feature_format_named(settings.format))
     throw UsageError("--format expects " + io::feature_format_names() + ", got '" +
                      settings.format + "'");
+  // An output named as another format (`--format json -o oo.h5`) made a folder oo.h5 of JSON.
+  if (named_as && named_as->name != settings.format)
+    throw UsageError("-o " + settings.output_dir + " names " + std::string(named_as->name) +
+                     " by its extension, but --format " + settings.format +
+                     " was asked: " + "drop --format, or name the output otherwise");
   if (const auto shard = args.get("--shard")) {
     try {
       const Shard parsed = parse_shard(*shard);
@@ -135,8 +141,9 @@ int run_extract_batch(const Args& args) {
   settings.options = extractor_options(args);
   if (settings.options.carried_threshold && settings.shard_count > 1)
     throw UsageError(
-        "--shard splits a collection between runs, but --threshold carried carries F from frame "
-        "to frame of one video (each frame's F depends on the frames before it): extract each "
+        "--shard splits a collection between runs, but --entropy-threshold carried carries F from "
+        "frame to frame of one video (each frame's F depends on the frames before it): extract "
+        "each "
         "video in one run, and split by video instead");
   const BatchSummary summary = run_batch(settings);
   std::printf("batch: %d images in this shard: %d extracted", summary.images, summary.extracted);
@@ -184,6 +191,7 @@ int run_extract(const Arguments& arguments) {
   if (const auto output = args.get("--output"); output && !io::is_features_file_name(*output))
     throw UsageError("-o " + *output + ": the output must end in " +
                      io::feature_format_extensions(io::FeatureFormat::Layout::file_per_image));
+  check_output_folder(args, "--output");
   if (const auto output = args.get("--output"))
     io::check_features_file_can_hold(*output, args.positionals()[0], args.positionals()[0]);
   check_picture_flag(args, "--draw");

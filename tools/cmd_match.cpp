@@ -92,6 +92,7 @@ int run_pairs(const Args& args) {
   if (!features_file || !args.get("--output"))
     throw UsageError("--pairs needs --features-file FEATURES.h5 and -o MATCHES.h5");
   check_output_extension(args, "--output", ".h5", "the matches as HDF5 (hloc's layout)");
+  check_output_folder(args, "--output");
   return run_match_pairs(args, *features_file, options_from_flags<MatchOptions>(args));
 }
 
@@ -120,6 +121,7 @@ int run_match(const Arguments& arguments) {
   const std::string &path_a = args.positionals()[0], &path_b = args.positionals()[1];
   refuse_outputs_that_are_inputs(args, {"--output", "--draw"}, {path_a, path_b});
   check_output_extension(args, "--output", ".json", "JSON");
+  check_output_folder(args, "--output");
   const GrayImage a = read_image_reporting(path_a, options.max_image_pixels),
                   b = read_image_reporting(path_b, options.max_image_pixels);
 

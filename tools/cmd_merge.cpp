@@ -7,6 +7,7 @@
 #include "aief/error.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/commands.hpp"
+#include "tools/output_extension.hpp"
 #ifdef AIEF_HAVE_HDF5
 #include "io/hdf5_merge.hpp"
 #endif
@@ -26,6 +27,8 @@ int run_merge(const Arguments& arguments) {
   const auto output = args.get("--output");
   if (!output || args.positionals().empty())
     throw UsageError("merge expects -o FEATURES.h5 and one or more shard files");
+  check_output_extension(args, "--output", ".h5", "a features file in HDF5 (hloc's layout)");
+  check_output_folder(args, "--output");
 #ifdef AIEF_HAVE_HDF5
   int replaced = 0;
   std::vector<std::string> notes;

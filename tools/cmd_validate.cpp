@@ -2,6 +2,7 @@
 // scalar reference, on the given images or on built-in seeded random ones.
 #include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "aief/error.hpp"
 #include "aief/extractor.hpp"
@@ -33,6 +34,19 @@ int run_validate(const Arguments& arguments) {
       throw Error("cannot validate on '" + path + "': " + e.what());
     }
   }
+  // The kernels of keypoints (orientation, descriptors, Hamming distances) are fed the images'
+  // keypoints: images of none (a uniform image) test them on nothing, and every row said
+  // "identical".
+  long long keypoints = 0;
+  for (const GrayImage& image : images) keypoints += extract(image.view()).keypoints.size();
+  if (!images.empty() && keypoints == 0)
+    throw Error("cannot validate on " +
+                (images.size() == 1 ? "'" + args.positionals()[0] + "'"
+                                    : "these " + std::to_string(images.size()) + " images") +
+                ": no keypoint in " + (images.size() == 1 ? "it" : "any") +
+                " (a uniform image?), so the kernels of keypoints (orientation, descriptors, "
+                "Hamming distances) would test nothing: give an image with corners, or none "
+                "(seeded random images)");
   if (images.empty()) images = validation_images();
 
   const std::vector<KernelSet> sets = available_kernel_sets();

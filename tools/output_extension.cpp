@@ -2,8 +2,21 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
+
+#include "aief/error.hpp"
 
 namespace aief::cli {
+
+void check_output_folder(const Args& args, const std::string& flag) {
+  const auto path = args.get(flag);
+  if (!path) return;
+  const std::filesystem::path folder = std::filesystem::path(*path).parent_path();
+  std::error_code ec;
+  if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+    throw Error(args.spelled(flag) + " " + *path + ": the folder '" + folder.string() +
+                "' does not exist");
+}
 
 void check_output_extension(const Args& args, const std::string& flag, std::string_view extension,
                             std::string_view format) {

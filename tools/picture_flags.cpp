@@ -1,9 +1,8 @@
 #include "tools/picture_flags.hpp"
 
-#include <filesystem>
-
 #include "aief/error.hpp"
 #include "io/drawing.hpp"
+#include "tools/output_extension.hpp"
 
 namespace aief::cli {
 
@@ -14,10 +13,7 @@ void check_picture_flag(const Args& args, const std::string& flag) {
     throw UsageError(flag + " " + *path +
                      ": a picture must end in .png (or another extension OpenCV writes: .jpg, "
                      ".bmp, .tif, .webp)");
-  const std::filesystem::path folder = std::filesystem::path(*path).parent_path();
-  std::error_code ec;
-  if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
-    throw Error(flag + " " + *path + ": the folder '" + folder.string() + "' does not exist");
+  check_output_folder(args, flag);
 }
 
 }  // namespace aief::cli

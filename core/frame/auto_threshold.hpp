@@ -1,6 +1,6 @@
 #pragma once
 // A pair-free entropy threshold F for a single frame, from the distribution of its own block
-// entropies (`aief extract --threshold auto`, docs/design.md §4).
+// entropies (`aief extract --entropy-threshold auto`, docs/design.md §4).
 //
 // Rule: Otsu's split of the block entropies (the F that best separates the image's low- and
 // high-information blocks, histogram of 0.05-bit bins), lowered when needed so that the mask

@@ -28,21 +28,42 @@ BlockGrid make_block_grid(int width, int height, int block_size) {
   return grid;
 }
 
+namespace {
+
+// Each level's scale and size, `visit(n, scale, width, height)`, exactly as ORB-SLAM2's
+// ORBextractor: float products, cvRound of the sizes.
+template <class Visit>
+void for_each_level_size(int width, int height, const ExtractorOptions& options, Visit&& visit) {
+  const float scale_factor = static_cast<float>(options.scale_factor);
+  float scale = 1.0f;
+  for (int n = 0; n < options.n_levels; ++n) {
+    if (n > 0) scale *= scale_factor;
+    const float inverse = 1.0f / scale;
+    visit(n, scale, static_cast<int>(std::lrint(static_cast<float>(width) * inverse)),
+          static_cast<int>(std::lrint(static_cast<float>(height) * inverse)));
+  }
+}
+
+}  // namespace
+
+long long pyramid_pixels(int width, int height, const ExtractorOptions& options) {
+  long long pixels = 0;
+  for_each_level_size(width, height, options, [&](int, float, int level_width, int level_height) {
+    if (level_is_usable(level_width, level_height))
+      pixels += static_cast<long long>(level_width) * level_height;
+  });
+  return pixels;
+}
+
 std::vector<LevelGeometry> level_geometry(int width, int height, const ExtractorOptions& options) {
   const int levels = options.n_levels;
   std::vector<LevelGeometry> geometry(static_cast<std::size_t>(levels));
-
-  // Scales and sizes exactly as ORB-SLAM2's ORBextractor: float products, cvRound of the sizes.
-  const float scale_factor = static_cast<float>(options.scale_factor);
-  float scale = 1.0f;
-  for (int n = 0; n < levels; ++n) {
+  for_each_level_size(width, height, options, [&](int n, float scale, int w, int h) {
     LevelGeometry& level = geometry[static_cast<std::size_t>(n)];
-    if (n > 0) scale *= scale_factor;
-    const float inverse = 1.0f / scale;
     level.scale = scale;
-    level.width = static_cast<int>(std::lrint(static_cast<float>(width) * inverse));
-    level.height = static_cast<int>(std::lrint(static_cast<float>(height) * inverse));
-  }
+    level.width = w;
+    level.height = h;
+  });
 
   // Only the usable levels share the budget (levels shrink, so they are the first ones): a level
   // too small for a keypoint would otherwise keep its share and the frame deliver fewer than N
@@ -56,7 +77,7 @@ std::vector<LevelGeometry> level_geometry(int width, int height, const Extractor
 
   // Features per level (Eq. 12-17 and ORB-SLAM2): N (1 - s) s^n / (1 - s^L), rounded, with
   // whatever is left on the last level.
-  const float factor = 1.0f / scale_factor;
+  const float factor = 1.0f / static_cast<float>(options.scale_factor);
   float per_scale = static_cast<float>(options.n_features) * (1.0f - factor) /
                     (1.0f - static_cast<float>(std::pow(static_cast<double>(factor),
                                                         static_cast<double>(budget_levels))));

@@ -61,4 +61,7 @@ inline bool level_is_usable(int width, int height) {
   return width >= 2 * kEdgeBorder + 1 && height >= 2 * kEdgeBorder + 1;
 }
 
+// The pixels of the levels built (the usable ones), summed; allocates nothing.
+long long pyramid_pixels(int width, int height, const ExtractorOptions& options);
+
 }  // namespace aief

@@ -35,7 +35,7 @@ std::string name_like(const OptionRow& row, const GivenOption& like) {
 }
 
 // A field no front end sets by itself (distribution, auto_threshold, carried_threshold): which
-// modes set `value`, else the row's own help ("set by --threshold carried").
+// modes set `value`, else the row's own help ("set by --entropy-threshold carried").
 std::string how_to_set(const OptionRow& row, const std::string& value) {
   if (row.has_front_ends()) return "";
   std::string modes;

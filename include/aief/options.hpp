@@ -207,7 +207,8 @@ struct ExtractorOptions {
   KernelSet kernels = KernelSet::auto_select;  // pixel kernels; output does not depend on it
   int threads = 0;  // worker threads, 0 = TBB's default; output does not depend on it
   // Largest image accepted, in pixels: refuses absurd inputs before allocating. 2^26 pixels
-  // (67 Mpx) holds an 8K frame (7680 x 4320 = 33 Mpx) with room to spare.
+  // (67 Mpx) holds an 8K frame (7680 x 4320 = 33 Mpx) with room to spare. The pyramid's pixels
+  // over its levels are bounded at 6 x this (every mode's own pyramid is within 5.6 image areas).
   long long max_image_pixels = 1LL << 26;
 
   // Throws aief::Error naming the first invalid field and its value.

@@ -96,9 +96,9 @@ def run(client, images, output_dir, shards, **options):
     """Extracts every image of the folder or list file `images` on the cluster of `client` into
     `shards` files in `output_dir`; `options` are aief.Extractor's keyword arguments. Returns
     the shard files, the totals (extracted, skipped, keypoints) and the failures ("path: reason").
-    Raises aief.Error for fewer than one shard, and for threshold='carried' (a video's frames carry
-    F from one to the next: one extractor in frame order, `aief extract --batch VIDEO --threshold
-    carried`, not independent shards)."""
+    Raises aief.Error for fewer than one shard, and for entropy_threshold='carried' (a video's
+    frames carry F from one to the next: one extractor in frame order, `aief extract --batch VIDEO
+    --entropy-threshold carried`, not independent shards)."""
     check_shards(shards, options)
     os.makedirs(output_dir, exist_ok=True)
     inputs = list_images(images)
@@ -114,10 +114,11 @@ def check_shards(shards, options):
     """Refuses a run that would do nothing or split what must not be split (see run)."""
     if not isinstance(shards, int) or shards < 1:
         raise aief.Error(f"shards expects an integer >= 1, got {shards!r}")
-    if options.get("threshold") == "carried":
-        raise aief.Error("threshold='carried' carries F from frame to frame of one video, which "
+    keyword = next((k for k in ("entropy_threshold", "threshold") if options.get(k) == "carried"), None)
+    if keyword:
+        raise aief.Error(f"{keyword}='carried' carries F from frame to frame of one video, which "
                          "independent shards cannot: extract the video with one extractor in frame "
-                         "order (aief extract --batch VIDEO --threshold carried)")
+                         "order (aief extract --batch VIDEO --entropy-threshold carried)")
 
 
 def main():

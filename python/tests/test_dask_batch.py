@@ -173,3 +173,7 @@ def test_a_carried_threshold_is_refused():
     """Shards of one video each carried their own F: merged, they differed from one process."""
     with pytest.raises(aief.Error, match="carries F from frame to frame"):
         dask_batch.run(None, "images", "out", 2, threshold="carried")
+    # The keyword of today (entropy_threshold) was let through, and the message named the CLI's
+    # earlier flag (--threshold).
+    with pytest.raises(aief.Error, match="entropy_threshold='carried'.*--entropy-threshold carried"):
+        dask_batch.run(None, "images", "out", 2, entropy_threshold="carried")

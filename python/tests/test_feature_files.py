@@ -155,7 +155,7 @@ def error_case_files(cli, tmp_path_factory):
     (["match", "--pairs", "{tmp}/pairs.txt", "--features", "{tmp}/pairs.txt", "-o", "{tmp}/m.h5"], "it is not an HDF5 file"),
     (["match", "--pairs", "{tmp}/unknown_pairs.txt", "--features", "{tmp}/f.h5", "-o", "{tmp}/m.h5"], "no image 'x.png'"),
     (["merge", "-o", "{tmp}/out.h5", "{tmp}/none.h5"], "no such file"),
-    (["colmap", "--features", "{tmp}/f.h5", "--matches", "{tmp}/none.h5", "--pairs", "{tmp}/pairs.txt", "-o", "{tmp}/db"],
+    (["colmap", "--features", "{tmp}/f.h5", "--matches", "{tmp}/none.h5", "--pairs", "{tmp}/pairs.txt", "-o", "{tmp}/d.db"],
      "no such file"),
 ])
 def test_file_errors_name_the_file(cli, error_case_files, args, message):

@@ -21,7 +21,7 @@ namespace aief::eval {
 enum class ThresholdChoice {
   mode,       // as its mode sets it (F = 4, or no mask)
   swept,      // the adaptive sweep over the pair (aief adapt)
-  automatic,  // pair-free: the automatic F of each image (--threshold auto)
+  automatic,  // pair-free: the automatic F of each image (--entropy-threshold auto)
 };
 
 // The rows that are not our engine.
