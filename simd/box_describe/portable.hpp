@@ -10,7 +10,7 @@
 //      threshold in integers, floor(threshold * A / 100), fixed for the call too; the bit shifted
 //      into the descriptor word, last test first. A keypoint with a clipped box takes the scalar
 //      reference (a few per cent of them, near the level's edges).
-// No hardware gathers, for rbrief_describe's reason (simd/rbrief_describe_portable.hpp): on Zen 4 a
+// No hardware gathers, for rbrief_describe's reason (simd/rbrief_describe/portable.hpp): on Zen 4 a
 // gather costs more than its scalar loads.
 #include <algorithm>
 #include <array>

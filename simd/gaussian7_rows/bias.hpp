@@ -1,6 +1,7 @@
 #pragma once
-// The one bias of the vectorised 7x7 Gaussian (simd/gaussian7_rows_portable.hpp, which derives
-// it), shared by its register layers (simd/gaussian7_rows_x86.hpp, simd/gaussian7_rows_neon.hpp).
+// The one bias of the vectorised 7x7 Gaussian (simd/gaussian7_rows/portable.hpp, which derives
+// it), shared by its register layers (simd/gaussian7_rows/registers_x86.hpp,
+// simd/gaussian7_rows/registers_neon.hpp).
 #include <cstdint>
 
 #include "simd/simd_support.hpp"

@@ -19,7 +19,7 @@
 #include <type_traits>
 
 #include "core/kernels/resize_bilinear_rows.hpp"
-#include "simd/resize_bilinear_rows_groups.hpp"
+#include "simd/resize_bilinear_rows/groups.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN

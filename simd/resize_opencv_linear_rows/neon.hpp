@@ -1,7 +1,7 @@
 #pragma once
 // cv::resize INTER_LINEAR's 8-bit arithmetic on AArch64 NEON: the contract of
 // core/kernels/resize_opencv_linear_rows.hpp, the same bytes. The passes of
-// simd/resize_opencv_linear_rows_x86.hpp (read its header) with NEON's equivalents: the plan's
+// simd/resize_opencv_linear_rows/x86.hpp (read its header) with NEON's equivalents: the plan's
 // pshufb masks drive tbl (vqtbl1q_u8; its 0x80 lanes read 0 in both), pmaddwd is
 // multiply_add_pairs, and pmulhw is a widening multiply (smull, exact) narrowed by an arithmetic
 // shift of 16 (shrn), (h >> 4) b >> 16 exactly.

@@ -1,6 +1,6 @@
 #pragma once
 // Q8 bilinear downsampling on AArch64 NEON: the contract of core/kernels/resize_bilinear_rows.hpp,
-// the same bytes. The arithmetic of simd/resize_bilinear_rows_x86.hpp (read its header for the
+// the same bytes. The arithmetic of simd/resize_bilinear_rows/x86.hpp (read its header for the
 // bounds) with NEON's equivalents: the plan's pshufb masks drive tbl (vqtbl1q_u8; its 0x80 lanes
 // read 0 in both), pmaddwd is multiply_add_pairs, and the packs are exact narrowings (values
 // 0..255).
@@ -9,7 +9,7 @@
 #include <arm_neon.h>
 
 #include "core/kernels/resize_bilinear_rows.hpp"
-#include "simd/resize_bilinear_rows_groups.hpp"
+#include "simd/resize_bilinear_rows/groups.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN
