@@ -17,7 +17,7 @@
 // The mirror border: a column's vertical sum is the same wherever the column is used, so the
 // few columns left and right of the row are copies of the mirrored ones (BORDER_REFLECT_101).
 //
-// The register operations (blur_detail::Registers<Arch>) are per instruction-set family:
+// The register operations (gaussian7_rows_detail::Registers<Arch>) are per instruction-set family:
 // simd/gaussian7_rows/registers_x86.hpp (pmaddwd) and simd/gaussian7_rows/registers_neon.hpp (vmull
 // + vpadd).
 #include <cstdint>
@@ -33,7 +33,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace blur_detail {
+namespace gaussian7_rows_detail {
 
 // The vertical pass of kRows consecutive rows at the L columns from c: a window of 7 source rows
 // slides down the band, so each source row is loaded once per band instead of once per output
@@ -102,12 +102,12 @@ inline void vertical_band(const std::uint8_t* const* rows, std::int16_t* const* 
   }
 }
 
-}  // namespace blur_detail
+}  // namespace gaussian7_rows_detail
 
 template <class Arch>
 void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin,
                     int x_end) {
-  using Registers = blur_detail::Registers<Arch>;
+  using Registers = gaussian7_rows_detail::Registers<Arch>;
   using V = typename Registers::V;
   constexpr int L = Registers::kColumns;
   constexpr int kChunk = 512;  // output pixels per chunk: its columns stay in L1
@@ -172,9 +172,11 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
           constexpr int kRows = decltype(rows_constant)::value;
           int c = c0;
           for (; c < c1 && c <= width - L; c += L)
-            blur_detail::vertical_band<Registers, kRows>(rows, columns, c, w0, w1, w2, w3);
+            gaussian7_rows_detail::vertical_band<Registers, kRows>(rows, columns, c, w0, w1, w2,
+                                                                   w3);
           if (c < c1)
-            blur_detail::vertical_band<Registers, kRows>(rows, columns, width - L, w0, w1, w2, w3);
+            gaussian7_rows_detail::vertical_band<Registers, kRows>(rows, columns, width - L, w0, w1,
+                                                                   w2, w3);
         };
         switch (band_rows) {
           case 8: vertical(std::integral_constant<int, 8>{}); break;
@@ -187,10 +189,10 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
           default: vertical(std::integral_constant<int, 1>{}); break;
         }
       } else {
-        blur_detail::vertical_band_scalar(rows, columns, band_rows, c0, c1);
+        gaussian7_rows_detail::vertical_band_scalar(rows, columns, band_rows, c0, c1);
       }
       if (x0 - 3 < c0 || c1 < x1 + 4)
-        blur_detail::mirror_columns(columns, band_rows, x0, x1, c0, c1, width);
+        gaussian7_rows_detail::mirror_columns(columns, band_rows, x0, x1, c0, c1, width);
 
       for (int y = y0; y < y1; ++y) {
         const std::int16_t* const column = column_row(y - y0);
@@ -233,7 +235,7 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
           for (; x <= x1 - L; x += L) step(x);
           if (x < x1) step(x1 - L);
         } else {
-          blur_detail::horizontal_scalar(column, x0, x1, out);
+          gaussian7_rows_detail::horizontal_scalar(column, x0, x1, out);
         }
       }
     }

@@ -10,7 +10,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace blur_detail {
+namespace gaussian7_rows_detail {
 
 template <class Arch>
 struct Registers {
@@ -47,6 +47,6 @@ struct Registers {
   }
 };
 
-}  // namespace blur_detail
+}  // namespace gaussian7_rows_detail
 
 AIEF_SIMD_NAMESPACE_END

@@ -10,7 +10,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace blur_detail {
+namespace gaussian7_rows_detail {
 
 // What every width has alike, from its intrinsics' prefix P (_mm, _mm256, _mm512), its width B
 // and the asm constraint of its registers: the register type, its u16 lanes (kColumns, also the
@@ -132,6 +132,6 @@ struct Registers<Arch, 512> {
 
 #undef AIEF_BLUR_REGISTER_OPERATIONS
 
-}  // namespace blur_detail
+}  // namespace gaussian7_rows_detail
 
 AIEF_SIMD_NAMESPACE_END

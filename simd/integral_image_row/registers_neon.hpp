@@ -9,7 +9,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace integral_detail {
+namespace integral_image_row_detail {
 
 template <class Arch>
 struct Registers {
@@ -34,6 +34,6 @@ struct Registers {
   }
 };
 
-}  // namespace integral_detail
+}  // namespace integral_image_row_detail
 
 AIEF_SIMD_NAMESPACE_END

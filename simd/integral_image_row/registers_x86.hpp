@@ -12,7 +12,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace integral_detail {
+namespace integral_image_row_detail {
 
 // The register the kernel runs on: 128-bit (SSE4.2) or 256-bit (AVX2 and AVX-512). Templates on
 // Arch, so every instruction set's copy is its own symbol.
@@ -73,6 +73,6 @@ struct Registers<Arch, 256> {
   }
 };
 
-}  // namespace integral_detail
+}  // namespace integral_image_row_detail
 
 AIEF_SIMD_NAMESPACE_END

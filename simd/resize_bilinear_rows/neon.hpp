@@ -14,7 +14,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace resize_neon_detail {
+namespace resize_bilinear_rows_detail {
 
 // 4 outputs, in 32-bit lanes: (h0 (256 - wy) + h1 wy + 32768) >> 16 with h0, h1 the horizontal
 // sums of the top and bottom row, computed biased so every product fits int16 x int16.
@@ -30,12 +30,12 @@ inline uint32x4_t bilinear4(uint8x16_t top, uint8x16_t bottom, uint8x16_t shuffl
   return vshrq_n_u32(vreinterpretq_u32_s32(p), 16);
 }
 
-}  // namespace resize_neon_detail
+}  // namespace resize_bilinear_rows_detail
 
 template <class Arch>
 void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin,
                           int y_end) {
-  using resize_neon_detail::bilinear4;
+  using resize_bilinear_rows_detail::bilinear4;
   resize_rows_by_groups(
       src, plan, dst, y_begin, y_end,
       [&](const ResizeGroups& groups, const std::uint8_t* top, const std::uint8_t* bottom,
