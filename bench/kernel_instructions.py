@@ -23,14 +23,13 @@ import tempfile
 import threading
 from collections import Counter
 
-def listed_kernels():
-    """The kernel list (AIEF_FOR_EACH_KERNEL in core/kernels/kernel_table.hpp), then the pipeline."""
-    table = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "core", "kernels", "kernel_table.hpp")
-    with open(table) as f:
-        return re.findall(r"^  X\((\w+)\)", f.read(), re.M) + ["extract"]
+def listed_kernels(build):
+    """The kernel list, as configure wrote it to <build>/kernel_list.txt (cmake/kernel_list.cmake),
+    then the pipeline."""
+    with open(os.path.join(build, "kernel_list.txt")) as f:
+        return f.read().split() + ["extract"]
 
 
-KERNELS = listed_kernels()
 SETS = ["scalar", "neon64"]
 
 
@@ -82,13 +81,14 @@ def instructions(binary, segment, benchmark_name, iterations):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default="build-aarch64")
-    parser.add_argument("--kernels", default=",".join(KERNELS))
+    parser.add_argument("--kernels", help="comma-separated (default: the kernel list, then extract)")
     args = parser.parse_args()
+    kernels = args.kernels.split(",") if args.kernels else listed_kernels(args.build)
     binary = f"{args.build}/bench/aief_bench_kernel_sets"
     segment = text_segment(binary)
     print("| kernel, one pass over the graf 320x240 crop | scalar | neon64 | scalar / neon64 |")
     print("|---|---:|---:|---:|", flush=True)
-    for kernel in args.kernels.split(","):
+    for kernel in kernels:
         per_set = {}
         for kernel_set in SETS:
             name = f"{kernel}/{kernel_set}/graf_320x240"

@@ -5,22 +5,23 @@
 
 #include "aief/error.hpp"
 
+// Each set's table, made in its own unit (simd/kernels_<set>.cpp) in the namespace of its set.
 #if AIEF_HAVE_X86_SIMD
-namespace aief::simd_sse4_2 {
+namespace aief::simd::sse4_2 {
 KernelTable kernel_table();
 }
-namespace aief::simd_avx2 {
+namespace aief::simd::avx2 {
 KernelTable kernel_table();
 }
-namespace aief::simd_avx512bw {
+namespace aief::simd::avx512bw {
 KernelTable kernel_table();
 }
-namespace aief::simd_avx512vpopcntdq {
+namespace aief::simd::avx512vpopcntdq {
 KernelEntry<decltype(&aief::hamming_256_blocked_scalar)> hamming_256_blocked();
 }
 #endif
 #if AIEF_HAVE_NEON64
-namespace aief::simd_neon64 {
+namespace aief::simd::neon64 {
 KernelTable kernel_table();
 }
 #endif
@@ -45,16 +46,16 @@ struct CpuKernels {
     has_avx512bw = has_avx2 && __builtin_cpu_supports("avx512f") &&
                    __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
                    __builtin_cpu_supports("avx512bw");
-    if (has_sse4_2) sse4_2 = simd_sse4_2::kernel_table();
-    if (has_avx2) avx2 = simd_avx2::kernel_table();
-    if (has_avx512bw) avx512bw = simd_avx512bw::kernel_table();
+    if (has_sse4_2) sse4_2 = simd::sse4_2::kernel_table();
+    if (has_avx2) avx2 = simd::avx2::kernel_table();
+    if (has_avx512bw) avx512bw = simd::avx512bw::kernel_table();
     if (has_avx512bw && __builtin_cpu_supports("avx512vpopcntdq"))
-      avx512bw.hamming_256_blocked = simd_avx512vpopcntdq::hamming_256_blocked();
+      avx512bw.hamming_256_blocked = simd::avx512vpopcntdq::hamming_256_blocked();
   }
 #endif
 #if AIEF_HAVE_NEON64
   // NEON is in every AArch64 CPU (base architecture): nothing to ask.
-  KernelTable neon64 = simd_neon64::kernel_table();
+  KernelTable neon64 = simd::neon64::kernel_table();
 #endif
 };
 

@@ -7,24 +7,23 @@
 // frequency licence on Intel parts. Measured end to end on graf: entropy + FAST stage 3.08 ms
 // with this table vs 3.17 ms with avx2 (median of 31, same run). See bench/RESULTS.md.
 #include "simd/make_kernel_table.hpp"
-#include "simd/resize_bilinear_rows_x86_avx512.hpp"
+#include "simd/resize_bilinear_rows/x86_avx512bw.hpp"
 
-namespace aief::simd_avx512bw {
+AIEF_SIMD_NAMESPACE_BEGIN
 
 KernelTable kernel_table() {
-  KernelTable table =
-      simd::make_kernel_table<xsimd::avx2>(KernelSet::avx512bw, "avx512", "avx512bw 256-bit");
-  constexpr const char* k512 = "avx512bw 512-bit";
-  table.fast9_scores_row = {&simd::fast9_scores_row<xsimd::avx512bw>, k512};
-  table.fast9_local_maxima_bits = {&simd::fast9_local_maxima_bits<xsimd::avx512bw>, k512};
-  table.positions_within_bounds = {&simd::positions_within_bounds<xsimd::avx512bw>,
-                                   k512};  // one mask compare per 32
-  table.rbrief_describe = {&simd::rbrief_describe<xsimd::avx512bw>, k512};  // 16 offsets a step
-  table.resize_bilinear_rows = {&simd::resize_bilinear_rows_avx512<xsimd::avx512bw>,
-                                k512};  // vpermw: ~15 instructions per 16 outputs
-  table.gaussian7_rows = {&simd::gaussian7_rows<xsimd::avx512bw>,
-                          k512};  // 32 columns a step, masked last step
+  KernelTable table = make_kernel_table<xsimd::avx2>(KernelSet::avx512bw);
+  using Wide = xsimd::avx512bw;
+  const char* const wide = variant<Wide>();
+  table.fast9_scores_row = {&fast9_scores_row<Wide>, wide};
+  table.fast9_local_maxima_bits = {&fast9_local_maxima_bits<Wide>, wide};
+  table.positions_within_bounds = {&positions_within_bounds<Wide>,
+                                   wide};                  // one mask compare per 32
+  table.rbrief_describe = {&rbrief_describe<Wide>, wide};  // 16 offsets a step
+  table.resize_bilinear_rows = {&resize_bilinear_rows_avx512<Wide>,
+                                wide};                   // vpermw: ~15 instructions per 16 outputs
+  table.gaussian7_rows = {&gaussian7_rows<Wide>, wide};  // 32 columns a step, masked last step
   return table;
 }
 
-}  // namespace aief::simd_avx512bw
+AIEF_SIMD_NAMESPACE_END

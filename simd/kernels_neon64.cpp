@@ -2,10 +2,8 @@
 // architecture, so this unit needs no extra flags and the table runs on every aarch64 CPU.
 #include "simd/make_kernel_table.hpp"
 
-namespace aief::simd_neon64 {
+AIEF_SIMD_NAMESPACE_BEGIN
 
-KernelTable kernel_table() {
-  return simd::make_kernel_table<xsimd::neon64>(KernelSet::neon64, "neon64", "neon64 128-bit");
-}
+KernelTable kernel_table() { return make_kernel_table<xsimd::neon64>(KernelSet::neon64); }
 
-}  // namespace aief::simd_neon64
+AIEF_SIMD_NAMESPACE_END

@@ -1,7 +1,7 @@
 #pragma once
 // A table of tests on point pairs as the describe kernels read it
-// (simd/rbrief_describe_portable.hpp: the learned rBRIEF pattern's samples,
-// simd/box_describe_portable.hpp: the box descriptor's box centres): the points' x and y as two
+// (simd/rbrief_describe/portable.hpp: the learned rBRIEF pattern's samples,
+// simd/box_describe/portable.hpp: the box descriptor's box centres): the points' x and y as two
 // float arrays, test t's two points side by side, at first_point(t) and second_point(t). Side by
 // side, a test's two offsets are two plain loads on x86-64 and one ldpsw on AArch64 (qemu,
 // bench/kernel_instructions.py, rbrief_describe, 875 points: 3.52 M neon64 instructions with all

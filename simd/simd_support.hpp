@@ -11,22 +11,19 @@
 
 #include <xsimd/xsimd.hpp>
 
-// Each kernel unit (simd/kernels_<set>.cpp) is compiled with its own instruction-set flags, and
-// simd/CMakeLists.txt names it in AIEF_SIMD_TARGET: every kernel lives in an inline namespace of
-// that name. Without it, the 256-bit kernels the AVX-512 unit instantiates (compiled with
-// AVX-512 flags) and those of the AVX2 unit would be one symbol, and the linker could hand the
-// AVX2 table code that runs only on AVX-512 CPUs.
-#ifndef AIEF_SIMD_TARGET
+// Each kernel set's unit (simd/kernels_<set>.cpp) is compiled with its own instruction-set flags,
+// and simd/CMakeLists.txt names the set in AIEF_SIMD_SET: the set's kernels and its table live in
+// the namespace aief::simd::<set> (aief::simd::avx2, ...), one per set. Without it, the 256-bit
+// kernels the AVX-512 unit instantiates (compiled with AVX-512 flags) and those of the AVX2 unit
+// would be one symbol, and the linker could hand the AVX2 table code that runs only on AVX-512
+// CPUs.
+#ifndef AIEF_SIMD_SET
 #error "simd kernels are compiled only in the per-instruction-set units, simd/kernels_<set>.cpp"
 #endif
 
 // Every simd/ header opens and closes that namespace with these, written once here.
-#define AIEF_SIMD_NAMESPACE_BEGIN \
-  namespace aief::simd {          \
-  inline namespace AIEF_SIMD_TARGET {
-#define AIEF_SIMD_NAMESPACE_END \
-  }                             \
-  }
+#define AIEF_SIMD_NAMESPACE_BEGIN namespace aief::simd::AIEF_SIMD_SET {
+#define AIEF_SIMD_NAMESPACE_END }
 
 AIEF_SIMD_NAMESPACE_BEGIN
 

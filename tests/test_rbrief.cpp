@@ -154,7 +154,7 @@ TEST(Rbrief, RotatedSamplesStayInsideTheEdgeBorder) {
             {widest, std::abs(cvRound(fx * a - fy * b)), std::abs(cvRound(fx * b + fy * a))});
       }
   }
-  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_describe_portable.hpp) stores each
+  // Strictly inside, at most 18: the SIMD kernel (simd/rbrief_describe/portable.hpp) stores each
   // sample as an unsigned offset from the patch corner 18 rows and columns up-left of the point.
   EXPECT_LT(widest, kEdgeBorder);
   EXPECT_LE(widest, 18);

@@ -22,7 +22,7 @@ struct ResizePlan {
   std::vector<std::int32_t> y_index;    // dst_height entries: top tap sy, sy + 1 < src_height
   std::vector<std::uint16_t> y_weight;  // dst_height entries: Q8 weight of the bottom tap
 
-  // The x taps again, in the form the vector kernel (simd/resize_bilinear_rows_x86.hpp) consumes,
+  // The x taps again, in the form the vector kernel (simd/resize_bilinear_rows/x86.hpp) consumes,
   // for the outputs [0, 8 * x_groups): group g = outputs 8g .. 8g + 7, whose taps all lie in the 16
   // source bytes from x_group_start[g]. Half h (0: outputs 8g .. 8g + 3, 1: 8g + 4 .. 8g + 7) of
   // group g has 16 bytes at x_group_shuffle[(h * x_groups + g) * 16], a pshufb mask putting the
@@ -36,7 +36,7 @@ struct ResizePlan {
   std::vector<std::uint8_t> x_group_shuffle;
   std::vector<std::int16_t> x_group_weight;
 
-  // The x taps for 512-bit kernels (simd/resize_bilinear_rows_x86_avx512.hpp): wide group g = the
+  // The x taps for 512-bit kernels (simd/resize_bilinear_rows/x86_avx512bw.hpp): wide group g = the
   // 16 outputs from x_wide_first[g], whose taps all lie in the 32 source pixels from
   // x_wide_start[g]. Groups start every 16 outputs, the last one at dst_width - 16 (overlapping
   // its neighbour), so they cover the whole row. For output k of group g, the 32 int16 at

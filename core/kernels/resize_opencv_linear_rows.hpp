@@ -19,7 +19,7 @@
 //
 // Bounds: 0 <= a0, a1, b0, b1 <= 2048, so h <= 255 * 2048 and h >> 4 <= 32640 fits int16, each
 // product term is <= 1020 and the sum before the last shift fits int16 too: the vector kernels
-// (simd/resize_opencv_linear_rows_x86.hpp, _neon.hpp) keep h >> 4 in int16 lanes and take the
+// (simd/resize_opencv_linear_rows/x86.hpp, neon.hpp) keep h >> 4 in int16 lanes and take the
 // vertical pass as a 16-bit high multiply, exactly as OpenCV's vector code does.
 #include <cstdint>
 #include <vector>

@@ -2,7 +2,7 @@
 // The binomial blur row, for every set: the contract of core/kernels/binomial5_row.hpp, the same
 // bytes.
 //
-// Written for the compiler's vectoriser, as simd/unsharp_row_portable.hpp (whose blur it is):
+// Written for the compiler's vectoriser, as simd/unsharp_row/portable.hpp (whose blur it is):
 // both passes are straight loops over restrict-qualified rows (the u8 -> u16 vertical sums, then
 // the horizontal sum and rounding), which GCC and Clang vectorise at the width of the unit's flags
 // (kernels_<set>.cpp). Every operation is the reference's integer operation, so the vector and

@@ -11,7 +11,7 @@
 // v(sx), v(sx + 1) of each output into a 32-bit lane, and pmaddwd with (256 - wx, wx) gives
 // P = S - 2^23 (the weights sum to 256), so dst = (S + 32768) >> 16 = (P + 2^23 + 2^15) >> 16,
 // 0..255, narrowed by vpmovdb. About 15 instructions per 16 outputs, where the 128-bit-lane
-// kernel (simd/resize_bilinear_rows_x86.hpp) runs the horizontal taps on both rows (~36).
+// kernel (simd/resize_bilinear_rows/x86.hpp) runs the horizontal taps on both rows (~36).
 // Rows whose plan has no wide groups (more than about 2x downscaling, narrow levels) take that
 // kernel.
 #include <cstdint>
@@ -19,7 +19,7 @@
 #include <immintrin.h>
 
 #include "core/kernels/resize_bilinear_rows.hpp"
-#include "simd/resize_bilinear_rows_x86.hpp"
+#include "simd/resize_bilinear_rows/x86.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN

@@ -20,7 +20,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace resize_opencv_detail {
+namespace resize_opencv_linear_rows_detail {
 
 // h >> 4 of 4 outputs per 128-bit lane, in 32-bit lanes.
 template <class Arch>
@@ -96,12 +96,12 @@ void vertical_row(const std::int16_t* top, const std::int16_t* bottom, std::int1
     resize_opencv_vertical_span_scalar(top, bottom, b0, b1, x, width, out);
 }
 
-}  // namespace resize_opencv_detail
+}  // namespace resize_opencv_linear_rows_detail
 
 template <class Arch>
 void resize_opencv_linear_rows(ImageView src, const OpenCvResizePlan& plan, MutableImageView dst,
                                int y_begin, int y_end) {
-  using namespace resize_opencv_detail;
+  using namespace resize_opencv_linear_rows_detail;
   resize_opencv_rows_with(
       src, plan, dst, y_begin, y_end,
       [&](const std::uint8_t* row, std::int16_t* out) { horizontal_row<Arch>(row, plan, out); },

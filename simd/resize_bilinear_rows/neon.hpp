@@ -1,6 +1,6 @@
 #pragma once
 // Q8 bilinear downsampling on AArch64 NEON: the contract of core/kernels/resize_bilinear_rows.hpp,
-// the same bytes. The arithmetic of simd/resize_bilinear_rows_x86.hpp (read its header for the
+// the same bytes. The arithmetic of simd/resize_bilinear_rows/x86.hpp (read its header for the
 // bounds) with NEON's equivalents: the plan's pshufb masks drive tbl (vqtbl1q_u8; its 0x80 lanes
 // read 0 in both), pmaddwd is multiply_add_pairs, and the packs are exact narrowings (values
 // 0..255).
@@ -9,12 +9,12 @@
 #include <arm_neon.h>
 
 #include "core/kernels/resize_bilinear_rows.hpp"
-#include "simd/resize_bilinear_rows_groups.hpp"
+#include "simd/resize_bilinear_rows/groups.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace resize_neon_detail {
+namespace resize_bilinear_rows_detail {
 
 // 4 outputs, in 32-bit lanes: (h0 (256 - wy) + h1 wy + 32768) >> 16 with h0, h1 the horizontal
 // sums of the top and bottom row, computed biased so every product fits int16 x int16.
@@ -30,12 +30,12 @@ inline uint32x4_t bilinear4(uint8x16_t top, uint8x16_t bottom, uint8x16_t shuffl
   return vshrq_n_u32(vreinterpretq_u32_s32(p), 16);
 }
 
-}  // namespace resize_neon_detail
+}  // namespace resize_bilinear_rows_detail
 
 template <class Arch>
 void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin,
                           int y_end) {
-  using resize_neon_detail::bilinear4;
+  using resize_bilinear_rows_detail::bilinear4;
   resize_rows_by_groups(
       src, plan, dst, y_begin, y_end,
       [&](const ResizeGroups& groups, const std::uint8_t* top, const std::uint8_t* bottom,

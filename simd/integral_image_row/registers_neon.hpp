@@ -1,6 +1,6 @@
 #pragma once
-// The steps of one integral image row (simd/integral_image_row_portable.hpp) on AArch64 NEON,
-// 8 pixels a step: the prefix sum by three adds of the lanes shifted up by 1, 2 and 4.
+// The register layer of one integral image row (simd/integral_image_row/portable.hpp) on AArch64
+// NEON, 8 pixels a step: the prefix sum by three adds of the lanes shifted up by 1, 2 and 4.
 #include <arm_neon.h>
 
 #include <cstdint>
@@ -9,10 +9,10 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace integral_detail {
+namespace integral_image_row_detail {
 
 template <class Arch>
-struct Steps {
+struct Registers {
   static constexpr int kPixels = 8;
   using Carry = uint32x4_t;
 
@@ -34,6 +34,6 @@ struct Steps {
   }
 };
 
-}  // namespace integral_detail
+}  // namespace integral_image_row_detail
 
 AIEF_SIMD_NAMESPACE_END

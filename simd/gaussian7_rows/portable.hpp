@@ -17,42 +17,45 @@
 // The mirror border: a column's vertical sum is the same wherever the column is used, so the
 // few columns left and right of the row are copies of the mirrored ones (BORDER_REFLECT_101).
 //
-// The register operations (blur_detail::Vec<Arch>) are per instruction-set family:
-// simd/gaussian7_rows_x86.hpp (pmaddwd) and simd/gaussian7_rows_neon.hpp (vmull + vpadd).
+// The register operations (gaussian7_rows_detail::Registers<Arch>) are per instruction-set family:
+// simd/gaussian7_rows/registers_x86.hpp (pmaddwd) and simd/gaussian7_rows/registers_neon.hpp (vmull
+// + vpadd).
 #include <cstdint>
 #include <type_traits>
 
 #include "core/kernels/gaussian7_rows.hpp"
 #include "simd/simd_support.hpp"
 #if defined(__aarch64__)
-#include "simd/gaussian7_rows_neon.hpp"
+#include "simd/gaussian7_rows/registers_neon.hpp"
 #else
-#include "simd/gaussian7_rows_x86.hpp"
+#include "simd/gaussian7_rows/registers_x86.hpp"
 #endif
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace blur_detail {
+namespace gaussian7_rows_detail {
 
 // The vertical pass of kRows consecutive rows at the L columns from c: a window of 7 source rows
 // slides down the band, so each source row is loaded once per band instead of once per output
 // row that reads it (7 loads an output row before, 1 now; callgrind, graf, AVX2). rows[k] is the
 // source row of band row k - 3 (mirrored); column[j] the biased vertical sums of band row j.
-template <class Ops, int kRows>
+template <class Registers, int kRows>
 inline void vertical_band(const std::uint8_t* const* rows, std::int16_t* const* column, int c,
-                          typename Ops::V w0, typename Ops::V w1, typename Ops::V w2,
-                          typename Ops::V w3) {
-  using V = typename Ops::V;
-  V r0 = Ops::columns(rows[0] + c), r1 = Ops::columns(rows[1] + c), r2 = Ops::columns(rows[2] + c),
-    r3 = Ops::columns(rows[3] + c), r4 = Ops::columns(rows[4] + c), r5 = Ops::columns(rows[5] + c);
+                          typename Registers::V w0, typename Registers::V w1,
+                          typename Registers::V w2, typename Registers::V w3) {
+  using V = typename Registers::V;
+  V r0 = Registers::columns(rows[0] + c), r1 = Registers::columns(rows[1] + c),
+    r2 = Registers::columns(rows[2] + c), r3 = Registers::columns(rows[3] + c),
+    r4 = Registers::columns(rows[4] + c), r5 = Registers::columns(rows[5] + c);
 #pragma GCC unroll 8
   for (int j = 0; j < kRows; ++j) {
-    const V r6 = Ops::columns(rows[j + 6] + c);
+    const V r6 = Registers::columns(rows[j + 6] + c);
     // Symmetric taps: rows k and 6 - k share a weight, added first (<= 510).
-    const V sum = Ops::add16(
-        Ops::add16(Ops::mul16(Ops::add16(r0, r6), w0), Ops::mul16(Ops::add16(r1, r5), w1)),
-        Ops::add16(Ops::mul16(Ops::add16(r2, r4), w2), Ops::mul16(r3, w3)));
-    Ops::store(column[j] + c, Ops::bias(sum));
+    const V sum = Registers::add16(
+        Registers::add16(Registers::mul16(Registers::add16(r0, r6), w0),
+                         Registers::mul16(Registers::add16(r1, r5), w1)),
+        Registers::add16(Registers::mul16(Registers::add16(r2, r4), w2), Registers::mul16(r3, w3)));
+    Registers::store(column[j] + c, Registers::bias(sum));
     r0 = r1;
     r1 = r2;
     r2 = r3;
@@ -99,14 +102,14 @@ inline void vertical_band(const std::uint8_t* const* rows, std::int16_t* const* 
   }
 }
 
-}  // namespace blur_detail
+}  // namespace gaussian7_rows_detail
 
 template <class Arch>
 void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end, int x_begin,
                     int x_end) {
-  using Ops = blur_detail::Vec<Arch>;
-  using V = typename Ops::V;
-  constexpr int L = Ops::kColumns;
+  using Registers = gaussian7_rows_detail::Registers<Arch>;
+  using V = typename Registers::V;
+  constexpr int L = Registers::kColumns;
   constexpr int kChunk = 512;  // output pixels per chunk: its columns stay in L1
   const int width = src.width, height = src.height;
   const std::ptrdiff_t stride = src.stride;
@@ -123,13 +126,15 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
   alignas(64) std::int16_t column_buffer[kBandRows][kSlack + kChunk + 7 + kSlack];
 
   // opaque: multiplied by constants, the compiler would rewrite each pmullw as 3-4 shifts and adds.
-  const V w0 = Ops::opaque(Ops::set16(w[0])), w1 = Ops::opaque(Ops::set16(w[1]));
-  const V w2 = Ops::opaque(Ops::set16(w[2])), w3 = Ops::opaque(Ops::set16(w[3]));
+  const V w0 = Registers::opaque(Registers::set16(w[0])),
+          w1 = Registers::opaque(Registers::set16(w[1]));
+  const V w2 = Registers::opaque(Registers::set16(w[2])),
+          w3 = Registers::opaque(Registers::set16(w[3]));
   // (and constant pairs would become memory operands, the columns then needing loads of their own).
-  const V pair01 = Ops::opaque(Ops::set32(w[0] | w[1] << 16)),
-          pair23 = Ops::opaque(Ops::set32(w[2] | w[3] << 16));
-  const V pair45 = Ops::opaque(Ops::set32(w[4] | w[5] << 16)),
-          pair6 = Ops::opaque(Ops::set32(w[6]));
+  const V pair01 = Registers::opaque(Registers::set32(w[0] | w[1] << 16)),
+          pair23 = Registers::opaque(Registers::set32(w[2] | w[3] << 16));
+  const V pair45 = Registers::opaque(Registers::set32(w[4] | w[5] << 16)),
+          pair6 = Registers::opaque(Registers::set32(w[6]));
 
   // Chunks outside, rows inside: a chunk's bounds and edge handling are worked out once for all
   // rows. Rows go in bands of kBandRows: the vertical pass of the whole band first, then the
@@ -167,9 +172,11 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
           constexpr int kRows = decltype(rows_constant)::value;
           int c = c0;
           for (; c < c1 && c <= width - L; c += L)
-            blur_detail::vertical_band<Ops, kRows>(rows, columns, c, w0, w1, w2, w3);
+            gaussian7_rows_detail::vertical_band<Registers, kRows>(rows, columns, c, w0, w1, w2,
+                                                                   w3);
           if (c < c1)
-            blur_detail::vertical_band<Ops, kRows>(rows, columns, width - L, w0, w1, w2, w3);
+            gaussian7_rows_detail::vertical_band<Registers, kRows>(rows, columns, width - L, w0, w1,
+                                                                   w2, w3);
         };
         switch (band_rows) {
           case 8: vertical(std::integral_constant<int, 8>{}); break;
@@ -182,50 +189,53 @@ void gaussian7_rows(ImageView src, MutableImageView dst, int y_begin, int y_end,
           default: vertical(std::integral_constant<int, 1>{}); break;
         }
       } else {
-        blur_detail::vertical_band_scalar(rows, columns, band_rows, c0, c1);
+        gaussian7_rows_detail::vertical_band_scalar(rows, columns, band_rows, c0, c1);
       }
       if (x0 - 3 < c0 || c1 < x1 + 4)
-        blur_detail::mirror_columns(columns, band_rows, x0, x1, c0, c1, width);
+        gaussian7_rows_detail::mirror_columns(columns, band_rows, x0, x1, c0, c1, width);
 
       for (int y = y0; y < y1; ++y) {
         const std::int16_t* const column = column_row(y - y0);
         std::uint8_t* out = dst.row(y - y_begin);
         // Horizontal pass, L outputs a step: L / 2 even ones and L / 2 odd ones, as P (above).
         const auto horizontal = [&](const std::int16_t* v) {  // v = column of the output's tap 0
-          return Ops::add32(
-              Ops::add32(Ops::madd(Ops::load(v), pair01), Ops::madd(Ops::load(v + 2), pair23)),
-              Ops::add32(Ops::madd(Ops::load(v + 4), pair45), Ops::madd(Ops::load(v + 6), pair6)));
+          return Registers::add32(Registers::add32(Registers::madd(Registers::load(v), pair01),
+                                                   Registers::madd(Registers::load(v + 2), pair23)),
+                                  Registers::add32(Registers::madd(Registers::load(v + 4), pair45),
+                                                   Registers::madd(Registers::load(v + 6), pair6)));
         };
-        if constexpr (Ops::kMaskedTail) {
+        if constexpr (Registers::kMaskedTail) {
           int x = x0;
           for (; x <= x1 - L; x += L)
-            Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
+            Registers::store_outputs(out + x, horizontal(column + x - 3),
+                                     horizontal(column + x - 2));
           if (x < x1)
-            Ops::store_outputs_masked(out + x, horizontal(column + x - 3),
-                                      horizontal(column + x - 2), x1 - x);
+            Registers::store_outputs_masked(out + x, horizontal(column + x - 3),
+                                            horizontal(column + x - 2), x1 - x);
         } else if (vector_outputs) {
           // The last step overlaps the one before when the chunk is not a multiple of L: the
           // same bytes rewritten, and no column outside [x0, x1) is written.
           const auto step = [&](int x) {
-            Ops::store_outputs(out + x, horizontal(column + x - 3), horizontal(column + x - 2));
+            Registers::store_outputs(out + x, horizontal(column + x - 3),
+                                     horizontal(column + x - 2));
           };
           int x = x0;
-          if constexpr (Ops::kPairedStores) {
+          if constexpr (Registers::kPairedStores) {
             // Two steps a pass where the span allows, one store of 2L bytes (callgrind, graf, AVX2:
             // 0.1 M fewer instructions); each step's pairs made before the next step's loads, or
             // the compiler runs out of registers.
             for (; x <= x1 - 2 * L; x += 2 * L) {
               const V first =
-                  Ops::output_pairs(horizontal(column + x - 3), horizontal(column + x - 2));
-              const V second =
-                  Ops::output_pairs(horizontal(column + x + L - 3), horizontal(column + x + L - 2));
-              Ops::store_output_pairs(out + x, first, second);
+                  Registers::output_pairs(horizontal(column + x - 3), horizontal(column + x - 2));
+              const V second = Registers::output_pairs(horizontal(column + x + L - 3),
+                                                       horizontal(column + x + L - 2));
+              Registers::store_output_pairs(out + x, first, second);
             }
           }
           for (; x <= x1 - L; x += L) step(x);
           if (x < x1) step(x1 - L);
         } else {
-          blur_detail::horizontal_scalar(column, x0, x1, out);
+          gaussian7_rows_detail::horizontal_scalar(column, x0, x1, out);
         }
       }
     }

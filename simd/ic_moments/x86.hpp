@@ -7,7 +7,7 @@
 #include <type_traits>
 
 #include "core/kernels/ic_moments.hpp"
-#include "simd/ic_moments_disc.hpp"
+#include "simd/ic_moments/disc.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN

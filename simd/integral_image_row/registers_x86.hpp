@@ -1,7 +1,8 @@
 #pragma once
-// The steps of one integral image row (simd/integral_image_row_portable.hpp) on x86: SSE4.2 takes
-// 8 pixels a step in one 128-bit register; AVX2 and AVX-512 take 16, the two 128-bit lanes'
-// prefix sums by shifts within each lane and the low lane's total broadcast into the high lane.
+// The register layer of one integral image row (simd/integral_image_row/portable.hpp) on x86:
+// SSE4.2 takes 8 pixels a step in one 128-bit register; AVX2 and AVX-512 take 16, the two 128-bit
+// lanes' prefix sums by shifts within each lane and the low lane's total broadcast into the high
+// lane.
 #include <immintrin.h>
 
 #include <cstdint>
@@ -11,10 +12,15 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace integral_detail {
+namespace integral_image_row_detail {
+
+// The register the kernel runs on: 128-bit (SSE4.2) or 256-bit (AVX2 and AVX-512). Templates on
+// Arch, so every instruction set's copy is its own symbol.
+template <class Arch, int kBits = std::is_base_of_v<xsimd::avx2, Arch> ? 256 : 128>
+struct Registers;
 
 template <class Arch>
-struct Steps128 {
+struct Registers<Arch, 128> {
   static constexpr int kPixels = 8;
   using Carry = __m128i;
 
@@ -38,9 +44,9 @@ struct Steps128 {
   }
 };
 
-// Steps128's contract for 16 entries a step.
+// The 128-bit form's contract for 16 entries a step.
 template <class Arch>
-struct Steps256 {
+struct Registers<Arch, 256> {
   static constexpr int kPixels = 16;
   using Carry = __m256i;
   static Carry step(const std::uint8_t* pixels, const std::uint32_t* above, std::uint32_t* out,
@@ -67,10 +73,6 @@ struct Steps256 {
   }
 };
 
-template <class Arch>
-using Steps =
-    std::conditional_t<std::is_base_of_v<xsimd::avx2, Arch>, Steps256<Arch>, Steps128<Arch>>;
-
-}  // namespace integral_detail
+}  // namespace integral_image_row_detail
 
 AIEF_SIMD_NAMESPACE_END

@@ -29,7 +29,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace rbrief_detail {
+namespace rbrief_describe_detail {
 
 constexpr int kTests = 256;
 constexpr int kSamples = 2 * kTests;
@@ -53,15 +53,16 @@ inline std::uint64_t shift_in_less(std::uint64_t bits, std::uint8_t p, const std
 #endif
 }
 
-}  // namespace rbrief_detail
+}  // namespace rbrief_describe_detail
 
 template <class Arch>
 void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* angle_deg, int n,
                      std::uint8_t* descriptors) {
   using F32 = xsimd::batch<float, Arch>;
   using I32 = xsimd::batch<std::int32_t, Arch>;
-  using rbrief_detail::kSamples;
-  const PointPairPattern<rbrief_detail::kTests>& pattern = rbrief_detail::sample_pattern();
+  using rbrief_describe_detail::kSamples;
+  const PointPairPattern<rbrief_describe_detail::kTests>& pattern =
+      rbrief_describe_detail::sample_pattern();
   const float kRadiansPerDegree = static_cast<float>(3.14159265358979323846 / 180.0);
   const std::ptrdiff_t stride = blurred.stride;
   const I32 step(static_cast<std::int32_t>(stride));
@@ -84,8 +85,8 @@ void rbrief_describe(ImageView blurred, const PixelPoint* points, const float* a
       std::uint64_t bits = 0;
 #pragma GCC unroll 16
       for (int t = 64 * w + 63; t >= 64 * w; --t)
-        bits = rbrief_detail::shift_in_less(bits, center[offset[first_point(t)]],
-                                            center[offset[second_point(t)]]);
+        bits = rbrief_describe_detail::shift_in_less(bits, center[offset[first_point(t)]],
+                                                     center[offset[second_point(t)]]);
       words[w] = bits;
     }
     std::memcpy(descriptors + static_cast<std::ptrdiff_t>(k) * 32, words, sizeof words);

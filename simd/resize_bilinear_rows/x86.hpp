@@ -19,12 +19,12 @@
 #include <type_traits>
 
 #include "core/kernels/resize_bilinear_rows.hpp"
-#include "simd/resize_bilinear_rows_groups.hpp"
+#include "simd/resize_bilinear_rows/groups.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace resize_detail {
+namespace resize_bilinear_rows_detail {
 
 // 4 outputs per 128-bit lane, in 32-bit lanes: (h0 (256 - wy) + h1 wy + 32768) >> 16 with
 // h0, h1 the horizontal sums of the top and bottom row (see the header comment). Written once for
@@ -44,12 +44,12 @@ AIEF_RESIZE_BILINEAR4(_mm, 128)
 AIEF_RESIZE_BILINEAR4(_mm256, 256)
 #undef AIEF_RESIZE_BILINEAR4
 
-}  // namespace resize_detail
+}  // namespace resize_bilinear_rows_detail
 
 template <class Arch>
 void resize_bilinear_rows(ImageView src, const ResizePlan& plan, MutableImageView dst, int y_begin,
                           int y_end) {
-  using namespace resize_detail;
+  using namespace resize_bilinear_rows_detail;
   constexpr bool kAvx2 = std::is_base_of_v<xsimd::avx2, Arch>;
   resize_rows_by_groups(
       src, plan, dst, y_begin, y_end,

@@ -1,19 +1,19 @@
 #pragma once
-// The register operations of the 7x7 Gaussian (simd/gaussian7_rows_portable.hpp) on AArch64 NEON,
+// The register operations of the 7x7 Gaussian (simd/gaussian7_rows/portable.hpp) on AArch64 NEON,
 // one 128-bit register, 8 columns a step; pmaddwd is multiply_add_pairs (simd_support_neon.hpp).
 #include <cstdint>
 
 #include <arm_neon.h>
 
-#include "simd/gaussian7_rows_bias.hpp"
+#include "simd/gaussian7_rows/bias.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace blur_detail {
+namespace gaussian7_rows_detail {
 
 template <class Arch>
-struct Vec {
+struct Registers {
   using V = int16x8_t;  // 8 int16 or 4 int32 lanes, as the operation says
   static constexpr int kColumns = 8;
   static constexpr bool kMaskedTail = false;    // the last step of a span overlaps the one before
@@ -47,6 +47,6 @@ struct Vec {
   }
 };
 
-}  // namespace blur_detail
+}  // namespace gaussian7_rows_detail
 
 AIEF_SIMD_NAMESPACE_END

@@ -20,7 +20,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace histogram_detail {
+namespace accumulate_histogram_detail {
 
 constexpr int kBanks = 4;
 constexpr int kMaxChunkPixels = 65535;  // a uint16 bank counter cannot count further
@@ -63,12 +63,12 @@ void fold_banks(const Banks& banks, std::uint32_t* hist) {
   for (int k = 0; k < 256; ++k) hist[k] += sum[k];  // widening add: the compiler vectorises it
 }
 
-}  // namespace histogram_detail
+}  // namespace accumulate_histogram_detail
 
 template <class Arch>
 void accumulate_histogram(const std::uint8_t* data, std::ptrdiff_t stride, int width, int height,
                           std::uint32_t* hist) {
-  using namespace histogram_detail;
+  using namespace accumulate_histogram_detail;
   alignas(64) Banks banks;
   clear_banks<Arch>(banks);
   // Chunks of whole rows (of row segments, for rows longer than a chunk), each folded before

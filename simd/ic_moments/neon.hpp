@@ -11,7 +11,7 @@
 #include <arm_neon.h>
 
 #include "core/kernels/ic_moments.hpp"
-#include "simd/ic_moments_disc.hpp"
+#include "simd/ic_moments/disc.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN

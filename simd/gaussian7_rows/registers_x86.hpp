@@ -1,22 +1,22 @@
 #pragma once
-// The register operations of the 7x7 Gaussian (simd/gaussian7_rows_portable.hpp) on SSE4.1 / AVX2.
+// The register operations of the 7x7 Gaussian (simd/gaussian7_rows/portable.hpp) on SSE4.1 / AVX2.
 #include <cstdint>
 #include <type_traits>
 
 #include <immintrin.h>
 
-#include "simd/gaussian7_rows_bias.hpp"
+#include "simd/gaussian7_rows/bias.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace blur_detail {
+namespace gaussian7_rows_detail {
 
 // What every width has alike, from its intrinsics' prefix P (_mm, _mm256, _mm512), its width B
 // and the asm constraint of its registers: the register type, its u16 lanes (kColumns, also the
 // outputs of one horizontal step), a barrier the compiler cannot see through (opaque), loads and
 // stores of int16 lanes, broadcasts, and the lane-wise arithmetic.
-#define AIEF_BLUR_VEC_OPERATIONS(P, B, REGISTER)                                                  \
+#define AIEF_BLUR_REGISTER_OPERATIONS(P, B, REGISTER)                                             \
   using V = __m##B##i;                                                                            \
   static constexpr int kColumns = B / 16;                                                         \
   static V opaque(V v) {                                                                          \
@@ -38,11 +38,11 @@ namespace blur_detail {
 template <class Arch, int kBits = std::is_base_of_v<xsimd::avx512bw, Arch> ? 512
                                   : std::is_base_of_v<xsimd::avx2, Arch>   ? 256
                                                                            : 128>
-struct Vec;
+struct Registers;
 
 template <class Arch>
-struct Vec<Arch, 128> {
-  AIEF_BLUR_VEC_OPERATIONS(_mm, 128, "+x")
+struct Registers<Arch, 128> {
+  AIEF_BLUR_REGISTER_OPERATIONS(_mm, 128, "+x")
   static constexpr bool kMaskedTail = false;   // the last step of a span overlaps the one before
   static constexpr bool kPairedStores = true;  // output_pairs and store_output_pairs
   static V columns(const std::uint8_t* p) {
@@ -74,8 +74,8 @@ struct Vec<Arch, 128> {
 // the opaque() barrier even in a specialization it never instantiates.
 #if defined(__AVX2__)
 template <class Arch>
-struct Vec<Arch, 256> {
-  AIEF_BLUR_VEC_OPERATIONS(_mm256, 256, "+x")
+struct Registers<Arch, 256> {
+  AIEF_BLUR_REGISTER_OPERATIONS(_mm256, 256, "+x")
   static constexpr bool kMaskedTail = false;
   static constexpr bool kPairedStores = true;
   static V columns(const std::uint8_t* p) {
@@ -107,8 +107,8 @@ struct Vec<Arch, 256> {
 // step of a span stores only its first n bytes (a masked vpmovwb), so spans need no overlapping
 // step and none narrower than 32 outputs falls back to scalar code.
 template <class Arch>
-struct Vec<Arch, 512> {
-  AIEF_BLUR_VEC_OPERATIONS(_mm512, 512, "+v")
+struct Registers<Arch, 512> {
+  AIEF_BLUR_REGISTER_OPERATIONS(_mm512, 512, "+v")
   static constexpr bool kMaskedTail = true;
   static V columns(const std::uint8_t* p) {
     return _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)));
@@ -130,8 +130,8 @@ struct Vec<Arch, 512> {
 };
 #endif  // __AVX512BW__
 
-#undef AIEF_BLUR_VEC_OPERATIONS
+#undef AIEF_BLUR_REGISTER_OPERATIONS
 
-}  // namespace blur_detail
+}  // namespace gaussian7_rows_detail
 
 AIEF_SIMD_NAMESPACE_END

@@ -10,7 +10,7 @@
 //      threshold in integers, floor(threshold * A / 100), fixed for the call too; the bit shifted
 //      into the descriptor word, last test first. A keypoint with a clipped box takes the scalar
 //      reference (a few per cent of them, near the level's edges).
-// No hardware gathers, for rbrief_describe's reason (simd/rbrief_describe_portable.hpp): on Zen 4 a
+// No hardware gathers, for rbrief_describe's reason (simd/rbrief_describe/portable.hpp): on Zen 4 a
 // gather costs more than its scalar loads.
 #include <algorithm>
 #include <array>
@@ -25,7 +25,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace box_detail {
+namespace box_describe_detail {
 
 constexpr int kBoxes = 2 * kBoxTests;
 
@@ -42,7 +42,7 @@ inline std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 
-}  // namespace box_detail
+}  // namespace box_describe_detail
 
 template <class Arch>
 void box_describe(IntegralView integral, const BoxPoint* points, const float* angle_deg, int n,
@@ -50,8 +50,8 @@ void box_describe(IntegralView integral, const BoxPoint* points, const float* an
   using F32 = xsimd::batch<float, Arch>;
   using I32 = xsimd::batch<std::int32_t, Arch>;
   constexpr int kLanes = static_cast<int>(F32::size);
-  using box_detail::kBoxes;
-  const PointPairPattern<kBoxTests>& pattern = box_detail::box_pattern();
+  using box_describe_detail::kBoxes;
+  const PointPairPattern<kBoxTests>& pattern = box_describe_detail::box_pattern();
   const BoxTest* table = box_table();
   const std::ptrdiff_t stride = integral.stride;
   // The call's radii (scale is fixed), each box's, and per test the offsets of the other three
@@ -66,8 +66,8 @@ void box_describe(IntegralView integral, const BoxPoint* points, const float* an
     radius[first_point(t)] = radius[second_point(t)] = static_cast<std::int32_t>(r);
     right[t] = side;
     below[t] = side * stride;
-    threshold[t] = static_cast<std::int32_t>(
-        box_detail::floor_div(std::int64_t{table[t].threshold_hundredths} * side * side, 100));
+    threshold[t] = static_cast<std::int32_t>(box_describe_detail::floor_div(
+        std::int64_t{table[t].threshold_hundredths} * side * side, 100));
   }
   const float kRadiansPerDegree = static_cast<float>(3.14159265358979323846 / 180.0);
   const I32 step(static_cast<std::int32_t>(stride)), first_row(integral.first_row);

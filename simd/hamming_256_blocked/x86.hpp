@@ -4,8 +4,8 @@
 // train, so the query word is broadcast, XORed and popcounted lane-wise and the eight words' counts
 // are added lane-wise, with no horizontal sum per train. AVX2 counts bits by a nibble table
 // (vpshufb) and sums the four byte counts of a lane with vpmaddubsw + vpmaddwd; AVX-512 with
-// VPOPCNTDQ counts a lane in one instruction (simd/kernels_avx512vpopcntdq.cpp). SSE4.2 runs the
-// scalar loop, two words per 64-bit popcnt.
+// VPOPCNTDQ counts a lane in one instruction (simd/hamming_256_blocked/x86_avx512vpopcntdq.hpp).
+// SSE4.2 runs the scalar loop, two words per 64-bit popcnt.
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
@@ -14,28 +14,6 @@
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN
-
-#if defined(__AVX512VPOPCNTDQ__)
-// One block (16 trains) per iteration: 8 loads, XORs, popcounts and adds, one narrowing store.
-inline void hamming_256_blocked_vpopcntdq(const std::uint8_t* query, const std::uint32_t* blocked,
-                                          int n_blocks, std::uint16_t* distances) {
-  __m512i q[kDescriptorWords];
-  for (int w = 0; w < kDescriptorWords; ++w) {
-    std::uint32_t word;
-    std::memcpy(&word, query + 4 * w, 4);
-    q[w] = _mm512_set1_epi32(static_cast<int>(word));
-  }
-  for (int block = 0; block < n_blocks; ++block) {
-    const std::uint32_t* words = block_words(blocked, block);
-    __m512i sum = _mm512_popcnt_epi32(_mm512_xor_si512(q[0], _mm512_loadu_si512(words)));
-    for (int w = 1; w < kDescriptorWords; ++w)
-      sum = _mm512_add_epi32(sum, _mm512_popcnt_epi32(_mm512_xor_si512(
-                                      q[w], _mm512_loadu_si512(words + w * kHammingBlock))));
-    _mm512_mask_cvtepi32_storeu_epi16(distances + block * kHammingBlock, 0xffff,
-                                      sum);  // vpmovdw to memory
-  }
-}
-#endif
 
 template <class Arch>
 void hamming_256_blocked(const std::uint8_t* query, const std::uint32_t* blocked, int n_blocks,

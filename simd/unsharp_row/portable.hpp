@@ -12,7 +12,7 @@
 #include <cstdint>
 
 #include "core/kernels/unsharp_row.hpp"
-#include "simd/binomial5_row_portable.hpp"
+#include "simd/binomial5_row/portable.hpp"
 #include "simd/simd_support.hpp"
 
 AIEF_SIMD_NAMESPACE_BEGIN

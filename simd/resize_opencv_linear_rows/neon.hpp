@@ -1,7 +1,7 @@
 #pragma once
 // cv::resize INTER_LINEAR's 8-bit arithmetic on AArch64 NEON: the contract of
 // core/kernels/resize_opencv_linear_rows.hpp, the same bytes. The passes of
-// simd/resize_opencv_linear_rows_x86.hpp (read its header) with NEON's equivalents: the plan's
+// simd/resize_opencv_linear_rows/x86.hpp (read its header) with NEON's equivalents: the plan's
 // pshufb masks drive tbl (vqtbl1q_u8; its 0x80 lanes read 0 in both), pmaddwd is
 // multiply_add_pairs, and pmulhw is a widening multiply (smull, exact) narrowed by an arithmetic
 // shift of 16 (shrn), (h >> 4) b >> 16 exactly.
@@ -14,7 +14,7 @@
 
 AIEF_SIMD_NAMESPACE_BEGIN
 
-namespace resize_opencv_neon_detail {
+namespace resize_opencv_linear_rows_detail {
 
 // h >> 4 of 4 outputs, in 32-bit lanes.
 inline int32x4_t horizontal4(uint8x16_t window, uint8x16_t shuffle, int16x8_t coef) {
@@ -28,12 +28,12 @@ inline int16x8_t multiply_high(int16x8_t v, int16x4_t b) {
                       vshrn_n_s32(vmull_s16(vget_high_s16(v), b), 16));
 }
 
-}  // namespace resize_opencv_neon_detail
+}  // namespace resize_opencv_linear_rows_detail
 
 template <class Arch>
 void resize_opencv_linear_rows(ImageView src, const OpenCvResizePlan& plan, MutableImageView dst,
                                int y_begin, int y_end) {
-  using namespace resize_opencv_neon_detail;
+  using namespace resize_opencv_linear_rows_detail;
   const int width = plan.dst_width, groups = plan.x_groups;
   const std::int32_t* start = plan.x_group_start.data();
   const std::uint8_t* shuffle[2] = {plan.x_group_shuffle.data(),
