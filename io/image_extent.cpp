@@ -70,12 +70,9 @@ std::uint64_t jpeg_length(const Bytes& b) {
     at += *length;
     if (*marker != 0xDA) continue;
     while (true) {  // the scan's data
-      const std::optional<std::uint8_t> byte = b.at(at);
-      if (!byte) return b.size();  // no end-of-image marker: cut short
-      if (*byte != 0xFF) {
-        ++at;
-        continue;
-      }
+      const std::optional<std::uint64_t> marker_or_stuffing = b.find(0xFF, at);
+      if (!marker_or_stuffing) return b.size();  // no end-of-image marker: cut short
+      at = *marker_or_stuffing;
       const std::optional<std::uint8_t> next = b.at(at + 1);
       if (!next) return b.size();
       if (*next != 0x00 && (*next < 0xD0 || *next > 0xD7)) break;  // a marker
