@@ -46,8 +46,7 @@ void check_batch_outputs_do_not_nest(const std::vector<BatchInput>& inputs,
            at = input.name.find('/', at + 1))
         if (names.count(input.name.substr(0, at)))
           throw Error("batch input '" + input.path +
-                      "' would have its group inside the group of "
-                      "input '" +
+                      "' would have its group inside the group of input '" +
                       input.name.substr(0, at) + "' in '" + output_dir +
                       "' (one name is the folder of the other's); nothing was written");
     return;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <optional>
 #include <string_view>
@@ -31,6 +32,19 @@ class EncodedBytes {
   std::optional<std::uint8_t> at(std::uint64_t index) const {
     if (index - page_start_ >= page_size_ && !load(index)) return std::nullopt;
     return page_data_[index - page_start_];
+  }
+  // The index of the first `byte` at or after `from`, nullopt when none is: memchr over each
+  // page, not a call per byte (a JPEG's scan walked to its end through 1.5 GB of padding).
+  std::optional<std::uint64_t> find(std::uint8_t byte, std::uint64_t from) const {
+    while (from < size_) {
+      if (from - page_start_ >= page_size_ && !load(from)) return std::nullopt;
+      const std::uint8_t* start = page_data_ + (from - page_start_);
+      const std::size_t left = static_cast<std::size_t>(page_size_ - (from - page_start_));
+      if (const void* found = std::memchr(start, byte, left))
+        return from + static_cast<std::uint64_t>(static_cast<const std::uint8_t*>(found) - start);
+      from += left;
+    }
+    return std::nullopt;
   }
   bool starts_with(std::string_view magic, std::uint64_t at_index = 0) const {
     for (std::size_t i = 0; i < magic.size(); ++i)

@@ -97,12 +97,17 @@ short blocking_lock(int fd, short type) {
   return probe.l_type;
 }
 
-std::string holder_of(int fd) {
+std::string recorded_holder(int fd) {
   char text[kLongestRecord + 1] = {};
   const ssize_t got = ::pread(fd, text, kLongestRecord, 0);
   std::string holder(text, got > 0 ? static_cast<std::size_t>(got) : 0);
   while (!holder.empty() && (holder.back() == '\n' || holder.back() == '\0')) holder.pop_back();
-  return holder.rfind(kRecordStart, 0) == 0 ? holder : "another process";
+  return holder.rfind(kRecordStart, 0) == 0 ? holder : "";
+}
+
+std::string holder_of(int fd) {
+  const std::string holder = recorded_holder(fd);
+  return holder.empty() ? "another process" : holder;
 }
 
 void record_holder(int fd) {

@@ -27,8 +27,10 @@ int take(int fd, short type, bool wait);
 // none does.
 short blocking_lock(int fd, short type);
 
-// "process 123 on host n01", as the lock file records its writer; "another process" when it
-// records none.
+// "process 123 on host n01", as the lock file records its writer (once it holds the lock); ""
+// when it records none.
+std::string recorded_holder(int fd);
+// The same, "another process" when it records none.
 std::string holder_of(int fd);
 void record_holder(int fd);
 

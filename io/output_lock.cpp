@@ -254,6 +254,14 @@ ReadLock::ReadLock(const std::string& file) {
       ++read()[lock_path_];
       return;
     }
+    if ((code == EAGAIN || code == EACCES) && lock_file::recorded_holder(fd).empty()) {
+      // No writer recorded: a reader that is removing the lock file as it ends (~ReadLock, a
+      // write lock held from its taking to the close), or a writer in the instant before it
+      // records itself. Wait for it and look again, rather than call a file nobody writes locked.
+      lock_file::take(fd, F_RDLCK, true);
+      ::close(fd);
+      continue;
+    }
     if (code == EAGAIN || code == EACCES) {
       const std::string holder = lock_file::holder_of(fd);
       ::close(fd);

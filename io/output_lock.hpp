@@ -49,7 +49,8 @@ class OutputLock {
 class ReadLock {
  public:
   // Takes a shared lock on the lock file of `file`. Throws aief::Error when a writer holds it,
-  // naming the writer. Takes none, silently, where the folder takes no lock file, the file system
+  // naming the writer; waits for a lock that records no writer (a reader removing the lock file
+  // as it ends). Takes none, silently, where the folder takes no lock file, the file system
   // gives no locks, AIEF_FILE_LOCKING=FALSE is set, or this process writes the file itself.
   explicit ReadLock(const std::string& file);
   ~ReadLock();

@@ -112,6 +112,37 @@ TEST(LockFile, APlantedLinkOrFileAtTheLockPathIsRefusedAndLeftUntouched) {
   EXPECT_EQ(run(batch_into(images, output), temp.path() / "b.log"), 0);
 }
 
+TEST(LockFile, AReaderStartingAsAnotherEndsWaitsForItInsteadOfCallingTheFileLocked) {
+  // A reader that ends (~ReadLock) holds a write lock on the lock file from its taking to the
+  // close, to remove the file. Before: a reader starting then said "it is locked by a writer,
+  // another process" of a file nobody writes (parallel match --pairs jobs reading one file).
+  const TempFolder temp("aief_lock_file");
+  const std::string file = temp.file("f.h5");
+  std::ofstream(file) << "";
+  const std::string lock = aief::io::lock_path_of(aief::io::resolved_path(file));
+  int ready[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  const pid_t ending = ::fork();
+  if (ending == 0) {  // the ending reader, slow to remove the file
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT, 0666);
+    struct flock whole {};
+    whole.l_type = F_WRLCK;
+    whole.l_whence = SEEK_SET;
+    if (fd < 0 || ::fcntl(fd, F_OFD_SETLK, &whole) != 0) ::_exit(2);
+    [[maybe_unused]] const ssize_t wrote = ::write(ready[1], "x", 1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    ::unlink(lock.c_str());
+    ::_exit(0);
+  }
+  ::close(ready[1]);
+  char byte = 0;
+  ASSERT_EQ(::read(ready[0], &byte, 1), 1);
+  ::close(ready[0]);
+  EXPECT_NO_THROW(aief::io::ReadLock{file});
+  EXPECT_EQ(wait_for(ending), 0);
+  EXPECT_FALSE(fs::exists(lock));  // removed by the reader that came after
+}
+
 TEST(LockFile, ALockFileHasTheUmasksMode) {
   const TempFolder temp("aief_lock_file");
   const std::string output = temp.file("out.h5");

@@ -24,13 +24,12 @@ int run_colmap(const Arguments& arguments) {
                               {"--help", "-h", false}});
   if (args.has("--help")) {
     std::cout
-        << "usage: aief colmap --features-file FEATURES.h5 --matches MATCHES.h5 --pairs PAIRS.txt "
-           "-o "
-           "DATABASE.db\n\n"
-        << "A COLMAP database (cameras, images, keypoints, descriptors, matches) from aief's hloc "
-           "files, for\n"
-        << "  colmap matches_importer --database_path DATABASE.db --match_list_path PAIRS.txt "
-           "--match_type pairs\n"
+        << "usage: aief colmap --features-file FEATURES.h5 --matches MATCHES.h5 "
+           "--pairs PAIRS.txt -o DATABASE.db\n\n"
+        << "A COLMAP database (cameras, images, keypoints, descriptors, matches) "
+           "from aief's hloc files, for\n"
+        << "  colmap matches_importer --database_path DATABASE.db "
+           "--match_list_path PAIRS.txt --match_type pairs\n"
         << "  colmap mapper --database_path DATABASE.db --image_path IMAGES --output_path SPARSE\n"
         << "Keypoints are shifted by +0.5 px to COLMAP's origin (the top-left pixel's corner).\n"
         << "(--features, the earlier spelling of --features-file, is still accepted.)\n";
