@@ -28,7 +28,8 @@ def parse_method(text):
     """NAME=aief[:EXTRACT FLAGS][;MATCH FLAGS] or NAME=sift[:FEATURE_EXTRACTOR FLAGS], e.g.
     'quality=aief:--mode quality;--matcher ratio --ratio 0.9'. ValueError when malformed."""
     name, sep, rest = text.partition("=")
-    kind, _, flags = rest.partition(":")
+    kind = rest.split(":", 1)[0].split(";", 1)[0]
+    flags = rest[len(kind):].removeprefix(":")
     if not sep or not name or kind not in ("aief", "sift"):
         raise ValueError(f"method {text!r}: expected NAME=aief[:EXTRACT FLAGS][;MATCH FLAGS] or "
                          f"NAME=sift[:FLAGS]")

@@ -182,6 +182,8 @@ def test_methods_parse_and_malformed_ones_are_named():
     assert method.extract == ["--mode", "quality"]
     assert method.match == ["--matcher", "ratio", "--ratio", "0.9"]
     assert pipelines.parse_method("sift=sift").extract == []
+    only_matching = pipelines.parse_method("r=aief;--matcher ratio")
+    assert (only_matching.kind, only_matching.extract, only_matching.match) == ("aief", [], ["--matcher", "ratio"])
     for bad in ("x", "=aief", "x=orb", "s=sift:;--matcher ratio"):
         with pytest.raises(ValueError, match="method"):
             pipelines.parse_method(bad)
