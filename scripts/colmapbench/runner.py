@@ -1,6 +1,7 @@
 """The commands of one method on one scene, each timed, logged and kept: a step whose command and
 inputs are as recorded in its marker (STEP.done.json) is not run again, and once a step runs,
 every later step of that method runs too."""
+import hashlib
 import json
 import os
 import shutil
@@ -12,15 +13,24 @@ class StepFailed(RuntimeError):
     pass
 
 
+SMALL_FILE_BYTES = 1 << 20  # hashed; larger inputs are known by size and modification time
+
+
 def _inputs_key(inputs):
-    """The inputs' sizes and modification times: a step is redone when one changed."""
+    """What identifies the inputs: a step is redone when one changed. A small file (pairs.txt,
+    rewritten by every run) by its content, a large one (features.h5) by size and time."""
     key = []
     for path in inputs:
         try:
             stat = os.stat(path)
-            key.append([path, stat.st_size, stat.st_mtime_ns])
         except FileNotFoundError:
             key.append([path, None, None])
+            continue
+        if stat.st_size <= SMALL_FILE_BYTES:
+            with open(path, "rb") as handle:
+                key.append([path, stat.st_size, hashlib.sha1(handle.read()).hexdigest()])
+        else:
+            key.append([path, stat.st_size, stat.st_mtime_ns])
     return key
 
 

@@ -193,3 +193,22 @@ def test_pairs_are_every_pair_once(tmp_path):
     path = tmp_path / "pairs.txt"
     pipelines.write_pairs(str(path), ["a.jpg", "b.jpg", "c.jpg"])
     assert path.read_text() == "a.jpg b.jpg\na.jpg c.jpg\nb.jpg c.jpg\n"
+
+
+def test_a_step_done_as_now_is_kept_and_redone_when_an_input_changes(tmp_path):
+    from colmapbench.runner import StepFailed, Steps
+    pairs, count = tmp_path / "pairs.txt", tmp_path / "count"
+    pairs.write_text("a b\n")
+    command = ["sh", "-c", f"echo run >> {count}"]
+
+    def run():
+        Steps(str(tmp_path / "steps")).run("step", command, inputs=[str(pairs)])
+        return count.read_text().count("run")
+
+    assert run() == 1
+    pairs.write_text("a b\n")  # rewritten alike (every run writes pairs.txt): kept
+    assert run() == 1
+    pairs.write_text("a c\n")
+    assert run() == 2
+    with pytest.raises(StepFailed, match="exited 3"):
+        Steps(str(tmp_path / "steps")).run("failing", ["sh", "-c", "exit 3"])
