@@ -9,7 +9,8 @@ the same run (docs/colmap.md).
 A scene is a folder in Strecha's layout (images/, gt_dense_cameras/*.camera: openMVG's
 SfM_quality_evaluation holds castle-P19, castle-P30, entry-P10, Herz-Jesus-P25 and fountain-P11);
 the data are not part of this repository. Methods default to
-  aief-default=aief   aief-quality=aief:--mode quality   sift=sift
+  aief-default=aief   aief-quality=aief:--mode quality
+  aief-box-ratio=aief:--descriptor box;--matcher ratio (docs/colmap.md's recipe for SfM)   sift=sift
 aief's route: extract --batch --format h5, match --pairs over every pair, colmap, then COLMAP's
 matches_importer (two-view verification) and mapper; SIFT's: feature_extractor (CPU,
 SIMPLE_RADIAL, --SiftExtraction.max_num_features = --features), exhaustive_matcher, mapper. Every
@@ -38,7 +39,9 @@ from colmapbench import metrics, pipelines, report  # noqa: E402
 from colmapbench.runner import StepFailed  # noqa: E402
 from colmapbench.scenes import read_scene  # noqa: E402
 
-DEFAULT_METHODS = ["aief-default=aief", "aief-quality=aief:--mode quality", "sift=sift"]
+# The default and quality modes as they come, the recipe docs/colmap.md recommends for SfM, SIFT.
+DEFAULT_METHODS = ["aief-default=aief", "aief-quality=aief:--mode quality",
+                   "aief-box-ratio=aief:--descriptor box;--matcher ratio", "sift=sift"]
 
 
 def find_binary(given, name, how):
