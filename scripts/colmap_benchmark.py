@@ -3,7 +3,7 @@
 the same run (docs/colmap.md).
 
   colmap_benchmark.py --scene DATA/castle-P19 --scene DATA/entry-P10 ... --out OUT
-                      [--features 8000] [--threads 2] [--aief build/aief] [--colmap colmap]
+                      [--n-features 8000] [--threads 2] [--aief build/aief] [--colmap colmap]
                       [--method NAME=aief[:EXTRACT FLAGS][;MATCH FLAGS]] [--method NAME=sift[:FLAGS]]
 
 A scene is a folder in Strecha's layout (images/, gt_dense_cameras/*.camera: openMVG's
@@ -13,8 +13,8 @@ the data are not part of this repository. Methods default to
   aief-box-ratio=aief:--descriptor box;--matcher ratio (docs/colmap.md's recipe for SfM)   sift=sift
 aief's route: extract --batch --format h5, match --pairs over every pair, colmap, then COLMAP's
 matches_importer (two-view verification) and mapper; SIFT's: feature_extractor (CPU,
-SIMPLE_RADIAL, --SiftExtraction.max_num_features = --features), exhaustive_matcher, mapper. Every
-method gets --features keypoints an image unless its flags say otherwise.
+SIMPLE_RADIAL, --SiftExtraction.max_num_features = --n-features), exhaustive_matcher, mapper. Every
+method gets --n-features keypoints an image unless its flags say otherwise.
 
 Per scene and method: keypoints an image, registered images, 3D points, mean track length, mean
 reprojection error (COLMAP's: the mean of the points' errors), the share of the database's matches
@@ -55,7 +55,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--scene", action="append", required=True, help="a scene folder (Strecha's layout)")
     parser.add_argument("--out", required=True)
-    parser.add_argument("--features", type=int, default=8000, help="keypoints an image, every method")
+    parser.add_argument("--n-features", type=int, default=8000, help="keypoints an image, every method")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--aief", default="aief", help="the aief binary (default: aief on PATH)")
     parser.add_argument("--colmap", default="colmap", help="the colmap binary (default: colmap on PATH)")
@@ -89,7 +89,7 @@ def main():
                    "extract_flags": method.extract, "match_flags": method.match}
             try:
                 model, models, database, seconds = run(method, scene, images, scene_folder, binaries,
-                                                       args.features, args.threads, environment)
+                                                       args.n_features, args.threads, environment)
             except StepFailed as error:
                 print(f"  failed: {error}", flush=True)
                 row["error"] = str(error).splitlines()[0]
@@ -113,7 +113,7 @@ def main():
         report.relate_to_sift(rows, sift_method)
     os.makedirs(args.out, exist_ok=True)
     about = {"date_utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime()), "machine": platform.machine(),
-             "cpus": os.cpu_count(), "processor": platform.processor(), "features": args.features,
+             "cpus": os.cpu_count(), "processor": platform.processor(), "features": args.n_features,
              "threads": args.threads, "binaries": binaries}
     with open(os.path.join(args.out, "results.json"), "w") as handle:
         json.dump({"about": about, "rows": rows}, handle, indent=1)

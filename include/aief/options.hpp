@@ -116,8 +116,8 @@ enum class Mode {
   faithful,          // orbslam2 with ORB-SLAM's own pyramid pixels, cells, octree tie-breaks and
                      // orientation
   quality,           // aief with FAST on smoothed levels, a finer pyramid (1.1, 18 levels), the
-                     // box descriptor and no entropy mask:
-                     // for offline mapping, docs/evaluation.md "Hard families"
+                     // box descriptor and no entropy mask: for hard pairs (blur, scale),
+                     // docs/evaluation.md "Hard families"; for SfM, docs/colmap.md
 };
 
 struct ExtractorOptions {
