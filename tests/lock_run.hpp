@@ -35,11 +35,22 @@ struct How {
   uid_t uid = static_cast<uid_t>(-1);
   gid_t gid = 0;
   mode_t umask = 022;
+  fs::path cli = AIEF_CLI_PATH;  // a run as another user takes cli_for_others' copy
 };
+
+// A copy of the CLI in `folder` that another user can run: the build folder may be out of their
+// reach (CI's fresh root builds below /root, mode 0700: exec fails and the run ends with 127).
+inline fs::path cli_for_others(const fs::path& folder) {
+  const fs::path copy = folder / "aief_cli";
+  if (!fs::exists(copy)) fs::copy_file(AIEF_CLI_PATH, copy);
+  fs::permissions(copy, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                            fs::perms::others_read | fs::perms::others_exec);
+  return copy;
+}
 
 // Starts the CLI with `arguments`, stdout to `log` and stderr to `log`.err.
 inline pid_t start(const std::vector<std::string>& arguments, const fs::path& log, How how = {}) {
-  std::vector<std::string> copies = {AIEF_CLI_PATH};
+  std::vector<std::string> copies = {how.cli.string()};
   copies.insert(copies.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (std::string& a : copies) argv.push_back(a.data());

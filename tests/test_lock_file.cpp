@@ -170,8 +170,9 @@ fs::path group_folder(const TempFolder& temp) {
   return folder;
 }
 
-How as_member(uid_t uid) {
+How as_member(uid_t uid, const TempFolder& temp) {
   How how;
+  how.cli = cli_for_others(temp.path());
   how.uid = uid;
   how.gid = kGroup;
   how.umask = 002;
@@ -185,7 +186,7 @@ TEST(LockFile, AGroupFoldersSecondMemberWaitsForTheFirst) {
   const fs::path folder = group_folder(temp), images = image_folder(temp.path(), "i", 3);
   fs::permissions(images, fs::perms::all);
   const fs::path output = folder / "g.h5";
-  ASSERT_EQ(run(batch_into(images, output), folder / "a.log", as_member(kFirstMember)), 0)
+  ASSERT_EQ(run(batch_into(images, output), folder / "a.log", as_member(kFirstMember, temp)), 0)
       << text_of(folder / "a.log.err");
   // The first member's writer, held here as that member (a child that holds the lock until told).
   int pipes[2];
@@ -205,7 +206,7 @@ TEST(LockFile, AGroupFoldersSecondMemberWaitsForTheFirst) {
   while (!fs::exists(aief::io::lock_path_of(output.string())))
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   const fs::path log = folder / "b.log";
-  const pid_t second = start(batch_into(images, output), log, as_member(kSecondMember));
+  const pid_t second = start(batch_into(images, output), log, as_member(kSecondMember, temp));
   const bool waited = says_it_waits(second, log);
   ::close(pipes[1]);  // the first member's run ends
   EXPECT_EQ(wait_for(first), 0);
@@ -229,7 +230,7 @@ TEST(LockFile, AStaleLockOfAnotherMemberIsNamedWithTheCommandThatRemovesIt) {
   ASSERT_EQ(::chmod(folder.c_str(), 03775), 0);
   plant_stale_lock();
   const fs::path log = folder / "b.log";
-  EXPECT_EQ(run(batch_into(images, output), log, as_member(kSecondMember)), 1);
+  EXPECT_EQ(run(batch_into(images, output), log, as_member(kSecondMember, temp)), 1);
   const std::string said = text_of(log.string() + ".err");
   EXPECT_NE(said.find("was left by a run that has ended (process 999999 on host gone"),
             std::string::npos)
@@ -239,7 +240,7 @@ TEST(LockFile, AStaleLockOfAnotherMemberIsNamedWithTheCommandThatRemovesIt) {
       << said;
   // Where the folder lets a member remove it, the run removes it and writes.
   ASSERT_EQ(::chmod(folder.c_str(), 02775), 0);
-  EXPECT_EQ(run(batch_into(images, output), log, as_member(kSecondMember)), 0)
+  EXPECT_EQ(run(batch_into(images, output), log, as_member(kSecondMember, temp)), 0)
       << text_of(log.string() + ".err");
   EXPECT_FALSE(fs::exists(lock));
 }
@@ -262,6 +263,7 @@ TEST(LockFile, AWritableFileInAReadOnlyFolderSaysTheLockFileCannotBeMadeThere) {
                               fs::perms::others_exec);
   How how;
   if (::geteuid() == 0) {
+    how.cli = cli_for_others(temp.path());
     how.uid = kSecondMember;
     how.gid = kGroup;
   }
