@@ -71,7 +71,8 @@ void expect_same(const std::vector<Match>& expected, const std::vector<Match>& a
 
 std::vector<MatchOptions> every_rule() {
   std::vector<MatchOptions> rules;
-  for (MatcherKind kind : {MatcherKind::mutual, MatcherKind::ratio, MatcherKind::paper})
+  for (MatcherKind kind :
+       {MatcherKind::mutual, MatcherKind::ratio, MatcherKind::paper, MatcherKind::mutual_ratio})
     for (int max_distance : {256, 60}) {
       MatchOptions options;
       options.kind = kind;

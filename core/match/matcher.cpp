@@ -35,7 +35,8 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
 
   std::vector<Nearest> row_nearest(static_cast<std::size_t>(n_a));
   // Column minima per band (only the mutual check needs them), merged in band order after.
-  const bool mutual = options.kind == MatcherKind::mutual;
+  const bool mutual =
+      options.kind == MatcherKind::mutual || options.kind == MatcherKind::mutual_ratio;
   std::vector<int> band_col_distance(mutual ? static_cast<std::size_t>(bands) * n_b : 0);
   std::vector<int> band_col_best(band_col_distance.size());
   const std::uint8_t* train = b.front().data();  // Descriptor is a plain byte array: contiguous
@@ -93,13 +94,15 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
   for (int i = 0; i < n_a; ++i) {
     const Nearest& nearest = row_nearest[static_cast<std::size_t>(i)];
     if (nearest.best < 0 || nearest.best_distance > options.max_distance) continue;
+    const bool is_mutual = mutual && col_best[static_cast<std::size_t>(nearest.best)] == i;
+    const bool passes_ratio =
+        static_cast<double>(nearest.best_distance) < options.ratio * nearest.second_distance;
     bool keep = false;
     switch (options.kind) {
-      case MatcherKind::mutual: keep = col_best[static_cast<std::size_t>(nearest.best)] == i; break;
-      case MatcherKind::ratio:
-        keep = static_cast<double>(nearest.best_distance) < options.ratio * nearest.second_distance;
-        break;
+      case MatcherKind::mutual: keep = is_mutual; break;
+      case MatcherKind::ratio: keep = passes_ratio; break;
       case MatcherKind::paper: keep = nearest.best_distance <= paper_limit; break;
+      case MatcherKind::mutual_ratio: keep = is_mutual && passes_ratio; break;
     }
     if (keep) matches.push_back({i, nearest.best, nearest.best_distance});
   }

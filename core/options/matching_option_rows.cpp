@@ -32,12 +32,14 @@ struct Rows<MatchOptions> {
        .python_keyword = "matcher", .python_position = 1,
        .help = "which nearest neighbours are matches: "
                "mutual = nearest both ways, ratio = Lowe's ratio test, "
-               "paper = distance <= max(2 x the smallest, 30)"},
+               "paper = distance <= max(2 x the smallest, 30), "
+               "mutual_ratio = mutual and the ratio test from the first set"},
       {AIEF_OPTION_ROW(ratio), .cli_flag = "--ratio", .cli_value = "R", .python_keyword = "ratio",
        .python_position = 2,
-       .help = "Lowe's ratio test: a match is kept when its distance < this x the second nearest's",
+       .help = "Lowe's ratio test (matcher ratio, mutual_ratio): a match is kept when its "
+               "distance < this x the second nearest's",
        .low = 0, .high = 1, .low_is_open = true, .applies_with_key = "kind",
-       .applies_with_value = "ratio"},
+       .applies_with_value = "ratio|mutual_ratio"},
       {AIEF_OPTION_ROW(max_distance), .python_keyword = "max_distance", .python_position = 3,
        .help = "matches farther than this many bits are dropped (256: none)", .low = 0,
        .high = 256},

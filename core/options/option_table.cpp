@@ -4,6 +4,7 @@
 // core/options/extractor_option_rows.cpp, core/options/matching_option_rows.cpp.
 #include "core/options/option_table.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -73,6 +74,18 @@ const OptionValue* mode_value(const OptionRow& row, Mode mode, OptionValue& stor
 }
 
 }  // namespace
+
+bool is_one_of(std::string_view values, std::string_view value) {
+  const std::vector<std::string_view> words = split_words(values);
+  return std::find(words.begin(), words.end(), value) != words.end();
+}
+
+std::string one_of_text(std::string_view values) {
+  std::string text;
+  for (std::string_view word : split_words(values))
+    text += (text.empty() ? "" : " or ") + std::string(word);
+  return text;
+}
 
 bool parse_integer(std::string_view text, long long& value) {
   std::string_view digits = text;

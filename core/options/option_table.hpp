@@ -141,8 +141,9 @@ struct Row {
   bool changes_output = true;  // false: kernels, threads, limits (the bytes never depend on them)
   std::string_view needs_mask = {};  // non-empty: refused with the entropy mask off when it changes
                                      // a value; says what it does
-  // Non-empty: the row applies only while the row `applies_with_key` holds `applies_with_value`
-  // (--ratio with --matcher ratio); given otherwise, it is refused.
+  // Non-empty: the row applies only while the row `applies_with_key` holds one of the values
+  // `applies_with_value` lists, joined by '|' (--ratio with --matcher ratio|mutual_ratio); given
+  // otherwise, it is refused.
   std::string_view applies_with_key = {}, applies_with_value = {};
   // The extractor's: the other fields this option needs to act, "key=value" joined by ','
   // (fast_threshold_from: "detection_cells=blocks"); without them it does nothing. Given a value
@@ -273,6 +274,11 @@ enum class Use { extraction, sweep, evaluation };
 // too: a value it sets is no request.
 ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use = Use::extraction);
 
+// Whether `value` is one of `values`, words joined by '|' (a row's applies_with_value), and
+// those words as a message says them ("ratio or mutual_ratio").
+bool is_one_of(std::string_view values, std::string_view value);
+std::string one_of_text(std::string_view values);
+
 // The same for a struct without modes (MatchOptions, SweepOptions, RansacOptions): `options` (the
 // defaults unless given), the given options in table order, the applies_with rule, validate().
 template <class Options>
@@ -285,9 +291,9 @@ Options resolve_options(const std::vector<Given<Options>>& given, FrontEnd front
     if (g.row->applies_with_key.empty()) continue;
     const Row<Options>& with = row_of<Options>(g.row->applies_with_key);
     const std::string holds = text_of(with, with.field.get(options));
-    if (holds != g.row->applies_with_value)
+    if (!is_one_of(g.row->applies_with_value, holds))
       throw Error(g.named + " applies to " + name_in(with, front_end) + " " +
-                  std::string(g.row->applies_with_value) + " only, not " + holds);
+                  one_of_text(g.row->applies_with_value) + " only, not " + holds);
   }
   options.validate();
   return options;

@@ -23,7 +23,9 @@ void NeighbourList::renumber(const std::vector<std::int32_t>& new_index_of_old) 
 }
 
 SweepMatcher::SweepMatcher(const MatchOptions& options, const KernelTable& kernels)
-    : options_(options), kernels_(&kernels), mutual_(options.kind == MatcherKind::mutual) {
+    : options_(options),
+      kernels_(&kernels),
+      mutual_(options.kind == MatcherKind::mutual || options.kind == MatcherKind::mutual_ratio) {
   options_.validate();
 }
 
@@ -255,7 +257,9 @@ std::vector<Match> SweepMatcher::finish() {
   const int n_a = static_cast<int>(a.size());
   // A list's first entry is match_descriptors' nearest train (ties to the lower index), its
   // second entry's distance the second nearest distance; the ratio test needs both.
-  const int wanted = options_.kind == MatcherKind::ratio ? 2 : 1;
+  const bool ratio_test =
+      options_.kind == MatcherKind::ratio || options_.kind == MatcherKind::mutual_ratio;
+  const int wanted = ratio_test ? 2 : 1;
   std::vector<Neighbour> best(static_cast<std::size_t>(n_a));
   std::vector<int> second_distance(static_cast<std::size_t>(n_a));
   int min_distance = std::numeric_limits<int>::max();
@@ -271,17 +275,18 @@ std::vector<Match> SweepMatcher::finish() {
   for (int i = 0; i < n_a; ++i) {
     const Neighbour nearest = best[static_cast<std::size_t>(i)];
     if (nearest.distance > options_.max_distance) continue;
+    // The first entry of B's list is the nearest query of that train, ties to the lower query.
+    const auto is_mutual = [&] {
+      return list_knowing(b_, nearest.index, 1, b, a).entries[0].index == i;
+    };
+    const bool passes_ratio = static_cast<double>(nearest.distance) <
+                              options_.ratio * second_distance[static_cast<std::size_t>(i)];
     bool keep = false;
     switch (options_.kind) {
-      // The first entry of B's list is the nearest query of that train, ties to the lower query.
-      case MatcherKind::mutual:
-        keep = list_knowing(b_, nearest.index, 1, b, a).entries[0].index == i;
-        break;
-      case MatcherKind::ratio:
-        keep = static_cast<double>(nearest.distance) <
-               options_.ratio * second_distance[static_cast<std::size_t>(i)];
-        break;
+      case MatcherKind::mutual: keep = is_mutual(); break;
+      case MatcherKind::ratio: keep = passes_ratio; break;
       case MatcherKind::paper: keep = nearest.distance <= paper_limit; break;
+      case MatcherKind::mutual_ratio: keep = passes_ratio && is_mutual(); break;
     }
     if (keep) matches.push_back({i, nearest.index, nearest.distance});
   }

@@ -12,6 +12,10 @@ enum class MatcherKind {
   mutual,  // nearest neighbours both ways (cross-check), the default
   ratio,   // Lowe's ratio test: best < ratio * second best
   paper,   // nearest neighbours with distance <= max(2 * min_distance, 30), the paper's filter
+  // Both mutual and ratio: the query's nearest train is kept when that train's nearest query is
+  // the query (the cross-check) AND best < ratio * second best among the query's trains (the
+  // ratio test in the query's direction only; the train's second nearest query is not tested).
+  mutual_ratio,
 };
 
 std::string_view to_string(MatcherKind kind);
@@ -19,7 +23,7 @@ MatcherKind parse_matcher_kind(std::string_view name);  // throws aief::Error
 
 struct MatchOptions {
   MatcherKind kind = MatcherKind::mutual;
-  double ratio = 0.8;      // Lowe's ratio for MatcherKind::ratio, in (0, 1]
+  double ratio = 0.8;      // Lowe's ratio for ratio and mutual_ratio, in (0, 1]
   int max_distance = 256;  // matches farther than this many bits are dropped (256: none)
 
   // Throws aief::Error naming the first invalid field and its value.

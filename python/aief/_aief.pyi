@@ -12,7 +12,7 @@ ImageLike = numpy.typing.ArrayLike
 PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 # N x 2 points (x, y).
 PointsLike = numpy.typing.ArrayLike
-MatcherName = Literal["mutual", "ratio", "paper"]
+MatcherName = Literal["mutual", "ratio", "paper", "mutual_ratio"]
 
 __version__: str
 

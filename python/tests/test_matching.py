@@ -47,7 +47,7 @@ def test_matcher_options():
     rng = numpy.random.default_rng(7)
     a = rng.integers(0, 256, (50, 32), dtype=numpy.uint8)
     b = numpy.concatenate([a[::-1], rng.integers(0, 256, (10, 32), dtype=numpy.uint8)])
-    for matcher in ("mutual", "ratio", "paper"):
+    for matcher in ("mutual", "ratio", "paper", "mutual_ratio"):
         matches = aief.match(a, b, matcher=matcher)
         numpy.testing.assert_array_equal(matches[:, 1], 49 - matches[:, 0])
         assert (matches[:, 2] == 0).all()

@@ -220,14 +220,18 @@ PairResult run_opencv(Baseline baseline, const cv::Mat& a, const cv::Mat& b,
     }
   } else if (!da.empty() && !db.empty()) {
     // SIFT's float descriptors by L2, AKAZE's and BRISK's binary ones by Hamming: mutual
-    // nearest neighbours (cross-check); Lowe's ratio when asked.
+    // nearest neighbours (cross-check); Lowe's ratio when asked, and both for mutual_ratio.
     const int norm = baseline == Baseline::opencv_sift ? cv::NORM_L2 : cv::NORM_HAMMING;
     std::vector<cv::DMatch> matches;
-    if (s.match.kind == MatcherKind::ratio) {
+    if (s.match.kind == MatcherKind::ratio || s.match.kind == MatcherKind::mutual_ratio) {
+      std::vector<cv::DMatch> backward;  // each train's nearest query
+      if (s.match.kind == MatcherKind::mutual_ratio) cv::BFMatcher(norm).match(db, da, backward);
       std::vector<std::vector<cv::DMatch>> knn;
       cv::BFMatcher(norm).knnMatch(da, db, knn, 2);
       for (const auto& pair : knn)
-        if (pair.size() == 2 && pair[0].distance < s.match.ratio * pair[1].distance)
+        if (pair.size() == 2 && pair[0].distance < s.match.ratio * pair[1].distance &&
+            (backward.empty() ||
+             backward[static_cast<std::size_t>(pair[0].trainIdx)].trainIdx == pair[0].queryIdx))
           matches.push_back(pair[0]);
     } else {
       cv::BFMatcher(norm, true).match(da, db, matches);
