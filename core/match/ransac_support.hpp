@@ -198,9 +198,12 @@ Search<Model> search(const std::vector<int>& order, const RansacOptions& options
       const double p_all = std::pow(w, kSize);
       if (p_all >= 1.0) {
         iterations = std::min<long long>(iterations, it + 1);
-      } else if (p_all > 0) {
-        const double needed = std::log(1 - options.confidence) / std::log(1 - p_all);
-        iterations = std::min<long long>(iterations, static_cast<long long>(std::ceil(needed)));
+      } else if (const double log_miss = std::log(1 - p_all); log_miss < 0) {
+        // 1 - p_all rounds to 1 when p_all < 2^-54 (8 inliers of 1000 and w^8): needed would be
+        // -inf, and a count beyond long long's range is no bound either.
+        const double needed = std::log(1 - options.confidence) / log_miss;
+        if (needed < static_cast<double>(iterations))
+          iterations = static_cast<long long>(std::ceil(needed));
       }
     }
   }
