@@ -235,6 +235,24 @@ TEST(FundamentalRansac, BadInputGetsNoModelAndAReasonOrThrows) {
     EXPECT_EQ(result.inlier_mask, std::vector<std::uint8_t>(s.a.size(), 0));
   }
 
+  // Finite but so large that normalising overflows: every sample is refused, no crash.
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> huge(1e307, 1.7e308);
+  std::vector<Point2> huge_a, huge_b;
+  for (int i = 0; i < 30; ++i) {
+    huge_a.push_back({huge(rng), huge(rng)});
+    huge_b.push_back({huge(rng), -huge(rng)});
+  }
+  const FundamentalResult overflow = find_fundamental_ransac(huge_a, huge_b);
+  EXPECT_FALSE(overflow.found);
+  EXPECT_EQ(overflow.failure, "all samples degenerate");
+
+  // One correspondence repeated: no epipolar geometry to find.
+  const FundamentalResult repeated =
+      find_fundamental_ransac(std::vector<Point2>(30, {5, 5}), std::vector<Point2>(30, {7, 9}));
+  EXPECT_FALSE(repeated.found);
+  EXPECT_FALSE(repeated.failure.empty());
+
   RansacOptions options;
   options.threshold_px = 0;
   EXPECT_THROW(find_fundamental_ransac(s.a, s.b, options), Error);
