@@ -1,10 +1,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 
 #include "aief/error.hpp"
 #include "aief/homography.hpp"
+#include "core/match/ransac_support.hpp"
 
 namespace aief {
 
@@ -36,29 +36,8 @@ double mean_corner_error(const Homography& estimated, const Homography& truth, i
 
 namespace {
 
-// Hartley normalisation: centroid to the origin, mean distance sqrt(2). T maps p to T p.
-struct Normaliser {
-  double cx = 0, cy = 0, s = 1;
-  Point2 apply(Point2 p) const { return {(p.x - cx) * s, (p.y - cy) * s}; }
-};
-
-template <class Indices, class Get>
-Normaliser normaliser_of(const Indices& indices, Get get) {
-  Normaliser n;
-  double count = 0;
-  for (int i : indices) {
-    n.cx += get(i).x;
-    n.cy += get(i).y;
-    ++count;
-  }
-  n.cx /= count;
-  n.cy /= count;
-  double mean = 0;
-  for (int i : indices) mean += std::hypot(get(i).x - n.cx, get(i).y - n.cy);
-  mean /= count;
-  n.s = mean > 0 ? std::sqrt(2.0) / mean : 1.0;
-  return n;
-}
+using ransac::Normaliser;
+using ransac::normaliser_of;
 
 // H_pixels = T_dst^-1 H_normalised T_src.
 Homography denormalise(const double h[9], const Normaliser& src, const Normaliser& dst) {
@@ -118,46 +97,6 @@ bool solve_four_points(const Point2 p[4], const Point2 q[4], double h[9]) {
   return true;
 }
 
-// Unit eigenvector of the smallest eigenvalue of a symmetric 9x9 matrix (cyclic Jacobi).
-void smallest_eigenvector(double a[9][9], double out[9]) {
-  double v[9][9] = {};
-  for (int i = 0; i < 9; ++i) v[i][i] = 1;
-  for (int sweep = 0; sweep < 60; ++sweep) {
-    double off = 0;
-    for (int p = 0; p < 9; ++p)
-      for (int q = p + 1; q < 9; ++q) off += a[p][q] * a[p][q];
-    if (off < 1e-30) break;
-    for (int p = 0; p < 9; ++p) {
-      for (int q = p + 1; q < 9; ++q) {
-        if (std::abs(a[p][q]) < 1e-300) continue;
-        const double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-        const double t =
-            (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < 9; ++k) {
-          const double akp = a[k][p], akq = a[k][q];
-          a[k][p] = c * akp - s * akq;
-          a[k][q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < 9; ++k) {
-          const double apk = a[p][k], aqk = a[q][k];
-          a[p][k] = c * apk - s * aqk;
-          a[q][k] = s * apk + c * aqk;
-        }
-        for (int k = 0; k < 9; ++k) {
-          const double vkp = v[k][p], vkq = v[k][q];
-          v[k][p] = c * vkp - s * vkq;
-          v[k][q] = s * vkp + c * vkq;
-        }
-      }
-    }
-  }
-  int smallest = 0;
-  for (int i = 1; i < 9; ++i)
-    if (a[i][i] < a[smallest][smallest]) smallest = i;
-  for (int k = 0; k < 9; ++k) out[k] = v[k][smallest];
-}
-
 // A^T A of the DLT rows of the correspondences, summed point by point, each point's first row
 // before its second, as the plain sum over all 81 entries of both rows, to the bit: the 3 zeros of
 // each row (dlt_rows) make products +-0, which leave every partial sum as it is (a sum that
@@ -211,7 +150,7 @@ bool fit_least_squares(const std::vector<Point2>& src, const std::vector<Point2>
     }
   }
   double h[9];
-  smallest_eigenvector(ata, h);
+  ransac::smallest_eigenvector(ata, h);
   if (std::abs(h[8]) < 1e-12) return false;
   H = denormalise(h, ns, nd);
   for (double value : H)
@@ -240,69 +179,14 @@ bool sample_is_sound(const Point2 p[4], const Point2 q[4]) {
   return true;
 }
 
-// Inliers of H over `order` (canonical order), and the sum of their squared errors.
-int count_inliers(const Homography& H, const std::vector<Point2>& src,
-                  const std::vector<Point2>& dst, const std::vector<int>& order,
-                  double threshold_sq, std::vector<int>* inliers, double* error_sum) {
-  int count = 0;
-  double sum = 0;
-  if (inliers) inliers->clear();
-  for (int i : order) {
-    const Point2 p = project(H, src[static_cast<std::size_t>(i)]);
-    const double dx = p.x - dst[static_cast<std::size_t>(i)].x,
-                 dy = p.y - dst[static_cast<std::size_t>(i)].y;
-    const double e = dx * dx + dy * dy;
-    if (e <= threshold_sq) {  // NaN (a point sent to infinity) is never an inlier
-      ++count;
-      sum += e;
-      if (inliers) inliers->push_back(i);
-    }
-  }
-  if (error_sum) *error_sum = sum;
-  return count;
+// Squared reprojection error of correspondence i under H.
+double reprojection_error_sq(const Homography& H, const std::vector<Point2>& src,
+                             const std::vector<Point2>& dst, int i) {
+  const Point2 p = project(H, src[static_cast<std::size_t>(i)]);
+  const double dx = p.x - dst[static_cast<std::size_t>(i)].x,
+               dy = p.y - dst[static_cast<std::size_t>(i)].y;
+  return dx * dx + dy * dy;  // NaN (a point sent to infinity) is never an inlier
 }
-
-// The inlier count of a hypothesis, or -1 once the points left cannot bring it to `needed`
-// (it would be refused anyway); the squared error sum of the inliers when counted to the end.
-int count_inliers_reaching(const Homography& H, const std::vector<Point2>& src,
-                           const std::vector<Point2>& dst, const std::vector<int>& order,
-                           double threshold_sq, int needed, double* error_sum) {
-  int count = 0;
-  double sum = 0;
-  int left = static_cast<int>(order.size());
-  for (int i : order) {
-    if (count + left < needed) return -1;
-    --left;
-    const Point2 p = project(H, src[static_cast<std::size_t>(i)]);
-    const double dx = p.x - dst[static_cast<std::size_t>(i)].x,
-                 dy = p.y - dst[static_cast<std::size_t>(i)].y;
-    const double e = dx * dx + dy * dy;
-    if (e <= threshold_sq) {
-      ++count;
-      sum += e;
-    }
-  }
-  *error_sum = sum;
-  return count;
-}
-
-// splitmix64: a fixed, portable generator (std:: distributions differ between libraries).
-struct Sampler {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  int below(int n) {  // uniform in [0, n), rejection of the biased tail
-    const std::uint64_t limit = ~0ull - (~0ull % static_cast<std::uint64_t>(n));
-    std::uint64_t r;
-    do r = next();
-    while (r >= limit);
-    return static_cast<int>(r % static_cast<std::uint64_t>(n));
-  }
-};
 
 }  // namespace
 
@@ -314,57 +198,27 @@ HomographyResult find_homography_ransac(const std::vector<Point2>& src,
     throw Error("find_homography_ransac: " + std::to_string(src.size()) + " source points but " +
                 std::to_string(dst.size()) + " destination points");
   HomographyResult result;
-  const int n = static_cast<int>(src.size());
   result.inlier_mask.assign(src.size(), 0);
-  for (int i = 0; i < n; ++i) {
-    const Point2 p = src[static_cast<std::size_t>(i)], q = dst[static_cast<std::size_t>(i)];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(q.x) || !std::isfinite(q.y)) {
-      result.failure = "match " + std::to_string(i) + " has a non-finite coordinate";
-      return result;
-    }
+  if (const int bad = ransac::first_non_finite(src, dst); bad >= 0) {
+    result.failure = "match " + std::to_string(bad) + " has a non-finite coordinate";
+    return result;
   }
-  if (n < 4) {
+  if (src.size() < 4) {
     result.failure = "fewer than 4 matches";
     return result;
   }
 
-  // Canonical order: the sampler sees the same sequence whatever order the caller used.
-  std::vector<int> order(static_cast<std::size_t>(n));
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const Point2 &pa = src[static_cast<std::size_t>(a)], &pb = src[static_cast<std::size_t>(b)];
-    const Point2 &qa = dst[static_cast<std::size_t>(a)], &qb = dst[static_cast<std::size_t>(b)];
-    if (pa.x != pb.x) return pa.x < pb.x;
-    if (pa.y != pb.y) return pa.y < pb.y;
-    if (qa.x != qb.x) return qa.x < qb.x;
-    if (qa.y != qb.y) return qa.y < qb.y;
-    return a < b;
-  });
-
-  const double threshold_sq = options.threshold_px * options.threshold_px;
-  Sampler sampler{options.seed};
-  int best_count = 0;
-  double best_error = 0;
-  Homography best{};
-  long long iterations = options.max_iterations;
-  int sound_samples = 0;
-  for (long long it = 0; it < iterations; ++it) {
-    int pick[4];
-    for (int k = 0; k < 4; ++k) {
-      bool fresh;
-      do {
-        pick[k] = order[static_cast<std::size_t>(sampler.below(n))];
-        fresh = true;
-        for (int j = 0; j < k; ++j) fresh = fresh && pick[j] != pick[k];
-      } while (!fresh);
-    }
+  const std::vector<int> order = ransac::canonical_order(src, dst);
+  const auto error_of = [&](const Homography& H, int i) {
+    return reprojection_error_sq(H, src, dst, i);
+  };
+  const auto solve = [&](const int* pick, Homography& H) {
     Point2 p[4], q[4];
     for (int k = 0; k < 4; ++k) {
       p[k] = src[static_cast<std::size_t>(pick[k])];
       q[k] = dst[static_cast<std::size_t>(pick[k])];
     }
-    if (!sample_is_sound(p, q)) continue;
-    ++sound_samples;
+    if (!sample_is_sound(p, q)) return ransac::SampleOutcome::unsound;
     // Normalise the sample, solve, map back.
     const std::array<int, 4> four = {pick[0], pick[1], pick[2], pick[3]};
     const Normaliser ns =
@@ -377,46 +231,25 @@ HomographyResult find_homography_ransac(const std::vector<Point2>& src,
       qn[k] = nd.apply(q[k]);
     }
     double h[9];
-    if (!solve_four_points(pn, qn, h)) continue;
-    const Homography H = denormalise(h, ns, nd);
-    double error = 0;
-    // A hypothesis with fewer inliers than the best is never kept: its count may stop early.
-    const int count = count_inliers_reaching(H, src, dst, order, threshold_sq, best_count, &error);
-    if (count > best_count || (count == best_count && count > 0 && error < best_error)) {
-      best_count = count;
-      best_error = error;
-      best = H;
-      // Samples needed so that one is all inliers with the asked confidence.
-      const double w = static_cast<double>(count) / n;
-      const double p_all = std::pow(w, 4);
-      if (p_all >= 1.0) {
-        iterations = std::min<long long>(iterations, it + 1);
-      } else if (p_all > 0) {
-        const double needed = std::log(1 - options.confidence) / std::log(1 - p_all);
-        iterations = std::min<long long>(iterations, static_cast<long long>(std::ceil(needed)));
-      }
-    }
-  }
-  if (best_count < 4) {
-    result.failure = sound_samples == 0 ? "all samples degenerate (collinear points)"
-                                        : "no model with 4 inliers";
+    if (!solve_four_points(pn, qn, h)) return ransac::SampleOutcome::unsolved;
+    H = denormalise(h, ns, nd);
+    return ransac::SampleOutcome::solved;
+  };
+  const ransac::Search<Homography> search =
+      ransac::search<4, Homography>(order, options, solve, error_of);
+  if (search.best_count < 4) {
+    result.failure = search.sound_samples == 0 ? "all samples degenerate (collinear points)"
+                                               : "no model with 4 inliers";
     return result;
   }
 
-  // Least-squares refit on the inliers, recounted, while the inlier set grows.
-  std::vector<int> inliers;
-  count_inliers(best, src, dst, order, threshold_sq, &inliers, nullptr);
-  for (int round = 0; round < 10; ++round) {
-    Homography refit;
-    if (!fit_least_squares(src, dst, inliers, refit)) break;
-    std::vector<int> refit_inliers;
-    count_inliers(refit, src, dst, order, threshold_sq, &refit_inliers, nullptr);
-    if (refit_inliers.size() < inliers.size()) break;
-    const bool same = refit_inliers == inliers;
-    best = refit;
-    inliers.swap(refit_inliers);
-    if (same) break;
-  }
+  Homography best = search.best;
+  const auto fit = [&](const std::vector<int>& indices, Homography& H) {
+    return fit_least_squares(src, dst, indices, H);
+  };
+  const double threshold_sq = options.threshold_px * options.threshold_px;
+  const std::vector<int> inliers =
+      ransac::refit_on_inliers(best, order, threshold_sq, fit, error_of);
   result.found = inliers.size() >= 4;
   result.H = best;
   result.inliers = static_cast<int>(inliers.size());
