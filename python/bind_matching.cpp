@@ -98,7 +98,8 @@ void bind_matching(py::module_& m) {
       documented(match_call(),
                  "Hamming matches of descriptors a (N x 32 uint8, or Features) into b: "
                  "an M x 3 int32 array of (query, train, distance), sorted by query; "
-                 "ratio goes with matcher='ratio' only, as aief match --ratio.",
+                 "ratio goes with matcher='ratio', 'mutual_ratio' or 'guided', as aief match "
+                 "--ratio; matcher='guided' needs Features.",
                  keywords_doc<MatchOptions>());
   m.def(
       "match",
@@ -110,10 +111,20 @@ void bind_matching(py::module_& m) {
             py::isinstance<PyFeatures>(call.leading(1)))
           require_same_descriptor(call.leading(0).cast<const PyFeatures&>().descriptor, "a",
                                   call.leading(1).cast<const PyFeatures&>().descriptor, "b");
-        const std::vector<Descriptor> da = descriptors_from(call.leading(0), "a"),
-                                      db = descriptors_from(call.leading(1), "b");
         std::vector<Match> matches;
-        {
+        if (options.kind == MatcherKind::guided) {  // the keypoints' positions too
+          for (int i : {0, 1})
+            if (!py::isinstance<PyFeatures>(call.leading(i)))
+              throw Error(std::string(i == 0 ? "a" : "b") +
+                          ": matcher='guided' needs aief.Features (their keypoints), not "
+                          "descriptors alone");
+          const Features fa = engine_features(call.leading(0)),
+                         fb = engine_features(call.leading(1));
+          py::gil_scoped_release no_gil;
+          matches = match_features(fa, fb, options);
+        } else {
+          const std::vector<Descriptor> da = descriptors_from(call.leading(0), "a"),
+                                        db = descriptors_from(call.leading(1), "b");
           py::gil_scoped_release no_gil;
           matches = match_descriptors(da, db, options);
         }

@@ -80,6 +80,9 @@ py::list record_fields(const Record& record = {}) {
 }
 // N x 32 uint8 rows of a numpy array (or of a PyFeatures) as engine descriptors.
 std::vector<Descriptor> descriptors_from(const py::object& value, const char* name);
+// An aief.Features back as the engine's (everything but info); aief.Error when its arrays
+// disagree in length.
+Features engine_features(const py::object& features);
 
 // A Python UserWarning saying `text`, where the CLI prints "aief: warning: <text>" (or a note):
 // the same sentence, from the same source. Raises when the warnings filter makes it an error.

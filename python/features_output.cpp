@@ -70,4 +70,37 @@ std::vector<Descriptor> descriptors_from(const py::object& value, const char* na
   return descriptors;
 }
 
+Features engine_features(const py::object& features) {
+  const PyFeatures& f = features_of(features);
+  const py::ssize_t n = f.keypoints.ndim() == 2 ? f.keypoints.shape(0) : -1;
+  for (const py::array* field :
+       {static_cast<const py::array*>(&f.size), static_cast<const py::array*>(&f.angle),
+        static_cast<const py::array*>(&f.response), static_cast<const py::array*>(&f.octave)})
+    if (n < 0 || f.keypoints.shape(1) != 2 || field->ndim() != 1 || field->shape(0) != n)
+      throw Error("features: the keypoint arrays differ in length (not an aief.Features as made)");
+  Features out;
+  out.image_width = f.image_width;
+  out.image_height = f.image_height;
+  out.descriptor = f.descriptor;
+  out.descriptors = descriptors_from(py::cast(f), "features");
+  if (out.descriptors.size() != static_cast<std::size_t>(n))
+    throw Error("features: " + std::to_string(out.descriptors.size()) + " descriptors for " +
+                std::to_string(n) + " keypoints");
+  const auto xy = f.keypoints.unchecked<2>();
+  const auto size = f.size.unchecked<1>(), angle = f.angle.unchecked<1>(),
+             response = f.response.unchecked<1>();
+  const auto octave = f.octave.unchecked<1>();
+  out.keypoints.resize(static_cast<std::size_t>(n));
+  for (py::ssize_t i = 0; i < n; ++i) {
+    Keypoint& kp = out.keypoints[static_cast<std::size_t>(i)];
+    kp.x = xy(i, 0);
+    kp.y = xy(i, 1);
+    kp.size = size(i);
+    kp.angle_deg = angle(i);
+    kp.response = response(i);
+    kp.octave = octave(i);
+  }
+  return out;
+}
+
 }  // namespace aief::python

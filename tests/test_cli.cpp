@@ -93,7 +93,8 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       // eval's matcher flags are the match rows' (core/options/matching_option_rows.cpp), as in
       // match.
       {"eval --dataset . --matcher flann", "unknown matcher 'flann' for --matcher"},
-      {"eval --dataset . --ratio 0.7", "--ratio applies to --matcher ratio or mutual_ratio only"},
+      {"eval --dataset . --ratio 0.7",
+       "--ratio applies to --matcher ratio, mutual_ratio or guided only"},
       // eval's extractor flags are the extractor rows' but those each row sets itself.
       {"eval --dataset . --quadtree-weight heavy", "--quadtree-weight"},
       {"eval --dataset . --threshold 3", "unknown option --threshold"},
@@ -112,8 +113,11 @@ TEST(Cli, UsageErrorsExitTwoAndNameTheProblem) {
       {"extract " + image + " --format yml", "--format applies to --batch only"},
       {"extract " + image + " --shard 0/2", "--shard applies to --batch only"},
       {"extract --batch x -o y --draw p.png", "--draw pictures one image"},
+      {"match " + image + " " + second + " --epipolar-band 2",
+       "--epipolar-band applies to --matcher guided only"},
+      {"eval --dataset . --matcher guided", "--matcher guided matches two views of a 3D scene"},
       {"match " + image + " " + image + " --ratio 0.7",
-       "--ratio applies to --matcher ratio or mutual_ratio only"},
+       "--ratio applies to --matcher ratio, mutual_ratio or guided only"},
       // An unknown output format, before any work (no keypoint count printed).
       {"extract " + image + " -o out.txt", "must end in .json, .yml, .yaml or .npz"},
       // 1 is outside the range, and the message says so.

@@ -2,9 +2,9 @@
 // every field is a row, every row with a flag reaches aief match / aief adapt and their --help,
 // validate() is made from the rows, the matcher's names are read from their one name table, and the
 // ratio rule
-// (--ratio with --matcher ratio or mutual_ratio only) holds. Before, these options were a second,
-// hand-made system: MatcherKind's names written three times, the sweep's ranges twice, flags by
-// hand.
+// (--ratio with --matcher ratio, mutual_ratio or guided only) holds. Before, these options were a
+// second, hand-made system: MatcherKind's names written three times, the sweep's ranges twice,
+// flags by hand.
 #include <filesystem>
 #include <limits>
 #include <set>
@@ -87,8 +87,9 @@ TEST(MatchingOptionRows, TheMatchersNamesAreOneTable) {
     parse_matcher_kind("nearest");
     ADD_FAILURE();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(),
-                 "unknown matcher 'nearest' (expected mutual, ratio, paper or mutual_ratio)");
+    EXPECT_STREQ(
+        e.what(),
+        "unknown matcher 'nearest' (expected mutual, ratio, paper, mutual_ratio or guided)");
   }
 }
 
@@ -103,7 +104,8 @@ TEST(MatchingOptionRows, TheRatioGoesWithTheRatioMatcherOnly) {
     table::resolve_options<MatchOptions>({{&ratio, "0.5", "ratio"}}, table::FrontEnd::python);
     ADD_FAILURE();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "ratio applies to matcher ratio or mutual_ratio only, not mutual");
+    EXPECT_STREQ(e.what(),
+                 "ratio applies to matcher ratio, mutual_ratio or guided only, not mutual");
   }
   // Each value the row lists lets it act (applies_with_value "ratio|mutual_ratio").
   EXPECT_EQ(
@@ -115,6 +117,7 @@ TEST(MatchingOptionRows, TheRatioGoesWithTheRatioMatcherOnly) {
   EXPECT_FALSE(table::is_one_of("ratio|mutual_ratio", "mutual"));
   EXPECT_FALSE(table::is_one_of("ratio|mutual_ratio", "ratio|mutual_ratio"));
   EXPECT_EQ(table::one_of_text("ratio|mutual_ratio"), "ratio or mutual_ratio");
+  EXPECT_EQ(table::one_of_text("ratio|mutual_ratio|guided"), "ratio, mutual_ratio or guided");
 }
 
 test::CommandRun run_cli(const std::string& arguments) {
@@ -144,9 +147,9 @@ TEST(MatchingOptionRows, TheCommandsReadTheirFlagsByTheRows) {
   const std::string a = test::sample_path("graf", "img1.png");
   const test::CommandRun ratio = run_cli("match " + a + " " + a + " --ratio 0.7");
   EXPECT_EQ(ratio.status, 2);
-  EXPECT_NE(
-      ratio.output.find("--ratio applies to --matcher ratio or mutual_ratio only, not mutual"),
-      std::string::npos)
+  EXPECT_NE(ratio.output.find(
+                "--ratio applies to --matcher ratio, mutual_ratio or guided only, not mutual"),
+            std::string::npos)
       << ratio.output;
   const test::CommandRun step = run_cli("adapt " + a + " " + a + " --step 0");
   EXPECT_EQ(step.status, 2);

@@ -123,6 +123,11 @@ eval::EvalSettings settings_of(const Args& args) {
   eval::EvalSettings settings;
   settings.timing_repeats = args.get_int("--repeat", settings.timing_repeats, 1, 1000);
   settings.match = options_from_flags<MatchOptions>(args);
+  if (settings.match.kind == MatcherKind::guided)
+    throw UsageError(
+        "--matcher guided matches two views of a 3D scene by their epipolar "
+        "geometry; eval's pairs are related by a homography (aief match --pairs "
+        "takes it, docs/colmap.md)");
   // The rows turn the automatic F on: its options are taken without it (Use::evaluation).
   settings.aief = extractor_options(args, option_table::Use::evaluation);
   return settings;

@@ -144,7 +144,7 @@ int run_match(const Arguments& arguments) {
     Extractor extractor(options);
     features_a = extractor.extract(a.view());
     features_b = extractor.extract(b.view());
-    matches = match_descriptors(features_a.descriptors, features_b.descriptors, match_options);
+    matches = match_features(features_a, features_b, match_options);
     homography = find_homography_ransac(points_of(features_a, matches, true),
                                         points_of(features_b, matches, false));
     threshold = features_a.info.entropy_threshold_used;

@@ -11,7 +11,7 @@
 #include "aief/match.hpp"
 #include "tools/commands.hpp"
 #ifdef AIEF_HAVE_HDF5
-#include "io/hdf5_descriptor_cache.hpp"
+#include "io/hdf5_feature_cache.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/match_record.hpp"
 #include "io/option_record.hpp"
@@ -22,8 +22,9 @@ namespace aief::cli {
 
 namespace {
 
-// Descriptors kept in memory by match --pairs: about 16k images of 2000 features.
-[[maybe_unused]] constexpr std::size_t kDescriptorCacheBytes = std::size_t{1} << 30;
+// Features kept in memory by match --pairs: about 16k images of 2000 descriptors (half as many
+// with their keypoints, for --matcher guided).
+[[maybe_unused]] constexpr std::size_t kFeatureCacheBytes = std::size_t{1} << 30;
 
 // "with other options or features (kind mutual -> ratio; the features of 'a.png': ...)": the
 // first reasons, so that a million re-extracted images make one line.
@@ -55,7 +56,7 @@ int run_match_pairs(const Args& args, const std::string& features_file,
   if (const std::string& image = matches_file.first_image_group(); !image.empty())
     throw Error("-o '" + *output + "' holds features (image '" + image +
                 "'): matches go to a file of their own (hloc's matches.h5); nothing was written");
-  io::DescriptorCache descriptors(features, kDescriptorCacheBytes);
+  io::FeatureCache cache(features, kFeatureCacheBytes, match_options.kind == MatcherKind::guided);
   io::PairRecords records(features, match_options);
   int written = 0, skipped = 0, redone = 0;
   std::vector<std::string> redone_for;  // each reason once
@@ -78,16 +79,17 @@ int run_match_pairs(const Args& args, const std::string& features_file,
         if (std::find(redone_for.begin(), redone_for.end(), change) == redone_for.end())
           redone_for.push_back(change);
     }
-    const auto a = descriptors.get(name0), b = descriptors.get(name1);
-    const std::vector<Match> matches = match_descriptors(*a, *b, match_options);
-    matches_file.write_matches(name0, name1, static_cast<int>(a->size()), matches, &record);
+    const auto a = cache.get(name0), b = cache.get(name1);
+    const std::vector<Match> matches = match_features(*a, *b, match_options);
+    matches_file.write_matches(name0, name1, static_cast<int>(a->descriptors.size()), matches,
+                               &record);
     ++written;
     total += static_cast<long long>(matches.size());
   }
   matches_file.close();  // the last batch of pairs flushed, or an error
   std::printf("%d pairs matched (%s), %lld matches, %d already in %s; %zu images read\n", written,
               std::string(to_string(match_options.kind)).c_str(), total, skipped, output->c_str(),
-              descriptors.reads());
+              cache.reads());
   if (redone > 0)
     std::cerr << "aief: note: " << redone << " pairs of " << *output
               << " matched again, since they were matched " << redone_reasons(redone_for) << "\n";

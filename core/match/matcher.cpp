@@ -7,6 +7,7 @@
 
 #include "aief/error.hpp"
 #include "core/kernels/kernel_table.hpp"
+#include "core/match/guided_matcher.hpp"
 #include "parallel/scheduler.hpp"
 
 namespace aief {
@@ -28,6 +29,10 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
                                      const std::vector<Descriptor>& b, const MatchOptions& options,
                                      const KernelTable& kernels) {
   options.validate();
+  if (options.kind == MatcherKind::guided)
+    throw Error(
+        "matcher guided needs the keypoints' positions, not only descriptors: match the "
+        "features (match_features, aief.match on Features, aief match)");
   std::vector<Match> matches;
   if (a.empty() || b.empty()) return matches;
   const int n_a = static_cast<int>(a.size()), n_b = static_cast<int>(b.size());
@@ -103,6 +108,7 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
       case MatcherKind::ratio: keep = passes_ratio; break;
       case MatcherKind::paper: keep = nearest.best_distance <= paper_limit; break;
       case MatcherKind::mutual_ratio: keep = is_mutual && passes_ratio; break;
+      case MatcherKind::guided: break;  // refused above
     }
     if (keep) matches.push_back({i, nearest.best, nearest.best_distance});
   }
@@ -113,6 +119,19 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
                                      const std::vector<Descriptor>& b,
                                      const MatchOptions& options) {
   return match_descriptors(a, b, options, kernel_table(KernelSet::auto_select));
+}
+
+std::vector<Match> match_features(const Features& a, const Features& b,
+                                  const MatchOptions& options) {
+  const KernelTable& kernels = kernel_table(KernelSet::auto_select);
+  if (options.kind != MatcherKind::guided)
+    return match_descriptors(a.descriptors, b.descriptors, options, kernels);
+  options.validate();
+  for (const Features* f : {&a, &b})
+    if (f->keypoints.size() != f->descriptors.size())
+      throw Error("matcher guided: features with " + std::to_string(f->keypoints.size()) +
+                  " keypoints but " + std::to_string(f->descriptors.size()) + " descriptors");
+  return match_guided(a, b, options, kernels);
 }
 
 void require_same_descriptor(DescriptorKind a, std::string_view what_a, DescriptorKind b,

@@ -8,11 +8,13 @@
 #include <vector>
 
 #include "aief/adapt.hpp"
+#include "aief/error.hpp"
 #include "aief/homography.hpp"
 #include "aief/match.hpp"
 #include "core/options/malformed_row.hpp"
 #include "core/options/option_access.hpp"
 #include "core/options/option_table.hpp"
+#include "core/options/sweepable_matcher.hpp"
 
 namespace aief::option_table {
 
@@ -33,16 +35,24 @@ struct Rows<MatchOptions> {
        .help = "which nearest neighbours are matches: "
                "mutual = nearest both ways, ratio = Lowe's ratio test, "
                "paper = distance <= max(2 x the smallest, 30), "
-               "mutual_ratio = mutual and the ratio test from the first set"},
+               "mutual_ratio = mutual and the ratio test from the first set, "
+               "guided = mutual_ratio's matches give the two views' epipolar geometry, then "
+               "mutual and the ratio test within --epipolar-band of each line (for SfM)"},
       {AIEF_OPTION_ROW(ratio), .cli_flag = "--ratio", .cli_value = "R", .python_keyword = "ratio",
        .python_position = 2,
-       .help = "Lowe's ratio test (matcher ratio, mutual_ratio): a match is kept when its "
-               "distance < this x the second nearest's",
+       .help = "Lowe's ratio test (matcher ratio, mutual_ratio, guided): a match is kept when "
+               "its distance < this x the second nearest's",
        .low = 0, .high = 1, .low_is_open = true, .applies_with_key = "kind",
-       .applies_with_value = "ratio|mutual_ratio"},
+       .applies_with_value = "ratio|mutual_ratio|guided"},
       {AIEF_OPTION_ROW(max_distance), .python_keyword = "max_distance", .python_position = 3,
        .help = "matches farther than this many bits are dropped (256: none)", .low = 0,
        .high = 256},
+      {AIEF_OPTION_ROW(epipolar_band_px), .cli_flag = "--epipolar-band", .cli_value = "PX",
+       .python_keyword = "epipolar_band", .python_position = 4,
+       .help = "matcher guided: a keypoint's candidates lie within this Sampson distance of its "
+               "epipolar line, pixels",
+       .low = 0, .high = 64, .low_is_open = true, .applies_with_key = "kind",
+       .applies_with_value = "guided"},
   };
 };
 AIEF_CHECK_OPTION_ROWS(Rows<MatchOptions>::list);
@@ -113,8 +123,17 @@ void MatchOptions::validate() const { option_table::check_fields(*this); }
 
 void SweepOptions::validate() const {
   option_table::check_fields(*this);
-  match.validate();
+  require_sweepable(match);
   ransac.validate();
+}
+
+void require_sweepable(const MatchOptions& options) {
+  options.validate();
+  if (options.kind == MatcherKind::guided)
+    throw Error(
+        "the sweep scores each threshold by its matches' homography: matcher guided "
+        "(two views of a 3D scene, by their epipolar geometry) does not apply; use "
+        "mutual, ratio, paper or mutual_ratio");
 }
 
 void RansacOptions::validate() const { option_table::check_fields(*this); }

@@ -61,7 +61,8 @@ AIEF_NAME_TABLE(CandidateRanking, "candidate ranking", AIEF_NAME(cross_score, "c
                 AIEF_NAME(peak_score, "peak"))
 
 AIEF_NAME_TABLE(MatcherKind, "matcher", AIEF_NAME(mutual, "mutual"), AIEF_NAME(ratio, "ratio"),
-                AIEF_NAME(paper, "paper"), AIEF_NAME(mutual_ratio, "mutual_ratio"))
+                AIEF_NAME(paper, "paper"), AIEF_NAME(mutual_ratio, "mutual_ratio"),
+                AIEF_NAME(guided, "guided"))
 
 AIEF_NAME_TABLE(PyramidResampling, "pyramid resampling", AIEF_NAME(q8, "q8"),
                 AIEF_NAME(opencv, "opencv"))

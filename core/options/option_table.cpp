@@ -81,9 +81,10 @@ bool is_one_of(std::string_view values, std::string_view value) {
 }
 
 std::string one_of_text(std::string_view values) {
+  const std::vector<std::string_view> words = split_words(values);
   std::string text;
-  for (std::string_view word : split_words(values))
-    text += (text.empty() ? "" : " or ") + std::string(word);
+  for (std::size_t i = 0; i < words.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + std::string(words[i]);
   return text;
 }
 

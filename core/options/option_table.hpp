@@ -275,7 +275,7 @@ enum class Use { extraction, sweep, evaluation };
 ExtractorOptions resolve_options(const std::vector<GivenOption>& given, Use use = Use::extraction);
 
 // Whether `value` is one of `values`, words joined by '|' (a row's applies_with_value), and
-// those words as a message says them ("ratio or mutual_ratio").
+// those words as a message says them ("ratio, mutual_ratio or guided").
 bool is_one_of(std::string_view values, std::string_view value);
 std::string one_of_text(std::string_view values);
 

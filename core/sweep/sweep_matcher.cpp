@@ -6,6 +6,7 @@
 
 #include "aief/error.hpp"
 #include "core/kernels/hamming_256_blocked.hpp"
+#include "core/options/sweepable_matcher.hpp"
 
 namespace aief {
 
@@ -26,7 +27,7 @@ SweepMatcher::SweepMatcher(const MatchOptions& options, const KernelTable& kerne
     : options_(options),
       kernels_(&kernels),
       mutual_(options.kind == MatcherKind::mutual || options.kind == MatcherKind::mutual_ratio) {
-  options_.validate();
+  require_sweepable(options_);
 }
 
 void SweepMatcher::reset() {
@@ -287,6 +288,7 @@ std::vector<Match> SweepMatcher::finish() {
       case MatcherKind::ratio: keep = passes_ratio; break;
       case MatcherKind::paper: keep = nearest.distance <= paper_limit; break;
       case MatcherKind::mutual_ratio: keep = passes_ratio && is_mutual(); break;
+      case MatcherKind::guided: break;  // refused by require_sweepable
     }
     if (keep) matches.push_back({i, nearest.index, nearest.distance});
   }

@@ -16,6 +16,13 @@ enum class MatcherKind {
   // the query (the cross-check) AND best < ratio * second best among the query's trains (the
   // ratio test in the query's direction only; the train's second nearest query is not tested).
   mutual_ratio,
+  // Guided by the two views' geometry, for SfM (docs/colmap.md): mutual_ratio's matches seed a
+  // fundamental matrix (RANSAC, Sampson distance <= 1 px); then every keypoint is matched again,
+  // mutual and ratio test, among the other image's keypoints within epipolar_band_px of its
+  // epipolar line, so that a match the whole image's ratio test drops (a repeated facade, a
+  // window among windows) is kept when it is the only good one on its line. Needs keypoints:
+  // match_features. Without a matrix (fewer than 15 seed inliers), mutual_ratio's matches.
+  guided,
 };
 
 std::string_view to_string(MatcherKind kind);
@@ -23,8 +30,9 @@ MatcherKind parse_matcher_kind(std::string_view name);  // throws aief::Error
 
 struct MatchOptions {
   MatcherKind kind = MatcherKind::mutual;
-  double ratio = 0.8;      // Lowe's ratio for ratio and mutual_ratio, in (0, 1]
-  int max_distance = 256;  // matches farther than this many bits are dropped (256: none)
+  double ratio = 0.8;             // Lowe's ratio for ratio and mutual_ratio, in (0, 1]
+  int max_distance = 256;         // matches farther than this many bits are dropped (256: none)
+  double epipolar_band_px = 1.0;  // guided: a candidate's Sampson distance to the line, at most
 
   // Throws aief::Error naming the first invalid field and its value.
   void validate() const;
@@ -44,9 +52,17 @@ void require_same_descriptor(DescriptorKind a, std::string_view what_a, Descript
                              std::string_view what_b);
 
 // Matches of descriptors `a` (queries) into `b`, sorted by query index. For every query the
-// nearest train descriptor wins, ties to the lowest index.
+// nearest train descriptor wins, ties to the lowest index. Throws aief::Error for
+// MatcherKind::guided, which needs the keypoints (match_features).
 std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
                                      const std::vector<Descriptor>& b,
                                      const MatchOptions& options = {});
+
+// Matches of the features `a` (queries) into `b`, sorted by query index: match_descriptors on
+// their descriptors, or, for MatcherKind::guided, their keypoints' positions too (in aief's
+// pixel-centre coordinates, as extracted). Throws aief::Error for guided when a keypoint count
+// differs from its descriptor count.
+std::vector<Match> match_features(const Features& a, const Features& b,
+                                  const MatchOptions& options = {});
 
 }  // namespace aief

@@ -173,7 +173,7 @@ def test_numbers_follow_the_cli_rules():
 def test_ratio_goes_with_the_ratio_matcher_only():
     descriptors = numpy.random.default_rng(1).integers(0, 256, (40, 32), dtype=numpy.uint8)
     # Before: ratio=0.1 without matcher='ratio' was ignored; the CLI refuses it.
-    with pytest.raises(aief.Error, match="ratio applies to matcher ratio or mutual_ratio only, not mutual"):
+    with pytest.raises(aief.Error, match="ratio applies to matcher ratio, mutual_ratio or guided only, not mutual"):
         aief.match(descriptors, descriptors, ratio=0.1)
     assert len(aief.match(descriptors, descriptors, matcher="ratio", ratio=0.9)) > 0
     assert len(aief.match(descriptors, descriptors, matcher="mutual_ratio", ratio=0.9)) > 0
@@ -213,5 +213,5 @@ def test_match_and_adapt_take_their_options_from_the_rows():
         aief.match(descriptors, descriptors, rato=0.5)
     with pytest.raises(TypeError, match="missing required argument 'b'"):
         aief.match(descriptors)
-    with pytest.raises(aief.Error, match="ratio applies to matcher ratio or mutual_ratio only, not mutual"):
+    with pytest.raises(aief.Error, match="ratio applies to matcher ratio, mutual_ratio or guided only, not mutual"):
         aief.adapt(numpy.zeros((64, 64), numpy.uint8), numpy.zeros((64, 64), numpy.uint8), ratio=0.5)
