@@ -144,6 +144,24 @@ TEST(GuidedMatcher, FewSeedsGiveTheSeeds) {
             pairs_of(match_features(s.a, s.b, mutual_ratio)));
 }
 
+TEST(GuidedMatcher, AMatrixGuidesWithFifteenInliersAndAFifthOfTheSeeds) {
+  EXPECT_FALSE(guides(14, 20));
+  EXPECT_TRUE(guides(15, 20));
+  EXPECT_TRUE(guides(20, 100));
+  EXPECT_FALSE(guides(19, 100));
+  // Seeds that are mostly wrong: their points agree with no one matrix, the seeds stay.
+  Scene s = make_scene(300, 0, 17);
+  std::mt19937 rng(4);
+  for (int k = 30; k < 300; ++k) {  // 270 of 300 b keypoints moved anywhere
+    s.b.keypoints[static_cast<std::size_t>(k)].x = static_cast<float>(rng() % 1000);
+    s.b.keypoints[static_cast<std::size_t>(k)].y = static_cast<float>(rng() % 800);
+  }
+  MatchOptions mutual_ratio;
+  mutual_ratio.kind = MatcherKind::mutual_ratio;
+  EXPECT_EQ(pairs_of(match_features(s.a, s.b, guided())),
+            pairs_of(match_features(s.a, s.b, mutual_ratio)));
+}
+
 TEST(GuidedMatcher, OneAndTwoThreadsGiveTheSameMatches) {
   const Scene s = make_scene(600, 200, 13);
   const auto run = [&](int threads) {

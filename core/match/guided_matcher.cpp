@@ -134,6 +134,11 @@ std::vector<Match> match_in_epipolar_band(const Features& a, const Features& b,
   return matches;
 }
 
+bool guides(int inliers, int seeds) {
+  return inliers >= kGuidedMinSeedInliers &&
+         static_cast<double>(inliers) >= kGuidedMinInlierShare * seeds;
+}
+
 std::vector<Match> match_guided(const Features& a, const Features& b, const MatchOptions& options,
                                 const KernelTable& kernels) {
   MatchOptions seeding = options;
@@ -142,7 +147,7 @@ std::vector<Match> match_guided(const Features& a, const Features& b, const Matc
   if (static_cast<int>(seeds.size()) < kGuidedMinSeedInliers) return seeds;
   const FundamentalResult geometry = find_fundamental_ransac(
       positions(a, seeds, true), positions(b, seeds, false), guided_seed_ransac());
-  if (!geometry.found || geometry.inliers < kGuidedMinSeedInliers) return seeds;
+  if (!geometry.found || !guides(geometry.inliers, static_cast<int>(seeds.size()))) return seeds;
   return match_in_epipolar_band(a, b, geometry.F, options);
 }
 

@@ -14,8 +14,14 @@
 
 namespace aief {
 
-// Seed inliers a fundamental matrix needs before it guides: fewer, and the seeds are the matches.
+// What a fundamental matrix needs before it guides: 15 seed inliers (COLMAP's minimum for a
+// verified pair) and a fifth of the seeds. Any 8 correspondences fit a matrix, so random seeds
+// leave 5-11 % within 1 px (tests/test_fundamental_ransac.cpp); on castle-P19, the matrices of
+// view pairs that do not overlap held 5-19 % of their seeds, and a wrong matrix makes the band
+// hand COLMAP hundreds of wrong matches that agree with it (docs/colmap.md). Fewer, and the
+// seeds are the matches.
 inline constexpr int kGuidedMinSeedInliers = 15;
+inline constexpr double kGuidedMinInlierShare = 0.2;
 
 // The seeds' RANSAC: a seed is an inlier within 1 px (Sampson), tight because the matrix then
 // bounds every keypoint's candidates; fixed seed, so the same features give the same matches.
@@ -25,6 +31,9 @@ RansacOptions guided_seed_ransac();
 // (i, j) whose Sampson distance under F is at most options.epipolar_band_px.
 std::vector<Match> match_in_epipolar_band(const Features& a, const Features& b,
                                           const Fundamental& F, const MatchOptions& options);
+
+// Whether a matrix found with `inliers` of `seeds` seed matches may guide.
+bool guides(int inliers, int seeds);
 
 // MatcherKind::guided with the Hamming kernel of `kernels` for the seeds.
 std::vector<Match> match_guided(const Features& a, const Features& b, const MatchOptions& options,

@@ -21,7 +21,8 @@ enum class MatcherKind {
   // mutual and ratio test, among the other image's keypoints within epipolar_band_px of its
   // epipolar line, so that a match the whole image's ratio test drops (a repeated facade, a
   // window among windows) is kept when it is the only good one on its line. Needs keypoints:
-  // match_features. Without a matrix (fewer than 15 seed inliers), mutual_ratio's matches.
+  // match_features. Without a matrix (fewer than 15 seed inliers, or under a fifth of the seeds),
+  // mutual_ratio's matches.
   guided,
 };
 
