@@ -98,8 +98,8 @@ void bind_matching(py::module_& m) {
       documented(match_call(),
                  "Hamming matches of descriptors a (N x 32 uint8, or Features) into b: "
                  "an M x 3 int32 array of (query, train, distance), sorted by query; "
-                 "ratio goes with matcher='ratio', 'mutual_ratio' or 'guided', as aief match "
-                 "--ratio; matcher='guided' needs Features.",
+                 "ratio goes with matcher='ratio', 'mutual_ratio' or 'guided', as in aief match; "
+                 "matcher='guided' needs Features.",
                  keywords_doc<MatchOptions>());
   m.def(
       "match",
@@ -116,8 +116,8 @@ void bind_matching(py::module_& m) {
           for (int i : {0, 1})
             if (!py::isinstance<PyFeatures>(call.leading(i)))
               throw Error(std::string(i == 0 ? "a" : "b") +
-                          ": matcher='guided' needs aief.Features (their keypoints), not "
-                          "descriptors alone");
+                          ": matcher='guided' needs aief.Features, not descriptors alone: "
+                          "it matches by the keypoints' positions too");
           const Features fa = engine_features(call.leading(0)),
                          fb = engine_features(call.leading(1));
           py::gil_scoped_release no_gil;

@@ -55,6 +55,22 @@ def test_matcher_options():
     assert aief.match(a[:0], b).shape == (0, 3)
 
 
+def test_guided_matching_gives_the_cli_answer(cli, tmp_path):
+    out = tmp_path / "matches.json"
+    run_cli(cli, "match", sample_path("boat", 1), sample_path("boat", 2), "--matcher", "guided", "-o", out)
+    expected = json.loads(out.read_text())
+    extractor = aief.Extractor()
+    a = extractor.extract(read_unchanged(sample_path("boat", 1)))
+    b = extractor.extract(read_unchanged(sample_path("boat", 2)))
+    matches = aief.match(a, b, matcher="guided", ratio=0.8, epipolar_band=1.0)
+    numpy.testing.assert_array_equal(matches, [[m["query"], m["train"], m["distance"]] for m in expected["matches"]])
+    assert len(matches) > len(aief.match(a, b, matcher="mutual_ratio"))
+    with pytest.raises(aief.Error, match="matcher='guided' needs aief.Features"):
+        aief.match(a.descriptors, b, matcher="guided")
+    with pytest.raises(aief.Error, match="epipolar_band applies to matcher guided only"):
+        aief.match(a, b, epipolar_band=2.0)
+
+
 @pytest.mark.parametrize("call, message", [
     (lambda d: aief.match(d, d, matcher="nearest"), "unknown matcher"),
     (lambda d: aief.match(d, d, ratio=1.5), "ratio"),
