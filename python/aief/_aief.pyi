@@ -12,7 +12,7 @@ ImageLike = numpy.typing.ArrayLike
 PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 # N x 2 points (x, y).
 PointsLike = numpy.typing.ArrayLike
-MatcherName = Literal["mutual", "ratio", "paper", "mutual_ratio"]
+MatcherName = Literal["mutual", "ratio", "paper", "mutual_ratio", "guided"]
 
 __version__: str
 
@@ -170,6 +170,7 @@ def match(
     matcher: MatcherName = "mutual",
     ratio: Optional[float] = None,
     max_distance: int = 256,
+    epipolar_band: Optional[float] = None,
 ) -> numpy.ndarray:
     """Hamming matches of a into b: M x 3 int32 (query, train, distance), sorted by query."""
 
@@ -193,6 +194,7 @@ def adapt(
     matcher: MatcherName = "mutual",
     ratio: Optional[float] = None,
     max_distance: int = 256,
+    epipolar_band: Optional[float] = None,
 ) -> AdaptResult:
     """The paper's sweep of F over a pair: the chosen threshold, the curve, features and matches at it."""
 
