@@ -10,7 +10,8 @@ A scene is a folder in Strecha's layout (images/, gt_dense_cameras/*.camera: ope
 SfM_quality_evaluation holds castle-P19, castle-P30, entry-P10, Herz-Jesus-P25 and fountain-P11);
 the data are not part of this repository. Methods default to
   aief-default=aief   aief-quality=aief:--mode quality
-  aief-box-ratio=aief:--descriptor box;--matcher ratio (docs/colmap.md's recipe for SfM)   sift=sift
+  aief-sfm=aief:--descriptor box --n-levels 5 --n-features 10400;--matcher guided
+    (docs/colmap.md's recipe for SfM)   sift=sift
 aief's route: extract --batch --format h5, match --pairs over every pair, colmap, then COLMAP's
 matches_importer (two-view verification) and mapper; SIFT's: feature_extractor (CPU,
 SIMPLE_RADIAL, --SiftExtraction.max_num_features = --n-features), exhaustive_matcher, mapper. Every
@@ -41,7 +42,8 @@ from colmapbench.scenes import read_scene  # noqa: E402
 
 # The default and quality modes as they come, the recipe docs/colmap.md recommends for SfM, SIFT.
 DEFAULT_METHODS = ["aief-default=aief", "aief-quality=aief:--mode quality",
-                   "aief-box-ratio=aief:--descriptor box;--matcher ratio", "sift=sift"]
+                   "aief-sfm=aief:--descriptor box --n-levels 5 --n-features 10400;--matcher guided",
+                   "sift=sift"]
 
 
 def find_binary(given, name, how):
