@@ -1,6 +1,7 @@
 // MatcherKind::guided (core/match/guided_matcher.hpp): two synthetic views of a 3D scene, where
 // the epipolar band keeps what the whole image's ratio test drops, and nothing else changes.
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <utility>
@@ -137,7 +138,9 @@ TEST(GuidedMatcher, TheBandDecidesWhichCandidatesCompete) {
 }
 
 TEST(GuidedMatcher, FewSeedsGiveTheSeeds) {
-  const Scene s = make_scene(12, 0, 5);  // 12 seeds: fewer than a matrix needs
+  // 12 seeds (14 points, 2 of them decoyed out of the ratio test): fewer than a matrix needs. A
+  // band would find the decoyed two.
+  const Scene s = make_scene(14, 2, 5);
   MatchOptions mutual_ratio;
   mutual_ratio.kind = MatcherKind::mutual_ratio;
   EXPECT_EQ(pairs_of(match_features(s.a, s.b, guided())),
@@ -217,6 +220,16 @@ TEST(GuidedMatcher, NeedsKeypoints) {
   MatchOptions bad = guided();
   bad.epipolar_band_px = 0;
   EXPECT_THROW(match_features(s.a, s.b, bad), Error);
+  // A keypoint at infinity would be on every epipolar line: refused, naming it.
+  Features far = s.b;
+  far.keypoints[3].x = std::numeric_limits<float>::infinity();
+  try {
+    match_features(s.a, far, guided());
+    FAIL() << "a keypoint at infinity was matched";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("keypoint 3 of the second features"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

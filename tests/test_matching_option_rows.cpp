@@ -184,3 +184,28 @@ TEST(MatchingOptionRows, MatchPairsRefusesTheFlagsThatDoNotApply) {
 
 }  // namespace
 }  // namespace aief
+
+namespace aief {
+namespace {
+
+// A matches file written before --epipolar-band existed records no epipolar_band_px: a resumed
+// match --pairs keeps its pairs for every matcher but guided, where the band acts (before, every
+// pair was matched again, "epipolar_band_px not recorded -> 1").
+TEST(MatchingOptionRows, ARowThatActsInNeitherRecordIsNoDifference) {
+  const option_table::RecordedOptions before = {
+      {"kind", "mutual_ratio"}, {"ratio", "0.8"}, {"max_distance", "256"}};
+  option_table::RecordedOptions now = before;
+  now.emplace_back("epipolar_band_px", "1");
+  EXPECT_TRUE(option_table::output_differences<MatchOptions>(before, now).empty());
+  option_table::RecordedOptions guided_before = before, guided_now = now;
+  guided_before[0].second = guided_now[0].second = "guided";
+  const auto differences =
+      option_table::output_differences<MatchOptions>(guided_before, guided_now);
+  ASSERT_EQ(differences.size(), 1u);
+  EXPECT_EQ(option_table::text_of(differences[0]), "epipolar_band_px not recorded -> 1");
+  // One record where the band acts is enough: guided against mutual_ratio differs in both rows.
+  EXPECT_EQ(option_table::output_differences<MatchOptions>(before, guided_now).size(), 2u);
+}
+
+}  // namespace
+}  // namespace aief

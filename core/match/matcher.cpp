@@ -127,10 +127,16 @@ std::vector<Match> match_features(const Features& a, const Features& b,
   if (options.kind != MatcherKind::guided)
     return match_descriptors(a.descriptors, b.descriptors, options, kernels);
   options.validate();
-  for (const Features* f : {&a, &b})
+  for (const Features* f : {&a, &b}) {
     if (f->keypoints.size() != f->descriptors.size())
       throw Error("matcher guided: features with " + std::to_string(f->keypoints.size()) +
                   " keypoints but " + std::to_string(f->descriptors.size()) + " descriptors");
+    // A keypoint at infinity would lie on every epipolar line (inf <= inf) and void the matrix.
+    for (std::size_t i = 0; i < f->keypoints.size(); ++i)
+      if (!std::isfinite(f->keypoints[i].x) || !std::isfinite(f->keypoints[i].y))
+        throw Error("matcher guided: keypoint " + std::to_string(i) + " of the " +
+                    (f == &a ? "first" : "second") + " features is not at a finite position");
+  }
   return match_guided(a, b, options, kernels);
 }
 

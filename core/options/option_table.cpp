@@ -256,6 +256,12 @@ bool same_recorded_value(std::string_view a, std::string_view b) {
 
 }  // namespace
 
+bool acts_in_record(std::string_view applies_with_key, std::string_view applies_with_values,
+                    const RecordedOptions& record) {
+  return applies_with_key.empty() ||
+         is_one_of(applies_with_values, recorded_value(record, applies_with_key));
+}
+
 void add_difference(std::string_view key, const RecordedOptions& before,
                     const RecordedOptions& after, std::vector<OptionDifference>& differences) {
   const std::string_view was = recorded_value(before, key), is = recorded_value(after, key);

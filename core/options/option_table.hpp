@@ -326,16 +326,28 @@ struct OptionDifference {
 void add_difference(std::string_view key, const RecordedOptions& before,
                     const RecordedOptions& after, std::vector<OptionDifference>& differences);
 
+// Whether a row that applies only while `applies_with_key` holds one of `applies_with_values`
+// acts in `record` (a row without such a key always does). A row that acts in neither of two
+// records cannot make their outputs differ: output_differences leaves it out, so that a record
+// written before the row existed (the matcher's epipolar_band_px, added with matcher guided)
+// still equals today's for every other matcher.
+bool acts_in_record(std::string_view applies_with_key, std::string_view applies_with_values,
+                    const RecordedOptions& record);
+
 // The fields that change the output (rows with changes_output) whose values differ between
-// `before` and `after`, in table order. Empty: outputs made with either record are the same
-// bytes. Batch resume redoes an output with differences; merge refuses shards with them
-// (io/option_record.hpp); match --pairs redoes pairs matched with other matcher options.
+// `before` and `after`, in table order, among the rows that act in either record (above).
+// Empty: outputs made with either record are the same bytes. Batch resume redoes an output with
+// differences; merge refuses shards with them (io/option_record.hpp); match --pairs redoes pairs
+// matched with other matcher options.
 template <class Options = ExtractorOptions>
 std::vector<OptionDifference> output_differences(const RecordedOptions& before,
                                                  const RecordedOptions& after) {
   std::vector<OptionDifference> differences;
   for (const Row<Options>& r : rows_of<Options>())
-    if (r.is_field() && r.changes_output) add_difference(r.key, before, after, differences);
+    if (r.is_field() && r.changes_output &&
+        (acts_in_record(r.applies_with_key, r.applies_with_value, before) ||
+         acts_in_record(r.applies_with_key, r.applies_with_value, after)))
+      add_difference(r.key, before, after, differences);
   return differences;
 }
 

@@ -62,7 +62,7 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
 // Matches of the features `a` (queries) into `b`, sorted by query index: match_descriptors on
 // their descriptors, or, for MatcherKind::guided, their keypoints' positions too (in aief's
 // pixel-centre coordinates, as extracted). Throws aief::Error for guided when a keypoint count
-// differs from its descriptor count.
+// differs from its descriptor count or a keypoint is not at a finite position.
 std::vector<Match> match_features(const Features& a, const Features& b,
                                   const MatchOptions& options = {});
 
