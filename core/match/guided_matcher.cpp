@@ -6,6 +6,7 @@
 
 #include "aief/error.hpp"
 #include "core/kernels/hamming_256_many.hpp"
+#include "core/match/band_column_minima.hpp"
 #include "core/match/matcher.hpp"
 #include "parallel/scheduler.hpp"
 
@@ -112,16 +113,8 @@ std::vector<Match> match_in_epipolar_band(const Features& a, const Features& b,
     }
   });
 
-  std::vector<int> col_best(static_cast<std::size_t>(n_b), -1);
-  std::vector<int> col_distance(static_cast<std::size_t>(n_b), std::numeric_limits<int>::max());
-  for (int band = 0; band < bands; ++band)
-    for (int j = 0; j < n_b; ++j) {
-      const std::size_t k = static_cast<std::size_t>(band) * n_b + j;
-      if (band_col_distance[k] < col_distance[static_cast<std::size_t>(j)]) {
-        col_distance[static_cast<std::size_t>(j)] = band_col_distance[k];
-        col_best[static_cast<std::size_t>(j)] = band_col_best[k];
-      }
-    }
+  const std::vector<int> col_best =
+      merge_band_column_minima(bands, n_b, band_col_distance, band_col_best);
 
   for (int i = 0; i < n_a; ++i) {
     const Nearest& nearest = row_nearest[static_cast<std::size_t>(i)];

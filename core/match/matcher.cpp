@@ -7,6 +7,7 @@
 
 #include "aief/error.hpp"
 #include "core/kernels/kernel_table.hpp"
+#include "core/match/band_column_minima.hpp"
 #include "core/match/guided_matcher.hpp"
 #include "parallel/scheduler.hpp"
 
@@ -76,19 +77,9 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
     }
   });
 
-  std::vector<int> col_best;
-  if (mutual) {
-    col_best.assign(static_cast<std::size_t>(n_b), -1);
-    std::vector<int> col_distance(static_cast<std::size_t>(n_b), std::numeric_limits<int>::max());
-    for (int band = 0; band < bands; ++band)
-      for (int j = 0; j < n_b; ++j) {
-        const std::size_t k = static_cast<std::size_t>(band) * n_b + j;
-        if (band_col_distance[k] < col_distance[static_cast<std::size_t>(j)]) {
-          col_distance[static_cast<std::size_t>(j)] = band_col_distance[k];
-          col_best[static_cast<std::size_t>(j)] = band_col_best[k];
-        }
-      }
-  }
+  const std::vector<int> col_best =
+      mutual ? merge_band_column_minima(bands, n_b, band_col_distance, band_col_best)
+             : std::vector<int>();
 
   int min_distance = std::numeric_limits<int>::max();
   for (const Nearest& nearest : row_nearest)
