@@ -6,7 +6,7 @@
 
 #include "aief/error.hpp"
 #include "core/kernels/hamming_256_many.hpp"
-#include "core/match/band_column_minima.hpp"
+#include "core/match/band_nearest.hpp"
 #include "core/match/matcher.hpp"
 #include "parallel/scheduler.hpp"
 
@@ -41,11 +41,6 @@ std::vector<Line> epipolar_lines(const std::vector<Keypoint>& keypoints, const F
   }
   return lines;
 }
-
-struct Nearest {
-  int best = -1, best_distance = std::numeric_limits<int>::max();
-  int second_distance = std::numeric_limits<int>::max();
-};
 
 std::vector<Point2> positions(const Features& f, const std::vector<Match>& matches, bool query) {
   std::vector<Point2> points;
@@ -97,13 +92,7 @@ std::vector<Match> match_in_epipolar_band(const Features& a, const Features& b,
         if (!(residual * residual <= band_sq * denominator)) continue;
         const int d = static_cast<int>(
             hamming_256_scalar(query, b.descriptors[static_cast<std::size_t>(j)].data()));
-        if (d < nearest.best_distance) {
-          nearest.second_distance = nearest.best_distance;
-          nearest.best_distance = d;
-          nearest.best = j;
-        } else if (d < nearest.second_distance) {
-          nearest.second_distance = d;
-        }
+        nearest.offer(d, j);
         if (d < col_distance[j]) {  // rows ascend: ties keep the lower query
           col_distance[j] = d;
           col_best[j] = i;

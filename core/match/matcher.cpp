@@ -7,20 +7,13 @@
 
 #include "aief/error.hpp"
 #include "core/kernels/kernel_table.hpp"
-#include "core/match/band_column_minima.hpp"
+#include "core/match/band_nearest.hpp"
 #include "core/match/guided_matcher.hpp"
 #include "parallel/scheduler.hpp"
 
 namespace aief {
 
 namespace {
-
-// Nearest and second nearest train of one query, and the nearest query of each train over a
-// band of rows: (distance, index) pairs, lower distance then lower index wins.
-struct Nearest {
-  int best = -1, best_distance = std::numeric_limits<int>::max();
-  int second_distance = std::numeric_limits<int>::max();
-};
 
 constexpr int kRowsPerBand = 64;  // queries per parallel piece; fixed, so merging is deterministic
 
@@ -61,13 +54,7 @@ std::vector<Match> match_descriptors(const std::vector<Descriptor>& a,
       Nearest nearest;
       for (int j = 0; j < n_b; ++j) {
         const int d = distances[static_cast<std::size_t>(j)];
-        if (d < nearest.best_distance) {
-          nearest.second_distance = nearest.best_distance;
-          nearest.best_distance = d;
-          nearest.best = j;
-        } else if (d < nearest.second_distance) {
-          nearest.second_distance = d;
-        }
+        nearest.offer(d, j);
         if (mutual && d < col_distance[j]) {  // rows ascend: ties keep the lower query
           col_distance[j] = d;
           col_best[j] = i;
